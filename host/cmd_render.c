@@ -1,0 +1,251 @@
+/* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
+ * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "gpu_render.h"
+#include "image/image_io.h"
+#include "scene/scene_pack.h"
+#include "stats.h"
+
+static const char render_usage[] =
+    "usage: vkraycast render SCENE -o OUT [options]\n"
+    "\n"
+    "  -o, --output OUT        image to write; the extension picks the format (png, exr, tif, jpg, ...)\n"
+    "  --width W, --height H   override the scene's image size\n"
+    "  --spp N                 override samples per pixel (1..1024)\n"
+    "  --device N              Vulkan device index (see `vkraycast devices`); default: discrete >\n"
+    "                          integrated > virtual > CPU\n"
+    "  --srgb                  8-bit outputs get the sRGB transfer curve (default: linear, clamped)\n"
+    "  --repeat N              render N frames; statistics report the first and the median of the rest\n"
+    "  --stats-json FILE       write the statistics as one JSON object\n"
+    "  --quiet                 no progress or summary on stderr\n"
+    "\n"
+    "tuning and testing:\n"
+    "  --scene-buffers K       texel (default) or storage: how the shader reads the scene arrays\n"
+    "  --staging               upload and read back through staging buffers even on unified memory\n"
+    "                          (also VKRAYCAST_FORCE_STAGING=1)\n"
+    "  --tile N                tile side in pixels (default 256); one submit per dispatch\n"
+    "  --plan-budget N         loop budget the host plans batches with (default and minimum 49152,\n"
+    "                          the shader's); larger values test the shader's exhaustion flag\n";
+
+typedef struct {
+  const char *scene, *output, *stats_json;
+  uint32_t width, height, spp, repeat;
+  int device;
+  bool quiet, srgb;
+  rc_gpu_options gpu;
+} render_args;
+
+rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t hi, uint32_t *out) {
+  char *end = NULL;
+  errno = 0;
+  unsigned long long v = strtoull(text, &end, 10);
+  if (!text[0] || *end || errno || text[0] == '-' || v < lo || v > hi) {
+    rc_error("%s: expected a whole number in [%u, %u], got '%s'", name, lo, hi, text);
+    return RC_ERR_USAGE;
+  }
+  *out = (uint32_t)v;
+  return RC_OK;
+}
+
+static rc_status parse_args(int argc, char **argv, render_args *a) {
+  memset(a, 0, sizeof *a);
+  a->device = -1;
+  a->repeat = 1;
+  a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
+  a->gpu.tile_size = 256;
+  a->gpu.plan_budget = RC_LOOP_BUDGET;
+  const char *force = getenv("VKRAYCAST_FORCE_STAGING");
+  a->gpu.force_staging = force && force[0] && strcmp(force, "0") != 0;
+  for (int i = 0; i < argc; i++) {
+    const char *o = argv[i];
+    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+    bool takes_value = true;
+    rc_status st = RC_OK;
+    uint32_t n;
+    if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
+      fputs(render_usage, stdout);
+      exit(0);
+    } else if (strcmp(o, "--quiet") == 0) {
+      a->quiet = true, takes_value = false;
+    } else if (strcmp(o, "--srgb") == 0) {
+      a->srgb = true, takes_value = false;
+    } else if (strcmp(o, "--staging") == 0) {
+      a->gpu.force_staging = true, takes_value = false;
+    } else if (o[0] == '-' && !v) {
+      rc_error("render: option %s needs a value", o);
+      return RC_ERR_USAGE;
+    } else if (strcmp(o, "-o") == 0 || strcmp(o, "--output") == 0) {
+      a->output = v;
+    } else if (strcmp(o, "--stats-json") == 0) {
+      a->stats_json = v;
+    } else if (strcmp(o, "--width") == 0) {
+      st = rc_cli_uint(o, v, 1, RC_MAX_IMAGE_SIDE, &a->width);
+    } else if (strcmp(o, "--height") == 0) {
+      st = rc_cli_uint(o, v, 1, RC_MAX_IMAGE_SIDE, &a->height);
+    } else if (strcmp(o, "--spp") == 0) {
+      st = rc_cli_uint(o, v, 1, RC_MAX_SAMPLES_PER_PIXEL, &a->spp);
+    } else if (strcmp(o, "--repeat") == 0) {
+      st = rc_cli_uint(o, v, 1, 1000, &a->repeat);
+    } else if (strcmp(o, "--device") == 0) {
+      st = rc_cli_uint(o, v, 0, 1000, &n);
+      a->device = (int)n;
+    } else if (strcmp(o, "--tile") == 0) {
+      st = rc_cli_uint(o, v, 8, 4096, &a->gpu.tile_size);
+    } else if (strcmp(o, "--plan-budget") == 0) {
+      st = rc_cli_uint(o, v, RC_LOOP_BUDGET, UINT32_MAX, &a->gpu.plan_budget);
+    } else if (strcmp(o, "--scene-buffers") == 0) {
+      if (strcmp(v, "texel") == 0) {
+        a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
+      } else if (strcmp(v, "storage") == 0) {
+        a->gpu.scene_buffers = RC_SCENE_BUFFERS_STORAGE;
+      } else {
+        rc_error("--scene-buffers: expected texel or storage, got '%s'", v);
+        st = RC_ERR_USAGE;
+      }
+    } else if (o[0] == '-' && o[1]) {
+      rc_error("render: unknown option %s (see vkraycast render --help)", o);
+      return RC_ERR_USAGE;
+    } else if (!a->scene) {
+      a->scene = o, takes_value = false;
+    } else {
+      rc_error("render: unexpected argument '%s' (one scene per command)", o);
+      return RC_ERR_USAGE;
+    }
+    if (st != RC_OK) return st;
+    if (takes_value) i++;
+  }
+  if (!a->scene || !a->output) {
+    rc_error("render: %s", !a->scene ? "no scene file given" : "no output file given (-o OUT)");
+    fputs(render_usage, stderr);
+    return RC_ERR_USAGE;
+  }
+  if (!rc_image_can_write(a->output)) {
+    rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->output);
+    return RC_ERR_USAGE;
+  }
+  return RC_OK;
+}
+
+/* The host image is width * height * 12 bytes; refuse what cannot fit in memory before
+ * any work, with the numbers. */
+static rc_status check_image_memory(uint32_t w, uint32_t h) {
+  uint64_t bytes = (uint64_t)w * h * 3 * sizeof(float);
+  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  uint64_t ram = pages > 0 && page > 0 ? (uint64_t)pages * (uint64_t)page : 0;
+  if (ram && bytes > ram / 2) {
+    rc_error("a %ux%u image needs %.1f GiB of host memory for its float pixels, more than half of this "
+             "machine's %.1f GiB",
+             w, h, (double)bytes / (1u << 30), (double)ram / (1u << 30));
+    return RC_ERR_TOO_LARGE;
+  }
+  return RC_OK;
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_packed_scene *packed, float *rgb,
+                               rc_render_stats *rs) {
+  rc_gpu_renderer *r = NULL;
+  rc_gpu_options opts = a->gpu;
+  opts.progress = !a->quiet && isatty(STDERR_FILENO);
+  rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
+  double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
+  if (!gpu_ms || !wall_ms) st = RC_ERR_TOO_LARGE;
+  for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
+    st = rc_gpu_renderer_render(r, rgb, &rs->gpu);
+    gpu_ms[i] = rs->gpu.gpu_ms;
+    wall_ms[i] = rs->gpu.render_ms;
+  }
+  if (st == RC_OK) {
+    rs->first_frame_ms = wall_ms[0];
+    if (a->repeat > 1) {
+      qsort(gpu_ms + 1, a->repeat - 1, sizeof *gpu_ms, cmp_double);
+      qsort(wall_ms + 1, a->repeat - 1, sizeof *wall_ms, cmp_double);
+      rs->render_ms = gpu_ms[1 + (a->repeat - 1) / 2];
+      rs->render_wall_ms = wall_ms[1 + (a->repeat - 1) / 2];
+    } else {
+      rs->render_ms = gpu_ms[0];
+      rs->render_wall_ms = wall_ms[0];
+    }
+    rs->rays_shadow = rs->gpu.shadow_rays;
+    rs->rays_reflection = rs->gpu.reflection_rays;
+  }
+  free(gpu_ms);
+  free(wall_ms);
+  rc_gpu_renderer_destroy(r);
+  return st;
+}
+
+rc_status rc_cmd_render(int argc, char **argv) {
+  render_args a;
+  rc_status st = parse_args(argc, argv, &a);
+  if (st != RC_OK) return st;
+
+  rc_render_stats rs = {.backend = "vulkan", .repeat = a.repeat};
+  rc_scene scene;
+  double t0 = rc_now_ms();
+  st = rc_scene_load(a.scene, &scene);
+  rs.parse_ms = rc_now_ms() - t0;
+  if (st != RC_OK) {
+    rc_scene_free(&scene);
+    return st;
+  }
+  if (a.width) scene.width = a.width;
+  if (a.height) scene.height = a.height;
+  if (a.spp) scene.samples_per_pixel = a.spp;
+
+  rc_packed_scene packed = {0};
+  rc_vk_ctx ctx = {0};
+  float *rgb = NULL;
+  st = check_image_memory(scene.width, scene.height);
+  if (st == RC_OK) st = rc_scene_pack(&scene, &packed);
+  if (st == RC_OK) {
+    rgb = rc_alloc((size_t)scene.width * scene.height * 3, sizeof(float), "the image");
+    if (!rgb) st = RC_ERR_TOO_LARGE;
+  }
+  rc_vk_options vo = {.device_index = a.device};
+  if (st == RC_OK) st = rc_vk_create(&vo, &ctx);
+  char driver[600] = "";
+  if (st == RC_OK) {
+    snprintf(driver, sizeof driver, "%s %s", ctx.driver.driverName[0] ? ctx.driver.driverName : "unknown driver",
+             ctx.driver.driverInfo);
+    rs.device = ctx.props.deviceName;
+    rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
+    rs.driver = driver;
+    rs.width = scene.width;
+    rs.height = scene.height;
+    rs.samples_per_pixel = scene.samples_per_pixel;
+    rs.spheres = scene.sphere_count;
+    rs.triangles = scene.triangle_count;
+    rs.lights = scene.light_count;
+    rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
+    st = render_frames(&a, &ctx, &packed, rgb, &rs);
+  }
+  if (st == RC_OK) {
+    char err[512];
+    t0 = rc_now_ms();
+    if (rc_image_write(a.output, (int)scene.width, (int)scene.height, 3, rgb,
+                       a.srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR, err, sizeof err) != 0) {
+      rc_error("%s: cannot write image: %s", a.output, err);
+      st = RC_ERR_IO;
+    }
+    rs.write_ms = rc_now_ms() - t0;
+  }
+  rs.cpu_ms = rc_cpu_ms();
+  if (st == RC_OK && !a.quiet) rc_stats_print(&rs);
+  if (st == RC_OK && a.stats_json) st = rc_stats_write_json(&rs, a.stats_json);
+  rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
+  free(rgb);
+  rc_packed_scene_free(&packed);
+  rc_scene_free(&scene);
+  return st != RC_OK ? st : vst;
+}

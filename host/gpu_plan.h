@@ -1,0 +1,26 @@
+/* gpu_plan.h: how much work one dispatch may give a pixel. Every shader loop iteration is
+ * one step of the per-invocation loop budget (rc_budget.glsl); this module counts the
+ * worst-case steps of one sample exactly as the shader's loops are nested, and sizes the
+ * sample batch so that a dispatch never exceeds the budget. */
+#ifndef RC_GPU_PLAN_H
+#define RC_GPU_PLAN_H
+
+#include "rc_base.h"
+#include "rc_shared.h"
+
+typedef struct rc_gpu_plan {
+  uint64_t steps_per_sample; /* worst case over all pixels */
+  uint32_t batch_samples;    /* samples per pixel per dispatch */
+  uint32_t budget;           /* the budget the plan was made for */
+} rc_gpu_plan;
+
+/* Worst-case loop steps of one sample:
+ *   1 (sample loop) + (depth + 1) * [1 (bounce loop) + (S + T) (closest hit)
+ *                                   + L * (1 (light loop) + S + T (shadow ray))]. */
+uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
+
+/* Fails with RC_ERR_TOO_LARGE (message with the numbers) when even one sample exceeds the
+ * budget: brute force over that many primitives cannot render correctly on llvmpipe. */
+rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t budget, rc_gpu_plan *plan);
+
+#endif

@@ -1,0 +1,437 @@
+#include "gpu_render.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_shaders.h"
+
+#define LOCAL_SIZE 8 /* 8x8 = 64 invocations: a multiple of every subgroup size (4..64) */
+
+struct rc_gpu_renderer {
+  rc_vk_ctx *ctx;
+  rc_gpu_options opts;
+  gpu_frame frame;
+  rc_buffer frame_buf;
+  rc_buffer arrays[4]; /* spheres, triangles, materials, lights */
+  VkBufferView views[4];
+  rc_buffer accum, accum_readback;
+  rc_buffer status, status_readback;
+  VkDescriptorSetLayout set_layout;
+  VkPipelineLayout pipeline_layout;
+  VkPipeline pipeline;
+  VkDescriptorPool descriptor_pool;
+  VkDescriptorSet set;
+  VkQueryPool queries;
+  VkCommandBuffer cmd;
+  VkFence fence;
+  bool staging;
+};
+
+static const uint32_t array_bindings[4] = {RC_BINDING_SPHERES, RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS,
+                                           RC_BINDING_LIGHTS};
+static const char *const array_names[4] = {"spheres", "triangles", "materials", "lights"};
+
+/* Chooses the buffer kind the device can take for this scene: texel buffers need the
+ * RGBA32UI uniform-texel-buffer format feature and maxTexelBufferElements room. */
+static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, const VkDeviceSize sizes[4]) {
+  if (wanted != RC_SCENE_BUFFERS_TEXEL) return wanted;
+  VkFormatProperties fp;
+  vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
+  if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) {
+    rc_warning("device has no RGBA32UI uniform texel buffers; using storage buffers");
+    return RC_SCENE_BUFFERS_STORAGE;
+  }
+  for (int i = 0; i < 4; i++) {
+    if (sizes[i] / 16 > ctx->props.limits.maxTexelBufferElements) {
+      rc_warning("%s need %llu texels, more than maxTexelBufferElements (%u); using storage buffers",
+                 array_names[i], (unsigned long long)(sizes[i] / 16), ctx->props.limits.maxTexelBufferElements);
+      return RC_SCENE_BUFFERS_STORAGE;
+    }
+  }
+  return RC_SCENE_BUFFERS_TEXEL;
+}
+
+static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
+  rc_vk_ctx *ctx = r->ctx;
+  const gpu_frame *f = &s->frame;
+  const void *data[4] = {s->spheres, s->triangles, s->materials, s->lights};
+  /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
+  VkDeviceSize sizes[4] = {(f->sphere_count + 1) * sizeof(gpu_sphere), (f->triangle_count + 1) * sizeof(gpu_triangle),
+                           (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light)};
+  r->opts.scene_buffers = choose_buffers(ctx, r->opts.scene_buffers, sizes);
+  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  for (int i = 0; i < 4; i++) {
+    if (!texel && sizes[i] > ctx->props.limits.maxStorageBufferRange) {
+      rc_error("scene too large: the %s array is %llu bytes, more than the device's maxStorageBufferRange "
+               "(%u bytes)",
+               array_names[i], (unsigned long long)sizes[i], ctx->props.limits.maxStorageBufferRange);
+      return RC_ERR_TOO_LARGE;
+    }
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                               (texel ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);
+    if (st == RC_OK) st = rc_buffer_upload(ctx, &r->arrays[i], data[i], sizes[i], r->opts.force_staging);
+    if (st != RC_OK) return st;
+    if (texel) {
+      VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+                                   .buffer = r->arrays[i].buffer,
+                                   .format = VK_FORMAT_R32G32B32A32_UINT,
+                                   .range = VK_WHOLE_SIZE};
+      RC_VK_TRY(vkCreateBufferView(ctx->device, &vi, NULL, &r->views[i]));
+    }
+  }
+  rc_status st = rc_buffer_create(ctx, sizeof(gpu_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  RC_MEM_DEVICE, &r->frame_buf);
+  if (st == RC_OK) st = rc_buffer_upload(ctx, &r->frame_buf, f, sizeof *f, r->opts.force_staging);
+  return st;
+}
+
+/* The per-tile accumulation buffer and the status counters, with readback copies when
+ * they are not mapped directly. */
+static rc_status create_outputs(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  VkDeviceSize accum_size = (VkDeviceSize)r->opts.tile_size * r->opts.tile_size * 16;
+  VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                             VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
+  if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(gpu_status), usage, RC_MEM_DEVICE, &r->status);
+  if (st != RC_OK) return st;
+  r->staging = !rc_buffer_is_direct(&r->accum, r->opts.force_staging) ||
+               !rc_buffer_is_direct(&r->status, r->opts.force_staging);
+  if (r->staging) {
+    st = rc_buffer_create(ctx, accum_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->accum_readback);
+    if (st == RC_OK)
+      st = rc_buffer_create(ctx, sizeof(gpu_status), VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
+                            &r->status_readback);
+  }
+  return st;
+}
+
+static rc_status create_pipeline(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  VkDescriptorType array_type = texel ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  VkDescriptorSetLayoutBinding b[RC_BINDING_COUNT];
+  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
+    b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
+                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                          .descriptorCount = 1,
+                                          .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+  }
+  b[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  for (int i = 0; i < 4; i++) b[array_bindings[i]].descriptorType = array_type;
+
+  VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                         .bindingCount = RC_BINDING_COUNT,
+                                         .pBindings = b};
+  RC_VK_TRY(vkCreateDescriptorSetLayout(ctx->device, &sli, NULL, &r->set_layout));
+  VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(gpu_push)};
+  VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                    .setLayoutCount = 1,
+                                    .pSetLayouts = &r->set_layout,
+                                    .pushConstantRangeCount = 1,
+                                    .pPushConstantRanges = &pcr};
+  RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
+
+  rc_spirv code = rc_shader_raycast(texel);
+  VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                  .codeSize = code.size,
+                                  .pCode = code.words};
+  VkShaderModule module;
+  RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
+  const uint32_t spec_values[3] = {LOCAL_SIZE, LOCAL_SIZE, RC_LOOP_BUDGET};
+  const VkSpecializationMapEntry entries[3] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
+                                               {RC_SPEC_LOOP_BUDGET, 8, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 3, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                               .pData = spec_values};
+  VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+                                    .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                              .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                                              .module = module,
+                                              .pName = "main",
+                                              .pSpecializationInfo = &spec},
+                                    .layout = r->pipeline_layout};
+  VkResult res = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &r->pipeline);
+  vkDestroyShaderModule(ctx->device, module, NULL);
+  RC_VK_TRY(res);
+  return RC_OK;
+}
+
+static rc_status create_descriptors(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 2 : 6},
+                                   {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 4}};
+  VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                   .maxSets = 1,
+                                   .poolSizeCount = texel ? 3 : 2,
+                                   .pPoolSizes = sizes};
+  RC_VK_TRY(vkCreateDescriptorPool(ctx->device, &pi, NULL, &r->descriptor_pool));
+  VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                    .descriptorPool = r->descriptor_pool,
+                                    .descriptorSetCount = 1,
+                                    .pSetLayouts = &r->set_layout};
+  RC_VK_TRY(vkAllocateDescriptorSets(ctx->device, &ai, &r->set));
+
+  VkDescriptorBufferInfo infos[RC_BINDING_COUNT] = {0};
+  VkWriteDescriptorSet w[RC_BINDING_COUNT];
+  const rc_buffer *bufs[RC_BINDING_COUNT] = {0};
+  bufs[RC_BINDING_FRAME] = &r->frame_buf;
+  bufs[RC_BINDING_ACCUM] = &r->accum;
+  bufs[RC_BINDING_STATUS] = &r->status;
+  for (int i = 0; i < 4; i++) bufs[array_bindings[i]] = &r->arrays[i];
+  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
+    infos[i] = (VkDescriptorBufferInfo){.buffer = bufs[i]->buffer, .range = VK_WHOLE_SIZE};
+    w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = r->set,
+                                  .dstBinding = i,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  .pBufferInfo = &infos[i]};
+  }
+  w[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  for (int i = 0; i < 4; i++) {
+    VkWriteDescriptorSet *x = &w[array_bindings[i]];
+    if (texel) {
+      x->descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      x->pBufferInfo = NULL;
+      x->pTexelBufferView = &r->views[i];
+    }
+  }
+  vkUpdateDescriptorSets(ctx->device, RC_BINDING_COUNT, w, 0, NULL);
+
+  VkQueryPoolCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                              .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                              .queryCount = 2};
+  if (ctx->timestamp_bits) RC_VK_TRY(vkCreateQueryPool(ctx->device, &qi, NULL, &r->queries));
+  VkCommandBufferAllocateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                    .commandPool = ctx->pool,
+                                    .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                    .commandBufferCount = 1};
+  RC_VK_TRY(vkAllocateCommandBuffers(ctx->device, &ci, &r->cmd));
+  VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  RC_VK_TRY(vkCreateFence(ctx->device, &fi, NULL, &r->fence));
+  return RC_OK;
+}
+
+rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
+                                 rc_gpu_renderer **out, rc_gpu_stats *stats) {
+  *out = NULL;
+  rc_gpu_renderer *r = calloc(1, sizeof *r);
+  if (!r) return RC_ERR_VULKAN;
+  r->ctx = ctx;
+  r->opts = *opts;
+  r->frame = scene->frame;
+  rc_status st = rc_gpu_plan_make(&scene->frame, opts->plan_budget, &stats->plan);
+  double t0 = rc_now_ms();
+  if (st == RC_OK) st = upload_scene(r, scene);
+  double t1 = rc_now_ms();
+  if (st == RC_OK) st = create_outputs(r);
+  if (st == RC_OK) st = create_pipeline(r);
+  double t2 = rc_now_ms();
+  if (st == RC_OK) st = create_descriptors(r);
+  stats->upload_ms = t1 - t0;
+  stats->pipeline_ms = t2 - t1;
+  stats->scene_buffers = r->opts.scene_buffers;
+  stats->staging = r->staging || opts->force_staging;
+  if (st != RC_OK) {
+    rc_gpu_renderer_destroy(r);
+    return st;
+  }
+  *out = r;
+  return RC_OK;
+}
+
+void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
+  if (!r) return;
+  rc_vk_ctx *ctx = r->ctx;
+  vkDeviceWaitIdle(ctx->device);
+  vkDestroyFence(ctx->device, r->fence, NULL);
+  if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->pool, 1, &r->cmd);
+  vkDestroyQueryPool(ctx->device, r->queries, NULL);
+  vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
+  vkDestroyPipeline(ctx->device, r->pipeline, NULL);
+  vkDestroyPipelineLayout(ctx->device, r->pipeline_layout, NULL);
+  vkDestroyDescriptorSetLayout(ctx->device, r->set_layout, NULL);
+  for (int i = 0; i < 4; i++) {
+    vkDestroyBufferView(ctx->device, r->views[i], NULL);
+    rc_buffer_destroy(ctx, &r->arrays[i]);
+  }
+  rc_buffer_destroy(ctx, &r->frame_buf);
+  rc_buffer_destroy(ctx, &r->accum);
+  rc_buffer_destroy(ctx, &r->accum_readback);
+  rc_buffer_destroy(ctx, &r->status);
+  rc_buffer_destroy(ctx, &r->status_readback);
+  free(r);
+}
+
+static void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst, VkAccessFlags dst_access) {
+  VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = src_access,
+                        .dstAccessMask = dst_access};
+  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, NULL, 0, NULL);
+}
+
+static rc_status submit(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  RC_VK_TRY(vkEndCommandBuffer(r->cmd));
+  VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &r->cmd};
+  RC_VK_TRY(vkResetFences(ctx->device, 1, &r->fence));
+  VkResult res = vkQueueSubmit(ctx->queue, 1, &si, r->fence);
+  if (res == VK_SUCCESS) res = vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+  if (res == VK_ERROR_DEVICE_LOST) {
+    rc_error("the Vulkan device was lost during rendering (a driver reset, often a dispatch that ran too "
+             "long); try a smaller tile size");
+    return RC_ERR_VULKAN;
+  }
+  RC_VK_TRY(res);
+  return RC_OK;
+}
+
+static rc_status begin(rc_gpu_renderer *r) {
+  RC_VK_TRY(vkResetCommandBuffer(r->cmd, 0));
+  VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                 .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+  RC_VK_TRY(vkBeginCommandBuffer(r->cmd, &bi));
+  return RC_OK;
+}
+
+/* Copies `src` into its readback twin when staging, then makes it visible to the host. */
+static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_buffer *dst, VkDeviceSize size) {
+  if (r->staging) {
+    barrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferCopy region = {.size = size};
+    vkCmdCopyBuffer(r->cmd, src->buffer, dst->buffer, 1, &region);
+    barrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+  } else {
+    barrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+  }
+}
+
+/* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
+ * first batch), run the shader between two timestamps, and bring the status back. */
+static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *gpu_ms) {
+  rc_status st = begin(r);
+  if (st != RC_OK) return st;
+  VkCommandBuffer cmd = r->cmd;
+  /* Earlier transfers and dispatches (uploads, the previous batch) before this one. */
+  barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_ACCESS_TRANSFER_WRITE_BIT);
+  if (first) vkCmdFillBuffer(cmd, r->accum.buffer, 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, r->status.buffer, 0, VK_WHOLE_SIZE, 0);
+  barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
+  if (r->queries) {
+    vkCmdResetQueryPool(cmd, r->queries, 0, 2);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r->queries, 0);
+  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
+  vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+  vkCmdDispatch(cmd, (push->tile_width + LOCAL_SIZE - 1) / LOCAL_SIZE, (push->tile_height + LOCAL_SIZE - 1) / LOCAL_SIZE, 1);
+  if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
+  record_readback(r, &r->status, &r->status_readback, sizeof(gpu_status));
+  double t0 = rc_now_ms();
+  st = submit(r);
+  double wall = rc_now_ms() - t0;
+  if (st != RC_OK) return st;
+  const rc_buffer *sb = r->staging ? &r->status_readback : &r->status;
+  st = rc_buffer_invalidate(r->ctx, sb);
+  if (st != RC_OK) return st;
+  memcpy(status, sb->mapped, sizeof *status);
+  if (r->queries) {
+    uint64_t ts[2];
+    RC_VK_TRY(vkGetQueryPoolResults(r->ctx->device, r->queries, 0, 2, sizeof ts, ts, sizeof ts[0],
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    /* Only the low timestampValidBits count; the difference wraps modulo 2^bits. */
+    uint64_t mask = r->ctx->timestamp_bits >= 64 ? ~0ull : ((1ull << r->ctx->timestamp_bits) - 1);
+    uint64_t ticks = (ts[1] - ts[0]) & mask;
+    *gpu_ms += (double)ticks * r->ctx->props.limits.timestampPeriod * 1e-6;
+  } else {
+    *gpu_ms += wall;
+  }
+  return RC_OK;
+}
+
+/* Renders one tile: batches until every pixel has all its samples. A dispatch whose pixels
+ * ran out of loop budget (the plan was wrong) is repeated with half the batch; exhaustion
+ * at one sample per batch is an error, never a silently wrong pixel. */
+static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th, float *rgb,
+                             rc_gpu_stats *stats) {
+  gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
+                   .batch_samples = stats->plan.batch_samples};
+  bool first = true;
+  for (;;) {
+    gpu_status status;
+    rc_status st = dispatch(r, &push, first, &status, &stats->gpu_ms);
+    if (st != RC_OK) return st;
+    first = false;
+    stats->dispatches++;
+    stats->shadow_rays += status.shadow_rays;
+    stats->reflection_rays += status.reflection_rays;
+    if (status.exhausted_pixels) {
+      if (push.batch_samples == 1) {
+        rc_error("%u pixel%s of tile (%u, %u) ran out of the shader loop budget (%u iterations) within a "
+                 "single sample; refusing to write a wrong image",
+                 status.exhausted_pixels, status.exhausted_pixels == 1 ? "" : "s", x0, y0, RC_LOOP_BUDGET);
+        return RC_ERR_TOO_LARGE;
+      }
+      push.batch_samples /= 2;
+      stats->budget_retries++;
+    }
+    if (status.incomplete_pixels == 0) break;
+  }
+  double t0 = rc_now_ms();
+  rc_status st = begin(r);
+  if (st != RC_OK) return st;
+  record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
+  st = submit(r);
+  const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
+  if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
+  if (st != RC_OK) return st;
+  const float *acc = ab->mapped;
+  uint32_t width = r->frame.camera.width;
+  for (uint32_t y = 0; y < th; y++) {
+    for (uint32_t x = 0; x < tw; x++) {
+      const float *a = acc + 4 * ((size_t)y * tw + x);
+      float *o = rgb + 3 * ((size_t)(y0 + y) * width + (x0 + x));
+      RC_ASSERT(a[3] == (float)r->frame.samples_per_pixel);
+      for (int c = 0; c < 3; c++) o[c] = a[c] / a[3];
+    }
+  }
+  stats->readback_ms += rc_now_ms() - t0;
+  return RC_OK;
+}
+
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, rc_gpu_stats *stats) {
+  stats->gpu_ms = stats->readback_ms = 0;
+  stats->shadow_rays = stats->reflection_rays = 0;
+  stats->dispatches = stats->tiles = stats->budget_retries = 0;
+  uint32_t w = r->frame.camera.width, h = r->frame.camera.height, ts = r->opts.tile_size;
+  uint32_t tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
+  double t0 = rc_now_ms();
+  for (uint32_t ty = 0; ty < tiles_y; ty++) {
+    for (uint32_t tx = 0; tx < tiles_x; tx++) {
+      uint32_t x0 = tx * ts, y0 = ty * ts;
+      uint32_t tw = w - x0 < ts ? w - x0 : ts, th = h - y0 < ts ? h - y0 : ts;
+      rc_status st = render_tile(r, x0, y0, tw, th, rgb, stats);
+      if (st != RC_OK) return st;
+      stats->tiles++;
+      if (r->opts.progress) {
+        double el = rc_now_ms() - t0;
+        uint32_t done = stats->tiles, total = tiles_x * tiles_y;
+        fprintf(stderr, "\rvkraycast: tile %u/%u, %.1f s elapsed, about %.1f s left ", done, total, el * 1e-3,
+                el * 1e-3 * (total - done) / done);
+      }
+    }
+  }
+  if (r->opts.progress) fputc('\n', stderr);
+  stats->render_ms = rc_now_ms() - t0;
+  return RC_OK;
+}

@@ -1,0 +1,47 @@
+/* gpu_render.h: the GPU renderer: pipeline, descriptors, scene upload, tiled dispatch
+ * under the loop budget, timestamps and readback. The objects are created once and can
+ * render several frames (--repeat). */
+#ifndef RC_GPU_RENDER_H
+#define RC_GPU_RENDER_H
+
+#include "gpu_plan.h"
+#include "scene/scene_pack.h"
+#include "vk/vk_buffer.h"
+
+typedef enum {
+  RC_SCENE_BUFFERS_TEXEL,   /* uniform texel buffers (default: faster on llvmpipe) */
+  RC_SCENE_BUFFERS_STORAGE, /* std430 storage buffers */
+} rc_scene_buffers;
+
+typedef struct rc_gpu_options {
+  rc_scene_buffers scene_buffers;
+  bool force_staging;   /* upload and read back through staging buffers even if mappable */
+  uint32_t tile_size;   /* pixels per tile side; one submit per dispatch */
+  uint32_t plan_budget; /* budget the host plans with; above RC_LOOP_BUDGET only in tests,
+                           to make the shader's exhaustion flag fire */
+  bool progress;        /* tiles done on stderr */
+} rc_gpu_options;
+
+typedef struct rc_gpu_stats {
+  double upload_ms;    /* scene buffers, wall */
+  double pipeline_ms;  /* shader module + pipeline creation, wall */
+  double gpu_ms;       /* sum of dispatch times from timestamp queries (wall if none) */
+  double render_ms;    /* the whole frame, wall: dispatches, waits, readback */
+  double readback_ms;  /* accumulation buffer to the host image, wall */
+  uint64_t shadow_rays, reflection_rays;
+  uint32_t dispatches, tiles;
+  uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
+  rc_gpu_plan plan;
+  bool staging;            /* uploads and readback went through staging buffers */
+  rc_scene_buffers scene_buffers;
+} rc_gpu_stats;
+
+typedef struct rc_gpu_renderer rc_gpu_renderer;
+
+rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
+                                 rc_gpu_renderer **out, rc_gpu_stats *stats);
+/* Renders one frame into rgb (width * height * 3 floats, rows top to bottom). */
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, rc_gpu_stats *stats);
+void rc_gpu_renderer_destroy(rc_gpu_renderer *r);
+
+#endif

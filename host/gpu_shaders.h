@@ -1,0 +1,18 @@
+/* gpu_shaders.h: the SPIR-V modules compiled from shaders/ at build time by
+ * glslangValidator and embedded in the binary (no .spv files to find at run time). */
+#ifndef RC_GPU_SHADERS_H
+#define RC_GPU_SHADERS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct rc_spirv {
+  const uint32_t *words;
+  size_t size; /* bytes */
+} rc_spirv;
+
+/* raycast.comp, f32, reading the scene arrays as texel buffers or storage buffers. */
+rc_spirv rc_shader_raycast(bool texel_buffers);
+
+#endif

@@ -1,0 +1,35 @@
+/* image_io.h: image files through OpenImageIO, behind a C API (image_io.cpp is the
+ * project's only C++). Pixels are linear float RGB, rows top to bottom. */
+#ifndef RC_IMAGE_IO_H
+#define RC_IMAGE_IO_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum {
+  RC_ENCODING_LINEAR, /* 8-bit formats store the clamped linear value (classic ray casters) */
+  RC_ENCODING_SRGB,   /* 8-bit formats store the sRGB-encoded value */
+} rc_encoding;
+
+/* Writes `path` in the format its extension names: float pixels for EXR, HDR, TIFF with
+ * ".exr/.hdr/.tif" and 8 bits for PNG, JPEG, BMP, PPM... The file is written to a temporary
+ * name in the same directory and renamed into place, so an existing image is never left
+ * half overwritten. Returns 0, or -1 with a message in err. */
+int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
+                   char *err, size_t err_len);
+
+/* 1 if OpenImageIO can write a file of this name (by its extension), else 0. */
+int rc_image_can_write(const char *path);
+
+/* Reads any image OpenImageIO reads, as float. *pixels is malloc'ed (free()). */
+int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err,
+                  size_t err_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

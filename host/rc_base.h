@@ -1,0 +1,50 @@
+/* rc_base.h: status codes, diagnostics and timing shared by every host module.
+ * Functions return rc_status; the place that detects an error prints it once, with the
+ * context it has (file, line, field, value); only main() turns a status into an exit code
+ * (DESIGN.md §5: 0 ok, 1 compare beyond thresholds, 2 bad input or usage, 3 device). */
+#ifndef RC_BASE_H
+#define RC_BASE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define RC_STATUS_LIST(X)                                           \
+  X(OK, 0, "ok")                                                    \
+  X(MISMATCH, 1, "images differ beyond the thresholds")             \
+  X(ERR_USAGE, 2, "bad usage")                                      \
+  X(ERR_INPUT, 2, "bad input")                                      \
+  X(ERR_IO, 2, "file error")                                        \
+  X(ERR_TOO_LARGE, 2, "request too large")                          \
+  X(ERR_DEVICE, 3, "no usable Vulkan device")                       \
+  X(ERR_VULKAN, 3, "Vulkan call failed")                            \
+  X(ERR_VALIDATION, 3, "Vulkan validation reported errors")
+
+typedef enum {
+#define RC_STATUS_ENUM(name, code, text) RC_##name,
+  RC_STATUS_LIST(RC_STATUS_ENUM)
+#undef RC_STATUS_ENUM
+} rc_status;
+
+const char *rc_status_str(rc_status s);
+int rc_status_exit_code(rc_status s);
+
+/* "vkraycast: error: ..." on stderr. */
+void rc_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void rc_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Programmer errors: always checked, release builds included. */
+#define RC_ASSERT(cond)                                                            \
+  do {                                                                             \
+    if (!(cond)) rc_assert_fail(__FILE__, __LINE__, #cond);                        \
+  } while (0)
+_Noreturn void rc_assert_fail(const char *file, int line, const char *expr);
+
+/* Monotonic wall clock and process CPU time, in milliseconds. */
+double rc_now_ms(void);
+double rc_cpu_ms(void);
+
+/* malloc/calloc that report failure with the size asked for; NULL on failure. */
+void *rc_alloc(size_t count, size_t size, const char *what);
+
+#endif

@@ -1,0 +1,142 @@
+#include "scene/json_locate.h"
+
+#include <string.h>
+
+typedef struct {
+  const char *s;
+  size_t len, pos;
+} cursor;
+
+static void skip_ws(cursor *c) {
+  while (c->pos < c->len && strchr(" \t\r\n", c->s[c->pos]) && c->s[c->pos] != '\0') c->pos++;
+}
+
+/* Skips a string starting at '"'; sets [*start, *end) to its raw contents. */
+static bool skip_string(cursor *c, size_t *start, size_t *end) {
+  if (c->pos >= c->len || c->s[c->pos] != '"') return false;
+  c->pos++;
+  *start = c->pos;
+  while (c->pos < c->len && c->s[c->pos] != '"') c->pos += (c->s[c->pos] == '\\') ? 2 : 1;
+  if (c->pos >= c->len) return false;
+  *end = c->pos++;
+  return true;
+}
+
+static bool skip_value(cursor *c, int depth);
+
+static bool skip_container(cursor *c, char open, char close, int depth) {
+  if (depth > 2000) return false;
+  c->pos++; /* open */
+  skip_ws(c);
+  if (c->pos < c->len && c->s[c->pos] == close) {
+    c->pos++;
+    return true;
+  }
+  for (;;) {
+    if (open == '{') {
+      size_t a, b;
+      skip_ws(c);
+      if (!skip_string(c, &a, &b)) return false;
+      skip_ws(c);
+      if (c->pos >= c->len || c->s[c->pos] != ':') return false;
+      c->pos++;
+    }
+    if (!skip_value(c, depth + 1)) return false;
+    skip_ws(c);
+    if (c->pos >= c->len) return false;
+    if (c->s[c->pos] == ',') {
+      c->pos++;
+      continue;
+    }
+    if (c->s[c->pos] == close) {
+      c->pos++;
+      return true;
+    }
+    return false;
+  }
+}
+
+static bool skip_value(cursor *c, int depth) {
+  skip_ws(c);
+  if (c->pos >= c->len) return false;
+  char ch = c->s[c->pos];
+  if (ch == '{') return skip_container(c, '{', '}', depth);
+  if (ch == '[') return skip_container(c, '[', ']', depth);
+  if (ch == '"') {
+    size_t a, b;
+    return skip_string(c, &a, &b);
+  }
+  while (c->pos < c->len && !strchr(",]} \t\r\n", c->s[c->pos])) c->pos++;
+  return true;
+}
+
+/* Compares a raw JSON string (escapes undecoded) with a plain key; keys with escapes
+ * compare unequal, which only costs a less precise location. */
+static bool key_equals(const cursor *c, size_t a, size_t b, const char *key) {
+  size_t n = strlen(key);
+  return b - a == n && memcmp(c->s + a, key, n) == 0;
+}
+
+size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, size_t depth) {
+  cursor c = {text, len, 0};
+  skip_ws(&c);
+  for (size_t d = 0; d < depth; d++) {
+    size_t here = c.pos;
+    if (c.pos >= len) return here;
+    if (path[d].key) {
+      if (text[c.pos] != '{') return here;
+      c.pos++;
+      bool found = false;
+      for (;;) {
+        size_t a, b;
+        skip_ws(&c);
+        if (!skip_string(&c, &a, &b)) return here;
+        skip_ws(&c);
+        if (c.pos >= len || text[c.pos] != ':') return here;
+        c.pos++;
+        skip_ws(&c);
+        if (key_equals(&c, a, b, path[d].key)) {
+          found = true;
+          break;
+        }
+        if (!skip_value(&c, 0)) return here;
+        skip_ws(&c);
+        if (c.pos >= len || text[c.pos] != ',') return here;
+        c.pos++;
+      }
+      if (!found) return here;
+    } else {
+      if (text[c.pos] != '[') return here;
+      c.pos++;
+      for (size_t i = 0; i < path[d].index; i++) {
+        if (!skip_value(&c, 0)) return here;
+        skip_ws(&c);
+        if (c.pos >= len || text[c.pos] != ',') return here;
+        c.pos++;
+      }
+      skip_ws(&c);
+    }
+  }
+  return c.pos;
+}
+
+void rc_json_line_col(const char *text, size_t len, size_t offset, int *line, int *col) {
+  int l = 1, k = 1;
+  for (size_t i = 0; i < offset && i < len; i++) {
+    if (text[i] == '\n') {
+      l++;
+      k = 1;
+    } else {
+      k++;
+    }
+  }
+  *line = l;
+  *col = k;
+}
+
+size_t rc_json_token_length(const char *text, size_t len, size_t offset) {
+  if (offset >= len || text[offset] == '{' || text[offset] == '[') return 0;
+  cursor c = {text, len, offset};
+  if (!skip_value(&c, 0)) return 0;
+  return c.pos - offset;
+}

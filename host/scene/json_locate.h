@@ -1,0 +1,22 @@
+/* json_locate.h: where a JSON value sits in its source text. cJSON keeps no positions,
+ * so error messages find the line and column of a field by walking the original text
+ * along the field's path (object keys and array indices). */
+#ifndef RC_JSON_LOCATE_H
+#define RC_JSON_LOCATE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+typedef struct rc_json_step {
+  const char *key; /* object member, or NULL for an array element */
+  size_t index;
+} rc_json_step;
+
+/* Offset of the value at `path` (or of the deepest prefix that exists). */
+size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, size_t depth);
+/* 1-based line and column (in bytes) of an offset. */
+void rc_json_line_col(const char *text, size_t len, size_t offset, int *line, int *col);
+/* Length of the scalar token at offset (number, string, literal); 0 for objects/arrays. */
+size_t rc_json_token_length(const char *text, size_t len, size_t offset);
+
+#endif

@@ -1,0 +1,86 @@
+#include "scene/scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Scene files larger than this are refused before reading (a mesh belongs in a mesh file). */
+#define RC_MAX_SCENE_FILE_BYTES (256u << 20)
+
+rc_status rc_scene_load(const char *path, rc_scene *scene) {
+  memset(scene, 0, sizeof *scene);
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    fprintf(stderr, "%s: error: cannot open scene file: %s\n", path, strerror(errno));
+    return RC_ERR_IO;
+  }
+  char *text = NULL;
+  size_t len = 0;
+  rc_status st = RC_OK;
+  if (fseek(f, 0, SEEK_END) != 0 || ftell(f) < 0) {
+    fprintf(stderr, "%s: error: cannot read scene file: not a regular file\n", path);
+    st = RC_ERR_IO;
+  } else if ((unsigned long)ftell(f) > RC_MAX_SCENE_FILE_BYTES) {
+    fprintf(stderr, "%s: error: scene file is %ld bytes, more than the %u allowed\n", path, ftell(f),
+            RC_MAX_SCENE_FILE_BYTES);
+    st = RC_ERR_TOO_LARGE;
+  } else {
+    len = (size_t)ftell(f);
+    rewind(f);
+    text = malloc(len + 1);
+    if (!text || fread(text, 1, len, f) != len) {
+      fprintf(stderr, "%s: error: cannot read scene file: %s\n", path, strerror(errno));
+      st = RC_ERR_IO;
+    } else {
+      text[len] = '\0';
+    }
+  }
+  fclose(f);
+  if (st == RC_OK) st = rc_scene_parse_json(path, text, len, scene);
+  free(text);
+  if (st == RC_OK && scene->degenerate_triangles)
+    rc_warning("%s: skipped %zu degenerate (zero-area) triangle%s", path, scene->degenerate_triangles,
+               scene->degenerate_triangles == 1 ? "" : "s");
+  return st;
+}
+
+void rc_scene_free(rc_scene *scene) {
+  for (size_t i = 0; i < scene->material_count; i++) free(scene->materials[i].name);
+  free(scene->materials);
+  free(scene->lights);
+  free(scene->spheres);
+  free(scene->triangles);
+  free(scene->path);
+  memset(scene, 0, sizeof *scene);
+}
+
+/* |up x forward| <= 1e-6 |up| |forward| counts as parallel (ROBUSTNESS.md §8.3). */
+#define RC_UP_PARALLEL_SINE 1e-6
+
+const char *rc_scene_camera_problem(const rc_camera_def *c, const char **field) {
+  dvec3 forward = rcm_sub_d(c->look_at, c->eye);
+  if (rcm_max_abs_comp_d(forward) == 0.0) {
+    *field = "look_at";
+    return "equals eye: the view direction is undefined";
+  }
+  double up_len = rcm_length_d(c->up);
+  if (up_len == 0.0) {
+    *field = "up";
+    return "must not be the zero vector";
+  }
+  if (rcm_length_d(rcm_cross_d(c->up, forward)) <= RC_UP_PARALLEL_SINE * up_len * rcm_length_d(forward)) {
+    *field = "up";
+    return "is parallel to the view direction (look_at - eye)";
+  }
+  if (c->projection == RC_PROJECTION_PERSPECTIVE && !(c->fov_y_deg > 0.0 && c->fov_y_deg < 180.0)) {
+    *field = "fov_y_deg";
+    return "must be in (0, 180) degrees";
+  }
+  if (c->projection == RC_PROJECTION_PARALLEL && !(c->view_height > 0.0)) {
+    *field = "view_height";
+    return "must be greater than 0";
+  }
+  return NULL;
+}

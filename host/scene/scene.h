@@ -1,0 +1,76 @@
+/* scene.h: the validated scene model, in f64 and world units. Both renderers get their
+ * arrays from it through rc_scene_pack (scene_pack.h); nothing renders from this model
+ * directly. */
+#ifndef RC_SCENE_H
+#define RC_SCENE_H
+
+#include "math/rcm_vec3.h"
+#include "rc_base.h"
+
+typedef struct rc_material_def {
+  char *name;
+  dvec3 ambient, diffuse, specular, mirror;
+  double shininess;
+} rc_material_def;
+
+typedef struct rc_light_def {
+  uint32_t type;    /* RC_LIGHT_* */
+  dvec3 position;   /* point lights */
+  dvec3 direction;  /* directional lights: the direction the light travels in */
+  dvec3 intensity;
+} rc_light_def;
+
+typedef struct rc_sphere_def {
+  dvec3 center;
+  double radius;
+  uint32_t material;
+} rc_sphere_def;
+
+typedef struct rc_triangle_def {
+  dvec3 v[3];
+  uint32_t material;
+} rc_triangle_def;
+
+typedef struct rc_camera_def {
+  uint32_t projection; /* RC_PROJECTION_* */
+  dvec3 eye, look_at, up;
+  double fov_y_deg;    /* perspective: full vertical field of view */
+  double view_height;  /* parallel: height of the view window in world units */
+} rc_camera_def;
+
+/* Limits of the scene format (docs/scene-format.md). */
+#define RC_MAX_IMAGE_SIDE 65536u
+#define RC_MAX_SAMPLES_PER_PIXEL 1024u
+#define RC_MAX_REFLECTION_DEPTH 16u
+
+typedef struct rc_scene {
+  char *path;
+  uint32_t width, height, samples_per_pixel;
+  rc_camera_def camera;
+  dvec3 background, ambient_light;
+  uint32_t specular_model;   /* RC_SPECULAR_* */
+  uint32_t reflection_depth; /* mirror bounces; 0 = no reflection */
+  uint32_t seed;             /* sample jitter */
+  rc_material_def *materials;
+  size_t material_count;
+  rc_light_def *lights;
+  size_t light_count;
+  rc_sphere_def *spheres;
+  size_t sphere_count;
+  rc_triangle_def *triangles;
+  size_t triangle_count;
+  size_t degenerate_triangles; /* zero-area triangles skipped at load */
+} rc_scene;
+
+/* Reads and validates a scene file; errors are printed as FILE:LINE:COL: error: ... */
+rc_status rc_scene_load(const char *path, rc_scene *scene);
+/* The same from text in memory; `path` names it in messages. */
+rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc_scene *scene);
+void rc_scene_free(rc_scene *scene);
+
+/* Camera checks shared by the parser and by command-line overrides: eye != look_at, up
+ * neither zero nor parallel to the view direction, fov in (0, 180), view_height > 0.
+ * Returns NULL when valid, else the reason, and sets *field to the offending field. */
+const char *rc_scene_camera_problem(const rc_camera_def *c, const char **field);
+
+#endif

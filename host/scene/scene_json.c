@@ -1,0 +1,483 @@
+/* scene_json.c: scene format v1 (docs/scene-format.md), JSON through cJSON. Every field
+ * is checked for type, range and finiteness; unknown and duplicate fields are errors, so
+ * a typo never passes silently. Messages: FILE:LINE:COL: error: FIELD.PATH: what (value). */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/json_locate.h"
+#include "scene/scene.h"
+
+#define MAX_DEPTH 16
+
+typedef struct {
+  const char *file;
+  const char *text;
+  size_t len;
+  rc_json_step path[MAX_DEPTH];
+  size_t depth;
+} jctx;
+
+static void push_key(jctx *c, const char *key) {
+  RC_ASSERT(c->depth < MAX_DEPTH);
+  c->path[c->depth].key = key;
+  c->path[c->depth].index = 0;
+  c->depth++;
+}
+
+static void push_index(jctx *c, size_t index) {
+  RC_ASSERT(c->depth < MAX_DEPTH);
+  c->path[c->depth].key = NULL;
+  c->path[c->depth].index = index;
+  c->depth++;
+}
+
+static void pop(jctx *c) { c->depth--; }
+
+static void format_path(const jctx *c, char *out, size_t cap) {
+  size_t n = 0;
+  out[0] = '\0';
+  for (size_t i = 0; i < c->depth && n < cap; i++) {
+    if (c->path[i].key)
+      n += (size_t)snprintf(out + n, cap - n, "%s%s", i ? "." : "", c->path[i].key);
+    else
+      n += (size_t)snprintf(out + n, cap - n, "[%zu]", c->path[i].index);
+  }
+  if (c->depth == 0) snprintf(out, cap, "(scene)");
+}
+
+/* Prints the error at the current path; the value shown is the source token there. */
+static rc_status fail(jctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static rc_status fail(jctx *c, const char *fmt, ...) {
+  char path[256], what[256];
+  format_path(c, path, sizeof path);
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(what, sizeof what, fmt, ap);
+  va_end(ap);
+  size_t off = rc_json_locate(c->text, c->len, c->path, c->depth);
+  int line, col;
+  rc_json_line_col(c->text, c->len, off, &line, &col);
+  size_t tok = rc_json_token_length(c->text, c->len, off);
+  if (tok > 60) tok = 60;
+  if (tok)
+    fprintf(stderr, "%s:%d:%d: error: %s: %s (%.*s)\n", c->file, line, col, path, what, (int)tok,
+            c->text + off);
+  else
+    fprintf(stderr, "%s:%d:%d: error: %s: %s\n", c->file, line, col, path, what);
+  return RC_ERR_INPUT;
+}
+
+static const char *type_name(const cJSON *v) {
+  if (cJSON_IsNumber(v)) return "a number";
+  if (cJSON_IsString(v)) return "a string";
+  if (cJSON_IsBool(v)) return "a boolean";
+  if (cJSON_IsNull(v)) return "null";
+  if (cJSON_IsArray(v)) return "an array";
+  if (cJSON_IsObject(v)) return "an object";
+  return "invalid";
+}
+
+/* Rejects members not in `allowed` (NULL-terminated) and repeated members. */
+static rc_status check_members(jctx *c, const cJSON *obj, const char *const *allowed) {
+  for (const cJSON *m = obj->child; m; m = m->next) {
+    bool known = false;
+    for (const char *const *a = allowed; *a; a++) known |= strcmp(*a, m->string) == 0;
+    push_key(c, m->string);
+    if (!known) return fail(c, "unknown field");
+    for (const cJSON *p = obj->child; p != m; p = p->next)
+      if (strcmp(p->string, m->string) == 0) return fail(c, "field given twice");
+    pop(c);
+  }
+  return RC_OK;
+}
+
+static rc_status expect_object(jctx *c, const cJSON *v) {
+  return cJSON_IsObject(v) ? RC_OK : fail(c, "expected an object, got %s", type_name(v));
+}
+
+static rc_status number_value(jctx *c, const cJSON *v, double *out) {
+  if (!cJSON_IsNumber(v)) return fail(c, "expected a number, got %s", type_name(v));
+  if (!isfinite(v->valuedouble)) return fail(c, "number is not finite");
+  *out = v->valuedouble;
+  return RC_OK;
+}
+
+/* Member `key` of `obj`: a finite number in [lo, hi]; `def` when absent unless required. */
+static rc_status get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def,
+                            double lo, double hi, double *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v) {
+    if (required) return fail(c, "missing field \"%s\"", key);
+    *out = def;
+    return RC_OK;
+  }
+  push_key(c, key);
+  rc_status st = number_value(c, v, out);
+  if (st != RC_OK) return st;
+  if (*out < lo || *out > hi) return fail(c, "must be in [%g, %g]", lo, hi);
+  pop(c);
+  return RC_OK;
+}
+
+/* Like get_number, with an exclusive lower bound (radius > 0, view_height > 0). */
+static rc_status get_positive(jctx *c, const cJSON *obj, const char *key, bool required,
+                              double def, double *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v) {
+    if (required) return fail(c, "missing field \"%s\"", key);
+    *out = def;
+    return RC_OK;
+  }
+  push_key(c, key);
+  rc_status st = number_value(c, v, out);
+  if (st != RC_OK) return st;
+  if (!(*out > 0.0)) return fail(c, "must be greater than 0");
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def,
+                          uint32_t lo, uint32_t hi, uint32_t *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v) {
+    if (required) return fail(c, "missing field \"%s\"", key);
+    *out = def;
+    return RC_OK;
+  }
+  push_key(c, key);
+  double x;
+  rc_status st = number_value(c, v, &x);
+  if (st != RC_OK) return st;
+  if (x != floor(x)) return fail(c, "expected a whole number");
+  if (x < lo || x > hi) return fail(c, "must be in [%u, %u]", lo, hi);
+  *out = (uint32_t)x;
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out) {
+  if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
+    return fail(c, "expected an array of 3 numbers, got %s", cJSON_IsArray(v) ? "another length" : type_name(v));
+  double xyz[3];
+  for (int i = 0; i < 3; i++) {
+    push_index(c, (size_t)i);
+    rc_status st = number_value(c, cJSON_GetArrayItem(v, i), &xyz[i]);
+    if (st != RC_OK) return st;
+    if (xyz[i] < lo) return fail(c, "must not be negative");
+    pop(c);
+  }
+  *out = rcm_make_d(xyz[0], xyz[1], xyz[2]);
+  return RC_OK;
+}
+
+/* Member `key`: [x, y, z]; lo = 0 for colours and coefficients, -HUGE_VAL for positions. */
+static rc_status get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def,
+                          double lo, dvec3 *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v) {
+    if (required) return fail(c, "missing field \"%s\"", key);
+    *out = def;
+    return RC_OK;
+  }
+  push_key(c, key);
+  rc_status st = vec3_value(c, v, lo, out);
+  if (st != RC_OK) return st;
+  pop(c);
+  return RC_OK;
+}
+
+/* A colour that may also be written as one number for all three channels (mirror). */
+static rc_status get_color_or_scalar(jctx *c, const cJSON *obj, const char *key, dvec3 *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (v && cJSON_IsNumber(v)) {
+    double x;
+    rc_status st = get_number(c, obj, key, true, 0, 0, HUGE_VAL, &x);
+    *out = rcm_make_d(x, x, x);
+    return st;
+  }
+  return get_vec3(c, obj, key, false, rcm_make_d(0, 0, 0), 0.0, out);
+}
+
+static rc_status get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names,
+                          uint32_t def, uint32_t *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v) {
+    *out = def;
+    return RC_OK;
+  }
+  push_key(c, key);
+  if (!cJSON_IsString(v)) return fail(c, "expected a string, got %s", type_name(v));
+  for (uint32_t i = 0; names[i]; i++) {
+    if (strcmp(names[i], v->valuestring) == 0) {
+      *out = i;
+      pop(c);
+      return RC_OK;
+    }
+  }
+  char list[256] = "";
+  for (uint32_t i = 0; names[i]; i++)
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s\"%s\"", i ? ", " : "", names[i]);
+  return fail(c, "expected one of %s", list);
+}
+
+#define TRY(expr)                     \
+  do {                                \
+    rc_status st_ = (expr);           \
+    if (st_ != RC_OK) return st_;     \
+  } while (0)
+
+static rc_status parse_image(jctx *c, const cJSON *root, rc_scene *s) {
+  const cJSON *img = cJSON_GetObjectItemCaseSensitive(root, "image");
+  if (!img) return fail(c, "missing field \"image\"");
+  push_key(c, "image");
+  TRY(expect_object(c, img));
+  static const char *const allowed[] = {"width", "height", "samples_per_pixel", NULL};
+  TRY(check_members(c, img, allowed));
+  TRY(get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
+  TRY(get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
+  TRY(get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status parse_camera(jctx *c, const cJSON *root, rc_scene *s) {
+  const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
+  if (!cam) return fail(c, "missing field \"camera\"");
+  push_key(c, "camera");
+  TRY(expect_object(c, cam));
+  static const char *const allowed[] = {"projection", "eye", "look_at", "up", "fov_y_deg", "view_height", NULL};
+  TRY(check_members(c, cam, allowed));
+  static const char *const projections[] = {"perspective", "parallel", NULL};
+  rc_camera_def *k = &s->camera;
+  TRY(get_enum(c, cam, "projection", projections, RC_PROJECTION_PERSPECTIVE, &k->projection));
+  TRY(get_vec3(c, cam, "eye", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->eye));
+  TRY(get_vec3(c, cam, "look_at", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->look_at));
+  TRY(get_vec3(c, cam, "up", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &k->up));
+  if (k->projection == RC_PROJECTION_PERSPECTIVE) {
+    if (cJSON_GetObjectItemCaseSensitive(cam, "view_height")) {
+      push_key(c, "view_height");
+      return fail(c, "applies to the parallel projection only");
+    }
+    TRY(get_number(c, cam, "fov_y_deg", false, 45.0, -HUGE_VAL, HUGE_VAL, &k->fov_y_deg));
+  } else {
+    if (cJSON_GetObjectItemCaseSensitive(cam, "fov_y_deg")) {
+      push_key(c, "fov_y_deg");
+      return fail(c, "applies to the perspective projection only");
+    }
+    TRY(get_positive(c, cam, "view_height", true, 0, &k->view_height));
+  }
+  const char *field = NULL;
+  const char *problem = rc_scene_camera_problem(k, &field);
+  if (problem) {
+    push_key(c, field);
+    return fail(c, "%s", problem);
+  }
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
+  const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
+  if (!mats) return RC_OK;
+  push_key(c, "materials");
+  TRY(expect_object(c, mats));
+  size_t n = (size_t)cJSON_GetArraySize(mats);
+  s->materials = rc_alloc(n, sizeof *s->materials, "materials");
+  if (!s->materials) return RC_ERR_TOO_LARGE;
+  for (const cJSON *m = mats->child; m; m = m->next) {
+    push_key(c, m->string);
+    for (const cJSON *p = mats->child; p != m; p = p->next)
+      if (strcmp(p->string, m->string) == 0) return fail(c, "material defined twice");
+    TRY(expect_object(c, m));
+    static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", NULL};
+    TRY(check_members(c, m, allowed));
+    rc_material_def *d = &s->materials[s->material_count];
+    d->name = strdup(m->string);
+    if (!d->name) return RC_ERR_TOO_LARGE;
+    s->material_count++;
+    dvec3 zero = rcm_make_d(0, 0, 0);
+    TRY(get_vec3(c, m, "ambient", false, zero, 0.0, &d->ambient));
+    TRY(get_vec3(c, m, "diffuse", false, zero, 0.0, &d->diffuse));
+    TRY(get_vec3(c, m, "specular", false, zero, 0.0, &d->specular));
+    TRY(get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
+    TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
+    pop(c);
+  }
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
+  const cJSON *lights = cJSON_GetObjectItemCaseSensitive(root, "lights");
+  if (!lights) return RC_OK;
+  push_key(c, "lights");
+  if (!cJSON_IsArray(lights)) return fail(c, "expected an array, got %s", type_name(lights));
+  size_t n = (size_t)cJSON_GetArraySize(lights);
+  s->lights = rc_alloc(n, sizeof *s->lights, "lights");
+  if (!s->lights) return RC_ERR_TOO_LARGE;
+  size_t i = 0;
+  for (const cJSON *l = lights->child; l; l = l->next, i++) {
+    push_index(c, i);
+    TRY(expect_object(c, l));
+    rc_light_def *d = &s->lights[s->light_count++];
+    static const char *const types[] = {"point", "directional", NULL};
+    const cJSON *type = cJSON_GetObjectItemCaseSensitive(l, "type");
+    if (!type) return fail(c, "missing field \"type\"");
+    TRY(get_enum(c, l, "type", types, 0, &d->type));
+    static const char *const point_fields[] = {"type", "position", "intensity", NULL};
+    static const char *const dir_fields[] = {"type", "direction", "intensity", NULL};
+    bool point = d->type == RC_LIGHT_POINT;
+    TRY(check_members(c, l, point ? point_fields : dir_fields));
+    dvec3 zero = rcm_make_d(0, 0, 0);
+    if (point) {
+      TRY(get_vec3(c, l, "position", true, zero, -HUGE_VAL, &d->position));
+    } else {
+      TRY(get_vec3(c, l, "direction", true, zero, -HUGE_VAL, &d->direction));
+      if (rcm_max_abs_comp_d(d->direction) == 0.0) {
+        push_key(c, "direction");
+        return fail(c, "must not be the zero vector");
+      }
+    }
+    TRY(get_vec3(c, l, "intensity", true, zero, 0.0, &d->intensity));
+    pop(c);
+  }
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, uint32_t *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "material");
+  if (!v) return fail(c, "missing field \"material\"");
+  push_key(c, "material");
+  if (!cJSON_IsString(v)) return fail(c, "expected a material name, got %s", type_name(v));
+  for (size_t i = 0; i < s->material_count; i++) {
+    if (strcmp(s->materials[i].name, v->valuestring) == 0) {
+      *out = (uint32_t)i;
+      pop(c);
+      return RC_OK;
+    }
+  }
+  return fail(c, "unknown material");
+}
+
+static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
+  const cJSON *objs = cJSON_GetObjectItemCaseSensitive(root, "objects");
+  if (!objs) return RC_OK;
+  push_key(c, "objects");
+  if (!cJSON_IsArray(objs)) return fail(c, "expected an array, got %s", type_name(objs));
+  size_t n = (size_t)cJSON_GetArraySize(objs);
+  s->spheres = rc_alloc(n, sizeof *s->spheres, "spheres");
+  s->triangles = rc_alloc(n, sizeof *s->triangles, "triangles");
+  if (!s->spheres || !s->triangles) return RC_ERR_TOO_LARGE;
+  size_t i = 0;
+  for (const cJSON *o = objs->child; o; o = o->next, i++) {
+    push_index(c, i);
+    TRY(expect_object(c, o));
+    static const char *const types[] = {"sphere", "triangle", NULL};
+    if (!cJSON_GetObjectItemCaseSensitive(o, "type")) return fail(c, "missing field \"type\"");
+    uint32_t type;
+    TRY(get_enum(c, o, "type", types, 0, &type));
+    dvec3 zero = rcm_make_d(0, 0, 0);
+    if (type == 0) {
+      static const char *const allowed[] = {"type", "center", "radius", "material", NULL};
+      TRY(check_members(c, o, allowed));
+      rc_sphere_def *d = &s->spheres[s->sphere_count++];
+      TRY(get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
+      TRY(get_positive(c, o, "radius", true, 0, &d->radius));
+      TRY(get_material_ref(c, o, s, &d->material));
+    } else {
+      static const char *const allowed[] = {"type", "vertices", "material", NULL};
+      TRY(check_members(c, o, allowed));
+      rc_triangle_def d;
+      const cJSON *vs = cJSON_GetObjectItemCaseSensitive(o, "vertices");
+      if (!vs) return fail(c, "missing field \"vertices\"");
+      push_key(c, "vertices");
+      if (!cJSON_IsArray(vs) || cJSON_GetArraySize(vs) != 3)
+        return fail(c, "expected an array of 3 points");
+      for (int k = 0; k < 3; k++) {
+        push_index(c, (size_t)k);
+        TRY(vec3_value(c, cJSON_GetArrayItem(vs, k), -HUGE_VAL, &d.v[k]));
+        pop(c);
+      }
+      pop(c);
+      TRY(get_material_ref(c, o, s, &d.material));
+      /* Zero area in f64: degenerate but meaningful (ROBUSTNESS.md §8.3): skip, count. */
+      dvec3 n = rcm_cross_d(rcm_sub_d(d.v[1], d.v[0]), rcm_sub_d(d.v[2], d.v[0]));
+      if (rcm_max_abs_comp_d(n) == 0.0)
+        s->degenerate_triangles++;
+      else
+        s->triangles[s->triangle_count++] = d;
+    }
+    pop(c);
+  }
+  pop(c);
+  return RC_OK;
+}
+
+static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
+  TRY(expect_object(c, root));
+  static const char *const allowed[] = {"version", "image", "camera", "background", "ambient_light",
+                                        "specular_model", "seed", "quality", "materials", "lights",
+                                        "objects", NULL};
+  TRY(check_members(c, root, allowed));
+  uint32_t version;
+  TRY(get_uint(c, root, "version", false, 1, 1, 1, &version));
+  TRY(parse_image(c, root, s));
+  TRY(parse_camera(c, root, s));
+  TRY(get_vec3(c, root, "background", false, rcm_make_d(0, 0, 0), 0.0, &s->background));
+  TRY(get_vec3(c, root, "ambient_light", false, rcm_make_d(1, 1, 1), 0.0, &s->ambient_light));
+  static const char *const models[] = {"blinn-phong", "phong", NULL};
+  TRY(get_enum(c, root, "specular_model", models, RC_SPECULAR_BLINN_PHONG, &s->specular_model));
+  TRY(get_uint(c, root, "seed", false, 0, 0, UINT32_MAX, &s->seed));
+  s->reflection_depth = 5;
+  const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
+  if (q) {
+    push_key(c, "quality");
+    TRY(expect_object(c, q));
+    static const char *const qfields[] = {"reflection_depth", NULL};
+    TRY(check_members(c, q, qfields));
+    TRY(get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
+    pop(c);
+  }
+  TRY(parse_materials(c, root, s));
+  TRY(parse_lights(c, root, s));
+  TRY(parse_objects(c, root, s));
+  return RC_OK;
+}
+
+rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc_scene *scene) {
+  memset(scene, 0, sizeof *scene);
+  scene->path = strdup(path);
+  jctx c = {.file = path, .text = text, .len = len};
+  const char *end = NULL;
+  cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, false);
+  if (!root) {
+    size_t off = end ? (size_t)(end - text) : 0;
+    if (off > len) off = len;
+    int line, col;
+    rc_json_line_col(text, len, off, &line, &col);
+    if (off >= len)
+      fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected end of file\n", path, line, col);
+    else
+      fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected '%.12s'\n", path, line, col, text + off);
+    return RC_ERR_INPUT;
+  }
+  /* Anything after the top-level value other than white space is a syntax error too. */
+  size_t off = (size_t)(end - text);
+  while (off < len && strchr(" \t\r\n", text[off]) && text[off]) off++;
+  rc_status st;
+  if (off < len) {
+    int line, col;
+    rc_json_line_col(text, len, off, &line, &col);
+    fprintf(stderr, "%s:%d:%d: error: JSON syntax: text after the scene object\n", path, line, col);
+    st = RC_ERR_INPUT;
+  } else {
+    st = parse_root(&c, root, scene);
+  }
+  cJSON_Delete(root);
+  return st;
+}

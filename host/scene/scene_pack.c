@@ -1,0 +1,104 @@
+#include "scene/scene_pack.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static vec3 to_packed(const rc_packed_scene *p, dvec3 world) {
+  return rcm_to_f(rcm_sub_d(world, p->origin));
+}
+
+/* DESIGN.md §1: w points from the scene back to the eye, u to the right, v up; the image
+ * plane sits at distance 1 (perspective) and the window keeps the image's aspect ratio. */
+static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
+  const rc_camera_def *c = &s->camera;
+  dvec3 w = rcm_normalize_d(rcm_sub_d(c->eye, c->look_at));
+  dvec3 u = rcm_normalize_d(rcm_cross_d(c->up, w));
+  dvec3 v = rcm_cross_d(w, u);
+  double aspect = (double)s->width / (double)s->height;
+  double half_h = c->projection == RC_PROJECTION_PERSPECTIVE ? tan(c->fov_y_deg * M_PI / 360.0)
+                                                             : 0.5 * c->view_height;
+  gpu_camera *g = &p->frame.camera;
+  g->eye = to_packed(p, c->eye);
+  g->u = rcm_to_f(u);
+  g->v = rcm_to_f(v);
+  g->w = rcm_to_f(w);
+  g->top = (float)half_h;
+  g->bottom = (float)-half_h;
+  g->right = (float)(half_h * aspect);
+  g->left = (float)(-half_h * aspect);
+  g->focal = 1.0f;
+  g->projection = c->projection;
+  g->width = s->width;
+  g->height = s->height;
+}
+
+rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
+  memset(p, 0, sizeof *p);
+  p->origin = s->camera.eye;
+  pack_camera(s, p);
+
+  gpu_frame *f = &p->frame;
+  f->background = rcm_to_f(s->background);
+  f->ambient_light = rcm_to_f(s->ambient_light);
+  f->specular_model = s->specular_model;
+  f->samples_per_pixel = s->samples_per_pixel;
+  f->seed = s->seed;
+  f->strata_x = (uint32_t)ceil(sqrt((double)s->samples_per_pixel));
+  f->strata_y = (s->samples_per_pixel + f->strata_x - 1) / f->strata_x;
+  f->sphere_count = (uint32_t)s->sphere_count;
+  f->triangle_count = (uint32_t)s->triangle_count;
+  f->material_count = (uint32_t)s->material_count;
+  f->light_count = (uint32_t)s->light_count;
+
+  /* Reflection costs a bounce loop only where some material mirrors. */
+  bool any_mirror = false;
+  for (size_t i = 0; i < s->material_count; i++)
+    any_mirror |= rcm_max_abs_comp_d(s->materials[i].mirror) > 0.0;
+  f->reflection_depth = any_mirror ? s->reflection_depth : 0;
+
+  /* At least one element each: Vulkan has no zero-sized buffers. */
+  p->spheres = rc_alloc(s->sphere_count + 1, sizeof *p->spheres, "packed spheres");
+  p->triangles = rc_alloc(s->triangle_count + 1, sizeof *p->triangles, "packed triangles");
+  p->materials = rc_alloc(s->material_count + 1, sizeof *p->materials, "packed materials");
+  p->lights = rc_alloc(s->light_count + 1, sizeof *p->lights, "packed lights");
+  if (!p->spheres || !p->triangles || !p->materials || !p->lights) {
+    rc_packed_scene_free(p);
+    return RC_ERR_TOO_LARGE;
+  }
+  for (size_t i = 0; i < s->sphere_count; i++) {
+    p->spheres[i].center = to_packed(p, s->spheres[i].center);
+    p->spheres[i].radius = (float)s->spheres[i].radius;
+    p->spheres[i].material = s->spheres[i].material;
+  }
+  for (size_t i = 0; i < s->triangle_count; i++) {
+    p->triangles[i].v0 = to_packed(p, s->triangles[i].v[0]);
+    p->triangles[i].v1 = to_packed(p, s->triangles[i].v[1]);
+    p->triangles[i].v2 = to_packed(p, s->triangles[i].v[2]);
+    p->triangles[i].material = s->triangles[i].material;
+  }
+  for (size_t i = 0; i < s->material_count; i++) {
+    const rc_material_def *m = &s->materials[i];
+    p->materials[i].ambient = rcm_to_f(m->ambient);
+    p->materials[i].diffuse = rcm_to_f(m->diffuse);
+    p->materials[i].specular = rcm_to_f(m->specular);
+    p->materials[i].mirror = rcm_to_f(m->mirror);
+    p->materials[i].shininess = (float)m->shininess;
+  }
+  for (size_t i = 0; i < s->light_count; i++) {
+    const rc_light_def *l = &s->lights[i];
+    p->lights[i].type = l->type;
+    p->lights[i].intensity = rcm_to_f(l->intensity);
+    p->lights[i].position = l->type == RC_LIGHT_POINT ? to_packed(p, l->position)
+                                                      : rcm_to_f(rcm_normalize_d(l->direction));
+  }
+  return RC_OK;
+}
+
+void rc_packed_scene_free(rc_packed_scene *p) {
+  free(p->spheres);
+  free(p->triangles);
+  free(p->materials);
+  free(p->lights);
+  memset(p, 0, sizeof *p);
+}

@@ -1,0 +1,22 @@
+/* scene_pack.h: the scene model (f64, world space) packed into the gpu_* arrays that both
+ * renderers read. Packing is where precision is spent: every position is made relative to
+ * the eye in f64 before rounding to f32 ("floating origin", ROBUSTNESS.md §5), and the
+ * camera basis and window come from f64 trigonometry. */
+#ifndef RC_SCENE_PACK_H
+#define RC_SCENE_PACK_H
+
+#include "scene/scene.h"
+
+typedef struct rc_packed_scene {
+  gpu_frame frame;
+  gpu_sphere *spheres;
+  gpu_triangle *triangles;
+  gpu_material *materials;
+  gpu_light *lights;
+  dvec3 origin; /* world position of the packed space's origin (the eye) */
+} rc_packed_scene;
+
+rc_status rc_scene_pack(const rc_scene *scene, rc_packed_scene *packed);
+void rc_packed_scene_free(rc_packed_scene *packed);
+
+#endif

@@ -1,0 +1,73 @@
+#include "stats.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+double rc_stats_mrays_per_s(const rc_render_stats *s) {
+  double rays = (double)(s->rays_primary + s->rays_shadow + s->rays_reflection);
+  return s->render_ms > 0 ? rays / (s->render_ms * 1e3) : 0.0;
+}
+
+void rc_stats_print(const rc_render_stats *s) {
+  fprintf(stderr, "vkraycast: device %s (%s, %s)\n", s->device, s->device_type, s->driver);
+  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles, %zu lights; %s buffers%s; %u tiles, "
+          "%u dispatches, %u samples per batch\n",
+          s->width, s->height, s->samples_per_pixel, s->spheres, s->triangles, s->lights,
+          s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage", s->gpu.staging ? ", staging" : "",
+          s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples);
+  fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
+          "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
+          s->parse_ms, s->gpu.upload_ms, s->gpu.pipeline_ms, s->first_frame_ms, s->render_ms, s->render_wall_ms,
+          s->gpu.readback_ms, s->write_ms);
+  fprintf(stderr, "vkraycast: rays %llu primary + %llu shadow + %llu reflection, %.2f Mrays/s\n",
+          (unsigned long long)s->rays_primary, (unsigned long long)s->rays_shadow,
+          (unsigned long long)s->rays_reflection, rc_stats_mrays_per_s(s));
+}
+
+rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
+  cJSON *o = cJSON_CreateObject();
+  cJSON_AddStringToObject(o, "device", s->device);
+  cJSON_AddStringToObject(o, "device_type", s->device_type);
+  cJSON_AddStringToObject(o, "driver", s->driver);
+  cJSON_AddStringToObject(o, "backend", s->backend);
+  cJSON_AddNumberToObject(o, "width", s->width);
+  cJSON_AddNumberToObject(o, "height", s->height);
+  cJSON_AddNumberToObject(o, "samples_per_pixel", s->samples_per_pixel);
+  cJSON_AddNumberToObject(o, "spheres", (double)s->spheres);
+  cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
+  cJSON_AddNumberToObject(o, "lights", (double)s->lights);
+  cJSON_AddStringToObject(o, "scene_buffers", s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage");
+  cJSON_AddBoolToObject(o, "staging", s->gpu.staging);
+  cJSON_AddNumberToObject(o, "rays_primary", (double)s->rays_primary);
+  cJSON_AddNumberToObject(o, "rays_shadow", (double)s->rays_shadow);
+  cJSON_AddNumberToObject(o, "rays_reflection", (double)s->rays_reflection);
+  cJSON_AddNumberToObject(o, "parse_ms", s->parse_ms);
+  cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
+  cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);
+  cJSON_AddNumberToObject(o, "first_frame_ms", s->first_frame_ms);
+  cJSON_AddNumberToObject(o, "render_ms", s->render_ms);
+  cJSON_AddNumberToObject(o, "render_wall_ms", s->render_wall_ms);
+  cJSON_AddNumberToObject(o, "readback_ms", s->gpu.readback_ms);
+  cJSON_AddNumberToObject(o, "write_ms", s->write_ms);
+  cJSON_AddNumberToObject(o, "cpu_ms", s->cpu_ms);
+  cJSON_AddNumberToObject(o, "mrays_per_s", rc_stats_mrays_per_s(s));
+  cJSON_AddNumberToObject(o, "repeat", s->repeat);
+  cJSON_AddNumberToObject(o, "tiles", s->gpu.tiles);
+  cJSON_AddNumberToObject(o, "dispatches", s->gpu.dispatches);
+  cJSON_AddNumberToObject(o, "batch_samples", s->gpu.plan.batch_samples);
+  cJSON_AddNumberToObject(o, "loop_steps_per_sample", (double)s->gpu.plan.steps_per_sample);
+  cJSON_AddNumberToObject(o, "budget_retries", s->gpu.budget_retries);
+  char *text = cJSON_Print(o);
+  cJSON_Delete(o);
+  rc_status st = RC_OK;
+  FILE *f = text ? fopen(path, "w") : NULL;
+  if (!f || fprintf(f, "%s\n", text) < 0 || fclose(f) != 0) {
+    rc_error("%s: cannot write statistics: %s", path, strerror(errno));
+    st = RC_ERR_IO;
+  }
+  free(text);
+  return st;
+}

@@ -1,0 +1,27 @@
+/* stats.h: what a render reports: the human summary on stderr and --stats-json. */
+#ifndef RC_STATS_H
+#define RC_STATS_H
+
+#include "gpu_render.h"
+
+typedef struct rc_render_stats {
+  const char *device, *device_type, *driver;
+  const char *backend; /* "vulkan" */
+  uint32_t width, height, samples_per_pixel;
+  size_t spheres, triangles, lights;
+  double parse_ms, pack_ms, write_ms;
+  double first_frame_ms; /* includes the JIT on lavapipe */
+  double render_ms;      /* GPU time of one frame: the first, or the median of the others with --repeat */
+  double render_wall_ms; /* wall time of that frame, including waits and readback */
+  double cpu_ms;         /* process CPU time, whole run */
+  uint32_t repeat;
+  uint64_t rays_primary, rays_shadow, rays_reflection;
+  rc_gpu_stats gpu;
+} rc_render_stats;
+
+double rc_stats_mrays_per_s(const rc_render_stats *s);
+void rc_stats_print(const rc_render_stats *s);
+/* Writes one JSON object; returns RC_ERR_IO with a message on failure. */
+rc_status rc_stats_write_json(const rc_render_stats *s, const char *path);
+
+#endif

@@ -1,0 +1,54 @@
+#version 450
+// raycast.comp: one invocation per pixel of a tile. Each dispatch adds up to
+// push.batch_samples more samples to every pixel's running sum in `accum`; the host
+// repeats dispatches until every pixel has frame.samples_per_pixel (DESIGN.md §2).
+#extension GL_GOOGLE_include_directive : require
+#if RC_F64
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
+
+#include "rc_shared.h"
+
+layout(local_size_x_id = RC_SPEC_LOCAL_SIZE_X, local_size_y_id = RC_SPEC_LOCAL_SIZE_Y) in;
+layout(constant_id = RC_SPEC_LOOP_BUDGET) const uint loop_budget = RC_LOOP_BUDGET;
+
+layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
+layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
+layout(std430, binding = RC_BINDING_STATUS) buffer Status { gpu_status status; };
+layout(push_constant) uniform Push { gpu_push push; };
+
+uint shadow_rays = 0u;
+uint reflection_rays = 0u;
+
+#include "rc_real.glsl"
+#include "rc_scene_access.glsl"
+#include "rc_budget.glsl"
+#include "rc_random.glsl"
+#include "rc_camera.glsl"
+#include "rc_intersect.glsl"
+#include "rc_shade.glsl"
+#include "rc_trace.glsl"
+
+void main() {
+  uvec2 local = gl_GlobalInvocationID.xy;
+  if (local.x >= push.tile_width || local.y >= push.tile_height) return;
+  uvec2 pixel = uvec2(push.tile_x, push.tile_y) + local;
+  uint slot = local.y * push.tile_width + local.x;
+
+  vec4 sum = accum[slot];
+  uint done = uint(sum.a);
+  uint target = min(done + push.batch_samples, frame.samples_per_pixel);
+  for (uint s = done; s < target; s++) {
+    if (!budget_step()) break;
+    sum.rgb += vec3(trace_sample(pixel, s));
+  }
+  if (budget_exhausted) {
+    atomicAdd(status.exhausted_pixels, 1u);
+    atomicAdd(status.incomplete_pixels, 1u);
+    return;
+  }
+  accum[slot] = vec4(sum.rgb, float(target));
+  if (target < frame.samples_per_pixel) atomicAdd(status.incomplete_pixels, 1u);
+  if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
+  if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);
+}

@@ -1,0 +1,13 @@
+// rc_budget.glsl: the per-invocation loop budget (DESIGN.md §2). llvmpipe ends every loop
+// after 65,535 iterations summed over the whole invocation, silently; so every loop here
+// calls budget_step() once per iteration and breaks when it returns false. The host sizes
+// each dispatch so that the worst case stays under loop_budget (host/gpu_plan.c); a pixel
+// that still runs out discards its batch and is counted in gpu_status.exhausted_pixels.
+uint budget_steps = 0u;
+bool budget_exhausted = false;
+
+bool budget_step() {
+  budget_steps++;
+  if (budget_steps > loop_budget) budget_exhausted = true;
+  return !budget_exhausted;
+}

@@ -1,0 +1,71 @@
+// rc_scene_access.glsl: how the shader reads the scene arrays. Two kinds, one interface:
+// RGBA32UI uniform texel buffers (RC_SCENE_TEXEL_BUFFERS=1) or std430 storage buffers.
+// On Mesa 22 llvmpipe a storage-buffer load inside a loop becomes a per-lane scalar loop
+// while a texel fetch stays vectorised (ECOSYSTEM.md §8; docs/performance.md has our own
+// measurement); on discrete GPUs both are fast. Texels hold raw bits, so integers and
+// floats travel unchanged (a float view could flush the denormal bit patterns of small
+// integers).
+#if RC_SCENE_TEXEL_BUFFERS
+layout(binding = RC_BINDING_SPHERES) uniform usamplerBuffer scene_spheres;
+layout(binding = RC_BINDING_TRIANGLES) uniform usamplerBuffer scene_triangles;
+layout(binding = RC_BINDING_MATERIALS) uniform usamplerBuffer scene_materials;
+layout(binding = RC_BINDING_LIGHTS) uniform usamplerBuffer scene_lights;
+
+uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
+
+gpu_sphere load_sphere(uint i) {
+  uvec4 a = texel(scene_spheres, i * RC_TEXELS_PER_SPHERE);
+  uvec4 b = texel(scene_spheres, i * RC_TEXELS_PER_SPHERE + 1u);
+  gpu_sphere s;
+  s.center = uintBitsToFloat(a.xyz);
+  s.radius = uintBitsToFloat(a.w);
+  s.material = b.x;
+  return s;
+}
+
+gpu_triangle load_triangle(uint i) {
+  uvec4 a = texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE);
+  uvec4 b = texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE + 1u);
+  uvec4 c = texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE + 2u);
+  gpu_triangle t;
+  t.v0 = uintBitsToFloat(a.xyz);
+  t.material = a.w;
+  t.v1 = uintBitsToFloat(b.xyz);
+  t.v2 = uintBitsToFloat(c.xyz);
+  return t;
+}
+
+gpu_material load_material(uint i) {
+  uvec4 a = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL);
+  uvec4 b = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 1u);
+  uvec4 c = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 2u);
+  uvec4 d = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 3u);
+  gpu_material m;
+  m.ambient = uintBitsToFloat(a.xyz);
+  m.shininess = uintBitsToFloat(a.w);
+  m.diffuse = uintBitsToFloat(b.xyz);
+  m.specular = uintBitsToFloat(c.xyz);
+  m.mirror = uintBitsToFloat(d.xyz);
+  return m;
+}
+
+gpu_light load_light(uint i) {
+  uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
+  uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
+  gpu_light l;
+  l.position = uintBitsToFloat(a.xyz);
+  l.type = a.w;
+  l.intensity = uintBitsToFloat(b.xyz);
+  return l;
+}
+#else
+layout(std430, binding = RC_BINDING_SPHERES) readonly buffer Spheres { gpu_sphere scene_spheres[]; };
+layout(std430, binding = RC_BINDING_TRIANGLES) readonly buffer Triangles { gpu_triangle scene_triangles[]; };
+layout(std430, binding = RC_BINDING_MATERIALS) readonly buffer Materials { gpu_material scene_materials[]; };
+layout(std430, binding = RC_BINDING_LIGHTS) readonly buffer Lights { gpu_light scene_lights[]; };
+
+gpu_sphere load_sphere(uint i) { return scene_spheres[i]; }
+gpu_triangle load_triangle(uint i) { return scene_triangles[i]; }
+gpu_material load_material(uint i) { return scene_materials[i]; }
+gpu_light load_light(uint i) { return scene_lights[i]; }
+#endif

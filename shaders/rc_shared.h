@@ -1,0 +1,193 @@
+/* rc_shared.h: every struct, binding number and constant that both the C host and the
+ * GLSL shaders see. Compiled as C11 (host, CPU reference, tests) and as GLSL 450
+ * (glslangValidator defines VULKAN, which selects the GLSL side).
+ *
+ * Layout rules (std430 storage buffers, std140 uniform buffer, RGBA32UI texel buffers):
+ *  - only vec4, scalars, and a vec3 always followed by one 4-byte scalar;
+ *  - every struct is a multiple of 16 bytes, so one struct is a whole number of texels;
+ *  - no bool, no scalar arrays in the uniform buffer;
+ *  - padding fields are named pad0, pad1, ...
+ * The C tail of this file asserts every size and offset; tests/unit/test_layout.sh checks
+ * the same numbers against glslang's reflection. */
+#ifndef RC_SHARED_H
+#define RC_SHARED_H
+
+#ifndef VULKAN
+#include <stddef.h>
+#include <stdint.h>
+typedef uint32_t uint;
+typedef struct { float x, y, z; } vec3;
+typedef struct { float x, y, z, w; } vec4;
+/* GLSL has no typedef; C gets the struct names as type names up front. */
+typedef struct gpu_camera gpu_camera;
+typedef struct gpu_frame gpu_frame;
+typedef struct gpu_sphere gpu_sphere;
+typedef struct gpu_triangle gpu_triangle;
+typedef struct gpu_material gpu_material;
+typedef struct gpu_light gpu_light;
+typedef struct gpu_status gpu_status;
+typedef struct gpu_push gpu_push;
+#endif
+
+/* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
+ * or as RGBA32UI uniform texel buffers (rc_scene_access.glsl); the binding numbers are
+ * the same for both kinds. */
+#define RC_BINDING_FRAME 0     /* uniform gpu_frame */
+#define RC_BINDING_SPHERES 1   /* gpu_sphere[] */
+#define RC_BINDING_TRIANGLES 2 /* gpu_triangle[] */
+#define RC_BINDING_MATERIALS 3 /* gpu_material[] */
+#define RC_BINDING_LIGHTS 4    /* gpu_light[] */
+#define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = sample count */
+#define RC_BINDING_STATUS 6    /* gpu_status */
+#define RC_BINDING_COUNT 7
+
+/* Specialization constant ids. */
+#define RC_SPEC_LOCAL_SIZE_X 0
+#define RC_SPEC_LOCAL_SIZE_Y 1
+#define RC_SPEC_LOOP_BUDGET 2
+
+/* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
+ * in total (ECOSYSTEM.md §8). Every shader loop counts into one per-invocation budget of
+ * this many steps, a quarter below the cap, and the host plans each dispatch's work so
+ * that its worst case fits (host/gpu_plan.c). */
+#define RC_LOOP_BUDGET 49152u
+
+#define RC_PROJECTION_PERSPECTIVE 0u
+#define RC_PROJECTION_PARALLEL 1u
+#define RC_SPECULAR_BLINN_PHONG 0u
+#define RC_SPECULAR_PHONG 1u
+#define RC_LIGHT_POINT 0u
+#define RC_LIGHT_DIRECTIONAL 1u
+#define RC_HIT_NONE 0u
+#define RC_HIT_SPHERE 1u
+#define RC_HIT_TRIANGLE 2u
+
+/* "No hit" is a large finite t: Vulkan lets shaders assume no Inf (ROBUSTNESS.md §1.3). */
+#define RC_T_FAR 3.0e38
+/* A shadow ray towards a point light stops this fraction short of the light, so that a
+ * light lying on a surface is not occluded by that surface (pbrt's ShadowEpsilon). */
+#define RC_SHADOW_EPSILON 1.0e-4
+/* Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing
+ * Gems ch. 6 (2019): move a spawned origin int(256 n) ulps along the normal, or by n/65536
+ * near the world origin where ulps are too fine to help. */
+#define RC_OFFSET_ORIGIN (1.0 / 32.0)
+#define RC_OFFSET_FLOAT_SCALE (1.0 / 65536.0)
+#define RC_OFFSET_INT_SCALE 256.0
+
+/* Camera, in the packed (camera-relative) space. DESIGN.md §1: the image plane spans
+ * [left, right] x [bottom, top] at distance `focal` along -w from the eye. */
+struct gpu_camera {
+  vec3 eye;   float left;
+  vec3 u;     float right;
+  vec3 v;     float bottom;
+  vec3 w;     float top;
+  float focal; uint projection; uint width; uint height;
+};
+
+/* The uniform buffer: the camera and everything else that is constant for a frame. */
+struct gpu_frame {
+  gpu_camera camera;
+  vec3 background;    uint specular_model;
+  vec3 ambient_light; uint reflection_depth;
+  uint sphere_count;  uint triangle_count; uint material_count; uint light_count;
+  uint samples_per_pixel; uint seed; uint strata_x; uint strata_y;
+};
+
+struct gpu_sphere {
+  vec3 center; float radius;
+  uint material; uint pad0; uint pad1; uint pad2;
+};
+
+/* Vertices in the packed space; the geometric normal is cross(v1 - v0, v2 - v0). */
+struct gpu_triangle {
+  vec3 v0; uint material;
+  vec3 v1; float pad0;
+  vec3 v2; float pad1;
+};
+
+/* Phong material: L = ambient*Ia + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
+ * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel. */
+struct gpu_material {
+  vec3 ambient;  float shininess;
+  vec3 diffuse;  float pad0;
+  vec3 specular; float pad1;
+  vec3 mirror;   float pad2;
+};
+
+/* Point light: `position` in the packed space, irradiance intensity/r^2.
+ * Directional light: `position` holds the unit direction the light travels in. */
+struct gpu_light {
+  vec3 position;  uint type;
+  vec3 intensity; float pad0;
+};
+
+/* Written by the shader with atomics, read back after each dispatch. */
+struct gpu_status {
+  uint exhausted_pixels;  /* pixels whose loop budget ran out: their batch was discarded */
+  uint incomplete_pixels; /* pixels that still have samples to take */
+  uint shadow_rays;
+  uint reflection_rays;
+};
+
+/* Per-dispatch parameters: the tile and the sample batch. */
+struct gpu_push {
+  uint tile_x; uint tile_y; uint tile_width; uint tile_height;
+  uint batch_samples; uint pad0; uint pad1; uint pad2;
+};
+
+#define RC_TEXELS_PER_SPHERE 2
+#define RC_TEXELS_PER_TRIANGLE 3
+#define RC_TEXELS_PER_MATERIAL 4
+#define RC_TEXELS_PER_LIGHT 2
+
+#ifndef VULKAN
+
+#define RC_ASSERT_LAYOUT(type, member, offset) \
+  _Static_assert(offsetof(type, member) == (offset), #type "." #member " offset")
+#define RC_ASSERT_SIZE(type, size) _Static_assert(sizeof(type) == (size), #type " size")
+
+RC_ASSERT_SIZE(vec3, 12);
+RC_ASSERT_LAYOUT(gpu_camera, eye, 0);    RC_ASSERT_LAYOUT(gpu_camera, left, 12);
+RC_ASSERT_LAYOUT(gpu_camera, u, 16);     RC_ASSERT_LAYOUT(gpu_camera, right, 28);
+RC_ASSERT_LAYOUT(gpu_camera, v, 32);     RC_ASSERT_LAYOUT(gpu_camera, bottom, 44);
+RC_ASSERT_LAYOUT(gpu_camera, w, 48);     RC_ASSERT_LAYOUT(gpu_camera, top, 60);
+RC_ASSERT_LAYOUT(gpu_camera, focal, 64); RC_ASSERT_LAYOUT(gpu_camera, projection, 68);
+RC_ASSERT_LAYOUT(gpu_camera, width, 72); RC_ASSERT_LAYOUT(gpu_camera, height, 76);
+RC_ASSERT_SIZE(gpu_camera, 80);
+
+RC_ASSERT_LAYOUT(gpu_frame, camera, 0);
+RC_ASSERT_LAYOUT(gpu_frame, background, 80);     RC_ASSERT_LAYOUT(gpu_frame, specular_model, 92);
+RC_ASSERT_LAYOUT(gpu_frame, ambient_light, 96);  RC_ASSERT_LAYOUT(gpu_frame, reflection_depth, 108);
+RC_ASSERT_LAYOUT(gpu_frame, sphere_count, 112);  RC_ASSERT_LAYOUT(gpu_frame, triangle_count, 116);
+RC_ASSERT_LAYOUT(gpu_frame, material_count, 120); RC_ASSERT_LAYOUT(gpu_frame, light_count, 124);
+RC_ASSERT_LAYOUT(gpu_frame, samples_per_pixel, 128); RC_ASSERT_LAYOUT(gpu_frame, seed, 132);
+RC_ASSERT_LAYOUT(gpu_frame, strata_x, 136);      RC_ASSERT_LAYOUT(gpu_frame, strata_y, 140);
+RC_ASSERT_SIZE(gpu_frame, 144);
+
+RC_ASSERT_LAYOUT(gpu_sphere, center, 0); RC_ASSERT_LAYOUT(gpu_sphere, radius, 12);
+RC_ASSERT_LAYOUT(gpu_sphere, material, 16);
+RC_ASSERT_SIZE(gpu_sphere, 16 * RC_TEXELS_PER_SPHERE);
+
+RC_ASSERT_LAYOUT(gpu_triangle, v0, 0);  RC_ASSERT_LAYOUT(gpu_triangle, material, 12);
+RC_ASSERT_LAYOUT(gpu_triangle, v1, 16); RC_ASSERT_LAYOUT(gpu_triangle, v2, 32);
+RC_ASSERT_SIZE(gpu_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
+
+RC_ASSERT_LAYOUT(gpu_material, ambient, 0);   RC_ASSERT_LAYOUT(gpu_material, shininess, 12);
+RC_ASSERT_LAYOUT(gpu_material, diffuse, 16);  RC_ASSERT_LAYOUT(gpu_material, specular, 32);
+RC_ASSERT_LAYOUT(gpu_material, mirror, 48);
+RC_ASSERT_SIZE(gpu_material, 16 * RC_TEXELS_PER_MATERIAL);
+
+RC_ASSERT_LAYOUT(gpu_light, position, 0);  RC_ASSERT_LAYOUT(gpu_light, type, 12);
+RC_ASSERT_LAYOUT(gpu_light, intensity, 16);
+RC_ASSERT_SIZE(gpu_light, 16 * RC_TEXELS_PER_LIGHT);
+
+RC_ASSERT_LAYOUT(gpu_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(gpu_status, incomplete_pixels, 4);
+RC_ASSERT_LAYOUT(gpu_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(gpu_status, reflection_rays, 12);
+RC_ASSERT_SIZE(gpu_status, 16);
+
+RC_ASSERT_LAYOUT(gpu_push, tile_x, 0); RC_ASSERT_LAYOUT(gpu_push, tile_width, 8);
+RC_ASSERT_LAYOUT(gpu_push, batch_samples, 16);
+RC_ASSERT_SIZE(gpu_push, 32);
+#endif
+
+#endif
