@@ -53,6 +53,14 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
   return RC_OK;
 }
 
+static bool option_takes_value(const char *o) {
+  static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
+                                           "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers"};
+  for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
+    if (strcmp(o, with_value[i]) == 0) return true;
+  return false;
+}
+
 static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
   a->device = -1;
@@ -77,7 +85,10 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
       a->srgb = true, takes_value = false;
     } else if (strcmp(o, "--staging") == 0) {
       a->gpu.force_staging = true, takes_value = false;
-    } else if (o[0] == '-' && !v) {
+    } else if (o[0] == '-' && o[1] && !option_takes_value(o)) {
+      rc_error("render: unknown option %s (see vkraycast render --help)", o);
+      return RC_ERR_USAGE;
+    } else if (o[0] == '-' && o[1] && !v) {
       rc_error("render: option %s needs a value", o);
       return RC_ERR_USAGE;
     } else if (strcmp(o, "-o") == 0 || strcmp(o, "--output") == 0) {
@@ -108,9 +119,6 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
         rc_error("--scene-buffers: expected texel or storage, got '%s'", v);
         st = RC_ERR_USAGE;
       }
-    } else if (o[0] == '-' && o[1]) {
-      rc_error("render: unknown option %s (see vkraycast render --help)", o);
-      return RC_ERR_USAGE;
     } else if (!a->scene) {
       a->scene = o, takes_value = false;
     } else {

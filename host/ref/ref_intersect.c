@@ -1,0 +1,123 @@
+/* ref_intersect.c: mirrors shaders/rc_intersect.glsl function by function, same order,
+ * same formulas (see the shader for the papers). Built with -ffp-contract=off, so the
+ * `precise` of the shader is the default here. */
+#include "ref/ref_intersect.h"
+
+#include "ref/ref_real.h"
+
+#if REF_F64
+typedef ref_hit_d ref_hit;
+typedef ref_shear_d ref_shear;
+#else
+typedef ref_hit_f ref_hit;
+typedef ref_shear_f ref_shear;
+#endif
+
+real REF(intersect_sphere)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+  *side = 0;
+  real r = (real)s.radius;
+  rvec3 f = RV(sub)(o, rvec3_from(s.center));
+  real b = RV(dot)(f, d);
+  rvec3 l = RV(sub)(f, RV(scale)(d, b));
+  real disc = r * r - RV(dot)(l, l);
+  if (disc < 0) return (real)RC_T_FAR;
+  real sq = R_SQRT(disc);
+  real q = (b >= 0) ? -(b + sq) : -(b - sq);
+  if (q == 0) return (real)RC_T_FAR;
+  real c = RV(dot)(f, f) - r * r;
+  real t0 = c / q;
+  real t_near = t0 < q ? t0 : q;
+  real t_exit = t0 < q ? q : t0;
+  if (t_near > 0 && t_near < t_max) {
+    *side = -1;
+    return t_near;
+  }
+  if (t_exit > 0 && t_exit < t_max) {
+    *side = 1;
+    return t_exit;
+  }
+  return (real)RC_T_FAR;
+}
+
+ref_shear REF(ray_shear_for)(rvec3 d) {
+  rvec3 a = RV(make)(R_ABS(d.x), R_ABS(d.y), R_ABS(d.z));
+  int kz = (a.x > a.y) ? ((a.x > a.z) ? 0 : 2) : ((a.y > a.z) ? 1 : 2);
+  int kx = (kz + 1) % 3;
+  int ky = (kx + 1) % 3;
+  if (rv_get(d, kz) < 0) {
+    int tmp = kx;
+    kx = ky;
+    ky = tmp;
+  }
+  ref_shear sh = {{kx, ky, kz}, RV(make)(rv_get(d, kx) / rv_get(d, kz), rv_get(d, ky) / rv_get(d, kz), 1 / rv_get(d, kz))};
+  return sh;
+}
+
+rvec3 REF(permute)(rvec3 a, const int k[3]) { return RV(make)(rv_get(a, k[0]), rv_get(a, k[1]), rv_get(a, k[2])); }
+
+real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, real t_max, rvec3 *bary) {
+  *bary = RV(make)(0, 0, 0);
+  rvec3 a = REF(permute)(RV(sub)(rvec3_from(tri.v0), o), sh->k);
+  rvec3 b = REF(permute)(RV(sub)(rvec3_from(tri.v1), o), sh->k);
+  rvec3 c = REF(permute)(RV(sub)(rvec3_from(tri.v2), o), sh->k);
+  real ax = a.x - sh->s.x * a.z;
+  real ay = a.y - sh->s.y * a.z;
+  real bx = b.x - sh->s.x * b.z;
+  real by = b.y - sh->s.y * b.z;
+  real cx = c.x - sh->s.x * c.z;
+  real cy = c.y - sh->s.y * c.z;
+  real u = cx * by - cy * bx;
+  real v = ax * cy - ay * cx;
+  real w = bx * ay - by * ax;
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return (real)RC_T_FAR;
+  real det = u + v + w;
+  if (det == 0) return (real)RC_T_FAR;
+  real t_scaled = u * (sh->s.z * a.z) + v * (sh->s.z * b.z) + w * (sh->s.z * c.z);
+  real t = t_scaled / det;
+  if (!(t > 0 && t < t_max)) return (real)RC_T_FAR;
+  *bary = RV(make)(u / det, v / det, w / det);
+  return t;
+}
+
+bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
+  h->t = (real)RC_T_FAR;
+  h->kind = RC_HIT_NONE;
+  h->index = 0;
+  h->bary = RV(make)(0, 0, 0);
+  h->side = 0;
+  for (uint32_t i = 0; i < sc->frame->sphere_count; i++) {
+    real side;
+    real t = REF(intersect_sphere)(o, d, sc->spheres[i], h->t, &side);
+    if (t < h->t) {
+      h->t = t;
+      h->kind = RC_HIT_SPHERE;
+      h->index = i;
+      h->side = side;
+    }
+  }
+  ref_shear sh = REF(ray_shear_for)(d);
+  for (uint32_t i = 0; i < sc->frame->triangle_count; i++) {
+    rvec3 bary;
+    real t = REF(intersect_triangle)(o, &sh, sc->triangles[i], h->t, &bary);
+    if (t < h->t) {
+      h->t = t;
+      h->kind = RC_HIT_TRIANGLE;
+      h->index = i;
+      h->bary = bary;
+    }
+  }
+  return h->kind != RC_HIT_NONE;
+}
+
+bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
+  for (uint32_t i = 0; i < sc->frame->sphere_count; i++) {
+    real side;
+    if (REF(intersect_sphere)(o, d, sc->spheres[i], t_max, &side) < t_max) return true;
+  }
+  ref_shear sh = REF(ray_shear_for)(d);
+  for (uint32_t i = 0; i < sc->frame->triangle_count; i++) {
+    rvec3 bary;
+    if (REF(intersect_triangle)(o, &sh, sc->triangles[i], t_max, &bary) < t_max) return true;
+  }
+  return false;
+}

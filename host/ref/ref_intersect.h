@@ -1,0 +1,30 @@
+/* ref_intersect.h: CPU twins of shaders/rc_intersect.glsl, declared for both precisions. */
+#ifndef RC_REF_INTERSECT_H
+#define RC_REF_INTERSECT_H
+
+#include "math/rcm_vec3.h"
+#include "rc_base.h"
+
+/* The scene the reference reads: the very arrays the GPU gets (scene_pack.h). */
+typedef struct ref_scene {
+  const gpu_frame *frame;
+  const gpu_sphere *spheres;
+  const gpu_triangle *triangles;
+  const gpu_material *materials;
+  const gpu_light *lights;
+} ref_scene;
+
+#define REF_DECLARE_INTERSECT(S, R, V)                                                          \
+  typedef struct ref_hit_##S { R t; uint32_t kind, index; V bary; R side; } ref_hit_##S;       \
+  typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
+  R ref_intersect_sphere_##S(V o, V d, gpu_sphere s, R t_max, R *side);                         \
+  ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
+  V ref_permute_##S(V a, const int k[3]);                                                       \
+  R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \
+  bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);                      \
+  bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max);
+
+REF_DECLARE_INTERSECT(d, double, dvec3)
+REF_DECLARE_INTERSECT(f, float, vec3)
+
+#endif

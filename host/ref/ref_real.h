@@ -1,0 +1,33 @@
+/* ref_real.h: the working precision of the CPU reference, mirroring rc_real.glsl. Every
+ * ref_*.c file is compiled twice: REF_F64=1 (the accuracy reference, double) and REF_F64=0
+ * (float: the GPU's arithmetic, to tell driver effects from precision effects). REF(name)
+ * gives each build its own symbols: REF(intersect_sphere) is ref_intersect_sphere_d or
+ * ref_intersect_sphere_f, the twin of the shader's intersect_sphere. */
+#ifndef RC_REF_REAL_H
+#define RC_REF_REAL_H
+
+#include <math.h>
+
+#include "math/rcm_vec3.h"
+
+#if REF_F64
+typedef double real;
+typedef dvec3 rvec3;
+#define REF(name) ref_##name##_d
+#define RV(op) rcm_##op##_d
+#define R_SQRT sqrt
+#define R_ABS fabs
+static inline rvec3 rvec3_from(vec3 a) { return rcm_to_d(a); }
+#else
+typedef float real;
+typedef vec3 rvec3;
+#define REF(name) ref_##name##_f
+#define RV(op) rcm_##op##_f
+#define R_SQRT sqrtf
+#define R_ABS fabsf
+static inline rvec3 rvec3_from(vec3 a) { return a; }
+#endif
+
+static inline real rv_get(rvec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }
+
+#endif

@@ -1,0 +1,170 @@
+/* Ray/sphere and ray/triangle tests of the CPU reference (the twins of rc_intersect.glsl),
+ * in f64 and f32: hit, miss, behind the origin, origin inside, grazing, degenerate. */
+#include "ref/ref_intersect.h"
+#include "rc_test.h"
+
+static gpu_sphere sphere(float x, float y, float z, float r) {
+  gpu_sphere s = {{x, y, z}, r, 0, 0, 0, 0};
+  return s;
+}
+
+static gpu_triangle triangle(vec3 a, vec3 b, vec3 c) {
+  gpu_triangle t = {a, 0, b, 0, c, 0};
+  return t;
+}
+
+#define FAR RC_T_FAR
+
+TEST(sphere_hit_from_outside_takes_the_near_root) {
+  double side;
+  double t = ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(0, 0, -10, 2), FAR, &side);
+  CHECK_NEAR(t, 8.0, 1e-12);
+  CHECK(side == -1);
+  float sidef;
+  float tf = ref_intersect_sphere_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -10, 2), (float)FAR, &sidef);
+  CHECK_NEAR(tf, 8.0, 1e-5);
+}
+
+TEST(sphere_miss) {
+  double side;
+  CHECK(ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(3, 0, -10, 2), FAR, &side) == FAR);
+  CHECK(side == 0);
+}
+
+TEST(sphere_behind_the_origin_is_missed) {
+  double side;
+  CHECK(ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, 1), sphere(0, 0, -10, 2), FAR, &side) == FAR);
+}
+
+TEST(sphere_origin_inside_hits_the_exit_root) {
+  double side;
+  double t = ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(1, 0, 0), sphere(0.5f, 0, 0, 2), FAR, &side);
+  CHECK_NEAR(t, 2.5, 1e-12);
+  CHECK(side == 1);
+}
+
+TEST(sphere_respects_t_max) {
+  double side;
+  CHECK(ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(0, 0, -10, 2), 7.9, &side) == FAR);
+}
+
+TEST(sphere_grazing_rays_just_inside_hit_and_just_outside_miss) {
+  /* Impact parameter 1 - 1e-6 and 1 + 1e-6 on a unit sphere 10 units away. */
+  double side;
+  dvec3 d = rcm_make_d(0, 0, -1);
+  double t_in = ref_intersect_sphere_d(rcm_make_d(1 - 1e-6, 0, 0), d, sphere(0, 0, -10, 1), FAR, &side);
+  CHECK_NEAR(t_in, 10.0 - sqrt(1.0 - (1 - 1e-6) * (1 - 1e-6)), 1e-9);
+  CHECK(ref_intersect_sphere_d(rcm_make_d(1 + 1e-6, 0, 0), d, sphere(0, 0, -10, 1), FAR, &side) == FAR);
+}
+
+TEST(sphere_far_away_and_small_stays_visible_in_f32) {
+  /* D/r = 1e5: the textbook b^2 - 4ac loses the sphere in f32 (ROBUSTNESS.md §2.3); the
+   * Hearn-Baker discriminant keeps it. */
+  float side;
+  float t = ref_intersect_sphere_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -1e5f, 1), (float)FAR, &side);
+  CHECK_NEAR(t, 1e5 - 1, 0.02);
+}
+
+static double tri_t(dvec3 o, dvec3 d, gpu_triangle tri, dvec3 *bary) {
+  ref_shear_d sh = ref_ray_shear_for_d(d);
+  return ref_intersect_triangle_d(o, &sh, tri, FAR, bary);
+}
+
+TEST(triangle_hit_gives_t_and_barycentrics) {
+  gpu_triangle tri = triangle(rcm_make_f(-1, -1, -5), rcm_make_f(1, -1, -5), rcm_make_f(0, 1, -5));
+  dvec3 bary;
+  double t = tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), tri, &bary);
+  CHECK_NEAR(t, 5.0, 1e-12);
+  CHECK_NEAR(bary.x + bary.y + bary.z, 1.0, 1e-12);
+  CHECK_NEAR(bary.z, 0.5, 1e-12); /* (0,0) is halfway up from the base to the apex */
+}
+
+TEST(triangle_miss_and_behind) {
+  gpu_triangle tri = triangle(rcm_make_f(-1, -1, -5), rcm_make_f(1, -1, -5), rcm_make_f(0, 1, -5));
+  dvec3 bary;
+  CHECK(tri_t(rcm_make_d(2, 0, 0), rcm_make_d(0, 0, -1), tri, &bary) == FAR);
+  CHECK(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, 1), tri, &bary) == FAR);
+}
+
+TEST(triangle_both_windings_hit) {
+  gpu_triangle tri = triangle(rcm_make_f(0, 1, -5), rcm_make_f(1, -1, -5), rcm_make_f(-1, -1, -5));
+  dvec3 bary;
+  CHECK_NEAR(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), tri, &bary), 5.0, 1e-12);
+}
+
+TEST(triangle_shared_edge_has_no_crack) {
+  /* Rays aimed exactly at the diagonal shared by two triangles of a quad hit at least one
+   * (watertight: inclusive edges and exactly negated edge functions). The diagonal's end
+   * points are the quad's outer corners, where a rounded direction may rightly miss both,
+   * so only its interior is aimed at. */
+  gpu_triangle a = triangle(rcm_make_f(-1, -1, -3), rcm_make_f(1, -1, -3), rcm_make_f(1, 1, -3));
+  gpu_triangle b = triangle(rcm_make_f(-1, -1, -3), rcm_make_f(1, 1, -3), rcm_make_f(-1, 1, -3));
+  int leaks = 0;
+  for (int i = 1; i < 1000; i++) {
+    float s = -1.0f + 2.0f * (float)i / 1000.0f;
+    vec3 o = rcm_make_f(0.37f, -0.21f, 0.0f);
+    vec3 d = rcm_normalize_f(rcm_sub_f(rcm_make_f(s, s, -3.0f), o));
+    ref_shear_f sh = ref_ray_shear_for_f(d);
+    vec3 bary;
+    bool hit = ref_intersect_triangle_f(o, &sh, a, (float)FAR, &bary) < (float)FAR ||
+               ref_intersect_triangle_f(o, &sh, b, (float)FAR, &bary) < (float)FAR;
+    if (!hit) printf("  leak at s = %.9g\n", s);
+    leaks += !hit;
+  }
+  CHECK_EQ_INT(leaks, 0);
+}
+
+TEST(degenerate_triangle_is_missed) {
+  gpu_triangle line = triangle(rcm_make_f(-1, 0, -5), rcm_make_f(0, 0, -5), rcm_make_f(1, 0, -5));
+  gpu_triangle point = triangle(rcm_make_f(0, 0, -5), rcm_make_f(0, 0, -5), rcm_make_f(0, 0, -5));
+  dvec3 bary;
+  CHECK(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), line, &bary) == FAR);
+  CHECK(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), point, &bary) == FAR);
+}
+
+TEST(closest_hit_takes_the_nearest_and_lowest_index_on_ties) {
+  gpu_sphere spheres[3] = {sphere(0, 0, -10, 1), sphere(0, 0, -5, 1), sphere(0, 0, -5, 1)};
+  gpu_triangle tris[1] = {triangle(rcm_make_f(-1, -1, -3.5f), rcm_make_f(1, -1, -3.5f), rcm_make_f(0, 1, -3.5f))};
+  gpu_frame frame = {0};
+  frame.sphere_count = 3;
+  frame.triangle_count = 0;
+  ref_scene sc = {&frame, spheres, tris, NULL, NULL};
+  ref_hit_d h;
+  CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), &h));
+  CHECK_EQ_INT(h.kind, RC_HIT_SPHERE);
+  CHECK_EQ_INT(h.index, 1);
+  CHECK_NEAR(h.t, 4.0, 1e-12);
+  frame.triangle_count = 1;
+  CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), &h));
+  CHECK_EQ_INT(h.kind, RC_HIT_TRIANGLE);
+  CHECK_NEAR(h.t, 3.5, 1e-12);
+}
+
+TEST(occluded_only_within_t_max) {
+  gpu_sphere spheres[1] = {sphere(0, 0, -5, 1)};
+  gpu_frame frame = {0};
+  frame.sphere_count = 1;
+  ref_scene sc = {&frame, spheres, NULL, NULL, NULL};
+  CHECK(ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 10.0));
+  CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 3.9));
+  CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 1, 0), 10.0));
+}
+
+int main(void) {
+  TEST_MAIN_BEGIN
+  RUN(sphere_hit_from_outside_takes_the_near_root);
+  RUN(sphere_miss);
+  RUN(sphere_behind_the_origin_is_missed);
+  RUN(sphere_origin_inside_hits_the_exit_root);
+  RUN(sphere_respects_t_max);
+  RUN(sphere_grazing_rays_just_inside_hit_and_just_outside_miss);
+  RUN(sphere_far_away_and_small_stays_visible_in_f32);
+  RUN(triangle_hit_gives_t_and_barycentrics);
+  RUN(triangle_miss_and_behind);
+  RUN(triangle_both_windings_hit);
+  RUN(triangle_shared_edge_has_no_crack);
+  RUN(degenerate_triangle_is_missed);
+  RUN(closest_hit_takes_the_nearest_and_lowest_index_on_ties);
+  RUN(occluded_only_within_t_max);
+  TEST_MAIN_END
+}

@@ -1,0 +1,47 @@
+/* The loop-budget plan: the worst-case step count mirrors the shader's loop nest. */
+#include "gpu_plan.h"
+#include "rc_test.h"
+
+TEST(steps_per_sample_counts_every_loop) {
+  gpu_frame f = {0};
+  f.sphere_count = 3;
+  f.triangle_count = 4;
+  f.light_count = 2;
+  f.reflection_depth = 0;
+  /* 1 sample loop + 1 bounce + 7 closest-hit + 2 * (1 light + 7 shadow) = 25 */
+  CHECK_EQ_INT(rc_gpu_plan_steps_per_sample(&f), 25);
+  f.reflection_depth = 2;
+  CHECK_EQ_INT(rc_gpu_plan_steps_per_sample(&f), 1 + 3 * 24);
+}
+
+TEST(batch_fits_the_budget_and_the_samples) {
+  gpu_frame f = {0};
+  f.sphere_count = 100;
+  f.light_count = 1;
+  f.samples_per_pixel = 1024;
+  rc_gpu_plan p;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, RC_LOOP_BUDGET, &p), RC_OK);
+  CHECK_EQ_INT(p.steps_per_sample, 1 + 1 + 100 + 101);
+  CHECK_EQ_INT(p.batch_samples, RC_LOOP_BUDGET / 203);
+  CHECK(p.batch_samples * p.steps_per_sample <= RC_LOOP_BUDGET);
+  f.samples_per_pixel = 4;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, RC_LOOP_BUDGET, &p), RC_OK);
+  CHECK_EQ_INT(p.batch_samples, 4);
+}
+
+TEST(one_sample_over_budget_is_refused) {
+  gpu_frame f = {0};
+  f.triangle_count = 30000;
+  f.light_count = 1;
+  f.samples_per_pixel = 1;
+  rc_gpu_plan p;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, RC_LOOP_BUDGET, &p), RC_ERR_TOO_LARGE);
+}
+
+int main(void) {
+  TEST_MAIN_BEGIN
+  RUN(steps_per_sample_counts_every_loop);
+  RUN(batch_fits_the_budget_and_the_samples);
+  RUN(one_sample_over_budget_is_refused);
+  TEST_MAIN_END
+}

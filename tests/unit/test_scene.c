@@ -1,0 +1,90 @@
+/* Scene parsing defaults and packing: what the format promises in docs/scene-format.md. */
+#include <string.h>
+
+#include "rc_test.h"
+#include "scene/scene_pack.h"
+
+static rc_status parse(const char *text, rc_scene *s) { return rc_scene_parse_json("test.json", text, strlen(text), s); }
+
+TEST(defaults_are_the_documented_ones) {
+  rc_scene s;
+  CHECK_EQ_INT(parse("{\"image\":{\"width\":4,\"height\":2},\"camera\":{\"eye\":[0,0,5],\"look_at\":[0,0,0]}}", &s), RC_OK);
+  CHECK_EQ_INT(s.samples_per_pixel, 1);
+  CHECK_EQ_INT(s.camera.projection, RC_PROJECTION_PERSPECTIVE);
+  CHECK(s.camera.up.x == 0 && s.camera.up.y == 1 && s.camera.up.z == 0);
+  CHECK(s.camera.fov_y_deg == 45.0);
+  CHECK(s.background.x == 0 && s.ambient_light.x == 1);
+  CHECK_EQ_INT(s.specular_model, RC_SPECULAR_BLINN_PHONG);
+  CHECK_EQ_INT(s.reflection_depth, 5);
+  CHECK_EQ_INT(s.sphere_count + s.triangle_count + s.light_count + s.material_count, 0);
+  rc_scene_free(&s);
+}
+
+TEST(materials_lights_objects_are_read) {
+  const char *text =
+      "{\"image\":{\"width\":8,\"height\":8,\"samples_per_pixel\":16},"
+      "\"camera\":{\"projection\":\"parallel\",\"eye\":[0,0,5],\"look_at\":[0,0,0],\"view_height\":3},"
+      "\"specular_model\":\"phong\","
+      "\"materials\":{\"m\":{\"diffuse\":[0.5,0.25,1],\"shininess\":7,\"mirror\":0.5}},"
+      "\"lights\":[{\"type\":\"directional\",\"direction\":[0,0,-2],\"intensity\":[1,1,1]}],"
+      "\"objects\":[{\"type\":\"sphere\",\"center\":[1,2,3],\"radius\":0.5,\"material\":\"m\"},"
+      "{\"type\":\"triangle\",\"vertices\":[[0,0,0],[1,0,0],[0,1,0]],\"material\":\"m\"},"
+      "{\"type\":\"triangle\",\"vertices\":[[0,0,0],[1,1,1],[2,2,2]],\"material\":\"m\"}]}";
+  rc_scene s;
+  CHECK_EQ_INT(parse(text, &s), RC_OK);
+  CHECK_EQ_INT(s.camera.projection, RC_PROJECTION_PARALLEL);
+  CHECK(s.camera.view_height == 3);
+  CHECK_EQ_INT(s.specular_model, RC_SPECULAR_PHONG);
+  CHECK(s.materials[0].mirror.y == 0.5 && s.materials[0].diffuse.y == 0.25 && s.materials[0].shininess == 7);
+  CHECK_EQ_INT(s.sphere_count, 1);
+  CHECK_EQ_INT(s.triangle_count, 1);       /* the collinear one is skipped ... */
+  CHECK_EQ_INT(s.degenerate_triangles, 1); /* ... and counted */
+  rc_packed_scene p;
+  CHECK_EQ_INT(rc_scene_pack(&s, &p), RC_OK);
+  /* Camera-relative packing: the eye is the origin of the packed space. */
+  CHECK(p.frame.camera.eye.x == 0 && p.frame.camera.eye.z == 0);
+  CHECK(p.spheres[0].center.x == 1 && p.spheres[0].center.y == 2 && p.spheres[0].center.z == -2);
+  CHECK_NEAR(p.lights[0].position.z, -1.0, 0); /* directional: normalised */
+  CHECK_EQ_INT(p.frame.strata_x, 4);
+  CHECK_EQ_INT(p.frame.strata_y, 4);
+  CHECK_EQ_INT(p.frame.reflection_depth, 5); /* a material mirrors */
+  CHECK_NEAR(p.frame.camera.top, 1.5, 0);    /* half the view height */
+  rc_packed_scene_free(&p);
+  rc_scene_free(&s);
+}
+
+TEST(camera_basis_is_right_handed_and_window_follows_fov_and_aspect) {
+  rc_scene s;
+  CHECK_EQ_INT(parse("{\"image\":{\"width\":200,\"height\":100},\"camera\":{\"eye\":[0,0,0],\"look_at\":[0,0,-1],"
+                     "\"fov_y_deg\":90}}",
+                     &s),
+               RC_OK);
+  rc_packed_scene p;
+  CHECK_EQ_INT(rc_scene_pack(&s, &p), RC_OK);
+  const gpu_camera *c = &p.frame.camera;
+  CHECK(c->u.x == 1 && c->v.y == 1 && c->w.z == 1);
+  CHECK_NEAR(c->top, 1.0, 1e-7); /* tan(45 deg) */
+  CHECK_NEAR(c->right, 2.0, 1e-7);
+  CHECK_EQ_INT(p.frame.reflection_depth, 0); /* no mirror: no bounce loop */
+  rc_packed_scene_free(&p);
+  rc_scene_free(&s);
+}
+
+TEST(camera_problems_are_named) {
+  rc_camera_def c = {RC_PROJECTION_PERSPECTIVE, {0, 0, 0}, {0, 0, -1}, {0, 0, 1}, 45, 0};
+  const char *field = NULL;
+  CHECK(rc_scene_camera_problem(&c, &field) != NULL && strcmp(field, "up") == 0);
+  c.up = rcm_make_d(0, 1, 0);
+  CHECK(rc_scene_camera_problem(&c, &field) == NULL);
+  c.fov_y_deg = 180;
+  CHECK(rc_scene_camera_problem(&c, &field) != NULL && strcmp(field, "fov_y_deg") == 0);
+}
+
+int main(void) {
+  TEST_MAIN_BEGIN
+  RUN(defaults_are_the_documented_ones);
+  RUN(materials_lights_objects_are_read);
+  RUN(camera_basis_is_right_handed_and_window_follows_fov_and_aspect);
+  RUN(camera_problems_are_named);
+  TEST_MAIN_END
+}

@@ -1,0 +1,89 @@
+/* layout_dump.c: prints the C side of every shared struct (rc_shared.h) in the form
+ * `glsl.path offset`, `array stride N`, `Block size N`, `Block binding N`, for
+ * tests/unit/test_layout.sh to compare with glslang's reflection of raycast.comp. */
+#include <stdio.h>
+
+#include "rc_shared.h"
+
+#define OFF(path, type, member) printf("%s %zu\n", path, offsetof(type, member))
+
+int main(void) {
+  OFF("frame.camera.eye", gpu_frame, camera.eye);
+  OFF("frame.camera.left", gpu_frame, camera.left);
+  OFF("frame.camera.u", gpu_frame, camera.u);
+  OFF("frame.camera.right", gpu_frame, camera.right);
+  OFF("frame.camera.v", gpu_frame, camera.v);
+  OFF("frame.camera.bottom", gpu_frame, camera.bottom);
+  OFF("frame.camera.w", gpu_frame, camera.w);
+  OFF("frame.camera.top", gpu_frame, camera.top);
+  OFF("frame.camera.focal", gpu_frame, camera.focal);
+  OFF("frame.camera.projection", gpu_frame, camera.projection);
+  OFF("frame.camera.width", gpu_frame, camera.width);
+  OFF("frame.camera.height", gpu_frame, camera.height);
+  OFF("frame.background", gpu_frame, background);
+  OFF("frame.specular_model", gpu_frame, specular_model);
+  OFF("frame.ambient_light", gpu_frame, ambient_light);
+  OFF("frame.reflection_depth", gpu_frame, reflection_depth);
+  OFF("frame.sphere_count", gpu_frame, sphere_count);
+  OFF("frame.triangle_count", gpu_frame, triangle_count);
+  OFF("frame.material_count", gpu_frame, material_count);
+  OFF("frame.light_count", gpu_frame, light_count);
+  OFF("frame.samples_per_pixel", gpu_frame, samples_per_pixel);
+  OFF("frame.seed", gpu_frame, seed);
+  OFF("frame.strata_x", gpu_frame, strata_x);
+  OFF("frame.strata_y", gpu_frame, strata_y);
+  printf("Frame size %zu\n", sizeof(gpu_frame));
+
+  OFF("scene_spheres.center", gpu_sphere, center);
+  OFF("scene_spheres.radius", gpu_sphere, radius);
+  OFF("scene_spheres.material", gpu_sphere, material);
+  OFF("scene_spheres.pad0", gpu_sphere, pad0);
+  OFF("scene_spheres.pad1", gpu_sphere, pad1);
+  OFF("scene_spheres.pad2", gpu_sphere, pad2);
+  printf("scene_spheres stride %zu\n", sizeof(gpu_sphere));
+  OFF("scene_triangles.v0", gpu_triangle, v0);
+  OFF("scene_triangles.material", gpu_triangle, material);
+  OFF("scene_triangles.v1", gpu_triangle, v1);
+  OFF("scene_triangles.pad0", gpu_triangle, pad0);
+  OFF("scene_triangles.v2", gpu_triangle, v2);
+  OFF("scene_triangles.pad1", gpu_triangle, pad1);
+  printf("scene_triangles stride %zu\n", sizeof(gpu_triangle));
+  OFF("scene_materials.ambient", gpu_material, ambient);
+  OFF("scene_materials.shininess", gpu_material, shininess);
+  OFF("scene_materials.diffuse", gpu_material, diffuse);
+  OFF("scene_materials.pad0", gpu_material, pad0);
+  OFF("scene_materials.specular", gpu_material, specular);
+  OFF("scene_materials.pad1", gpu_material, pad1);
+  OFF("scene_materials.mirror", gpu_material, mirror);
+  OFF("scene_materials.pad2", gpu_material, pad2);
+  printf("scene_materials stride %zu\n", sizeof(gpu_material));
+  OFF("scene_lights.position", gpu_light, position);
+  OFF("scene_lights.type", gpu_light, type);
+  OFF("scene_lights.intensity", gpu_light, intensity);
+  OFF("scene_lights.pad0", gpu_light, pad0);
+  printf("scene_lights stride %zu\n", sizeof(gpu_light));
+
+  OFF("push.tile_x", gpu_push, tile_x);
+  OFF("push.tile_y", gpu_push, tile_y);
+  OFF("push.tile_width", gpu_push, tile_width);
+  OFF("push.tile_height", gpu_push, tile_height);
+  OFF("push.batch_samples", gpu_push, batch_samples);
+  OFF("push.pad0", gpu_push, pad0);
+  OFF("push.pad1", gpu_push, pad1);
+  OFF("push.pad2", gpu_push, pad2);
+  printf("Push size %zu\n", sizeof(gpu_push));
+  OFF("status.exhausted_pixels", gpu_status, exhausted_pixels);
+  OFF("status.incomplete_pixels", gpu_status, incomplete_pixels);
+  OFF("status.shadow_rays", gpu_status, shadow_rays);
+  OFF("status.reflection_rays", gpu_status, reflection_rays);
+  printf("Status size %zu\n", sizeof(gpu_status));
+
+  printf("Frame binding %d\n", RC_BINDING_FRAME);
+  printf("scene_spheres binding %d\n", RC_BINDING_SPHERES);
+  printf("scene_triangles binding %d\n", RC_BINDING_TRIANGLES);
+  printf("scene_materials binding %d\n", RC_BINDING_MATERIALS);
+  printf("scene_lights binding %d\n", RC_BINDING_LIGHTS);
+  printf("Accum binding %d\n", RC_BINDING_ACCUM);
+  printf("Status binding %d\n", RC_BINDING_STATUS);
+  return 0;
+}
