@@ -29,20 +29,36 @@ uint reflection_rays = 0u;
 #include "rc_shade.glsl"
 #include "rc_trace.glsl"
 
+// Set when any invocation of the workgroup ran out of budget. llvmpipe runs the
+// invocations of a workgroup as SIMD lanes and its loop cap counts the vector's
+// iterations, so once one lane is over budget the loops of its neighbours may have been
+// cut short too, silently. The whole workgroup therefore discards its batch.
+shared bool group_exhausted;
+
 void main() {
+  if (gl_LocalInvocationIndex == 0u) group_exhausted = false;
+  barrier();
+
   uvec2 local = gl_GlobalInvocationID.xy;
-  if (local.x >= push.tile_width || local.y >= push.tile_height) return;
+  bool inside = local.x < push.tile_width && local.y < push.tile_height;
   uvec2 pixel = uvec2(push.tile_x, push.tile_y) + local;
   uint slot = local.y * push.tile_width + local.x;
 
-  vec4 sum = accum[slot];
-  uint done = uint(sum.a);
-  uint target = min(done + push.batch_samples, frame.samples_per_pixel);
-  for (uint s = done; s < target; s++) {
-    if (!budget_step()) break;
-    sum.rgb += vec3(trace_sample(pixel, s));
+  vec4 sum = vec4(0.0);
+  uint target = 0u;
+  if (inside) {
+    sum = accum[slot];
+    uint done = uint(sum.a);
+    target = min(done + push.batch_samples, frame.samples_per_pixel);
+    for (uint s = done; s < target; s++) {
+      if (!budget_step()) break;
+      sum.rgb += vec3(trace_sample(pixel, s));
+    }
+    if (budget_exhausted) group_exhausted = true;
   }
-  if (budget_exhausted) {
+  barrier();
+  if (!inside) return;
+  if (group_exhausted) {
     atomicAdd(status.exhausted_pixels, 1u);
     atomicAdd(status.incomplete_pixels, 1u);
     return;

@@ -1,8 +1,9 @@
 // rc_budget.glsl: the per-invocation loop budget (DESIGN.md §2). llvmpipe ends every loop
 // after 65,535 iterations summed over the whole invocation, silently; so every loop here
 // calls budget_step() once per iteration and breaks when it returns false. The host sizes
-// each dispatch so that the worst case stays under loop_budget (host/gpu_plan.c); a pixel
-// that still runs out discards its batch and is counted in gpu_status.exhausted_pixels.
+// each dispatch so that the worst case stays under loop_budget (host/gpu_plan.c); if an
+// invocation still runs out, its whole workgroup discards the batch (raycast.comp) and the
+// pixels are counted in gpu_status.exhausted_pixels.
 uint budget_steps = 0u;
 bool budget_exhausted = false;
 

@@ -123,7 +123,7 @@ struct gpu_light {
 
 /* Written by the shader with atomics, read back after each dispatch. */
 struct gpu_status {
-  uint exhausted_pixels;  /* pixels whose loop budget ran out: their batch was discarded */
+  uint exhausted_pixels;  /* pixels whose batch was discarded: their workgroup ran out of loop budget */
   uint incomplete_pixels; /* pixels that still have samples to take */
   uint shadow_rays;
   uint reflection_rays;

@@ -1,1 +1,381 @@
-int main(void){return 1;}
+/* End-to-end GPU tests: run build/vkraycast on lavapipe (validation on, set by ctest) and
+ * check the pixels of its EXR output against values computed here from the scene.
+ * Usage: test_gpu_render VKRAYCAST TESTS_GPU_DIR SCENES_DIR */
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "image/image_io.h"
+#include "rc_shared.h"
+#include "rc_test.h"
+
+static const char *bin, *gpu_dir, *scenes_dir;
+static char tmp[256];
+
+/* Runs vkraycast with the arguments (a printf format); returns its exit status. */
+static int run(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static int run(const char *fmt, ...) {
+  char args[2048], cmd[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(args, sizeof args, fmt, ap);
+  va_end(ap);
+  snprintf(cmd, sizeof cmd, "'%s' %s 2>%s/stderr.txt", bin, args, tmp);
+  int st = system(cmd);
+  int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+  if (code != 0) {
+    printf("  `vkraycast %s` exited %d; stderr:\n", args, code);
+    char show[4096];
+    snprintf(show, sizeof show, "sed 's/^/    /' %s/stderr.txt", tmp);
+    if (system(show) != 0) printf("    (no stderr)\n");
+  }
+  return code;
+}
+
+static bool stderr_contains(const char *text) {
+  char buf[8192] = "";
+  char path[300];
+  snprintf(path, sizeof path, "%s/stderr.txt", tmp);
+  FILE *f = fopen(path, "r");
+  if (!f) return false;
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  buf[n] = '\0';
+  fclose(f);
+  return strstr(buf, text) != NULL;
+}
+
+typedef struct {
+  int w, h, c;
+  float *px;
+} image;
+
+static image load(const char *name) {
+  image im = {0};
+  char path[300], err[256];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  if (rc_image_read(path, &im.w, &im.h, &im.c, &im.px, err, sizeof err) != 0) printf("  cannot read %s: %s\n", path, err);
+  return im;
+}
+
+static const float *pixel(const image *im, int x, int y) { return im->px + ((size_t)y * im->w + x) * im->c; }
+
+static bool identical(const image *a, const image *b) {
+  return a->px && b->px && a->w == b->w && a->h == b->h && a->c == b->c &&
+         memcmp(a->px, b->px, sizeof(float) * (size_t)a->w * a->h * a->c) == 0;
+}
+
+static cJSON *load_json(const char *name) {
+  char path[300];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  FILE *f = fopen(path, "r");
+  if (!f) return NULL;
+  char buf[16384];
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  buf[n] = '\0';
+  fclose(f);
+  return cJSON_Parse(buf);
+}
+
+static double json_number(const cJSON *o, const char *key) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+  return cJSON_IsNumber(v) ? v->valuedouble : -1.0;
+}
+
+/* The pixel at the image centre looks straight at the sphere; the light sits at the eye,
+ * so n.l = 1 and r = 9: L = ka Ia + kd I / r^2 (specular 0). */
+TEST(head_on_sphere_centre_is_ambient_plus_lambert) {
+  CHECK_EQ_INT(run("render %s/head_on.json -o %s/head_on.exr --quiet", gpu_dir, tmp), 0);
+  image im = load("head_on.exr");
+  if (!im.px) { CHECK(false); return; }
+  const float *p = pixel(&im, 50, 50);
+  const double ka[3] = {0.1f, 0.2f, 0.3f}, kd[3] = {0.5f, 0.6f, 0.7f}, intensity[3] = {20, 30, 40};
+  for (int c = 0; c < 3; c++) CHECK_NEAR(p[c], ka[c] * 0.5 + kd[c] * intensity[c] / 81.0, 1e-5);
+  const float *corner = pixel(&im, 0, 0);
+  CHECK(corner[0] == 0 && corner[1] == 0 && corner[2] == 0); /* background */
+  free(im.px);
+}
+
+/* The light, the sphere's centre and the floor point (2, 0, 0) are collinear, and the
+ * centre pixel sees that point: in shadow, the pixel is the ambient term exactly. Without
+ * the sphere the same pixel is lit: ka Ia + kd I cos / r^2 with r^2 = 100, cos = 0.6. */
+TEST(pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder) {
+  CHECK_EQ_INT(run("render %s/shadow.json -o %s/shadow.exr --quiet", gpu_dir, tmp), 0);
+  CHECK_EQ_INT(run("render %s/shadow_no_occluder.json -o %s/lit.exr --quiet", gpu_dir, tmp), 0);
+  image shadow = load("shadow.exr"), lit = load("lit.exr");
+  if (!shadow.px || !lit.px) { CHECK(false); return; }
+  const float ka[3] = {0.7f, 0.6f, 0.5f}, ia[3] = {0.3f, 0.4f, 0.5f}, kd[3] = {0.9f, 0.8f, 0.7f};
+  const float *s = pixel(&shadow, 32, 32), *l = pixel(&lit, 32, 32);
+  for (int c = 0; c < 3; c++) {
+    float ambient = ka[c] * ia[c]; /* the shader's f32 product */
+    CHECK(s[c] == ambient);
+    CHECK_NEAR(l[c], (double)ambient + kd[c] * 50.0 / 100.0 * 0.6, 1e-5);
+  }
+  free(shadow.px);
+  free(lit.px);
+}
+
+/* Parallel projection: pixel (i, row) looks along -z from (x, y); on the unit sphere the
+ * normal is (x, y, sqrt(1 - x^2 - y^2)) and the light travels along -z, so L = kd n.z.
+ * Pixels within 0.02 of the silhouette are left out (a pixel centre's hit/miss there
+ * depends on the last bits). */
+TEST(parallel_camera_matches_the_analytic_sphere) {
+  CHECK_EQ_INT(run("render %s/parallel.json -o %s/parallel.exr --quiet", gpu_dir, tmp), 0);
+  image im = load("parallel.exr");
+  if (!im.px) { CHECK(false); return; }
+  int hits = 0, misses = 0, bad = 0;
+  for (int row = 0; row < 64; row++) {
+    for (int i = 0; i < 64; i++) {
+      double x = -2.0 + 4.0 * (i + 0.5) / 64, y = -2.0 + 4.0 * ((63 - row) + 0.5) / 64;
+      double rr = x * x + y * y;
+      const float *p = pixel(&im, i, row);
+      if (rr < 0.98) {
+        hits++;
+        double want = 0.8f * sqrt(1.0 - rr);
+        bad += fabs(p[0] - want) > 1e-4 || fabs(p[2] - want) > 1e-4;
+      } else if (rr > 1.02) {
+        misses++;
+        bad += !(p[0] == 0.1f && p[1] == 0.2f && p[2] == 0.3f);
+      }
+    }
+  }
+  CHECK_EQ_INT(bad, 0);
+  CHECK(hits > 700 && misses > 2500);
+  free(im.px);
+}
+
+/* Both specular models at one pixel, against the formulas of DESIGN.md §1 evaluated here:
+ * Blinn-Phong (n.h)^p and Phong (v.r)^p, r = 2 (n.l) n - l. */
+TEST(blinn_phong_and_phong_highlights_follow_their_formulas) {
+  CHECK_EQ_INT(run("render %s/specular.json -o %s/blinn.exr --quiet", gpu_dir, tmp), 0);
+  /* The same scene with the other model, written next to the output. */
+  char text[4096];
+  char path[300];
+  snprintf(path, sizeof path, "%s/specular.json", gpu_dir);
+  FILE *f = fopen(path, "r");
+  size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+  if (f) fclose(f);
+  text[n] = '\0';
+  char *brace = strchr(text, '{');
+  if (!brace) { CHECK(false); return; }
+  snprintf(path, sizeof path, "%s/phong.json", tmp);
+  f = fopen(path, "w");
+  fprintf(f, "{ \"specular_model\": \"phong\",%s", brace + 1);
+  fclose(f);
+  CHECK_EQ_INT(run("render %s/phong.json -o %s/phong.exr --quiet", tmp, tmp), 0);
+  image blinn = load("blinn.exr"), phong = load("phong.exr");
+  if (!blinn.px || !phong.px) { CHECK(false); return; }
+  const int i = 36, row = 24; /* near the highlight: Blinn 0.656, Phong 0.178 */
+  double x = -2.0 + 4.0 * (i + 0.5) / 64, y = -2.0 + 4.0 * ((63 - row) + 0.5) / 64;
+  double nx = x, ny = y, nz = sqrt(1 - x * x - y * y);
+  double k = sqrt(6.0), lx = 1 / k, ly = 1 / k, lz = 2 / k; /* towards the light */
+  double hx = lx, hy = ly, hz = lz + 1, hl = sqrt(hx * hx + hy * hy + hz * hz);
+  double ndl = nx * lx + ny * ly + nz * lz;
+  double blinn_want = pow((nx * hx + ny * hy + nz * hz) / hl, 10);
+  double phong_want = pow(2 * ndl * nz - lz, 10); /* v = (0, 0, 1) */
+  CHECK(ndl > 0);
+  CHECK_NEAR(pixel(&blinn, i, row)[1], blinn_want, 2e-4);
+  CHECK_NEAR(pixel(&phong, i, row)[1], phong_want, 2e-4);
+  CHECK(fabs(blinn_want - phong_want) > 0.05); /* the pixel tells the models apart */
+  free(blinn.px);
+  free(phong.px);
+}
+
+/* Texel buffers, storage buffers and the staging upload/readback path are three ways of
+ * moving the same bytes: the images must be bit-identical. */
+TEST(buffer_kinds_and_staging_path_give_identical_images) {
+  const char *common = "--width 96 --height 60 --spp 2 --quiet";
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/texel.exr %s", scenes_dir, tmp, common), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/storage.exr --scene-buffers storage %s", scenes_dir, tmp, common), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/staging.exr --staging --stats-json %s/staging.json %s", scenes_dir,
+                   tmp, tmp, common),
+               0);
+  image a = load("texel.exr"), b = load("storage.exr"), c = load("staging.exr");
+  CHECK(identical(&a, &b));
+  CHECK(identical(&a, &c));
+  cJSON *stats = load_json("staging.json");
+  CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(stats, "staging")));
+  cJSON_Delete(stats);
+  free(a.px);
+  free(b.px);
+  free(c.px);
+}
+
+/* A scene that costs 1,207 loop steps per sample: 400 spheres no ray can reach (behind
+ * the camera), two lights, and last in the array the one visible sphere, ambient only
+ * (0.5 * 0.5 = 0.25) on a 0.125 background. Every pixel is a mean of 0.25s and 0.125s.
+ * If llvmpipe's 65,535-iteration cap silently cut the loops short, the visible sphere,
+ * tested last, would vanish. */
+static void write_heavy_scene(const char *name, int hidden, int lights, int spp) {
+  char path[300];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  FILE *f = fopen(path, "w");
+  fprintf(f, "{ \"image\": { \"width\": 24, \"height\": 24, \"samples_per_pixel\": %d },\n", spp);
+  fprintf(f, "  \"camera\": { \"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov_y_deg\": 40 },\n");
+  fprintf(f, "  \"background\": [0.125, 0.125, 0.125], \"ambient_light\": [0.5, 0.5, 0.5],\n");
+  fprintf(f, "  \"materials\": { \"m\": { \"ambient\": [0.5, 0.5, 0.5] } },\n  \"lights\": [");
+  for (int i = 0; i < lights; i++)
+    fprintf(f, "%s{ \"type\": \"point\", \"position\": [0, %d, 5], \"intensity\": [1, 1, 1] }", i ? ", " : "", i);
+  fprintf(f, "],\n  \"objects\": [\n");
+  for (int i = 0; i < hidden; i++)
+    fprintf(f, "    { \"type\": \"sphere\", \"center\": [%d, %d, 40], \"radius\": 0.5, \"material\": \"m\" },\n",
+            i % 20 - 10, i / 20 - 10);
+  fprintf(f, "    { \"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1.5, \"material\": \"m\" } ] }\n");
+  fclose(f);
+}
+
+static void check_heavy_image(const image *im) {
+  int bad = 0, sphere = 0;
+  for (int i = 0; i < im->w * im->h; i++) {
+    float v = im->px[3 * i];
+    bad += !(v >= 0.125f && v <= 0.25f);
+    sphere += v == 0.25f;
+  }
+  CHECK_EQ_INT(bad, 0);
+  CHECK(pixel(im, 12, 12)[0] == 0.25f);
+  CHECK(pixel(im, 0, 0)[0] == 0.125f);
+  CHECK(sphere > 100);
+}
+
+TEST(loop_budget_splits_heavy_scenes_into_batches_and_renders_them_right) {
+  write_heavy_scene("heavy.json", 400, 2, 64);
+  CHECK_EQ_INT(run("render %s/heavy.json -o %s/heavy.exr --quiet --stats-json %s/heavy_stats.json", tmp, tmp, tmp), 0);
+  image im = load("heavy.exr");
+  if (!im.px) { CHECK(false); return; }
+  check_heavy_image(&im);
+  cJSON *stats = load_json("heavy_stats.json");
+  CHECK_EQ_INT(json_number(stats, "loop_steps_per_sample"), 1207);
+  CHECK_EQ_INT(json_number(stats, "batch_samples"), RC_LOOP_BUDGET / 1207);
+  CHECK_EQ_INT(json_number(stats, "budget_retries"), 0);
+  cJSON_Delete(stats);
+
+  /* The host plans as if the budget were unlimited: 64 samples (77,248 steps) in one
+   * dispatch. The shader's counter must catch it, the host must halve the batch, and the
+   * image must be bit-identical to the planned one. */
+  CHECK_EQ_INT(run("render %s/heavy.json -o %s/heavy_retry.exr --quiet --plan-budget 4000000000 --stats-json "
+                   "%s/retry_stats.json",
+                   tmp, tmp, tmp),
+               0);
+  image again = load("heavy_retry.exr");
+  CHECK(identical(&im, &again));
+  stats = load_json("retry_stats.json");
+  CHECK(json_number(stats, "budget_retries") >= 1);
+  cJSON_Delete(stats);
+  free(im.px);
+  free(again.px);
+}
+
+TEST(one_sample_beyond_the_budget_fails_loudly) {
+  /* 300 spheres and 200 lights: 1 + 1 + 301 + 200 * 302 = 60,703 steps for one sample. */
+  write_heavy_scene("huge.json", 300, 200, 1);
+  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --quiet", tmp, tmp), 2);
+  CHECK(stderr_contains("scene too large for brute-force GPU rendering: one sample needs up to 60703 loop"));
+  /* Planned past the budget, the shader's flag stops it instead of a wrong image. */
+  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --quiet --plan-budget 4000000000", tmp, tmp), 2);
+  CHECK(stderr_contains("ran out of the shader loop budget"));
+  char path[300];
+  snprintf(path, sizeof path, "%s/huge.exr", tmp);
+  CHECK(access(path, F_OK) != 0); /* no output file */
+}
+
+TEST(stats_json_reports_rays_and_timings) {
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/s.png --width 80 --height 50 --spp 3 --repeat 3 --quiet "
+                   "--stats-json %s/stats.json",
+                   scenes_dir, tmp, tmp),
+               0);
+  cJSON *s = load_json("stats.json");
+  if (!s) { CHECK(false); return; }
+  const char *keys[] = {"device", "backend", "width", "height", "rays_primary", "rays_shadow", "render_ms",
+                        "mrays_per_s", "first_frame_ms", "pipeline_ms", "upload_ms", "readback_ms", "write_ms"};
+  for (size_t i = 0; i < sizeof keys / sizeof *keys; i++) CHECK(cJSON_GetObjectItemCaseSensitive(s, keys[i]) != NULL);
+  CHECK(strstr(cJSON_GetObjectItemCaseSensitive(s, "device")->valuestring, "llvmpipe") != NULL);
+  CHECK_EQ_INT(json_number(s, "rays_primary"), 80 * 50 * 3);
+  CHECK(json_number(s, "rays_shadow") > 0);
+  CHECK(json_number(s, "render_ms") > 0 && json_number(s, "mrays_per_s") > 0);
+  CHECK_EQ_INT(json_number(s, "repeat"), 3);
+  cJSON_Delete(s);
+}
+
+/* 8-bit output stores the clamped linear value, rounded: PNG = round(255 clamp(EXR)). */
+TEST(png_is_the_clamped_linear_value) {
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/q.exr --width 64 --height 40 --quiet", scenes_dir, tmp), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/q.png --width 64 --height 40 --quiet", scenes_dir, tmp), 0);
+  image e = load("q.exr"), p = load("q.png");
+  if (!e.px || !p.px) { CHECK(false); return; }
+  int bad = 0;
+  for (int i = 0; i < 64 * 40 * 3; i++) {
+    float x = e.px[i] < 0 ? 0 : (e.px[i] > 1 ? 1 : e.px[i]);
+    bad += fabs(p.px[i] * 255.0 - floor(x * 255.0 + 0.5)) > 1e-3;
+  }
+  CHECK_EQ_INT(bad, 0);
+  free(e.px);
+  free(p.px);
+}
+
+/* A failed render leaves an existing image untouched. */
+TEST(failed_render_leaves_the_old_image) {
+  char path[300];
+  snprintf(path, sizeof path, "%s/keep.png", tmp);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s --width 16 --height 16 --quiet", scenes_dir, path), 0);
+  struct stat before, after;
+  CHECK(stat(path, &before) == 0);
+  write_heavy_scene("huge2.json", 300, 200, 1);
+  CHECK_EQ_INT(run("render %s/huge2.json -o %s --quiet", tmp, path), 2);
+  CHECK(stat(path, &after) == 0 && after.st_size == before.st_size && after.st_mtime == before.st_mtime);
+}
+
+/* Every example scene renders validation-clean and shows more than its background. */
+TEST(every_example_scene_renders) {
+  DIR *d = opendir(scenes_dir);
+  if (!d) { CHECK(false); return; }
+  int count = 0;
+  struct dirent *e;
+  while ((e = readdir(d))) {
+    size_t n = strlen(e->d_name);
+    if (n < 6 || strcmp(e->d_name + n - 5, ".json") != 0) continue;
+    count++;
+    CHECK_EQ_INT(run("render %s/%s -o %s/scene.exr --width 64 --height 48 --spp 1 --quiet", scenes_dir, e->d_name, tmp),
+                 0);
+    image im = load("scene.exr");
+    int differ = 0;
+    for (int i = 1; im.px && i < im.w * im.h; i++) differ += memcmp(im.px, im.px + 3 * i, 3 * sizeof(float)) != 0;
+    if (differ < 64 * 48 / 20) printf("  %s: only %d pixels differ from the first\n", e->d_name, differ);
+    CHECK(differ >= 64 * 48 / 20);
+    free(im.px);
+  }
+  closedir(d);
+  CHECK(count >= 6);
+}
+
+int main(int argc, char **argv) {
+  if (argc != 4) {
+    fprintf(stderr, "usage: test_gpu_render VKRAYCAST TESTS_GPU_DIR SCENES_DIR\n");
+    return 2;
+  }
+  bin = argv[1];
+  gpu_dir = argv[2];
+  scenes_dir = argv[3];
+  snprintf(tmp, sizeof tmp, "/tmp/vkraycast-test-XXXXXX");
+  if (!mkdtemp(tmp)) return 2;
+  TEST_MAIN_BEGIN
+  RUN(head_on_sphere_centre_is_ambient_plus_lambert);
+  RUN(pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder);
+  RUN(parallel_camera_matches_the_analytic_sphere);
+  RUN(blinn_phong_and_phong_highlights_follow_their_formulas);
+  RUN(buffer_kinds_and_staging_path_give_identical_images);
+  RUN(loop_budget_splits_heavy_scenes_into_batches_and_renders_them_right);
+  RUN(one_sample_beyond_the_budget_fails_loudly);
+  RUN(stats_json_reports_rays_and_timings);
+  RUN(png_is_the_clamped_linear_value);
+  RUN(failed_render_leaves_the_old_image);
+  RUN(every_example_scene_renders);
+  char cleanup[300];
+  snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
+  if (rc_test_failed == 0 && system(cleanup) != 0) printf("could not remove %s\n", tmp);
+  TEST_MAIN_END
+}
