@@ -64,7 +64,9 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_Delete(o);
   rc_status st = RC_OK;
   FILE *f = text ? fopen(path, "w") : NULL;
-  if (!f || fprintf(f, "%s\n", text) < 0 || fclose(f) != 0) {
+  bool ok = f != NULL && fprintf(f, "%s\n", text) >= 0;
+  if (f && fclose(f) != 0) ok = false;
+  if (!ok) {
     rc_error("%s: cannot write statistics: %s", path, strerror(errno));
     st = RC_ERR_IO;
   }
