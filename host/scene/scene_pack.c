@@ -1,6 +1,7 @@
 #include "scene/scene_pack.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,6 +32,31 @@ static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
   g->projection = c->projection;
   g->width = s->width;
   g->height = s->height;
+}
+
+static bool finite3(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+
+/* Values that are finite in f64 but leave the f32 range once packed would reach the
+ * shader as Inf, which Vulkan lets shaders assume away (ROBUSTNESS.md §1.3). */
+static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
+  const char *what = NULL;
+  size_t index = 0;
+  for (size_t i = 0; i < s->sphere_count && !what; i++)
+    if (!finite3(p->spheres[i].center) || !isfinite(p->spheres[i].radius * p->spheres[i].radius))
+      what = "sphere", index = i;
+  for (size_t i = 0; i < s->triangle_count && !what; i++)
+    if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2))
+      what = "triangle", index = i;
+  for (size_t i = 0; i < s->light_count && !what; i++)
+    if (!finite3(p->lights[i].position) || !finite3(p->lights[i].intensity)) what = "light", index = i;
+  for (size_t i = 0; i < s->material_count && !what; i++)
+    if (!finite3(p->materials[i].ambient) || !finite3(p->materials[i].diffuse) ||
+        !finite3(p->materials[i].specular) || !finite3(p->materials[i].mirror) || !isfinite(p->materials[i].shininess))
+      what = "material", index = i;
+  if (!what) return RC_OK;
+  fprintf(stderr, "%s: error: %s %zu: a value (relative to the eye) is beyond the f32 range (|x| > 3.4e38, "
+          "or a radius whose square is) that the GPU renders in\n", s->path, what, index);
+  return RC_ERR_INPUT;
 }
 
 rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
@@ -92,7 +118,9 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     p->lights[i].position = l->type == RC_LIGHT_POINT ? to_packed(p, l->position)
                                                       : rcm_to_f(rcm_normalize_d(l->direction));
   }
-  return RC_OK;
+  rc_status st = check_f32_range(s, p);
+  if (st != RC_OK) rc_packed_scene_free(p);
+  return st;
 }
 
 void rc_packed_scene_free(rc_packed_scene *p) {
