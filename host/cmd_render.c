@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "gpu_render.h"
 #include "image/image_io.h"
+#include "ref/ref_render.h"
 #include "scene/scene_pack.h"
 #include "stats.h"
 
@@ -18,6 +19,10 @@ static const char render_usage[] =
     "  -o, --output OUT        image to write; the extension picks the format (png, exr, tif, jpg, ...)\n"
     "  --width W, --height H   override the scene's image size\n"
     "  --spp N                 override samples per pixel (1..1024)\n"
+    "  --backend B             gpu (default: the Vulkan compute shader) or cpu (the reference renderer)\n"
+    "  --precision P           f32 or f64 geometry and shading math (default: f32 on gpu, f64 on cpu;\n"
+    "                          f64 on gpu needs shaderFloat64)\n"
+    "  --threads N             cpu backend: threads (default: all cores); the image does not depend on it\n"
     "  --device N              Vulkan device index (see `vkraycast devices`); default: discrete >\n"
     "                          integrated > virtual > CPU\n"
     "  --srgb                  8-bit outputs get the sRGB transfer curve (default: linear, clamped)\n"
@@ -38,6 +43,9 @@ typedef struct {
   uint32_t width, height, spp, repeat;
   int device;
   bool quiet, srgb;
+  bool cpu;
+  int precision; /* -1 default, 0 f32, 1 f64 */
+  uint32_t threads;
   rc_gpu_options gpu;
 } render_args;
 
@@ -55,7 +63,8 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
 
 static bool option_takes_value(const char *o) {
   static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
-                                           "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers"};
+                                           "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
+                                           "--backend", "--precision", "--threads"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -65,6 +74,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
   a->device = -1;
   a->repeat = 1;
+  a->precision = -1;
   a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
   a->gpu.tile_size = 256;
   a->gpu.plan_budget = RC_LOOP_BUDGET;
@@ -110,6 +120,22 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
       st = rc_cli_uint(o, v, 8, 4096, &a->gpu.tile_size);
     } else if (strcmp(o, "--plan-budget") == 0) {
       st = rc_cli_uint(o, v, RC_LOOP_BUDGET, UINT32_MAX, &a->gpu.plan_budget);
+    } else if (strcmp(o, "--threads") == 0) {
+      st = rc_cli_uint(o, v, 1, 1024, &a->threads);
+    } else if (strcmp(o, "--backend") == 0) {
+      if (strcmp(v, "gpu") == 0 || strcmp(v, "cpu") == 0) {
+        a->cpu = strcmp(v, "cpu") == 0;
+      } else {
+        rc_error("--backend: expected gpu or cpu, got '%s'", v);
+        st = RC_ERR_USAGE;
+      }
+    } else if (strcmp(o, "--precision") == 0) {
+      if (strcmp(v, "f32") == 0 || strcmp(v, "f64") == 0) {
+        a->precision = strcmp(v, "f64") == 0;
+      } else {
+        rc_error("--precision: expected f32 or f64, got '%s'", v);
+        st = RC_ERR_USAGE;
+      }
     } else if (strcmp(o, "--scene-buffers") == 0) {
       if (strcmp(v, "texel") == 0) {
         a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
@@ -133,6 +159,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     fputs(render_usage, stderr);
     return RC_ERR_USAGE;
   }
+  if (a->precision < 0) a->precision = a->cpu ? 1 : 0;
+  a->gpu.f64 = a->precision == 1;
   if (!rc_image_can_write(a->output)) {
     rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->output);
     return RC_ERR_USAGE;
@@ -193,12 +221,36 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_pa
   return st;
 }
 
+static rc_status render_frames_cpu(const render_args *a, const rc_packed_scene *packed, float *rgb,
+                                   rc_render_stats *rs) {
+  rc_ref_options opts = {.f64 = a->precision == 1, .threads = a->threads};
+  double *ms = calloc(a->repeat, sizeof *ms);
+  if (!ms) return RC_ERR_TOO_LARGE;
+  rc_ref_stats st = {0};
+  for (uint32_t i = 0; i < a->repeat; i++) {
+    rc_status s = rc_ref_render(packed, &opts, rgb, &st);
+    if (s != RC_OK) {
+      free(ms);
+      return s;
+    }
+    ms[i] = st.render_ms;
+  }
+  rs->first_frame_ms = ms[0];
+  if (a->repeat > 1) qsort(ms + 1, a->repeat - 1, sizeof *ms, cmp_double);
+  rs->render_ms = rs->render_wall_ms = a->repeat > 1 ? ms[1 + (a->repeat - 1) / 2] : ms[0];
+  rs->rays_shadow = st.shadow_rays;
+  rs->rays_reflection = st.reflection_rays;
+  rs->threads = st.threads;
+  free(ms);
+  return RC_OK;
+}
+
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
   if (st != RC_OK) return st;
 
-  rc_render_stats rs = {.backend = "vulkan", .repeat = a.repeat};
+  rc_render_stats rs = {.backend = "gpu", .repeat = a.repeat};
   rc_scene scene;
   double t0 = rc_now_ms();
   st = rc_scene_load(a.scene, &scene);
@@ -220,23 +272,32 @@ rc_status rc_cmd_render(int argc, char **argv) {
     rgb = rc_alloc((size_t)scene.width * scene.height * 3, sizeof(float), "the image");
     if (!rgb) st = RC_ERR_TOO_LARGE;
   }
-  rc_vk_options vo = {.device_index = a.device};
-  if (st == RC_OK) st = rc_vk_create(&vo, &ctx);
+  rs.width = scene.width;
+  rs.height = scene.height;
+  rs.samples_per_pixel = scene.samples_per_pixel;
+  rs.spheres = scene.sphere_count;
+  rs.triangles = scene.triangle_count;
+  rs.lights = scene.light_count;
+  rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
+  rs.precision = a.precision == 1 ? "f64" : "f32";
   char driver[600] = "";
-  if (st == RC_OK) {
-    snprintf(driver, sizeof driver, "%s %s", ctx.driver.driverName[0] ? ctx.driver.driverName : "unknown driver",
-             ctx.driver.driverInfo);
-    rs.device = ctx.props.deviceName;
-    rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
-    rs.driver = driver;
-    rs.width = scene.width;
-    rs.height = scene.height;
-    rs.samples_per_pixel = scene.samples_per_pixel;
-    rs.spheres = scene.sphere_count;
-    rs.triangles = scene.triangle_count;
-    rs.lights = scene.light_count;
-    rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
-    st = render_frames(&a, &ctx, &packed, rgb, &rs);
+  if (st == RC_OK && a.cpu) {
+    rs.backend = "cpu";
+    rs.device = "CPU reference";
+    rs.device_type = "cpu";
+    rs.driver = "vkraycast ref";
+    st = render_frames_cpu(&a, &packed, rgb, &rs);
+  } else if (st == RC_OK) {
+    rc_vk_options vo = {.device_index = a.device};
+    st = rc_vk_create(&vo, &ctx);
+    if (st == RC_OK) {
+      snprintf(driver, sizeof driver, "%s %s", ctx.driver.driverName[0] ? ctx.driver.driverName : "unknown driver",
+               ctx.driver.driverInfo);
+      rs.device = ctx.props.deviceName;
+      rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
+      rs.driver = driver;
+      st = render_frames(&a, &ctx, &packed, rgb, &rs);
+    }
   }
   if (st == RC_OK) {
     char err[512];

@@ -134,7 +134,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                     .pPushConstantRanges = &pcr};
   RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
 
-  rc_spirv code = rc_shader_raycast(texel);
+  rc_spirv code = rc_shader_raycast(texel, r->opts.f64);
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                   .codeSize = code.size,
                                   .pCode = code.words};
@@ -225,6 +225,12 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->opts = *opts;
   r->frame = scene->frame;
   rc_status st = rc_gpu_plan_make(&scene->frame, opts->plan_budget, &stats->plan);
+  if (st == RC_OK && opts->f64 && !ctx->float64) {
+    rc_error("--precision f64: device %u (%s) does not support shaderFloat64 and shaderInt64; use f32, or "
+             "--backend cpu for an f64 render",
+             ctx->device_index, ctx->props.deviceName);
+    st = RC_ERR_DEVICE;
+  }
   double t0 = rc_now_ms();
   if (st == RC_OK) st = upload_scene(r, scene);
   double t1 = rc_now_ms();

@@ -20,6 +20,7 @@ typedef struct rc_gpu_options {
   uint32_t plan_budget; /* budget the host plans with; above RC_LOOP_BUDGET only in tests,
                            to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
+  bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
 } rc_gpu_options;
 
 typedef struct rc_gpu_stats {

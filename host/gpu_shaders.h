@@ -12,7 +12,8 @@ typedef struct rc_spirv {
   size_t size; /* bytes */
 } rc_spirv;
 
-/* raycast.comp, f32, reading the scene arrays as texel buffers or storage buffers. */
-rc_spirv rc_shader_raycast(bool texel_buffers);
+/* raycast.comp reading the scene arrays as texel or storage buffers, with f32 or f64
+ * (RC_F64: needs shaderFloat64 and shaderInt64) geometry and shading math. */
+rc_spirv rc_shader_raycast(bool texel_buffers, bool f64);
 
 #endif

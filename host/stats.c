@@ -13,11 +13,14 @@ double rc_stats_mrays_per_s(const rc_render_stats *s) {
 
 void rc_stats_print(const rc_render_stats *s) {
   fprintf(stderr, "vkraycast: device %s (%s, %s)\n", s->device, s->device_type, s->driver);
-  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles, %zu lights; %s buffers%s; %u tiles, "
-          "%u dispatches, %u samples per batch\n",
-          s->width, s->height, s->samples_per_pixel, s->spheres, s->triangles, s->lights,
-          s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage", s->gpu.staging ? ", staging" : "",
-          s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples);
+  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles, %zu lights; %s backend, %s\n", s->width,
+          s->height, s->samples_per_pixel, s->spheres, s->triangles, s->lights, s->backend, s->precision);
+  if (strcmp(s->backend, "gpu") == 0)
+    fprintf(stderr, "vkraycast: %s buffers%s; %u tiles, %u dispatches, %u samples per batch\n",
+            s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage", s->gpu.staging ? ", staging" : "",
+            s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples);
+  else
+    fprintf(stderr, "vkraycast: %u threads\n", s->threads);
   fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
           "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
           s->parse_ms, s->gpu.upload_ms, s->gpu.pipeline_ms, s->first_frame_ms, s->render_ms, s->render_wall_ms,
@@ -33,6 +36,8 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddStringToObject(o, "device_type", s->device_type);
   cJSON_AddStringToObject(o, "driver", s->driver);
   cJSON_AddStringToObject(o, "backend", s->backend);
+  cJSON_AddStringToObject(o, "precision", s->precision);
+  if (s->threads) cJSON_AddNumberToObject(o, "threads", s->threads);
   cJSON_AddNumberToObject(o, "width", s->width);
   cJSON_AddNumberToObject(o, "height", s->height);
   cJSON_AddNumberToObject(o, "samples_per_pixel", s->samples_per_pixel);

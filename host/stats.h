@@ -6,7 +6,9 @@
 
 typedef struct rc_render_stats {
   const char *device, *device_type, *driver;
-  const char *backend; /* "vulkan" */
+  const char *backend;   /* "gpu" or "cpu" */
+  const char *precision; /* "f32" or "f64" */
+  uint32_t threads;      /* cpu backend */
   uint32_t width, height, samples_per_pixel;
   size_t spheres, triangles, lights;
   double parse_ms, pack_ms, write_ms;

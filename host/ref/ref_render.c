@@ -1,0 +1,82 @@
+/* ref_render.c: the per-pixel loop of raycast.comp's main() on CPU threads. Rows are
+ * handed out in blocks through an atomic counter; each pixel's samples are summed in
+ * order 0..spp-1, as the shader does across its batches. */
+#include "ref/ref_render.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "ref/ref_shader.h"
+
+_Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+
+#define ROWS_PER_JOB 4
+
+typedef struct {
+  ref_scene scene;
+  const gpu_frame *frame;
+  bool f64;
+  float *rgb;
+  atomic_uint next_row;
+  atomic_uint_fast64_t shadow_rays, reflection_rays;
+} job;
+
+static void render_pixel(job *j, uint32_t x, uint32_t y) {
+  const uint32_t spp = j->frame->samples_per_pixel;
+  float *o = j->rgb + 3 * ((size_t)y * j->frame->camera.width + x);
+  if (j->f64) {
+    dvec3 sum = {0, 0, 0};
+    for (uint32_t s = 0; s < spp; s++) sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
+    sum = rcm_scale_d(sum, 1.0 / spp);
+    o[0] = (float)sum.x, o[1] = (float)sum.y, o[2] = (float)sum.z;
+  } else {
+    /* The shader's arithmetic: an f32 running sum, divided by the f32 sample count. */
+    vec3 sum = {0, 0, 0};
+    for (uint32_t s = 0; s < spp; s++) sum = rcm_add_f(sum, ref_trace_sample_f(&j->scene, x, y, s));
+    o[0] = sum.x / (float)spp, o[1] = sum.y / (float)spp, o[2] = sum.z / (float)spp;
+  }
+}
+
+static void *worker(void *arg) {
+  job *j = arg;
+  ref_shadow_rays = ref_reflection_rays = 0;
+  const uint32_t w = j->frame->camera.width, h = j->frame->camera.height;
+  for (;;) {
+    uint32_t y0 = atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
+    if (y0 >= h) break;
+    for (uint32_t y = y0; y < y0 + ROWS_PER_JOB && y < h; y++)
+      for (uint32_t x = 0; x < w; x++) render_pixel(j, x, y);
+  }
+  atomic_fetch_add(&j->shadow_rays, ref_shadow_rays);
+  atomic_fetch_add(&j->reflection_rays, ref_reflection_rays);
+  return NULL;
+}
+
+rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, float *rgb, rc_ref_stats *stats) {
+  job j = {.scene = {&p->frame, p->spheres, p->triangles, p->materials, p->lights},
+           .frame = &p->frame,
+           .f64 = opts->f64,
+           .rgb = rgb};
+  atomic_init(&j.next_row, 0);
+  atomic_init(&j.shadow_rays, 0);
+  atomic_init(&j.reflection_rays, 0);
+  long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  uint32_t n = opts->threads ? opts->threads : (uint32_t)(cores > 0 ? cores : 1);
+  pthread_t *threads = calloc(n, sizeof *threads);
+  if (!threads) return RC_ERR_TOO_LARGE;
+  double t0 = rc_now_ms(), c0 = rc_cpu_ms();
+  uint32_t started = 0;
+  for (; started < n; started++)
+    if (pthread_create(&threads[started], NULL, worker, &j) != 0) break;
+  if (started == 0) worker(&j); /* no threads could start: render on this one */
+  for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
+  free(threads);
+  stats->render_ms = rc_now_ms() - t0;
+  stats->cpu_ms = rc_cpu_ms() - c0;
+  stats->threads = started ? started : 1;
+  stats->shadow_rays = atomic_load(&j.shadow_rays);
+  stats->reflection_rays = atomic_load(&j.reflection_rays);
+  return RC_OK;
+}

@@ -1,0 +1,24 @@
+/* ref_render.h: the CPU reference renderer. It reads the very gpu_* arrays the GPU gets
+ * (scene_pack.h) and runs the shader's functions' C twins, in f64 (the accuracy
+ * reference) or f32 (the GPU's arithmetic). Pixels are independent, so the output is
+ * bit-identical whatever the thread count. */
+#ifndef RC_REF_RENDER_H
+#define RC_REF_RENDER_H
+
+#include "scene/scene_pack.h"
+
+typedef struct rc_ref_options {
+  bool f64;
+  uint32_t threads; /* 0: all cores */
+} rc_ref_options;
+
+typedef struct rc_ref_stats {
+  double render_ms, cpu_ms;
+  uint64_t shadow_rays, reflection_rays;
+  uint32_t threads;
+} rc_ref_stats;
+
+/* Renders into rgb (width * height * 3 floats, rows top to bottom). */
+rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, float *rgb, rc_ref_stats *stats);
+
+#endif

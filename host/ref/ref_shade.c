@@ -1,0 +1,117 @@
+/* ref_shade.c: mirrors shaders/rc_shade.glsl function by function. */
+#include <stdint.h>
+#include <string.h>
+
+#include "ref/ref_real.h"
+#include "ref/ref_shader.h"
+
+#if REF_F64
+typedef ref_hit_d ref_hit;
+typedef ref_surface_d ref_surface;
+typedef int64_t offset_int;
+#else
+typedef ref_hit_f ref_hit;
+typedef ref_surface_f ref_surface;
+typedef int32_t offset_int;
+#endif
+
+ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit *h) {
+  ref_surface sf;
+  rvec3 n;
+  if (h->kind == RC_HIT_SPHERE) {
+    gpu_sphere s = sc->spheres[h->index];
+    real r = (real)s.radius;
+    rvec3 f = RV(sub)(o, rvec3_from(s.center));
+    real b = RV(dot)(f, d);
+    rvec3 l = RV(sub)(f, RV(scale)(d, b));
+    real disc = r * r - RV(dot)(l, l);
+    real sq = R_SQRT(disc > 0 ? disc : 0);
+    n = RV(normalize)(RV(add)(l, RV(scale)(d, h->side * sq)));
+    sf.p = RV(add)(rvec3_from(s.center), RV(scale)(n, r));
+    sf.material = s.material;
+  } else {
+    gpu_triangle tri = sc->triangles[h->index];
+    rvec3 v0 = rvec3_from(tri.v0), v1 = rvec3_from(tri.v1), v2 = rvec3_from(tri.v2);
+    sf.p = RV(add)(RV(add)(RV(scale)(v0, h->bary.x), RV(scale)(v1, h->bary.y)), RV(scale)(v2, h->bary.z));
+    n = RV(normalize)(RV(cross)(RV(sub)(v1, v0), RV(sub)(v2, v0)));
+    sf.material = tri.material;
+  }
+  sf.n = (RV(dot)(n, d) > 0) ? RV(neg)(n) : n;
+  return sf;
+}
+
+static offset_int bits_of(real x) {
+  offset_int i;
+  memcpy(&i, &x, sizeof i);
+  return i;
+}
+
+static real from_bits(offset_int i) {
+  real x;
+  memcpy(&x, &i, sizeof x);
+  return x;
+}
+
+real REF(offset_coordinate)(real p, real n) {
+  offset_int of = (offset_int)((real)RC_OFFSET_INT_SCALE * n);
+  real moved = from_bits(bits_of(p) + ((p < 0) ? -of : of));
+  return (R_ABS(p) < (real)RC_OFFSET_ORIGIN) ? p + (real)RC_OFFSET_FLOAT_SCALE * n : moved;
+}
+
+rvec3 REF(offset_ray_origin)(rvec3 p, rvec3 n) {
+  return RV(make)(REF(offset_coordinate)(p.x, n.x), REF(offset_coordinate)(p.y, n.y), REF(offset_coordinate)(p.z, n.z));
+}
+
+/* The shader raises to the power in f32 (GLSL has no double pow); the f64 reference
+ * keeps double, as the accuracy reference. */
+real REF(specular_term)(const ref_scene *sc, rvec3 n, rvec3 l, rvec3 v, float shininess) {
+  real c;
+  if (sc->frame->specular_model == RC_SPECULAR_PHONG) {
+    c = RV(dot)(v, RV(sub)(RV(scale)(n, 2 * RV(dot)(n, l)), l));
+  } else {
+    c = RV(dot)(n, RV(normalize)(RV(add)(l, v)));
+  }
+  if (shininess == 0.0f) return 1;
+#if REF_F64
+  return (c > 0) ? pow(c, (double)shininess) : 0;
+#else
+  return (c > 0) ? powf(c, shininess) : 0;
+#endif
+}
+
+rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
+  gpu_material m = sc->materials[sf->material];
+  rvec3 color = RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light));
+  rvec3 v = RV(neg)(d);
+  rvec3 origin = REF(offset_ray_origin)(sf->p, sf->n);
+  for (uint32_t i = 0; i < sc->frame->light_count; i++) {
+    gpu_light light = sc->lights[i];
+    rvec3 l, irradiance, to_light;
+    real shadow_t_max;
+    if (light.type == RC_LIGHT_POINT) {
+      rvec3 lp = rvec3_from(light.position);
+      rvec3 delta = RV(sub)(lp, sf->p);
+      real r2 = RV(dot)(delta, delta);
+      if (r2 == 0) continue;
+      l = RV(scale)(delta, 1 / R_SQRT(r2));
+      irradiance = RV(scale)(rvec3_from(light.intensity), 1 / r2);
+      rvec3 from_origin = RV(sub)(lp, origin);
+      real dist = RV(length)(from_origin);
+      to_light = RV(scale)(from_origin, 1 / dist);
+      shadow_t_max = dist * (1 - (real)RC_SHADOW_EPSILON);
+    } else {
+      l = RV(neg)(rvec3_from(light.position));
+      irradiance = rvec3_from(light.intensity);
+      to_light = l;
+      shadow_t_max = (real)RC_T_FAR;
+    }
+    real n_dot_l = RV(dot)(sf->n, l);
+    if (n_dot_l <= 0) continue;
+    ref_shadow_rays++;
+    if (REF(occluded)(sc, origin, to_light, shadow_t_max)) continue;
+    rvec3 diffuse = RV(scale)(rvec3_from(m.diffuse), n_dot_l);
+    rvec3 specular = RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, sf->n, l, v, m.shininess));
+    color = RV(add)(color, RV(mul)(irradiance, RV(add)(diffuse, specular)));
+  }
+  return color;
+}

@@ -1,0 +1,32 @@
+/* ref_shader.h: the CPU twins of the shader's camera, random, shading and trace includes,
+ * for both precisions (ref_real.h). The shader's globals become a ref_scene argument (the
+ * uniform `frame` and the scene arrays) and thread-local ray counters. */
+#ifndef RC_REF_SHADER_H
+#define RC_REF_SHADER_H
+
+#include "ref/ref_intersect.h"
+
+typedef struct { float x, y; } ref_vec2;
+
+/* rc_random.glsl: f32 and integer arithmetic only, the same in both precisions. */
+uint32_t ref_hash_pcg(uint32_t v);
+float ref_hash_to_unit(uint32_t h);
+ref_vec2 ref_sample_offset(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);
+
+/* The shader's per-invocation ray counters; here per thread (ref_render.c sums them). */
+extern _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+
+#define REF_DECLARE_SHADER(S, R, V)                                                             \
+  typedef struct ref_surface_##S { V p, n; uint32_t material; } ref_surface_##S;               \
+  void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
+  ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \
+  R ref_offset_coordinate_##S(R p, R n);                                                        \
+  V ref_offset_ray_origin_##S(V p, V n);                                                        \
+  R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
+  V ref_shade_phong_##S(const ref_scene *sc, const ref_surface_##S *sf, V d);                   \
+  V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);
+
+REF_DECLARE_SHADER(d, double, dvec3)
+REF_DECLARE_SHADER(f, float, vec3)
+
+#endif
