@@ -7,6 +7,7 @@
 
 rc_status rc_cmd_render(int argc, char **argv);
 rc_status rc_cmd_devices(int argc, char **argv);
+rc_status rc_cmd_compare(int argc, char **argv);
 
 /* Parses a whole decimal number in [lo, hi] for option `name`; prints the error. */
 rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t hi, uint32_t *out);

@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "gpu_render.h"
+#include "aov.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
@@ -28,6 +29,8 @@ static const char render_usage[] =
     "  --srgb                  8-bit outputs get the sRGB transfer curve (default: linear, clamped)\n"
     "  --repeat N              render N frames; statistics report the first and the median of the rest\n"
     "  --stats-json FILE       write the statistics as one JSON object\n"
+    "  --aov FILE.exr          also write the decision outputs of each pixel's first sample: colour,\n"
+    "                          hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)\n"
     "  --quiet                 no progress or summary on stderr\n"
     "\n"
     "tuning and testing:\n"
@@ -39,7 +42,7 @@ static const char render_usage[] =
     "                          the shader's); larger values test the shader's exhaustion flag\n";
 
 typedef struct {
-  const char *scene, *output, *stats_json;
+  const char *scene, *output, *stats_json, *aov;
   uint32_t width, height, spp, repeat;
   int device;
   bool quiet, srgb;
@@ -64,7 +67,7 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
 static bool option_takes_value(const char *o) {
   static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
-                                           "--backend", "--precision", "--threads"};
+                                           "--backend", "--precision", "--threads", "--aov"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -105,6 +108,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
       a->output = v;
     } else if (strcmp(o, "--stats-json") == 0) {
       a->stats_json = v;
+    } else if (strcmp(o, "--aov") == 0) {
+      a->aov = v;
     } else if (strcmp(o, "--width") == 0) {
       st = rc_cli_uint(o, v, 1, RC_MAX_IMAGE_SIDE, &a->width);
     } else if (strcmp(o, "--height") == 0) {
@@ -161,6 +166,14 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   }
   if (a->precision < 0) a->precision = a->cpu ? 1 : 0;
   a->gpu.f64 = a->precision == 1;
+  a->gpu.aov = a->aov != NULL;
+  if (a->aov) {
+    size_t n = strlen(a->aov);
+    if (n < 4 || strcmp(a->aov + n - 4, ".exr") != 0) {
+      rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
+      return RC_ERR_USAGE;
+    }
+  }
   if (!rc_image_can_write(a->output)) {
     rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->output);
     return RC_ERR_USAGE;
@@ -189,7 +202,7 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_packed_scene *packed, float *rgb,
-                               rc_render_stats *rs) {
+                               gpu_aov *aov, rc_render_stats *rs) {
   rc_gpu_renderer *r = NULL;
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
@@ -197,7 +210,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_pa
   double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
   if (!gpu_ms || !wall_ms) st = RC_ERR_TOO_LARGE;
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
-    st = rc_gpu_renderer_render(r, rgb, &rs->gpu);
+    st = rc_gpu_renderer_render(r, rgb, aov, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
     wall_ms[i] = rs->gpu.render_ms;
   }
@@ -221,14 +234,14 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_pa
   return st;
 }
 
-static rc_status render_frames_cpu(const render_args *a, const rc_packed_scene *packed, float *rgb,
+static rc_status render_frames_cpu(const render_args *a, const rc_packed_scene *packed, float *rgb, gpu_aov *aov,
                                    rc_render_stats *rs) {
   rc_ref_options opts = {.f64 = a->precision == 1, .threads = a->threads};
   double *ms = calloc(a->repeat, sizeof *ms);
   if (!ms) return RC_ERR_TOO_LARGE;
   rc_ref_stats st = {0};
   for (uint32_t i = 0; i < a->repeat; i++) {
-    rc_status s = rc_ref_render(packed, &opts, rgb, &st);
+    rc_status s = rc_ref_render(packed, &opts, rgb, aov, &st);
     if (s != RC_OK) {
       free(ms);
       return s;
@@ -266,11 +279,16 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_packed_scene packed = {0};
   rc_vk_ctx ctx = {0};
   float *rgb = NULL;
+  gpu_aov *aov = NULL;
   st = check_image_memory(scene.width, scene.height);
   if (st == RC_OK) st = rc_scene_pack(&scene, &packed);
   if (st == RC_OK) {
     rgb = rc_alloc((size_t)scene.width * scene.height * 3, sizeof(float), "the image");
     if (!rgb) st = RC_ERR_TOO_LARGE;
+  }
+  if (st == RC_OK && a.aov) {
+    aov = rc_alloc((size_t)scene.width * scene.height, sizeof *aov, "the AOV records");
+    if (!aov) st = RC_ERR_TOO_LARGE;
   }
   rs.width = scene.width;
   rs.height = scene.height;
@@ -286,7 +304,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
     rs.device = "CPU reference";
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
-    st = render_frames_cpu(&a, &packed, rgb, &rs);
+    st = render_frames_cpu(&a, &packed, rgb, aov, &rs);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a.device};
     st = rc_vk_create(&vo, &ctx);
@@ -296,7 +314,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rs.device = ctx.props.deviceName;
       rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
       rs.driver = driver;
-      st = render_frames(&a, &ctx, &packed, rgb, &rs);
+      st = render_frames(&a, &ctx, &packed, rgb, aov, &rs);
     }
   }
   if (st == RC_OK) {
@@ -307,6 +325,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rc_error("%s: cannot write image: %s", a.output, err);
       st = RC_ERR_IO;
     }
+    if (st == RC_OK && a.aov) st = rc_aov_write(a.aov, (int)scene.width, (int)scene.height, rgb, aov);
     rs.write_ms = rc_now_ms() - t0;
   }
   rs.cpu_ms = rc_cpu_ms();
@@ -314,6 +333,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   if (st == RC_OK && a.stats_json) st = rc_stats_write_json(&rs, a.stats_json);
   rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
   free(rgb);
+  free(aov);
   rc_packed_scene_free(&packed);
   rc_scene_free(&scene);
   return st != RC_OK ? st : vst;

@@ -17,6 +17,7 @@ struct rc_gpu_renderer {
   VkBufferView views[4];
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
+  rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
   VkDescriptorSetLayout set_layout;
   VkPipelineLayout pipeline_layout;
   VkPipeline pipeline;
@@ -94,8 +95,11 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   VkDeviceSize accum_size = (VkDeviceSize)r->opts.tile_size * r->opts.tile_size * 16;
   VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkDeviceSize aov_size = r->opts.aov ? (VkDeviceSize)r->opts.tile_size * r->opts.tile_size * sizeof(gpu_aov)
+                                       : sizeof(gpu_aov);
   rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
   if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(gpu_status), usage, RC_MEM_DEVICE, &r->status);
+  if (st == RC_OK) st = rc_buffer_create(ctx, aov_size, usage, RC_MEM_DEVICE, &r->aov);
   if (st != RC_OK) return st;
   r->staging = !rc_buffer_is_direct(&r->accum, r->opts.force_staging) ||
                !rc_buffer_is_direct(&r->status, r->opts.force_staging);
@@ -104,6 +108,8 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
     if (st == RC_OK)
       st = rc_buffer_create(ctx, sizeof(gpu_status), VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
                             &r->status_readback);
+    if (st == RC_OK)
+      st = rc_buffer_create(ctx, aov_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->aov_readback);
   }
   return st;
 }
@@ -140,10 +146,11 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                   .pCode = code.words};
   VkShaderModule module;
   RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
-  const uint32_t spec_values[3] = {LOCAL_SIZE, LOCAL_SIZE, RC_LOOP_BUDGET};
-  const VkSpecializationMapEntry entries[3] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
-                                               {RC_SPEC_LOOP_BUDGET, 8, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 3, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  /* A bool specialization constant is 4 bytes (VkBool32). */
+  const uint32_t spec_values[4] = {LOCAL_SIZE, LOCAL_SIZE, RC_LOOP_BUDGET, r->opts.aov ? VK_TRUE : VK_FALSE};
+  const VkSpecializationMapEntry entries[4] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
+                                               {RC_SPEC_LOOP_BUDGET, 8, 4}, {RC_SPEC_AOV, 12, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 4, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
@@ -162,7 +169,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 2 : 6},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 7},
                                    {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 4}};
   VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                    .maxSets = 1,
@@ -181,6 +188,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
   bufs[RC_BINDING_FRAME] = &r->frame_buf;
   bufs[RC_BINDING_ACCUM] = &r->accum;
   bufs[RC_BINDING_STATUS] = &r->status;
+  bufs[RC_BINDING_AOV] = &r->aov;
   for (int i = 0; i < 4; i++) bufs[array_bindings[i]] = &r->arrays[i];
   for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
     infos[i] = (VkDescriptorBufferInfo){.buffer = bufs[i]->buffer, .range = VK_WHOLE_SIZE};
@@ -270,6 +278,8 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   rc_buffer_destroy(ctx, &r->accum_readback);
   rc_buffer_destroy(ctx, &r->status);
   rc_buffer_destroy(ctx, &r->status_readback);
+  rc_buffer_destroy(ctx, &r->aov);
+  rc_buffer_destroy(ctx, &r->aov_readback);
   free(r);
 }
 
@@ -369,7 +379,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
  * ran out of loop budget (the plan was wrong) is repeated with half the batch; exhaustion
  * at one sample per batch is an error, never a silently wrong pixel. */
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th, float *rgb,
-                             rc_gpu_stats *stats) {
+                             gpu_aov *aov, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples};
   bool first = true;
@@ -397,10 +407,18 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
+  if (aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
   st = submit(r);
   const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
+  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
+  if (st == RC_OK && aov) st = rc_buffer_invalidate(r->ctx, vb);
   if (st != RC_OK) return st;
+  if (aov) {
+    const gpu_aov *src = vb->mapped;
+    for (uint32_t y = 0; y < th; y++)
+      memcpy(aov + (size_t)(y0 + y) * r->frame.camera.width + x0, src + (size_t)y * tw, tw * sizeof *src);
+  }
   const float *acc = ab->mapped;
   uint32_t width = r->frame.camera.width;
   for (uint32_t y = 0; y < th; y++) {
@@ -415,7 +433,8 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   return RC_OK;
 }
 
-rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, rc_gpu_stats *stats) {
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, gpu_aov *aov, rc_gpu_stats *stats) {
+  if (!r->opts.aov) aov = NULL;
   stats->gpu_ms = stats->readback_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
   stats->dispatches = stats->tiles = stats->budget_retries = 0;
@@ -426,7 +445,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, rc_gpu_stats *s
     for (uint32_t tx = 0; tx < tiles_x; tx++) {
       uint32_t x0 = tx * ts, y0 = ty * ts;
       uint32_t tw = w - x0 < ts ? w - x0 : ts, th = h - y0 < ts ? h - y0 : ts;
-      rc_status st = render_tile(r, x0, y0, tw, th, rgb, stats);
+      rc_status st = render_tile(r, x0, y0, tw, th, rgb, aov, stats);
       if (st != RC_OK) return st;
       stats->tiles++;
       if (r->opts.progress) {

@@ -21,6 +21,7 @@ typedef struct rc_gpu_options {
                            to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
   bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
+  bool aov;             /* record the decision outputs (gpu_aov) of each pixel's first sample */
 } rc_gpu_options;
 
 typedef struct rc_gpu_stats {
@@ -41,8 +42,9 @@ typedef struct rc_gpu_renderer rc_gpu_renderer;
 
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats);
-/* Renders one frame into rgb (width * height * 3 floats, rows top to bottom). */
-rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, rc_gpu_stats *stats);
+/* Renders one frame into rgb (width * height * 3 floats, rows top to bottom) and, when
+ * the renderer was created with opts.aov, aov (width * height records). */
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, gpu_aov *aov, rc_gpu_stats *stats);
 void rc_gpu_renderer_destroy(rc_gpu_renderer *r);
 
 #endif

@@ -1,5 +1,6 @@
 /* vkraycast: a ray caster whose renderer is a Vulkan compute shader.
  *   vkraycast render SCENE -o OUT [options]   render a scene to an image (cmd_render.c)
+ *   vkraycast compare A B [options]           metrics between two images (cmd_compare.c)
  *   vkraycast devices                         list the Vulkan devices (cmd_devices.c)
  * Exit status: 0 ok, 1 images differ (compare), 2 bad input or usage, 3 device failure. */
 #include <stdio.h>
@@ -16,6 +17,8 @@ static const char usage[] =
     "\n"
     "commands:\n"
     "  render SCENE -o OUT   render a scene file to an image (PNG, EXR, ...)\n"
+    "  compare A B           compare two images (or AOV files): error metrics, heat map, exit 1 if beyond\n"
+    "                        thresholds\n"
     "  devices               list Vulkan devices\n"
     "\n"
     "  vkraycast <command> --help   options of a command\n"
@@ -36,6 +39,8 @@ int main(int argc, char **argv) {
     st = RC_OK;
   } else if (strcmp(cmd, "render") == 0) {
     st = rc_cmd_render(argc - 2, argv + 2);
+  } else if (strcmp(cmd, "compare") == 0) {
+    st = rc_cmd_compare(argc - 2, argv + 2);
   } else if (strcmp(cmd, "devices") == 0) {
     st = rc_cmd_devices(argc - 2, argv + 2);
   } else {

@@ -11,14 +11,19 @@
 
 layout(local_size_x_id = RC_SPEC_LOCAL_SIZE_X, local_size_y_id = RC_SPEC_LOCAL_SIZE_Y) in;
 layout(constant_id = RC_SPEC_LOOP_BUDGET) const uint loop_budget = RC_LOOP_BUDGET;
+layout(constant_id = RC_SPEC_AOV) const bool aov_enabled = false;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = RC_BINDING_STATUS) buffer Status { gpu_status status; };
+layout(std430, binding = RC_BINDING_AOV) writeonly buffer Aov { gpu_aov aov[]; };
 layout(push_constant) uniform Push { gpu_push push; };
 
 uint shadow_rays = 0u;
 uint reflection_rays = 0u;
+// The AOV record of this invocation's first sample (rc_trace.glsl fills it).
+bool aov_recording = false;
+gpu_aov aov_record;
 
 #include "rc_real.glsl"
 #include "rc_scene_access.glsl"
@@ -46,9 +51,11 @@ void main() {
 
   vec4 sum = vec4(0.0);
   uint target = 0u;
+  uint accum_done_before = 0u;
   if (inside) {
     sum = accum[slot];
     uint done = uint(sum.a);
+    accum_done_before = done;
     target = min(done + push.batch_samples, frame.samples_per_pixel);
     for (uint s = done; s < target; s++) {
       if (!budget_step()) break;
@@ -64,6 +71,7 @@ void main() {
     return;
   }
   accum[slot] = vec4(sum.rgb, float(target));
+  if (aov_enabled && accum_done_before == 0u && target > 0u) aov[slot] = aov_record;
   if (target < frame.samples_per_pixel) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);

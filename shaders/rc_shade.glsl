@@ -103,7 +103,10 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
     shadow_rays++;
-    if (occluded(origin, to_light, shadow_t_max)) continue;
+    if (occluded(origin, to_light, shadow_t_max)) {
+      if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
+      continue;
+    }
     color += irradiance * (rvec3(m.diffuse) * n_dot_l +
                            rvec3(m.specular) * specular_term(sf.n, l, v, m.shininess));
   }

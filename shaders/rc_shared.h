@@ -27,6 +27,7 @@ typedef struct gpu_material gpu_material;
 typedef struct gpu_light gpu_light;
 typedef struct gpu_status gpu_status;
 typedef struct gpu_push gpu_push;
+typedef struct gpu_aov gpu_aov;
 #endif
 
 /* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
@@ -39,12 +40,14 @@ typedef struct gpu_push gpu_push;
 #define RC_BINDING_LIGHTS 4    /* gpu_light[] */
 #define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = sample count */
 #define RC_BINDING_STATUS 6    /* gpu_status */
-#define RC_BINDING_COUNT 7
+#define RC_BINDING_AOV 7       /* gpu_aov per tile pixel (written only when aov_enabled) */
+#define RC_BINDING_COUNT 8
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
 #define RC_SPEC_LOCAL_SIZE_Y 1
 #define RC_SPEC_LOOP_BUDGET 2
+#define RC_SPEC_AOV 3 /* bool: record the decision outputs (gpu_aov) */
 
 /* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
  * in total (ECOSYSTEM.md §8). Every shader loop counts into one per-invocation budget of
@@ -129,6 +132,16 @@ struct gpu_status {
   uint reflection_rays;
 };
 
+/* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
+ * comparisons check before colour (ROBUSTNESS.md §6). object: spheres 0..S-1, then
+ * triangles S..S+T-1; shadow_bits: bit i set when light i faces the surface but its shadow
+ * ray is blocked (lights 0..23: the bits stay exact in a float). */
+#define RC_AOV_SHADOW_LIGHTS 24u
+struct gpu_aov {
+  float hit; float object; float t; float shadow_bits;
+  vec3 normal; float pad0;
+};
+
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct gpu_push {
   uint tile_x; uint tile_y; uint tile_width; uint tile_height;
@@ -184,6 +197,11 @@ RC_ASSERT_SIZE(gpu_light, 16 * RC_TEXELS_PER_LIGHT);
 RC_ASSERT_LAYOUT(gpu_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(gpu_status, incomplete_pixels, 4);
 RC_ASSERT_LAYOUT(gpu_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(gpu_status, reflection_rays, 12);
 RC_ASSERT_SIZE(gpu_status, 16);
+
+RC_ASSERT_LAYOUT(gpu_aov, hit, 0);    RC_ASSERT_LAYOUT(gpu_aov, object, 4);
+RC_ASSERT_LAYOUT(gpu_aov, t, 8);      RC_ASSERT_LAYOUT(gpu_aov, shadow_bits, 12);
+RC_ASSERT_LAYOUT(gpu_aov, normal, 16);
+RC_ASSERT_SIZE(gpu_aov, 32);
 
 RC_ASSERT_LAYOUT(gpu_push, tile_x, 0); RC_ASSERT_LAYOUT(gpu_push, tile_width, 8);
 RC_ASSERT_LAYOUT(gpu_push, batch_samples, 16);

@@ -1,6 +1,17 @@
 // rc_trace.glsl: one camera sample: the primary ray, then mirror bounces up to
 // frame.reflection_depth, each weighted by the product of the mirror coefficients so far.
 
+// Starts the AOV record at the primary hit of sample 0.
+void aov_begin(hit_record h) {
+  aov_record.hit = (h.kind == RC_HIT_NONE) ? 0.0 : 1.0;
+  aov_record.object = (h.kind == RC_HIT_NONE) ? -1.0
+                      : (h.kind == RC_HIT_TRIANGLE) ? float(frame.sphere_count + h.index) : float(h.index);
+  aov_record.t = (h.kind == RC_HIT_NONE) ? 0.0 : float(h.t);
+  aov_record.shadow_bits = 0.0;
+  aov_record.normal = vec3(0.0);
+  aov_record.pad0 = 0.0;
+}
+
 rvec3 trace_sample(uvec2 pixel, uint s) {
   // Raster y grows upwards from the bottom row; image rows grow downwards.
   vec2 offset = sample_offset(pixel, s);
@@ -13,12 +24,17 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   for (uint depth = 0u; depth <= frame.reflection_depth; depth++) {
     if (!budget_step()) break;
     hit_record h;
-    if (!closest_hit(o, d, h)) {
+    bool hit = closest_hit(o, d, h);
+    aov_recording = aov_enabled && s == 0u && depth == 0u;
+    if (aov_recording) aov_begin(h);
+    if (!hit) {
       color += weight * rvec3(frame.background);
       break;
     }
     surface sf = surface_at(o, d, h);
+    if (aov_recording) aov_record.normal = vec3(sf.n);
     color += weight * shade_phong(sf, d);
+    aov_recording = false;
     rvec3 mirror = rvec3(load_material(sf.material).mirror);
     if (depth == frame.reflection_depth || mirror == rvec3(0.0)) break;
     weight *= mirror;

@@ -42,8 +42,10 @@ std::string temp_name(const std::string &path) {
 
 }  // namespace
 
-extern "C" int rc_image_write(const char *path, int width, int height, int channels, const float *pixels,
-                              rc_encoding enc, char *err, size_t err_len) {
+namespace {
+
+int write_image(const char *path, int width, int height, int channels, const char *const *names, const float *pixels,
+                rc_encoding enc, char *err, size_t err_len) {
   try {
     auto out = ImageOutput::create(path);
     if (!out) {
@@ -52,7 +54,15 @@ extern "C" int rc_image_write(const char *path, int width, int height, int chann
     }
     std::string format = out->format_name();
     bool fp = is_float_format(format);
+    if (names && !fp) {
+      set_error(err, err_len, "named channels need a float format such as .exr");
+      return -1;
+    }
     ImageSpec spec(width, height, channels, fp ? TypeDesc::FLOAT : TypeDesc::UINT8);
+    if (names) {
+      spec.channelnames.clear();
+      for (int i = 0; i < channels; i++) spec.channelnames.emplace_back(names[i]);
+    }
     spec.attribute("oiio:ColorSpace", fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
     spec.attribute("Software", "vkraycast");
     std::vector<float> encoded;
@@ -93,6 +103,18 @@ extern "C" int rc_image_write(const char *path, int width, int height, int chann
   }
 }
 
+}  // namespace
+
+extern "C" int rc_image_write(const char *path, int width, int height, int channels, const float *pixels,
+                              rc_encoding enc, char *err, size_t err_len) {
+  return write_image(path, width, height, channels, nullptr, pixels, enc, err, err_len);
+}
+
+extern "C" int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,
+                                    const float *pixels, char *err, size_t err_len) {
+  return write_image(path, width, height, channels, names, pixels, RC_ENCODING_LINEAR, err, err_len);
+}
+
 extern "C" int rc_image_can_write(const char *path) {
   try {
     return ImageOutput::create(path) ? 1 : 0;
@@ -103,7 +125,14 @@ extern "C" int rc_image_can_write(const char *path) {
 
 extern "C" int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err,
                              size_t err_len) {
+  int n = 0;
+  return rc_image_read_named(path, width, height, channels, pixels, nullptr, 0, &n, err, err_len);
+}
+
+extern "C" int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels,
+                                   char (*names)[32], int max_names, int *name_count, char *err, size_t err_len) {
   *pixels = nullptr;
+  *name_count = 0;
   try {
     auto in = ImageInput::open(path);
     if (!in) {
@@ -121,6 +150,10 @@ extern "C" int rc_image_read(const char *path, int *width, int *height, int *cha
       set_error(err, err_len, in->geterror());
       std::free(buf);
       return -1;
+    }
+    for (int i = 0; i < spec.nchannels && i < max_names; i++) {
+      std::snprintf(names[i], 32, "%s", spec.channel_name(i).c_str());
+      *name_count = i + 1;
     }
     *width = spec.width;
     *height = spec.height;

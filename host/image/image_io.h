@@ -21,6 +21,14 @@ typedef enum {
 int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
                    char *err, size_t err_len);
 
+/* Writes a float image (EXR) with named channels, atomically as rc_image_write. */
+int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,
+                         const float *pixels, char *err, size_t err_len);
+
+/* Like rc_image_read, also returning up to max_names channel names (31 chars each). */
+int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
+                        int max_names, int *name_count, char *err, size_t err_len);
+
 /* 1 if OpenImageIO can write a file of this name (by its extension), else 0. */
 int rc_image_can_write(const char *path);
 

@@ -11,6 +11,8 @@
 #include "ref/ref_shader.h"
 
 _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+_Thread_local bool ref_aov_enabled, ref_aov_recording;
+_Thread_local gpu_aov ref_aov_record;
 
 #define ROWS_PER_JOB 4
 
@@ -19,13 +21,15 @@ typedef struct {
   const gpu_frame *frame;
   bool f64;
   float *rgb;
+  gpu_aov *aov;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays, reflection_rays;
 } job;
 
 static void render_pixel(job *j, uint32_t x, uint32_t y) {
   const uint32_t spp = j->frame->samples_per_pixel;
-  float *o = j->rgb + 3 * ((size_t)y * j->frame->camera.width + x);
+  size_t index = (size_t)y * j->frame->camera.width + x;
+  float *o = j->rgb + 3 * index;
   if (j->f64) {
     dvec3 sum = {0, 0, 0};
     for (uint32_t s = 0; s < spp; s++) sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
@@ -37,11 +41,13 @@ static void render_pixel(job *j, uint32_t x, uint32_t y) {
     for (uint32_t s = 0; s < spp; s++) sum = rcm_add_f(sum, ref_trace_sample_f(&j->scene, x, y, s));
     o[0] = sum.x / (float)spp, o[1] = sum.y / (float)spp, o[2] = sum.z / (float)spp;
   }
+  if (j->aov) j->aov[index] = ref_aov_record;
 }
 
 static void *worker(void *arg) {
   job *j = arg;
   ref_shadow_rays = ref_reflection_rays = 0;
+  ref_aov_enabled = j->aov != NULL;
   const uint32_t w = j->frame->camera.width, h = j->frame->camera.height;
   for (;;) {
     uint32_t y0 = atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
@@ -54,11 +60,13 @@ static void *worker(void *arg) {
   return NULL;
 }
 
-rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, float *rgb, rc_ref_stats *stats) {
+rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, float *rgb, gpu_aov *aov,
+                        rc_ref_stats *stats) {
   job j = {.scene = {&p->frame, p->spheres, p->triangles, p->materials, p->lights},
            .frame = &p->frame,
            .f64 = opts->f64,
-           .rgb = rgb};
+           .rgb = rgb,
+           .aov = aov};
   atomic_init(&j.next_row, 0);
   atomic_init(&j.shadow_rays, 0);
   atomic_init(&j.reflection_rays, 0);

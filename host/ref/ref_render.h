@@ -19,6 +19,8 @@ typedef struct rc_ref_stats {
 } rc_ref_stats;
 
 /* Renders into rgb (width * height * 3 floats, rows top to bottom). */
-rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, float *rgb, rc_ref_stats *stats);
+/* aov: NULL, or width * height gpu_aov records of each pixel's first sample. */
+rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, float *rgb, gpu_aov *aov,
+                        rc_ref_stats *stats);
 
 #endif

@@ -108,7 +108,10 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     real n_dot_l = RV(dot)(sf->n, l);
     if (n_dot_l <= 0) continue;
     ref_shadow_rays++;
-    if (REF(occluded)(sc, origin, to_light, shadow_t_max)) continue;
+    if (REF(occluded)(sc, origin, to_light, shadow_t_max)) {
+      if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
+      continue;
+    }
     rvec3 diffuse = RV(scale)(rvec3_from(m.diffuse), n_dot_l);
     rvec3 specular = RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, sf->n, l, v, m.shininess));
     color = RV(add)(color, RV(mul)(irradiance, RV(add)(diffuse, specular)));

@@ -13,8 +13,10 @@ uint32_t ref_hash_pcg(uint32_t v);
 float ref_hash_to_unit(uint32_t h);
 ref_vec2 ref_sample_offset(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);
 
-/* The shader's per-invocation ray counters; here per thread (ref_render.c sums them). */
+/* The shader's per-invocation globals; here per thread (ref_render.c sums and copies). */
 extern _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
+extern _Thread_local gpu_aov ref_aov_record;
 
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
   typedef struct ref_surface_##S { V p, n; uint32_t material; } ref_surface_##S;               \
@@ -24,6 +26,7 @@ extern _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
   V ref_offset_ray_origin_##S(V p, V n);                                                        \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
   V ref_shade_phong_##S(const ref_scene *sc, const ref_surface_##S *sf, V d);                   \
+  void ref_aov_begin_##S(const ref_scene *sc, const ref_hit_##S *h);                            \
   V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);
 
 REF_DECLARE_SHADER(d, double, dvec3)

@@ -10,6 +10,17 @@ typedef ref_hit_f ref_hit;
 typedef ref_surface_f ref_surface;
 #endif
 
+void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
+  ref_aov_record.hit = (h->kind == RC_HIT_NONE) ? 0.0f : 1.0f;
+  ref_aov_record.object = (h->kind == RC_HIT_NONE) ? -1.0f
+                          : (h->kind == RC_HIT_TRIANGLE) ? (float)(sc->frame->sphere_count + h->index)
+                                                         : (float)h->index;
+  ref_aov_record.t = (h->kind == RC_HIT_NONE) ? 0.0f : (float)h->t;
+  ref_aov_record.shadow_bits = 0.0f;
+  ref_aov_record.normal = rcm_make_f(0, 0, 0);
+  ref_aov_record.pad0 = 0.0f;
+}
+
 rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s) {
   ref_vec2 offset = ref_sample_offset(sc, px, py, s);
   ref_vec2 raster = {(float)px + offset.x, (float)(sc->frame->camera.height - 1u - py) + offset.y};
@@ -19,12 +30,17 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
   rvec3 weight = RV(make)(1, 1, 1);
   for (uint32_t depth = 0; depth <= sc->frame->reflection_depth; depth++) {
     ref_hit h;
-    if (!REF(closest_hit)(sc, o, d, &h)) {
+    bool hit = REF(closest_hit)(sc, o, d, &h);
+    ref_aov_recording = ref_aov_enabled && s == 0 && depth == 0;
+    if (ref_aov_recording) REF(aov_begin)(sc, &h);
+    if (!hit) {
       color = RV(add)(color, RV(mul)(weight, rvec3_from(sc->frame->background)));
       break;
     }
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
+    if (ref_aov_recording) ref_aov_record.normal = rcm_make_f((float)sf.n.x, (float)sf.n.y, (float)sf.n.z);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
+    ref_aov_recording = false;
     rvec3 mirror = rvec3_from(sc->materials[sf.material].mirror);
     if (depth == sc->frame->reflection_depth || (mirror.x == 0 && mirror.y == 0 && mirror.z == 0)) break;
     weight = RV(mul)(weight, mirror);

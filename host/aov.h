@@ -1,0 +1,24 @@
+/* aov.h: the decision-output (AOV) file: a float EXR with the colour and the gpu_aov
+ * record of each pixel's first sample, in the channels named below. */
+#ifndef RC_AOV_H
+#define RC_AOV_H
+
+#include "compare.h"
+#include "rc_shared.h"
+
+#define RC_AOV_CHANNELS 10
+#define RC_AOV_MAX_CHANNELS 64
+extern const char *const rc_aov_channel_names[RC_AOV_CHANNELS]; /* R G B hit object t N.X N.Y N.Z shadow */
+
+/* Writes rgb and the records as an AOV file. */
+rc_status rc_aov_write(const char *path, int width, int height, const float *rgb, const gpu_aov *aov);
+/* Where the decision channels of a file are (files may reorder channels: OpenEXR stores
+ * them sorted by name). */
+typedef struct rc_aov_layout { int hit, object, shadow; } rc_aov_layout;
+/* True when the file has every AOV channel; fills the layout. */
+bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout);
+/* Counts pixels whose hit flag, object index or shadow bits differ (sets r->decisions). */
+void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb,
+                              int width, int height, int channels, rc_compare_result *r);
+
+#endif

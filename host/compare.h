@@ -1,0 +1,31 @@
+/* compare.h: how far apart two images are, in idiff's vocabulary (ECOSYSTEM.md §3.4):
+ * mean, RMS and max absolute error (with where the max is), PSNR against a peak of 1,
+ * and how many pixels have a channel over the threshold. For AOV files (aov.h) it also
+ * counts the pixels whose decisions differ: hit flag, object, and shadow bits. */
+#ifndef RC_COMPARE_H
+#define RC_COMPARE_H
+
+#include "rc_base.h"
+
+typedef struct rc_compare_result {
+  int width, height, channels;
+  double mean, rms, max, psnr;
+  int max_x, max_y, max_channel;
+  double max_a, max_b; /* the two values at the max */
+  uint64_t pixels, over; /* pixels with some channel over the threshold */
+  bool decisions;        /* both files are AOV files: the counts below are meaningful */
+  uint64_t hit_mismatch, object_mismatch, shadow_mismatch;
+} rc_compare_result;
+
+/* a and b: width * height * channels floats. Non-finite values count as maximal error. */
+void rc_compare_images(const float *a, const float *b, int width, int height, int channels, double threshold,
+                       rc_compare_result *r);
+
+/* Per-pixel max absolute channel difference e as an RGB heat map, black -> red -> yellow
+ * -> white, logarithmic: e <= floor is black, e >= top is white (floor > 0). Logarithmic
+ * because GPU/CPU differences span orders of magnitude: rounding noise near 1e-6 and a
+ * few decision flips near 0.1 must both show. */
+void rc_compare_heat_map(const float *a, const float *b, int width, int height, int channels, double floor,
+                         double top, float *rgb);
+
+#endif
