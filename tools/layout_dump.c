@@ -78,6 +78,14 @@ int main(void) {
   OFF("status.reflection_rays", gpu_status, reflection_rays);
   printf("Status size %zu\n", sizeof(gpu_status));
 
+  OFF("aov.hit", gpu_aov, hit);
+  OFF("aov.object", gpu_aov, object);
+  OFF("aov.t", gpu_aov, t);
+  OFF("aov.shadow_bits", gpu_aov, shadow_bits);
+  OFF("aov.normal", gpu_aov, normal);
+  OFF("aov.pad0", gpu_aov, pad0);
+  printf("aov stride %zu\n", sizeof(gpu_aov));
+
   printf("Frame binding %d\n", RC_BINDING_FRAME);
   printf("scene_spheres binding %d\n", RC_BINDING_SPHERES);
   printf("scene_triangles binding %d\n", RC_BINDING_TRIANGLES);
@@ -85,5 +93,6 @@ int main(void) {
   printf("scene_lights binding %d\n", RC_BINDING_LIGHTS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
+  printf("Aov binding %d\n", RC_BINDING_AOV);
   return 0;
 }

@@ -352,6 +352,63 @@ TEST(every_example_scene_renders) {
   CHECK(count >= 6);
 }
 
+/* The CPU reference's pixels are independent of the thread that renders them; the GPU's
+ * of the run. Both give bit-identical images (DESIGN.md §5). */
+TEST(cpu_threads_and_gpu_reruns_are_bit_identical) {
+  const char *common = "--width 96 --height 60 --spp 3 --quiet";
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/t1.exr --backend cpu --threads 1 %s", scenes_dir, tmp, common), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/t3.exr --backend cpu --threads 3 %s", scenes_dir, tmp, common), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/g1.exr %s", scenes_dir, tmp, common), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/g2.exr --tile 16 %s", scenes_dir, tmp, common), 0);
+  image a = load("t1.exr"), b = load("t3.exr"), c = load("g1.exr"), d = load("g2.exr");
+  CHECK(identical(&a, &b));
+  CHECK(identical(&c, &d)); /* also across tilings */
+  free(a.px);
+  free(b.px);
+  free(c.px);
+  free(d.px);
+}
+
+/* The analytic head-on pixel holds on the CPU backend in both precisions too. */
+TEST(cpu_backend_matches_the_analytic_pixel) {
+  const double ka[3] = {0.1f, 0.2f, 0.3f}, kd[3] = {0.5f, 0.6f, 0.7f}, intensity[3] = {20, 30, 40};
+  const char *precisions[2] = {"f64", "f32"};
+  for (int k = 0; k < 2; k++) {
+    CHECK_EQ_INT(run("render %s/head_on.json -o %s/cpu_head_on.exr --backend cpu --precision %s --quiet", gpu_dir,
+                     tmp, precisions[k]),
+                 0);
+    image im = load("cpu_head_on.exr");
+    if (!im.px) { CHECK(false); return; }
+    for (int c = 0; c < 3; c++) CHECK_NEAR(pixel(&im, 50, 50)[c], ka[c] * 0.5 + kd[c] * intensity[c] / 81.0, 1e-6);
+    free(im.px);
+  }
+}
+
+/* compare: exit 0 within thresholds, 1 beyond, 2 for unreadable files or other sizes;
+ * AOV files also compare decisions. */
+TEST(compare_reports_and_gates) {
+  CHECK_EQ_INT(run("render %s/shadow.json -o %s/ca.exr --aov %s/ca.aov.exr --quiet", gpu_dir, tmp, tmp), 0);
+  CHECK_EQ_INT(run("render %s/shadow_moved.json -o %s/cb.exr --aov %s/cb.aov.exr --quiet", gpu_dir, tmp, tmp), 0);
+  CHECK_EQ_INT(run("compare %s/ca.exr %s/ca.exr --fail 0 >/dev/null", tmp, tmp), 0);
+  CHECK_EQ_INT(run("compare %s/ca.exr %s/cb.exr --fail 1e-3 --json > %s/cmp.json", tmp, tmp, tmp), 1);
+  cJSON *j = load_json("cmp.json");
+  CHECK(json_number(j, "max_error") > 0.1 && json_number(j, "pixels_over") > 10);
+  cJSON_Delete(j);
+  /* With the sphere moved away (same object indices), its old pixels become floor (object
+   * differs) and the floor in its old shadow becomes lit (shadow bit differs). */
+  CHECK_EQ_INT(run("compare %s/ca.aov.exr %s/cb.aov.exr --json > %s/dec.json", tmp, tmp, tmp), 1);
+  j = load_json("dec.json");
+  CHECK(json_number(j, "object_mismatch") > 10 && json_number(j, "shadow_mismatch") > 10);
+  CHECK_EQ_INT(json_number(j, "hit_mismatch"), 0);
+  cJSON_Delete(j);
+  CHECK_EQ_INT(run("compare %s/ca.exr %s/ca.exr --diff %s/heat.png --fail 0 --hardfail 0 >/dev/null", tmp, tmp, tmp),
+               0);
+  CHECK_EQ_INT(run("render %s/shadow.json -o %s/small.exr --width 8 --height 8 --quiet", gpu_dir, tmp), 0);
+  CHECK_EQ_INT(run("compare %s/ca.exr %s/small.exr >/dev/null", tmp, tmp), 2);
+  CHECK(stderr_contains("is 65x65 with 3 channels"));
+  CHECK_EQ_INT(run("compare %s/ca.exr %s/missing.exr >/dev/null", tmp, tmp), 2);
+}
+
 int main(int argc, char **argv) {
   if (argc != 4) {
     fprintf(stderr, "usage: test_gpu_render VKRAYCAST TESTS_GPU_DIR SCENES_DIR\n");
@@ -374,6 +431,9 @@ int main(int argc, char **argv) {
   RUN(png_is_the_clamped_linear_value);
   RUN(failed_render_leaves_the_old_image);
   RUN(every_example_scene_renders);
+  RUN(cpu_threads_and_gpu_reruns_are_bit_identical);
+  RUN(cpu_backend_matches_the_analytic_pixel);
+  RUN(compare_reports_and_gates);
   char cleanup[300];
   snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
   if (rc_test_failed == 0 && system(cleanup) != 0) printf("could not remove %s\n", tmp);

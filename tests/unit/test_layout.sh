@@ -13,10 +13,10 @@ reflect() { "$glslang" -V --target-env vulkan1.1 -I"$shaders" -DRC_SCENE_TEXEL_B
 {
   # Storage variant: member offsets and array strides of the scene arrays.
   reflect 0 | grep -v '\[0\]' | sed -nE \
-    -e 's/^((frame|push|status|scene_[a-z]+)\.[a-z_.0-9]+): offset ([0-9]+),.*/\1 \3/p' \
+    -e 's/^((frame|push|status|aov|scene_[a-z]+)\.[a-z_.0-9]+): offset ([0-9]+),.*/\1 \3/p' \
     -e 's/^(Frame|Push|Status): offset -1, type [0-9a-f]+, size ([0-9]+),.*/\1 size \2/p'
-  reflect 0 | sed -nE 's/^(Frame|Accum|Status): .* binding ([0-9]+),.*/\1 binding \2/p'
-  reflect 0 | grep -v '\[0\]' | sed -nE 's/^(scene_[a-z]+)\.[a-z_0-9]+: offset 0,.*topLevelArrayStride ([0-9]+).*/\1 stride \2/p'
+  reflect 0 | sed -nE 's/^(Frame|Accum|Status|Aov): .* binding ([0-9]+),.*/\1 binding \2/p'
+  reflect 0 | grep -v '\[0\]' | sed -nE 's/^(scene_[a-z]+|aov)\.[a-z_0-9]+: offset 0,.*topLevelArrayStride ([0-9]+).*/\1 stride \2/p'
   # Texel variant: the scene arrays' bindings (texel buffers are not blocks there).
   reflect 1 | sed -nE 's/^(scene_[a-z]+): offset -1, .* binding ([0-9]+),.*/\1 binding \2/p'
 } | sort -u >"$tmp/glsl.txt"
