@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "gpu_render.h"
 #include "aov.h"
+#include "bvh.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
@@ -23,6 +24,7 @@ static const char render_usage[] =
     "  --backend B             gpu (default: the Vulkan compute shader) or cpu (the reference renderer)\n"
     "  --precision P           f32 or f64 geometry and shading math (default: f32 on gpu, f64 on cpu;\n"
     "                          f64 on gpu needs shaderFloat64)\n"
+    "  --accel A               bvh (default) or none: brute force over every object, for comparison\n"
     "  --threads N             cpu backend: threads (default: all cores); the image does not depend on it\n"
     "  --device N              Vulkan device index (see `vkraycast devices`); default: discrete >\n"
     "                          integrated > virtual > CPU\n"
@@ -47,6 +49,7 @@ typedef struct {
   int device;
   bool quiet, srgb;
   bool cpu;
+  bool no_bvh;
   int precision; /* -1 default, 0 f32, 1 f64 */
   uint32_t threads;
   rc_gpu_options gpu;
@@ -67,7 +70,7 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
 static bool option_takes_value(const char *o) {
   static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
-                                           "--backend", "--precision", "--threads", "--aov"};
+                                           "--backend", "--precision", "--threads", "--aov", "--accel"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -132,6 +135,13 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
         a->cpu = strcmp(v, "cpu") == 0;
       } else {
         rc_error("--backend: expected gpu or cpu, got '%s'", v);
+        st = RC_ERR_USAGE;
+      }
+    } else if (strcmp(o, "--accel") == 0) {
+      if (strcmp(v, "bvh") == 0 || strcmp(v, "none") == 0) {
+        a->no_bvh = strcmp(v, "none") == 0;
+      } else {
+        rc_error("--accel: expected bvh or none, got '%s'", v);
         st = RC_ERR_USAGE;
       }
     } else if (strcmp(o, "--precision") == 0) {
@@ -282,6 +292,11 @@ rc_status rc_cmd_render(int argc, char **argv) {
   gpu_aov *aov = NULL;
   st = check_image_memory(scene.width, scene.height);
   if (st == RC_OK) st = rc_scene_pack(&scene, &packed);
+  if (st == RC_OK && !a.no_bvh) {
+    st = rc_bvh_build(&packed, &rs.bvh);
+    /* The plan's traversal estimate uses the depth; 0 means brute force. */
+    a.gpu.bvh_depth = packed.bvh_nodes ? rs.bvh.depth + 1 : 0;
+  }
   if (st == RC_OK) {
     rgb = rc_alloc((size_t)scene.width * scene.height * 3, sizeof(float), "the image");
     if (!rgb) st = RC_ERR_TOO_LARGE;

@@ -1,15 +1,19 @@
 #include "gpu_plan.h"
 
-uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
-  uint64_t prims = (uint64_t)f->sphere_count + f->triangle_count;
+static uint64_t steps_per_sample(const gpu_frame *f, uint64_t prims) {
   uint64_t bounce = 1 + prims + (uint64_t)f->light_count * (1 + prims);
   return 1 + ((uint64_t)f->reflection_depth + 1) * bounce;
 }
 
-rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t budget, rc_gpu_plan *plan) {
+uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
+  return steps_per_sample(f, (uint64_t)f->sphere_count + f->triangle_count);
+}
+
+rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
   plan->budget = budget;
-  plan->steps_per_sample = rc_gpu_plan_steps_per_sample(f);
+  plan->steps_per_sample = bvh_depth ? steps_per_sample(f, 4ull * bvh_depth + 16) : rc_gpu_plan_steps_per_sample(f);
   uint64_t batch = budget / plan->steps_per_sample;
+  if (batch == 0 && bvh_depth) batch = 1;
   if (batch == 0) {
     rc_error("scene too large for brute-force GPU rendering: one sample needs up to %llu loop "
              "iterations (%u spheres + %u triangles, %u lights, reflection depth %u), more than the "

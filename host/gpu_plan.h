@@ -19,8 +19,13 @@ typedef struct rc_gpu_plan {
  *                                   + L * (1 (light loop) + S + T (shadow ray))]. */
 uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
 
-/* Fails with RC_ERR_TOO_LARGE (message with the numbers) when even one sample exceeds the
- * budget: brute force over that many primitives cannot render correctly on llvmpipe. */
-rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t budget, rc_gpu_plan *plan);
+/* Brute force (bvh_depth 0): the exact worst case; fails with RC_ERR_TOO_LARGE (message
+ * with the numbers) when even one sample exceeds the budget, as brute force over that
+ * many objects cannot render correctly on llvmpipe.
+ * BVH (bvh_depth = tree depth): no useful worst case exists, so the batch comes from an
+ * estimate of a traversal's steps, 4 x depth node visits + 2 leaves of 8 objects, and the
+ * shader's exhaustion flag catches what the estimate misses (the batch is halved and the
+ * work repeated; one sample over the budget is an error, never a wrong image). */
+rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan);
 
 #endif

@@ -7,14 +7,15 @@
 #include "gpu_shaders.h"
 
 #define LOCAL_SIZE 8 /* 8x8 = 64 invocations: a multiple of every subgroup size (4..64) */
+#define SCENE_ARRAYS 6 /* spheres, triangles, materials, lights, BVH nodes, BVH references */
 
 struct rc_gpu_renderer {
   rc_vk_ctx *ctx;
   rc_gpu_options opts;
   gpu_frame frame;
   rc_buffer frame_buf;
-  rc_buffer arrays[4]; /* spheres, triangles, materials, lights */
-  VkBufferView views[4];
+  rc_buffer arrays[SCENE_ARRAYS];
+  VkBufferView views[SCENE_ARRAYS];
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
@@ -29,13 +30,14 @@ struct rc_gpu_renderer {
   bool staging;
 };
 
-static const uint32_t array_bindings[4] = {RC_BINDING_SPHERES, RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS,
-                                           RC_BINDING_LIGHTS};
-static const char *const array_names[4] = {"spheres", "triangles", "materials", "lights"};
+static const uint32_t array_bindings[SCENE_ARRAYS] = {RC_BINDING_SPHERES,  RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS,
+                                                      RC_BINDING_LIGHTS,   RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS};
+static const char *const array_names[SCENE_ARRAYS] = {"spheres", "triangles", "materials", "lights", "BVH nodes",
+                                                      "BVH references"};
 
 /* Chooses the buffer kind the device can take for this scene: texel buffers need the
  * RGBA32UI uniform-texel-buffer format feature and maxTexelBufferElements room. */
-static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, const VkDeviceSize sizes[4]) {
+static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, const VkDeviceSize sizes[SCENE_ARRAYS]) {
   if (wanted != RC_SCENE_BUFFERS_TEXEL) return wanted;
   VkFormatProperties fp;
   vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
@@ -43,7 +45,7 @@ static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, 
     rc_warning("device has no RGBA32UI uniform texel buffers; using storage buffers");
     return RC_SCENE_BUFFERS_STORAGE;
   }
-  for (int i = 0; i < 4; i++) {
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
     if (sizes[i] / 16 > ctx->props.limits.maxTexelBufferElements) {
       rc_warning("%s need %llu texels, more than maxTexelBufferElements (%u); using storage buffers",
                  array_names[i], (unsigned long long)(sizes[i] / 16), ctx->props.limits.maxTexelBufferElements);
@@ -56,13 +58,22 @@ static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, 
 static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
   rc_vk_ctx *ctx = r->ctx;
   const gpu_frame *f = &s->frame;
-  const void *data[4] = {s->spheres, s->triangles, s->materials, s->lights};
+  /* Without a BVH the node and reference buffers still exist (one dummy element): every
+   * binding must be valid even where the specialized shader never reads it. */
+  static const gpu_bvh_node no_node;
+  static const uint32_t no_refs[4];
+  bool bvh = r->opts.bvh_depth > 0 && s->bvh_nodes;
+  const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
+                                    bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs};
   /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
-  VkDeviceSize sizes[4] = {(f->sphere_count + 1) * sizeof(gpu_sphere), (f->triangle_count + 1) * sizeof(gpu_triangle),
-                           (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light)};
+  VkDeviceSize sizes[SCENE_ARRAYS] = {
+      (f->sphere_count + 1) * sizeof(gpu_sphere), (f->triangle_count + 1) * sizeof(gpu_triangle),
+      (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
+      bvh ? f->bvh_node_count * sizeof(gpu_bvh_node) : sizeof no_node,
+      bvh ? (f->object_count + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs};
   r->opts.scene_buffers = choose_buffers(ctx, r->opts.scene_buffers, sizes);
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
-  for (int i = 0; i < 4; i++) {
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
     if (!texel && sizes[i] > ctx->props.limits.maxStorageBufferRange) {
       rc_error("scene too large: the %s array is %llu bytes, more than the device's maxStorageBufferRange "
                "(%u bytes)",
@@ -126,7 +137,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                           .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
   }
   b[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  for (int i = 0; i < 4; i++) b[array_bindings[i]].descriptorType = array_type;
+  for (int i = 0; i < SCENE_ARRAYS; i++) b[array_bindings[i]].descriptorType = array_type;
 
   VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                          .bindingCount = RC_BINDING_COUNT,
@@ -147,10 +158,11 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
   VkShaderModule module;
   RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
   /* A bool specialization constant is 4 bytes (VkBool32). */
-  const uint32_t spec_values[4] = {LOCAL_SIZE, LOCAL_SIZE, RC_LOOP_BUDGET, r->opts.aov ? VK_TRUE : VK_FALSE};
-  const VkSpecializationMapEntry entries[4] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
-                                               {RC_SPEC_LOOP_BUDGET, 8, 4}, {RC_SPEC_AOV, 12, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 4, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  const uint32_t spec_values[5] = {LOCAL_SIZE, LOCAL_SIZE, RC_LOOP_BUDGET, r->opts.aov ? VK_TRUE : VK_FALSE,
+                                   r->opts.bvh_depth ? VK_TRUE : VK_FALSE};
+  const VkSpecializationMapEntry entries[5] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
+                                               {RC_SPEC_LOOP_BUDGET, 8, 4}, {RC_SPEC_AOV, 12, 4}, {RC_SPEC_BVH, 16, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 5, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
@@ -169,8 +181,8 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 7},
-                                   {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 4}};
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 3 + SCENE_ARRAYS},
+                                   {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, SCENE_ARRAYS}};
   VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                    .maxSets = 1,
                                    .poolSizeCount = texel ? 3 : 2,
@@ -189,7 +201,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
   bufs[RC_BINDING_ACCUM] = &r->accum;
   bufs[RC_BINDING_STATUS] = &r->status;
   bufs[RC_BINDING_AOV] = &r->aov;
-  for (int i = 0; i < 4; i++) bufs[array_bindings[i]] = &r->arrays[i];
+  for (int i = 0; i < SCENE_ARRAYS; i++) bufs[array_bindings[i]] = &r->arrays[i];
   for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
     infos[i] = (VkDescriptorBufferInfo){.buffer = bufs[i]->buffer, .range = VK_WHOLE_SIZE};
     w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
@@ -200,7 +212,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
                                   .pBufferInfo = &infos[i]};
   }
   w[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  for (int i = 0; i < 4; i++) {
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
     VkWriteDescriptorSet *x = &w[array_bindings[i]];
     if (texel) {
       x->descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -232,7 +244,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->ctx = ctx;
   r->opts = *opts;
   r->frame = scene->frame;
-  rc_status st = rc_gpu_plan_make(&scene->frame, opts->plan_budget, &stats->plan);
+  rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget, &stats->plan);
   if (st == RC_OK && opts->f64 && !ctx->float64) {
     rc_error("--precision f64: device %u (%s) does not support shaderFloat64 and shaderInt64; use f32, or "
              "--backend cpu for an f64 render",
@@ -269,7 +281,7 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   vkDestroyPipeline(ctx->device, r->pipeline, NULL);
   vkDestroyPipelineLayout(ctx->device, r->pipeline_layout, NULL);
   vkDestroyDescriptorSetLayout(ctx->device, r->set_layout, NULL);
-  for (int i = 0; i < 4; i++) {
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
     vkDestroyBufferView(ctx->device, r->views[i], NULL);
     rc_buffer_destroy(ctx, &r->arrays[i]);
   }

@@ -22,6 +22,7 @@ typedef struct rc_gpu_options {
   bool progress;        /* tiles done on stderr */
   bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
   bool aov;             /* record the decision outputs (gpu_aov) of each pixel's first sample */
+  uint32_t bvh_depth;   /* 0: brute force (no BVH in the scene); else traverse the BVH */
 } rc_gpu_options;
 
 typedef struct rc_gpu_stats {

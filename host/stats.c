@@ -21,6 +21,9 @@ void rc_stats_print(const rc_render_stats *s) {
             s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples);
   else
     fprintf(stderr, "vkraycast: %u threads\n", s->threads);
+  if (s->bvh.nodes)
+    fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms\n",
+            s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth, s->bvh.build_ms);
   fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
           "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
           s->parse_ms, s->gpu.upload_ms, s->gpu.pipeline_ms, s->first_frame_ms, s->render_ms, s->render_wall_ms,
@@ -49,6 +52,10 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "rays_primary", (double)s->rays_primary);
   cJSON_AddNumberToObject(o, "rays_shadow", (double)s->rays_shadow);
   cJSON_AddNumberToObject(o, "rays_reflection", (double)s->rays_reflection);
+  cJSON_AddStringToObject(o, "accel", s->bvh.nodes ? "bvh" : "none");
+  cJSON_AddNumberToObject(o, "bvh_build_ms", s->bvh.build_ms);
+  cJSON_AddNumberToObject(o, "bvh_nodes", s->bvh.nodes);
+  cJSON_AddNumberToObject(o, "bvh_depth", s->bvh.depth);
   cJSON_AddNumberToObject(o, "parse_ms", s->parse_ms);
   cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
   cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);

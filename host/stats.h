@@ -2,6 +2,7 @@
 #ifndef RC_STATS_H
 #define RC_STATS_H
 
+#include "bvh.h"
 #include "gpu_render.h"
 
 typedef struct rc_render_stats {
@@ -19,6 +20,7 @@ typedef struct rc_render_stats {
   uint32_t repeat;
   uint64_t rays_primary, rays_shadow, rays_reflection;
   rc_gpu_stats gpu;
+  rc_bvh_stats bvh; /* zero with --accel none */
 } rc_render_stats;
 
 double rc_stats_mrays_per_s(const rc_render_stats *s);

@@ -12,6 +12,7 @@
 layout(local_size_x_id = RC_SPEC_LOCAL_SIZE_X, local_size_y_id = RC_SPEC_LOCAL_SIZE_Y) in;
 layout(constant_id = RC_SPEC_LOOP_BUDGET) const uint loop_budget = RC_LOOP_BUDGET;
 layout(constant_id = RC_SPEC_AOV) const bool aov_enabled = false;
+layout(constant_id = RC_SPEC_BVH) const bool use_bvh = true;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
@@ -31,6 +32,7 @@ gpu_aov aov_record;
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
 #include "rc_intersect.glsl"
+#include "rc_bvh.glsl"
 #include "rc_shade.glsl"
 #include "rc_trace.glsl"
 

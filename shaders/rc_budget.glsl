@@ -1,6 +1,8 @@
 // rc_budget.glsl: the per-invocation loop budget (DESIGN.md §2). llvmpipe ends every loop
 // after 65,535 iterations summed over the whole invocation, silently; so every loop here
-// calls budget_step() once per iteration and breaks when it returns false. The host sizes
+// calls budget_step() once per iteration and breaks when it returns false. Every loop
+// means every loop: llvmpipe does not unroll even a two-iteration loop, and an uncounted
+// one once let it cut samples silently (rc_bvh.glsl). The host sizes
 // each dispatch so that the worst case stays under loop_budget (host/gpu_plan.c); if an
 // invocation still runs out, its whole workgroup discards the batch (raycast.comp) and the
 // pixels are counted in gpu_status.exhausted_pixels.

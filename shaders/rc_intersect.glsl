@@ -7,6 +7,7 @@ struct hit_record {
   real t;
   uint kind;   // RC_HIT_*
   uint index;  // into the sphere or triangle array
+  uint object; // spheres 0..S-1, then triangles S..S+T-1: the tie-breaking order
   rvec3 bary;  // triangle: weights of v0, v1, v2
   real side;   // sphere: -1 entry root (ray from outside), +1 exit root
 };
@@ -15,7 +16,8 @@ struct hit_record {
 // Ray/Sphere Intersection" (Ray Tracing Gems ch. 7, 2019): the Hearn-Baker discriminant
 // r^2 - |l|^2 (l = centre-to-ray-line offset) instead of b^2 - 4ac, and the stable root
 // pair q = -(b + sign(b) sqrt(D)), t0 = c/q, t1 = q (Press et al.). Nearest root in
-// (0, t_max), else RC_T_FAR.
+// (0, t_max], else RC_T_FAR. (t_max is inclusive so that a BVH, visiting objects out of
+// order, still sees equal-t hits and can apply the tie rule.)
 real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
   side = 0.0;
   real r = real(s.radius);
@@ -31,11 +33,11 @@ real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side)
   precise real t0 = c / q;
   real t_near = min(t0, q);
   real t_exit = max(t0, q);
-  if (t_near > 0.0 && t_near < t_max) {
+  if (t_near > 0.0 && t_near <= t_max) {
     side = -1.0;
     return t_near;
   }
-  if (t_exit > 0.0 && t_exit < t_max) {
+  if (t_exit > 0.0 && t_exit <= t_max) {
     side = 1.0;
     return t_exit;
   }
@@ -90,57 +92,65 @@ real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out
   if (det == 0.0) return real(RC_T_FAR);
   precise real t_scaled = u * (sh.s.z * a.z) + v * (sh.s.z * b.z) + w * (sh.s.z * c.z);
   precise real t = t_scaled / det;
-  if (!(t > 0.0 && t < t_max)) return real(RC_T_FAR);
+  if (!(t > 0.0 && t <= t_max)) return real(RC_T_FAR);
   bary = rvec3(u, v, w) / det;
   return t;
 }
 
-// Nearest hit over every primitive; on equal t the lower index wins, spheres before
-// triangles (strict <), the same rule on both backends.
-bool closest_hit(rvec3 o, rvec3 d, out hit_record h) {
+// The ray against object `object` (spheres first, then triangles); t as above.
+real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary) {
+  side = 0.0;
+  bary = rvec3(0.0);
+  if (object < frame.sphere_count) return intersect_sphere(o, d, load_sphere(object), t_max, side);
+  return intersect_triangle(o, sh, load_triangle(object - frame.sphere_count), t_max, bary);
+}
+
+// The tie rule of both backends and both traversals: the nearer hit wins, and on equal
+// t the lower object number, whatever order the objects were visited in.
+void consider_hit(uint object, real t, real side, rvec3 bary, inout hit_record h) {
+  if (t >= real(RC_T_FAR)) return;
+  if (t < h.t || (t == h.t && object < h.object)) {
+    h.t = t;
+    h.object = object;
+    h.kind = (object < frame.sphere_count) ? RC_HIT_SPHERE : RC_HIT_TRIANGLE;
+    h.index = (object < frame.sphere_count) ? object : object - frame.sphere_count;
+    h.side = side;
+    h.bary = bary;
+  }
+}
+
+hit_record no_hit() {
+  hit_record h;
   h.t = real(RC_T_FAR);
   h.kind = RC_HIT_NONE;
   h.index = 0u;
+  h.object = 0xffffffffu;
   h.bary = rvec3(0.0);
   h.side = 0.0;
-  for (uint i = 0u; i < frame.sphere_count; i++) {
-    if (!budget_step()) break;
-    real side;
-    real t = intersect_sphere(o, d, load_sphere(i), h.t, side);
-    if (t < h.t) {
-      h.t = t;
-      h.kind = RC_HIT_SPHERE;
-      h.index = i;
-      h.side = side;
-    }
-  }
-  ray_shear sh = ray_shear_for(d);
-  for (uint i = 0u; i < frame.triangle_count; i++) {
-    if (!budget_step()) break;
-    rvec3 bary;
-    real t = intersect_triangle(o, sh, load_triangle(i), h.t, bary);
-    if (t < h.t) {
-      h.t = t;
-      h.kind = RC_HIT_TRIANGLE;
-      h.index = i;
-      h.bary = bary;
-    }
-  }
-  return h.kind != RC_HIT_NONE;
+  return h;
 }
 
-// Any hit in (0, t_max): the shadow-ray query, with an early exit.
-bool occluded(rvec3 o, rvec3 d, real t_max) {
-  for (uint i = 0u; i < frame.sphere_count; i++) {
+// Brute force: every object, in order.
+void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
+  ray_shear sh = ray_shear_for(d);
+  for (uint i = 0u; i < frame.object_count; i++) {
+    if (!budget_step()) break;
+    real side;
+    rvec3 bary;
+    real t = intersect_object(i, o, d, sh, h.t, side, bary);
+    consider_hit(i, t, side, bary, h);
+  }
+}
+
+// Any hit in (0, t_max]: the shadow-ray query, with an early exit. (A miss is RC_T_FAR,
+// which a directional light's t_max equals: only a real hit blocks.)
+bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
+  ray_shear sh = ray_shear_for(d);
+  for (uint i = 0u; i < frame.object_count; i++) {
     if (!budget_step()) return false;
     real side;
-    if (intersect_sphere(o, d, load_sphere(i), t_max, side) < t_max) return true;
-  }
-  ray_shear sh = ray_shear_for(d);
-  for (uint i = 0u; i < frame.triangle_count; i++) {
-    if (!budget_step()) return false;
     rvec3 bary;
-    if (intersect_triangle(o, sh, load_triangle(i), t_max, bary) < t_max) return true;
+    if (intersect_object(i, o, d, sh, t_max, side, bary) < real(RC_T_FAR)) return true;
   }
   return false;
 }

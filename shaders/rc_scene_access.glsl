@@ -10,6 +10,8 @@ layout(binding = RC_BINDING_SPHERES) uniform usamplerBuffer scene_spheres;
 layout(binding = RC_BINDING_TRIANGLES) uniform usamplerBuffer scene_triangles;
 layout(binding = RC_BINDING_MATERIALS) uniform usamplerBuffer scene_materials;
 layout(binding = RC_BINDING_LIGHTS) uniform usamplerBuffer scene_lights;
+layout(binding = RC_BINDING_BVH_NODES) uniform usamplerBuffer scene_bvh_nodes;
+layout(binding = RC_BINDING_BVH_PRIMS) uniform usamplerBuffer scene_bvh_prims;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 
@@ -49,6 +51,25 @@ gpu_material load_material(uint i) {
   return m;
 }
 
+gpu_bvh_node load_bvh_node(uint i) {
+  uvec4 a = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE);
+  uvec4 b = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 1u);
+  uvec4 c = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 2u);
+  uvec4 d = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 3u);
+  gpu_bvh_node n;
+  n.lo0 = uintBitsToFloat(a.xyz);
+  n.child0 = a.w;
+  n.hi0 = uintBitsToFloat(b.xyz);
+  n.count0 = b.w;
+  n.lo1 = uintBitsToFloat(c.xyz);
+  n.child1 = c.w;
+  n.hi1 = uintBitsToFloat(d.xyz);
+  n.count1 = d.w;
+  return n;
+}
+
+uint load_bvh_prim(uint i) { return texel(scene_bvh_prims, i >> 2u)[i & 3u]; }
+
 gpu_light load_light(uint i) {
   uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
   uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
@@ -63,9 +84,13 @@ layout(std430, binding = RC_BINDING_SPHERES) readonly buffer Spheres { gpu_spher
 layout(std430, binding = RC_BINDING_TRIANGLES) readonly buffer Triangles { gpu_triangle scene_triangles[]; };
 layout(std430, binding = RC_BINDING_MATERIALS) readonly buffer Materials { gpu_material scene_materials[]; };
 layout(std430, binding = RC_BINDING_LIGHTS) readonly buffer Lights { gpu_light scene_lights[]; };
+layout(std430, binding = RC_BINDING_BVH_NODES) readonly buffer BvhNodes { gpu_bvh_node scene_bvh_nodes[]; };
+layout(std430, binding = RC_BINDING_BVH_PRIMS) readonly buffer BvhPrims { uint scene_bvh_prims[]; };
 
 gpu_sphere load_sphere(uint i) { return scene_spheres[i]; }
 gpu_triangle load_triangle(uint i) { return scene_triangles[i]; }
 gpu_material load_material(uint i) { return scene_materials[i]; }
 gpu_light load_light(uint i) { return scene_lights[i]; }
+gpu_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
+uint load_bvh_prim(uint i) { return scene_bvh_prims[i]; }
 #endif

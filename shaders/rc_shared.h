@@ -28,6 +28,7 @@ typedef struct gpu_light gpu_light;
 typedef struct gpu_status gpu_status;
 typedef struct gpu_push gpu_push;
 typedef struct gpu_aov gpu_aov;
+typedef struct gpu_bvh_node gpu_bvh_node;
 #endif
 
 /* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
@@ -41,13 +42,25 @@ typedef struct gpu_aov gpu_aov;
 #define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = sample count */
 #define RC_BINDING_STATUS 6    /* gpu_status */
 #define RC_BINDING_AOV 7       /* gpu_aov per tile pixel (written only when aov_enabled) */
-#define RC_BINDING_COUNT 8
+#define RC_BINDING_BVH_NODES 8 /* gpu_bvh_node[] (texel or storage, like the scene arrays) */
+#define RC_BINDING_BVH_PRIMS 9 /* uint[] object references of the leaves, 4 per texel */
+#define RC_BINDING_COUNT 10
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
 #define RC_SPEC_LOCAL_SIZE_Y 1
 #define RC_SPEC_LOOP_BUDGET 2
 #define RC_SPEC_AOV 3 /* bool: record the decision outputs (gpu_aov) */
+#define RC_SPEC_BVH 4 /* bool: traverse the BVH (else test every object) */
+
+/* BVH traversal stack entries per invocation; the builder caps the tree depth so the
+ * stack cannot overflow (host/bvh.c). 48 x 8 bytes stays far below the scratch limits
+ * real GPUs put on a thread (ECOSYSTEM.md §2.1). */
+#define RC_BVH_STACK_SIZE 48
+#define RC_BVH_MAX_DEPTH 47
+/* pbrt's conservative slab test: the far distance grows by 1 + 2 gamma(3) (f32) so that
+ * rounding in the box test never culls a box the ray touches (Ize, JCGT 2(2), 2013). */
+#define RC_BOX_FAR_SCALE 1.0000003576278687
 
 /* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
  * in total (ECOSYSTEM.md §8). Every shader loop counts into one per-invocation budget of
@@ -94,6 +107,7 @@ struct gpu_frame {
   vec3 ambient_light; uint reflection_depth;
   uint sphere_count;  uint triangle_count; uint material_count; uint light_count;
   uint samples_per_pixel; uint seed; uint strata_x; uint strata_y;
+  uint object_count;      uint bvh_node_count; uint pad0; uint pad1;
 };
 
 struct gpu_sphere {
@@ -142,6 +156,19 @@ struct gpu_aov {
   vec3 normal; float pad0;
 };
 
+/* A BVH node holds the boxes of both its children, so one fetch decides which child is
+ * nearer. A child with count 0 is an interior node (child = node index); otherwise it is
+ * a leaf of `count` objects starting at `child` in the object-reference array, whose
+ * entries are object numbers (spheres 0..S-1, then triangles S..S+T-1). An empty child
+ * has lo > hi. */
+struct gpu_bvh_node {
+  vec3 lo0; uint child0;
+  vec3 hi0; uint count0;
+  vec3 lo1; uint child1;
+  vec3 hi1; uint count1;
+};
+#define RC_TEXELS_PER_BVH_NODE 4
+
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct gpu_push {
   uint tile_x; uint tile_y; uint tile_width; uint tile_height;
@@ -175,7 +202,14 @@ RC_ASSERT_LAYOUT(gpu_frame, sphere_count, 112);  RC_ASSERT_LAYOUT(gpu_frame, tri
 RC_ASSERT_LAYOUT(gpu_frame, material_count, 120); RC_ASSERT_LAYOUT(gpu_frame, light_count, 124);
 RC_ASSERT_LAYOUT(gpu_frame, samples_per_pixel, 128); RC_ASSERT_LAYOUT(gpu_frame, seed, 132);
 RC_ASSERT_LAYOUT(gpu_frame, strata_x, 136);      RC_ASSERT_LAYOUT(gpu_frame, strata_y, 140);
-RC_ASSERT_SIZE(gpu_frame, 144);
+RC_ASSERT_LAYOUT(gpu_frame, object_count, 144);  RC_ASSERT_LAYOUT(gpu_frame, bvh_node_count, 148);
+RC_ASSERT_SIZE(gpu_frame, 160);
+
+RC_ASSERT_LAYOUT(gpu_bvh_node, lo0, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, child0, 12);
+RC_ASSERT_LAYOUT(gpu_bvh_node, hi0, 16);  RC_ASSERT_LAYOUT(gpu_bvh_node, count0, 28);
+RC_ASSERT_LAYOUT(gpu_bvh_node, lo1, 32);  RC_ASSERT_LAYOUT(gpu_bvh_node, child1, 44);
+RC_ASSERT_LAYOUT(gpu_bvh_node, hi1, 48);  RC_ASSERT_LAYOUT(gpu_bvh_node, count1, 60);
+RC_ASSERT_SIZE(gpu_bvh_node, 16 * RC_TEXELS_PER_BVH_NODE);
 
 RC_ASSERT_LAYOUT(gpu_sphere, center, 0); RC_ASSERT_LAYOUT(gpu_sphere, radius, 12);
 RC_ASSERT_LAYOUT(gpu_sphere, material, 16);

@@ -32,7 +32,22 @@ int main(void) {
   OFF("frame.seed", gpu_frame, seed);
   OFF("frame.strata_x", gpu_frame, strata_x);
   OFF("frame.strata_y", gpu_frame, strata_y);
+  OFF("frame.object_count", gpu_frame, object_count);
+  OFF("frame.bvh_node_count", gpu_frame, bvh_node_count);
+  OFF("frame.pad0", gpu_frame, pad0);
+  OFF("frame.pad1", gpu_frame, pad1);
   printf("Frame size %zu\n", sizeof(gpu_frame));
+
+  OFF("scene_bvh_nodes.lo0", gpu_bvh_node, lo0);
+  OFF("scene_bvh_nodes.child0", gpu_bvh_node, child0);
+  OFF("scene_bvh_nodes.hi0", gpu_bvh_node, hi0);
+  OFF("scene_bvh_nodes.count0", gpu_bvh_node, count0);
+  OFF("scene_bvh_nodes.lo1", gpu_bvh_node, lo1);
+  OFF("scene_bvh_nodes.child1", gpu_bvh_node, child1);
+  OFF("scene_bvh_nodes.hi1", gpu_bvh_node, hi1);
+  OFF("scene_bvh_nodes.count1", gpu_bvh_node, count1);
+  printf("scene_bvh_nodes stride %zu\n", sizeof(gpu_bvh_node));
+  printf("scene_bvh_prims stride %zu\n", sizeof(uint32_t));
 
   OFF("scene_spheres.center", gpu_sphere, center);
   OFF("scene_spheres.radius", gpu_sphere, radius);
@@ -91,6 +106,8 @@ int main(void) {
   printf("scene_triangles binding %d\n", RC_BINDING_TRIANGLES);
   printf("scene_materials binding %d\n", RC_BINDING_MATERIALS);
   printf("scene_lights binding %d\n", RC_BINDING_LIGHTS);
+  printf("scene_bvh_nodes binding %d\n", RC_BINDING_BVH_NODES);
+  printf("scene_bvh_prims binding %d\n", RC_BINDING_BVH_PRIMS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
   printf("Aov binding %d\n", RC_BINDING_AOV);

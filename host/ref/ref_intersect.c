@@ -28,11 +28,11 @@ real REF(intersect_sphere)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *sid
   real t0 = c / q;
   real t_near = t0 < q ? t0 : q;
   real t_exit = t0 < q ? q : t0;
-  if (t_near > 0 && t_near < t_max) {
+  if (t_near > 0 && t_near <= t_max) {
     *side = -1;
     return t_near;
   }
-  if (t_exit > 0 && t_exit < t_max) {
+  if (t_exit > 0 && t_exit <= t_max) {
     *side = 1;
     return t_exit;
   }
@@ -74,50 +74,53 @@ real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, rea
   if (det == 0) return (real)RC_T_FAR;
   real t_scaled = u * (sh->s.z * a.z) + v * (sh->s.z * b.z) + w * (sh->s.z * c.z);
   real t = t_scaled / det;
-  if (!(t > 0 && t < t_max)) return (real)RC_T_FAR;
+  if (!(t > 0 && t <= t_max)) return (real)RC_T_FAR;
   *bary = RV(make)(u / det, v / det, w / det);
   return t;
 }
 
-bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
-  h->t = (real)RC_T_FAR;
-  h->kind = RC_HIT_NONE;
-  h->index = 0;
-  h->bary = RV(make)(0, 0, 0);
-  h->side = 0;
-  for (uint32_t i = 0; i < sc->frame->sphere_count; i++) {
-    real side;
-    real t = REF(intersect_sphere)(o, d, sc->spheres[i], h->t, &side);
-    if (t < h->t) {
-      h->t = t;
-      h->kind = RC_HIT_SPHERE;
-      h->index = i;
-      h->side = side;
-    }
-  }
-  ref_shear sh = REF(ray_shear_for)(d);
-  for (uint32_t i = 0; i < sc->frame->triangle_count; i++) {
-    rvec3 bary;
-    real t = REF(intersect_triangle)(o, &sh, sc->triangles[i], h->t, &bary);
-    if (t < h->t) {
-      h->t = t;
-      h->kind = RC_HIT_TRIANGLE;
-      h->index = i;
-      h->bary = bary;
-    }
-  }
-  return h->kind != RC_HIT_NONE;
+real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max,
+                           real *side, rvec3 *bary) {
+  *side = 0;
+  *bary = RV(make)(0, 0, 0);
+  if (object < sc->frame->sphere_count) return REF(intersect_sphere)(o, d, sc->spheres[object], t_max, side);
+  return REF(intersect_triangle)(o, sh, sc->triangles[object - sc->frame->sphere_count], t_max, bary);
 }
 
-bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
-  for (uint32_t i = 0; i < sc->frame->sphere_count; i++) {
-    real side;
-    if (REF(intersect_sphere)(o, d, sc->spheres[i], t_max, &side) < t_max) return true;
+void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, ref_hit *h) {
+  if (t >= (real)RC_T_FAR) return;
+  if (t < h->t || (t == h->t && object < h->object)) {
+    uint32_t spheres = sc->frame->sphere_count;
+    h->t = t;
+    h->object = object;
+    h->kind = (object < spheres) ? RC_HIT_SPHERE : RC_HIT_TRIANGLE;
+    h->index = (object < spheres) ? object : object - spheres;
+    h->side = side;
+    h->bary = bary;
   }
+}
+
+ref_hit REF(no_hit)(void) {
+  ref_hit h = {(real)RC_T_FAR, RC_HIT_NONE, 0, 0xffffffffu, RV(make)(0, 0, 0), 0};
+  return h;
+}
+
+void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
   ref_shear sh = REF(ray_shear_for)(d);
-  for (uint32_t i = 0; i < sc->frame->triangle_count; i++) {
+  for (uint32_t i = 0; i < sc->frame->object_count; i++) {
+    real side;
     rvec3 bary;
-    if (REF(intersect_triangle)(o, &sh, sc->triangles[i], t_max, &bary) < t_max) return true;
+    real t = REF(intersect_object)(sc, i, o, d, &sh, h->t, &side, &bary);
+    REF(consider_hit)(sc, i, t, side, bary, h);
+  }
+}
+
+bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
+  ref_shear sh = REF(ray_shear_for)(d);
+  for (uint32_t i = 0; i < sc->frame->object_count; i++) {
+    real side;
+    rvec3 bary;
+    if (REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary) < (real)RC_T_FAR) return true;
   }
   return false;
 }

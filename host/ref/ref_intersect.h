@@ -12,15 +12,29 @@ typedef struct ref_scene {
   const gpu_triangle *triangles;
   const gpu_material *materials;
   const gpu_light *lights;
+  const gpu_bvh_node *bvh_nodes;
+  const uint32_t *bvh_prims;
+  bool use_bvh;
 } ref_scene;
 
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
-  typedef struct ref_hit_##S { R t; uint32_t kind, index; V bary; R side; } ref_hit_##S;       \
+  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_intersect_sphere_##S(V o, V d, gpu_sphere s, R t_max, R *side);                         \
   ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
   V ref_permute_##S(V a, const int k[3]);                                                       \
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \
+  R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
+                             R *side, V *bary);                                                 \
+  void ref_consider_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, ref_hit_##S *h); \
+  ref_hit_##S ref_no_hit_##S(void);                                                             \
+  void ref_closest_hit_linear_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);               \
+  bool ref_occluded_linear_##S(const ref_scene *sc, V o, V d, R t_max);                         \
+  V ref_safe_inverse_##S(V d);                                                                  \
+  R ref_intersect_box_##S(V lo, V hi, V o, V inv_d, R t_max);                                   \
+  bool ref_test_leaf_##S(const ref_scene *sc, uint32_t first, uint32_t count, V o, V d, const ref_shear_##S *sh,       \
+                          bool any, R t_max, ref_hit_##S *h);                                   \
+  bool ref_traverse_bvh_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);  \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);                      \
   bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max);
 

@@ -62,7 +62,14 @@ static void *worker(void *arg) {
 
 rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, float *rgb, gpu_aov *aov,
                         rc_ref_stats *stats) {
-  job j = {.scene = {&p->frame, p->spheres, p->triangles, p->materials, p->lights},
+  job j = {.scene = {.frame = &p->frame,
+                     .spheres = p->spheres,
+                     .triangles = p->triangles,
+                     .materials = p->materials,
+                     .lights = p->lights,
+                     .bvh_nodes = p->bvh_nodes,
+                     .bvh_prims = p->bvh_prims,
+                     .use_bvh = p->bvh_nodes != NULL},
            .frame = &p->frame,
            .f64 = opts->f64,
            .rgb = rgb,

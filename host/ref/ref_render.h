@@ -1,5 +1,5 @@
 /* ref_render.h: the CPU reference renderer. It reads the very gpu_* arrays the GPU gets
- * (scene_pack.h) and runs the shader's functions' C twins, in f64 (the accuracy
+ * (scene_pack.h; the BVH when rc_bvh_build made one) and runs the shader's functions' C twins, in f64 (the accuracy
  * reference) or f32 (the GPU's arithmetic). Pixels are independent, so the output is
  * bit-identical whatever the thread count. */
 #ifndef RC_REF_RENDER_H

@@ -76,6 +76,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   f->triangle_count = (uint32_t)s->triangle_count;
   f->material_count = (uint32_t)s->material_count;
   f->light_count = (uint32_t)s->light_count;
+  f->object_count = f->sphere_count + f->triangle_count;
 
   /* Reflection costs a bounce loop only where some material mirrors. */
   bool any_mirror = false;
@@ -128,5 +129,7 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->triangles);
   free(p->materials);
   free(p->lights);
+  free(p->bvh_nodes);
+  free(p->bvh_prims);
   memset(p, 0, sizeof *p);
 }

@@ -13,6 +13,8 @@ typedef struct rc_packed_scene {
   gpu_triangle *triangles;
   gpu_material *materials;
   gpu_light *lights;
+  gpu_bvh_node *bvh_nodes; /* NULL until rc_bvh_build (bvh.h) */
+  uint32_t *bvh_prims;     /* object references of the leaves, padded to a multiple of 4 */
   dvec3 origin; /* world position of the packed space's origin (the eye) */
 } rc_packed_scene;
 

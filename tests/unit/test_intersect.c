@@ -128,13 +128,15 @@ TEST(closest_hit_takes_the_nearest_and_lowest_index_on_ties) {
   gpu_frame frame = {0};
   frame.sphere_count = 3;
   frame.triangle_count = 0;
-  ref_scene sc = {&frame, spheres, tris, NULL, NULL};
+  frame.object_count = 3;
+  ref_scene sc = {.frame = &frame, .spheres = spheres, .triangles = tris};
   ref_hit_d h;
   CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), &h));
   CHECK_EQ_INT(h.kind, RC_HIT_SPHERE);
   CHECK_EQ_INT(h.index, 1);
   CHECK_NEAR(h.t, 4.0, 1e-12);
   frame.triangle_count = 1;
+  frame.object_count = 4;
   CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), &h));
   CHECK_EQ_INT(h.kind, RC_HIT_TRIANGLE);
   CHECK_NEAR(h.t, 3.5, 1e-12);
@@ -144,7 +146,8 @@ TEST(occluded_only_within_t_max) {
   gpu_sphere spheres[1] = {sphere(0, 0, -5, 1)};
   gpu_frame frame = {0};
   frame.sphere_count = 1;
-  ref_scene sc = {&frame, spheres, NULL, NULL, NULL};
+  frame.object_count = 1;
+  ref_scene sc = {.frame = &frame, .spheres = spheres};
   CHECK(ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 10.0));
   CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 3.9));
   CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 1, 0), 10.0));

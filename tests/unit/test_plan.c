@@ -20,12 +20,12 @@ TEST(batch_fits_the_budget_and_the_samples) {
   f.light_count = 1;
   f.samples_per_pixel = 1024;
   rc_gpu_plan p;
-  CHECK_EQ_INT(rc_gpu_plan_make(&f, RC_LOOP_BUDGET, &p), RC_OK);
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, RC_LOOP_BUDGET, &p), RC_OK);
   CHECK_EQ_INT(p.steps_per_sample, 1 + 1 + 100 + 101);
   CHECK_EQ_INT(p.batch_samples, RC_LOOP_BUDGET / 203);
   CHECK(p.batch_samples * p.steps_per_sample <= RC_LOOP_BUDGET);
   f.samples_per_pixel = 4;
-  CHECK_EQ_INT(rc_gpu_plan_make(&f, RC_LOOP_BUDGET, &p), RC_OK);
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, RC_LOOP_BUDGET, &p), RC_OK);
   CHECK_EQ_INT(p.batch_samples, 4);
 }
 
@@ -35,7 +35,19 @@ TEST(one_sample_over_budget_is_refused) {
   f.light_count = 1;
   f.samples_per_pixel = 1;
   rc_gpu_plan p;
-  CHECK_EQ_INT(rc_gpu_plan_make(&f, RC_LOOP_BUDGET, &p), RC_ERR_TOO_LARGE);
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, RC_LOOP_BUDGET, &p), RC_ERR_TOO_LARGE);
+}
+
+TEST(bvh_plans_from_the_depth_and_never_refuses) {
+  gpu_frame f = {0};
+  f.triangle_count = 1000000;
+  f.light_count = 2;
+  f.samples_per_pixel = 1024;
+  rc_gpu_plan p;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 21, RC_LOOP_BUDGET, &p), RC_OK);
+  /* 4 x 21 node visits + 16 objects per traversal: 1 + (1 + 100 + 2 * 101) = 304 */
+  CHECK_EQ_INT(p.steps_per_sample, 304);
+  CHECK_EQ_INT(p.batch_samples, RC_LOOP_BUDGET / 304);
 }
 
 int main(void) {
@@ -43,5 +55,6 @@ int main(void) {
   RUN(steps_per_sample_counts_every_loop);
   RUN(batch_fits_the_budget_and_the_samples);
   RUN(one_sample_over_budget_is_refused);
+  RUN(bvh_plans_from_the_depth_and_never_refuses);
   TEST_MAIN_END
 }

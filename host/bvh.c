@@ -1,0 +1,276 @@
+#include "bvh.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BINS 16
+#define LEAF_MAX 8
+
+typedef struct {
+  float lo[3], hi[3];
+} box;
+
+typedef struct {
+  box bounds;
+  float centroid[3];
+} prim_info;
+
+/* The binary tree before flattening. */
+typedef struct {
+  box bounds;
+  uint32_t first, count; /* leaf: a range of refs */
+  uint32_t left, right;  /* interior (count 0) */
+} build_node;
+
+typedef struct {
+  prim_info *info;
+  uint32_t *refs;
+  build_node *nodes;
+  uint32_t node_count, node_cap;
+  uint32_t depth, leaves, max_leaf;
+} builder;
+
+static box empty_box(void) { return (box){{FLT_MAX, FLT_MAX, FLT_MAX}, {-FLT_MAX, -FLT_MAX, -FLT_MAX}}; }
+
+static void grow(box *b, const box *o) {
+  for (int k = 0; k < 3; k++) {
+    if (o->lo[k] < b->lo[k]) b->lo[k] = o->lo[k];
+    if (o->hi[k] > b->hi[k]) b->hi[k] = o->hi[k];
+  }
+}
+
+static void grow_point(box *b, const float p[3]) {
+  for (int k = 0; k < 3; k++) {
+    if (p[k] < b->lo[k]) b->lo[k] = p[k];
+    if (p[k] > b->hi[k]) b->hi[k] = p[k];
+  }
+}
+
+static double area(const box *b) {
+  double dx = (double)b->hi[0] - b->lo[0], dy = (double)b->hi[1] - b->lo[1], dz = (double)b->hi[2] - b->lo[2];
+  if (dx < 0 || dy < 0 || dz < 0) return 0;
+  return 2 * (dx * dy + dy * dz + dz * dx);
+}
+
+static uint32_t new_node(builder *b) {
+  if (b->node_count == b->node_cap) {
+    uint32_t cap = b->node_cap ? 2 * b->node_cap : 1024;
+    build_node *n = realloc(b->nodes, cap * sizeof *n);
+    if (!n) return UINT32_MAX;
+    b->nodes = n;
+    b->node_cap = cap;
+  }
+  return b->node_count++;
+}
+
+/* Chooses a split of refs[first, first+count): the SAH-best bin boundary, or -1 for a leaf. */
+static int choose_split(builder *b, uint32_t first, uint32_t count, const box *bounds, int *axis_out, float *pos_out) {
+  box cb = empty_box();
+  for (uint32_t i = first; i < first + count; i++) grow_point(&cb, b->info[b->refs[i]].centroid);
+  double best = (double)count; /* cost of a leaf, relative to one object test */
+  int best_axis = -1;
+  float best_pos = 0;
+  double parent_area = area(bounds);
+  for (int axis = 0; axis < 3; axis++) {
+    float lo = cb.lo[axis], extent = cb.hi[axis] - cb.lo[axis];
+    if (!(extent > 0)) continue;
+    box bin_box[BINS];
+    uint32_t bin_count[BINS] = {0};
+    for (int i = 0; i < BINS; i++) bin_box[i] = empty_box();
+    for (uint32_t i = first; i < first + count; i++) {
+      const prim_info *p = &b->info[b->refs[i]];
+      int bin = (int)((p->centroid[axis] - lo) / extent * BINS);
+      if (bin >= BINS) bin = BINS - 1;
+      if (bin < 0) bin = 0;
+      bin_count[bin]++;
+      grow(&bin_box[bin], &p->bounds);
+    }
+    /* Sweep: area and count of everything left / right of each boundary. */
+    double left_area[BINS];
+    uint32_t left_count[BINS];
+    box acc = empty_box();
+    uint32_t n = 0;
+    for (int i = 0; i < BINS - 1; i++) {
+      grow(&acc, &bin_box[i]);
+      n += bin_count[i];
+      left_area[i] = area(&acc);
+      left_count[i] = n;
+    }
+    acc = empty_box();
+    n = 0;
+    for (int i = BINS - 1; i > 0; i--) {
+      grow(&acc, &bin_box[i]);
+      n += bin_count[i];
+      if (left_count[i - 1] == 0 || n == 0) continue;
+      double cost = 1.0 + (left_area[i - 1] * left_count[i - 1] + area(&acc) * n) / parent_area;
+      if (cost < best) {
+        best = cost;
+        best_axis = axis;
+        best_pos = lo + extent * (float)i / BINS;
+      }
+    }
+  }
+  *axis_out = best_axis;
+  *pos_out = best_pos;
+  return best_axis;
+}
+
+static int cmp_axis;
+static const prim_info *cmp_info;
+static int by_centroid(const void *a, const void *b) {
+  float x = cmp_info[*(const uint32_t *)a].centroid[cmp_axis], y = cmp_info[*(const uint32_t *)b].centroid[cmp_axis];
+  return (x > y) - (x < y);
+}
+
+/* Builds the subtree of refs[first, first+count); returns its node index. */
+static uint32_t build(builder *b, uint32_t first, uint32_t count, uint32_t depth) {
+  uint32_t id = new_node(b);
+  if (id == UINT32_MAX) return UINT32_MAX;
+  box bounds = empty_box();
+  for (uint32_t i = first; i < first + count; i++) grow(&bounds, &b->info[b->refs[i]].bounds);
+  b->nodes[id] = (build_node){bounds, first, count, 0, 0};
+  if (depth > b->depth) b->depth = depth;
+  /* Halving by count needs ceil(log2(count)) more levels; once the depth left is down
+   * to that, only halving keeps the tree within RC_BVH_MAX_DEPTH. */
+  uint32_t halvings = 0;
+  while ((1ull << halvings) < count) halvings++;
+  bool must_halve = count > 1 && depth + halvings + 1 >= RC_BVH_MAX_DEPTH;
+  int axis;
+  float pos;
+  uint32_t mid = first;
+  if (count <= 1) {
+    mid = first;
+  } else if (!must_halve && choose_split(b, first, count, &bounds, &axis, &pos) >= 0) {
+    uint32_t i = first, j = first + count;
+    while (i < j) {
+      if (b->info[b->refs[i]].centroid[axis] < pos) {
+        i++;
+      } else {
+        uint32_t t = b->refs[i];
+        b->refs[i] = b->refs[--j];
+        b->refs[j] = t;
+      }
+    }
+    mid = i;
+    if (mid == first || mid == first + count) mid = first; /* binning rounding: give up */
+  }
+  if (mid == first && (count > LEAF_MAX || must_halve) && count > 1) {
+    /* No useful SAH split but too many objects (or depth is running out): halve by count
+     * along the widest centroid axis. */
+    box cb = empty_box();
+    for (uint32_t i = first; i < first + count; i++) grow_point(&cb, b->info[b->refs[i]].centroid);
+    int widest = 0;
+    for (int k = 1; k < 3; k++)
+      if (cb.hi[k] - cb.lo[k] > cb.hi[widest] - cb.lo[widest]) widest = k;
+    cmp_axis = widest;
+    cmp_info = b->info;
+    qsort(b->refs + first, count, sizeof *b->refs, by_centroid);
+    mid = first + count / 2;
+  }
+  if (mid == first) {
+    b->leaves++;
+    if (count > b->max_leaf) b->max_leaf = count;
+    return id;
+  }
+  uint32_t left = build(b, first, mid - first, depth + 1);
+  uint32_t right = left == UINT32_MAX ? UINT32_MAX : build(b, mid, first + count - mid, depth + 1);
+  if (right == UINT32_MAX) return UINT32_MAX;
+  b->nodes[id].count = 0;
+  b->nodes[id].left = left;
+  b->nodes[id].right = right;
+  return id;
+}
+
+static void set_child(gpu_bvh_node *g, int which, const build_node *c, uint32_t gpu_index) {
+  vec3 lo = {c->bounds.lo[0], c->bounds.lo[1], c->bounds.lo[2]};
+  vec3 hi = {c->bounds.hi[0], c->bounds.hi[1], c->bounds.hi[2]};
+  uint32_t child = c->count ? c->first : gpu_index, count = c->count;
+  if (which == 0) {
+    g->lo0 = lo, g->hi0 = hi, g->child0 = child, g->count0 = count;
+  } else {
+    g->lo1 = lo, g->hi1 = hi, g->child1 = child, g->count1 = count;
+  }
+}
+
+rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
+  memset(stats, 0, sizeof *stats);
+  double t0 = rc_now_ms();
+  gpu_frame *f = &p->frame;
+  uint32_t n = f->object_count;
+  f->bvh_node_count = 0;
+  if (n == 0) return RC_OK;
+  builder b = {0};
+  b.info = rc_alloc(n, sizeof *b.info, "BVH build");
+  b.refs = rc_alloc(n, sizeof *b.refs, "BVH build");
+  if (!b.info || !b.refs) {
+    free(b.info);
+    free(b.refs);
+    return RC_ERR_TOO_LARGE;
+  }
+  for (uint32_t i = 0; i < n; i++) {
+    prim_info *q = &b.info[i];
+    q->bounds = empty_box();
+    if (i < f->sphere_count) {
+      const gpu_sphere *s = &p->spheres[i];
+      const float c[3] = {s->center.x, s->center.y, s->center.z};
+      for (int k = 0; k < 3; k++) {
+        /* One ulp outwards each way: c +- r is rounded. */
+        q->bounds.lo[k] = nextafterf(c[k] - s->radius, -FLT_MAX);
+        q->bounds.hi[k] = nextafterf(c[k] + s->radius, FLT_MAX);
+      }
+    } else {
+      const gpu_triangle *t = &p->triangles[i - f->sphere_count];
+      const vec3 v[3] = {t->v0, t->v1, t->v2};
+      for (int j = 0; j < 3; j++) grow_point(&q->bounds, (const float[3]){v[j].x, v[j].y, v[j].z});
+    }
+    for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
+    b.refs[i] = i;
+  }
+  uint32_t root = build(&b, 0, n, 0);
+  rc_status st = root == UINT32_MAX ? RC_ERR_TOO_LARGE : RC_OK;
+  if (st == RC_OK) {
+    /* Flatten: every interior build node becomes one gpu node holding its children's
+     * boxes; a root that is a leaf gets a wrapper with one empty child. */
+    uint32_t interior = 0;
+    uint32_t *gpu_index = rc_alloc(b.node_count, sizeof *gpu_index, "BVH flatten");
+    if (!gpu_index) st = RC_ERR_TOO_LARGE;
+    for (uint32_t i = 0; st == RC_OK && i < b.node_count; i++) gpu_index[i] = b.nodes[i].count ? 0 : interior++;
+    uint32_t count = interior ? interior : 1;
+    if (st == RC_OK) {
+      p->bvh_nodes = rc_alloc(count, sizeof *p->bvh_nodes, "BVH nodes");
+      p->bvh_prims = rc_alloc((n + 3) / 4 * 4, sizeof *p->bvh_prims, "BVH references");
+      if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_TOO_LARGE;
+    }
+    if (st == RC_OK) {
+      memcpy(p->bvh_prims, b.refs, n * sizeof *b.refs);
+      if (interior == 0) {
+        /* The whole scene is one leaf: the wrapper holds it twice (an inverted "empty"
+         * box would still be a box to min/max slabs). Testing an object twice changes
+         * nothing under the tie rule. */
+        set_child(&p->bvh_nodes[0], 0, &b.nodes[root], 0);
+        set_child(&p->bvh_nodes[0], 1, &b.nodes[root], 0);
+      } else {
+        for (uint32_t i = 0; i < b.node_count; i++) {
+          const build_node *bn = &b.nodes[i];
+          if (bn->count) continue;
+          gpu_bvh_node *g = &p->bvh_nodes[gpu_index[i]];
+          set_child(g, 0, &b.nodes[bn->left], gpu_index[bn->left]);
+          set_child(g, 1, &b.nodes[bn->right], gpu_index[bn->right]);
+        }
+      }
+      f->bvh_node_count = count;
+      stats->nodes = count;
+      stats->leaves = b.leaves;
+      stats->depth = b.depth;
+      stats->max_leaf = b.max_leaf;
+    }
+    free(gpu_index);
+  }
+  free(b.info);
+  free(b.refs);
+  free(b.nodes);
+  stats->build_ms = rc_now_ms() - t0;
+  return st;
+}

@@ -1,0 +1,25 @@
+/* bvh.h: the bounding volume hierarchy over all objects (spheres and triangles together),
+ * built on the host in the packed (camera-relative f32) space and flattened into
+ * gpu_bvh_node[] plus the leaves' object references, which both renderers traverse
+ * (rc_bvh.glsl, ref/ref_bvh.c).
+ *
+ * Build: top-down binned SAH (Wald, "On fast Construction of SAH-based Bounding Volume
+ * Hierarchies", RT 2007): 16 centroid bins per axis, all three axes tried, cost = 1 per
+ * node visit + 1 per object test weighted by the children's surface areas; a node
+ * becomes a leaf when splitting costs more than testing its objects (at most 8), and
+ * below RC_BVH_MAX_DEPTH - log2(n) levels the split falls back to halving by count so
+ * that the tree depth, and therefore the traversal stack, stays bounded. */
+#ifndef RC_BVH_H
+#define RC_BVH_H
+
+#include "scene/scene_pack.h"
+
+typedef struct rc_bvh_stats {
+  double build_ms;
+  uint32_t nodes, leaves, depth, max_leaf;
+} rc_bvh_stats;
+
+/* Builds into packed->bvh_nodes / bvh_prims and sets frame.bvh_node_count. */
+rc_status rc_bvh_build(rc_packed_scene *packed, rc_bvh_stats *stats);
+
+#endif

@@ -1,0 +1,100 @@
+/* ref_bvh.c: mirrors shaders/rc_bvh.glsl: the same traversal, stack and box test. */
+#include "ref/ref_intersect.h"
+#include "ref/ref_real.h"
+
+#if REF_F64
+typedef ref_hit_d ref_hit;
+typedef ref_shear_d ref_shear;
+#else
+typedef ref_hit_f ref_hit;
+typedef ref_shear_f ref_shear;
+#endif
+
+static real rmin(real a, real b) { return a < b ? a : b; }
+static real rmax(real a, real b) { return a > b ? a : b; }
+
+rvec3 REF(safe_inverse)(rvec3 d) {
+  const real tiny = (real)1e-30;
+  return RV(make)(1 / (d.x >= 0 ? rmax(d.x, tiny) : rmin(d.x, -tiny)), 1 / (d.y >= 0 ? rmax(d.y, tiny) : rmin(d.y, -tiny)),
+                  1 / (d.z >= 0 ? rmax(d.z, tiny) : rmin(d.z, -tiny)));
+}
+
+real REF(intersect_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
+  rvec3 t0 = RV(mul)(RV(sub)(lo, o), inv_d);
+  rvec3 t1 = RV(mul)(RV(sub)(hi, o), inv_d);
+  real t_enter = rmax(rmax(rmin(t0.x, t1.x), rmin(t0.y, t1.y)), rmax(rmin(t0.z, t1.z), 0));
+  real t_exit = rmin(rmin(rmax(t0.x, t1.x), rmax(t0.y, t1.y)), rmax(t0.z, t1.z)) * (real)RC_BOX_FAR_SCALE;
+  return (t_enter <= t_exit && t_enter <= t_max) ? t_enter : (real)RC_T_FAR;
+}
+
+bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o, rvec3 d, const ref_shear *sh, bool any,
+                    real t_max, ref_hit *h) {
+  for (uint32_t k = first; k < first + count; k++) {
+    uint32_t object = sc->bvh_prims[k];
+    real side;
+    rvec3 bary;
+    real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary);
+    if (any && t < (real)RC_T_FAR) return true;
+    REF(consider_hit)(sc, object, t, side, bary, h);
+  }
+  return false;
+}
+
+bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
+  if (sc->frame->bvh_node_count == 0) return false;
+  ref_shear sh = REF(ray_shear_for)(d);
+  rvec3 inv_d = REF(safe_inverse)(d);
+  uint32_t stack_node[RC_BVH_STACK_SIZE];
+  real stack_t[RC_BVH_STACK_SIZE];
+  uint32_t sp = 0, node = 0;
+  for (;;) {
+    const gpu_bvh_node *n = &sc->bvh_nodes[node];
+    real limit = any ? t_max : h->t;
+    real ta = REF(intersect_box)(rvec3_from(n->lo0), rvec3_from(n->hi0), o, inv_d, limit);
+    real tb = REF(intersect_box)(rvec3_from(n->lo1), rvec3_from(n->hi1), o, inv_d, limit);
+    if (n->count0 != 0 && ta < (real)RC_T_FAR && REF(test_leaf)(sc, n->child0, n->count0, o, d, &sh, any, t_max, h))
+      return true;
+    if (n->count1 != 0 && tb < (real)RC_T_FAR && REF(test_leaf)(sc, n->child1, n->count1, o, d, &sh, any, t_max, h))
+      return true;
+    limit = any ? t_max : h->t;
+    bool go_a = n->count0 == 0 && ta <= limit;
+    bool go_b = n->count1 == 0 && tb <= limit;
+    if (go_a && go_b) {
+      bool a_first = ta <= tb;
+      RC_ASSERT(sp < RC_BVH_STACK_SIZE);
+      stack_node[sp] = a_first ? n->child1 : n->child0;
+      stack_t[sp] = a_first ? tb : ta;
+      sp++;
+      node = a_first ? n->child0 : n->child1;
+    } else if (go_a) {
+      node = n->child0;
+    } else if (go_b) {
+      node = n->child1;
+    } else {
+      bool found = false;
+      while (sp > 0 && !found) {
+        sp--;
+        found = stack_t[sp] <= (any ? t_max : h->t);
+        node = stack_node[sp];
+      }
+      if (!found) break;
+    }
+  }
+  return h->kind != RC_HIT_NONE;
+}
+
+bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
+  *h = REF(no_hit)();
+  if (sc->use_bvh) {
+    REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, h);
+  } else {
+    REF(closest_hit_linear)(sc, o, d, h);
+  }
+  return h->kind != RC_HIT_NONE;
+}
+
+bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
+  if (!sc->use_bvh) return REF(occluded_linear)(sc, o, d, t_max);
+  ref_hit h = REF(no_hit)();
+  return REF(traverse_bvh)(sc, o, d, true, t_max, &h);
+}
