@@ -42,12 +42,14 @@ gpu_material load_material(uint i) {
   uvec4 b = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 1u);
   uvec4 c = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 2u);
   uvec4 d = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 3u);
+  uvec4 e = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 4u);
   gpu_material m;
   m.ambient = uintBitsToFloat(a.xyz);
   m.shininess = uintBitsToFloat(a.w);
   m.diffuse = uintBitsToFloat(b.xyz);
   m.specular = uintBitsToFloat(c.xyz);
   m.mirror = uintBitsToFloat(d.xyz);
+  m.emission = uintBitsToFloat(e.xyz);
   return m;
 }
 
@@ -73,10 +75,12 @@ uint load_bvh_prim(uint i) { return texel(scene_bvh_prims, i >> 2u)[i & 3u]; }
 gpu_light load_light(uint i) {
   uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
   uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
+  uvec4 c = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 2u);
   gpu_light l;
   l.position = uintBitsToFloat(a.xyz);
   l.type = a.w;
   l.intensity = uintBitsToFloat(b.xyz);
+  l.attenuation = uintBitsToFloat(c.xyz);
   return l;
 }
 #else

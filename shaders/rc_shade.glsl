@@ -1,6 +1,7 @@
 // rc_shade.glsl: the hit point, its normal, shadow rays and Phong shading (DESIGN.md §1):
-//   L = ka Ia + sum_i visible_i [kd E_i max(0, n.l_i) + ks E_i spec_i^p],
-//   E_i = I_i / r_i^2 for point lights, I_i for directional lights.
+//   L = ka Ia + ke + sum_i visible_i [kd E_i max(0, n.l_i) + ks E_i spec_i^p],
+//   E_i = I_i / (c0 + c1 r_i + c2 r_i^2) for point lights ((0, 0, 1) by default: 1/r^2),
+//   I_i for directional lights.
 
 struct surface {
   rvec3 p;        // hit point, rebuilt from the primitive rather than o + t d
@@ -73,7 +74,7 @@ real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
 // unblocked. A point light exactly on the hit point (r = 0) contributes nothing.
 rvec3 shade_phong(surface sf, rvec3 d) {
   gpu_material m = load_material(sf.material);
-  rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light);
+  rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
   rvec3 v = -d;
   rvec3 origin = offset_ray_origin(sf.p, sf.n);
   for (uint i = 0u; i < frame.light_count; i++) {
@@ -88,8 +89,10 @@ rvec3 shade_phong(surface sf, rvec3 d) {
       rvec3 delta = lp - sf.p;
       real r2 = dot(delta, delta);
       if (r2 == 0.0) continue;
-      l = delta / sqrt(r2);
-      irradiance = rvec3(light.intensity) / r2;
+      real r = sqrt(r2);
+      l = delta / r;
+      rvec3 k = rvec3(light.attenuation);
+      irradiance = rvec3(light.intensity) / (k.x + k.y * r + k.z * r2);
       rvec3 from_origin = lp - origin;
       real dist = length(from_origin);
       to_light = from_origin / dist;

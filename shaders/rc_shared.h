@@ -122,20 +122,23 @@ struct gpu_triangle {
   vec3 v2; float pad1;
 };
 
-/* Phong material: L = ambient*Ia + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
+/* Phong material: L = ambient*Ia + emission + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
  * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel. */
 struct gpu_material {
   vec3 ambient;  float shininess;
   vec3 diffuse;  float pad0;
   vec3 specular; float pad1;
   vec3 mirror;   float pad2;
+  vec3 emission; float pad3; /* added unshadowed, like the ambient term */
 };
 
-/* Point light: `position` in the packed space, irradiance intensity/r^2.
- * Directional light: `position` holds the unit direction the light travels in. */
+/* Point light: `position` in the packed space, irradiance intensity / (c0 + c1 r + c2 r^2)
+ * with (c0, c1, c2) = attenuation ((0, 0, 1) is the physical 1/r^2).
+ * Directional light: `position` holds the unit direction the light travels in; no falloff. */
 struct gpu_light {
-  vec3 position;  uint type;
-  vec3 intensity; float pad0;
+  vec3 position;    uint type;
+  vec3 intensity;   float pad0;
+  vec3 attenuation; float pad1;
 };
 
 /* Written by the shader with atomics, read back after each dispatch. */
@@ -177,8 +180,8 @@ struct gpu_push {
 
 #define RC_TEXELS_PER_SPHERE 2
 #define RC_TEXELS_PER_TRIANGLE 3
-#define RC_TEXELS_PER_MATERIAL 4
-#define RC_TEXELS_PER_LIGHT 2
+#define RC_TEXELS_PER_MATERIAL 5
+#define RC_TEXELS_PER_LIGHT 3
 
 #ifndef VULKAN
 
@@ -221,11 +224,11 @@ RC_ASSERT_SIZE(gpu_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
 
 RC_ASSERT_LAYOUT(gpu_material, ambient, 0);   RC_ASSERT_LAYOUT(gpu_material, shininess, 12);
 RC_ASSERT_LAYOUT(gpu_material, diffuse, 16);  RC_ASSERT_LAYOUT(gpu_material, specular, 32);
-RC_ASSERT_LAYOUT(gpu_material, mirror, 48);
+RC_ASSERT_LAYOUT(gpu_material, mirror, 48);   RC_ASSERT_LAYOUT(gpu_material, emission, 64);
 RC_ASSERT_SIZE(gpu_material, 16 * RC_TEXELS_PER_MATERIAL);
 
 RC_ASSERT_LAYOUT(gpu_light, position, 0);  RC_ASSERT_LAYOUT(gpu_light, type, 12);
-RC_ASSERT_LAYOUT(gpu_light, intensity, 16);
+RC_ASSERT_LAYOUT(gpu_light, intensity, 16); RC_ASSERT_LAYOUT(gpu_light, attenuation, 32);
 RC_ASSERT_SIZE(gpu_light, 16 * RC_TEXELS_PER_LIGHT);
 
 RC_ASSERT_LAYOUT(gpu_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(gpu_status, incomplete_pixels, 4);

@@ -71,11 +71,15 @@ int main(void) {
   OFF("scene_materials.pad1", gpu_material, pad1);
   OFF("scene_materials.mirror", gpu_material, mirror);
   OFF("scene_materials.pad2", gpu_material, pad2);
+  OFF("scene_materials.emission", gpu_material, emission);
+  OFF("scene_materials.pad3", gpu_material, pad3);
   printf("scene_materials stride %zu\n", sizeof(gpu_material));
   OFF("scene_lights.position", gpu_light, position);
   OFF("scene_lights.type", gpu_light, type);
   OFF("scene_lights.intensity", gpu_light, intensity);
   OFF("scene_lights.pad0", gpu_light, pad0);
+  OFF("scene_lights.attenuation", gpu_light, attenuation);
+  OFF("scene_lights.pad1", gpu_light, pad1);
   printf("scene_lights stride %zu\n", sizeof(gpu_light));
 
   OFF("push.tile_x", gpu_push, tile_x);

@@ -81,7 +81,7 @@ real REF(specular_term)(const ref_scene *sc, rvec3 n, rvec3 l, rvec3 v, float sh
 
 rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   gpu_material m = sc->materials[sf->material];
-  rvec3 color = RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light));
+  rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
   rvec3 v = RV(neg)(d);
   rvec3 origin = REF(offset_ray_origin)(sf->p, sf->n);
   for (uint32_t i = 0; i < sc->frame->light_count; i++) {
@@ -93,8 +93,10 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
       rvec3 delta = RV(sub)(lp, sf->p);
       real r2 = RV(dot)(delta, delta);
       if (r2 == 0) continue;
-      l = RV(scale)(delta, 1 / R_SQRT(r2));
-      irradiance = RV(scale)(rvec3_from(light.intensity), 1 / r2);
+      real r = R_SQRT(r2);
+      l = RV(scale)(delta, 1 / r);
+      rvec3 k = rvec3_from(light.attenuation);
+      irradiance = RV(scale)(rvec3_from(light.intensity), 1 / (k.x + k.y * r + k.z * r2));
       rvec3 from_origin = RV(sub)(lp, origin);
       real dist = RV(length)(from_origin);
       to_light = RV(scale)(from_origin, 1 / dist);

@@ -9,7 +9,7 @@
 
 typedef struct rc_material_def {
   char *name;
-  dvec3 ambient, diffuse, specular, mirror;
+  dvec3 ambient, diffuse, specular, mirror, emission;
   double shininess;
 } rc_material_def;
 
@@ -18,6 +18,7 @@ typedef struct rc_light_def {
   dvec3 position;   /* point lights */
   dvec3 direction;  /* directional lights: the direction the light travels in */
   dvec3 intensity;
+  dvec3 attenuation; /* point lights: c0, c1, c2 of 1 / (c0 + c1 r + c2 r^2) */
 } rc_light_def;
 
 typedef struct rc_sphere_def {

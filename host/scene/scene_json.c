@@ -293,7 +293,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
     for (const cJSON *p = mats->child; p != m; p = p->next)
       if (strcmp(p->string, m->string) == 0) return fail(c, "material defined twice");
     TRY(expect_object(c, m));
-    static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", NULL};
+    static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", "emission", NULL};
     TRY(check_members(c, m, allowed));
     rc_material_def *d = &s->materials[s->material_count];
     d->name = strdup(m->string);
@@ -305,6 +305,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(get_vec3(c, m, "specular", false, zero, 0.0, &d->specular));
     TRY(get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
     TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
+    TRY(get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
     pop(c);
   }
   pop(c);
@@ -328,13 +329,18 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(l, "type");
     if (!type) return fail(c, "missing field \"type\"");
     TRY(get_enum(c, l, "type", types, 0, &d->type));
-    static const char *const point_fields[] = {"type", "position", "intensity", NULL};
+    static const char *const point_fields[] = {"type", "position", "intensity", "attenuation", NULL};
     static const char *const dir_fields[] = {"type", "direction", "intensity", NULL};
     bool point = d->type == RC_LIGHT_POINT;
     TRY(check_members(c, l, point ? point_fields : dir_fields));
     dvec3 zero = rcm_make_d(0, 0, 0);
     if (point) {
       TRY(get_vec3(c, l, "position", true, zero, -HUGE_VAL, &d->position));
+      TRY(get_vec3(c, l, "attenuation", false, rcm_make_d(0, 0, 1), 0.0, &d->attenuation));
+      if (rcm_max_abs_comp_d(d->attenuation) == 0.0) {
+        push_key(c, "attenuation");
+        return fail(c, "must not be all zero (the light would be infinitely bright)");
+      }
     } else {
       TRY(get_vec3(c, l, "direction", true, zero, -HUGE_VAL, &d->direction));
       if (rcm_max_abs_comp_d(d->direction) == 0.0) {

@@ -51,7 +51,8 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
     if (!finite3(p->lights[i].position) || !finite3(p->lights[i].intensity)) what = "light", index = i;
   for (size_t i = 0; i < s->material_count && !what; i++)
     if (!finite3(p->materials[i].ambient) || !finite3(p->materials[i].diffuse) ||
-        !finite3(p->materials[i].specular) || !finite3(p->materials[i].mirror) || !isfinite(p->materials[i].shininess))
+        !finite3(p->materials[i].specular) || !finite3(p->materials[i].mirror) || !finite3(p->materials[i].emission) ||
+        !isfinite(p->materials[i].shininess))
       what = "material", index = i;
   if (!what) return RC_OK;
   fprintf(stderr, "%s: error: %s %zu: a value (relative to the eye) is beyond the f32 range (|x| > 3.4e38, "
@@ -111,11 +112,13 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     p->materials[i].specular = rcm_to_f(m->specular);
     p->materials[i].mirror = rcm_to_f(m->mirror);
     p->materials[i].shininess = (float)m->shininess;
+    p->materials[i].emission = rcm_to_f(m->emission);
   }
   for (size_t i = 0; i < s->light_count; i++) {
     const rc_light_def *l = &s->lights[i];
     p->lights[i].type = l->type;
     p->lights[i].intensity = rcm_to_f(l->intensity);
+    p->lights[i].attenuation = rcm_to_f(l->type == RC_LIGHT_POINT ? l->attenuation : rcm_make_d(1, 0, 0));
     p->lights[i].position = l->type == RC_LIGHT_POINT ? to_packed(p, l->position)
                                                       : rcm_to_f(rcm_normalize_d(l->direction));
   }

@@ -101,6 +101,23 @@ TEST(head_on_sphere_centre_is_ambient_plus_lambert) {
   free(im.px);
 }
 
+/* Attenuation (c0, c1, c2) = (1, 0.5, 0.25) at r = 9 divides by 1 + 4.5 + 20.25, and
+ * emission adds unshadowed: L = ka Ia + ke + kd I / 25.75, on both backends. */
+TEST(attenuation_and_emission_follow_their_formulas) {
+  const double ka[3] = {0.1f, 0.2f, 0.3f}, ke[3] = {0.05f, 0.0f, 0.125f}, kd[3] = {0.5f, 0.6f, 0.7f};
+  const double intensity[3] = {20, 30, 40};
+  const char *backends[2] = {"gpu", "cpu"};
+  for (int b = 0; b < 2; b++) {
+    CHECK_EQ_INT(run("render %s/head_on_attenuated.json -o %s/att.exr --backend %s --quiet", gpu_dir, tmp, backends[b]),
+                 0);
+    image im = load("att.exr");
+    if (!im.px) { CHECK(false); return; }
+    for (int c = 0; c < 3; c++)
+      CHECK_NEAR(pixel(&im, 50, 50)[c], ka[c] * 0.5 + ke[c] + kd[c] * intensity[c] / 25.75, 1e-5);
+    free(im.px);
+  }
+}
+
 /* The light, the sphere's centre and the floor point (2, 0, 0) are collinear, and the
  * centre pixel sees that point: in shadow, the pixel is the ambient term exactly. Without
  * the sphere the same pixel is lit: ka Ia + kd I cos / r^2 with r^2 = 100, cos = 0.6. */
@@ -442,6 +459,7 @@ int main(int argc, char **argv) {
   if (!mkdtemp(tmp)) return 2;
   TEST_MAIN_BEGIN
   RUN(head_on_sphere_centre_is_ambient_plus_lambert);
+  RUN(attenuation_and_emission_follow_their_formulas);
   RUN(pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder);
   RUN(parallel_camera_matches_the_analytic_sphere);
   RUN(blinn_phong_and_phong_highlights_follow_their_formulas);
