@@ -194,6 +194,33 @@ static void set_child(gpu_bvh_node *g, int which, const build_node *c, uint32_t 
   }
 }
 
+/* The box of a transformed sphere (an ellipsoid): with M = packed_from_object, the
+ * inverse of the f32 object_from_packed the shaders use (inverted here in f64), the box is
+ * M(c) +- r |row_i(M)|, widened by a relative 1e-6 for the f32 rounding of the result. */
+static box ellipsoid_box(const gpu_sphere *s, const gpu_transform *t) {
+  const vec4 r[3] = {t->row0, t->row1, t->row2};
+  double a[3][3] = {{r[0].x, r[0].y, r[0].z}, {r[1].x, r[1].y, r[1].z}, {r[2].x, r[2].y, r[2].z}};
+  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  double m[3][3] = {{(a[1][1] * a[2][2] - a[1][2] * a[2][1]) / det, (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det,
+                     (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det},
+                    {(a[1][2] * a[2][0] - a[1][0] * a[2][2]) / det, (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det,
+                     (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det},
+                    {(a[1][0] * a[2][1] - a[1][1] * a[2][0]) / det, (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det,
+                     (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det}};
+  /* p_obj = A p + b  =>  p = M (p_obj - b) */
+  double c[3] = {s->center.x - r[0].w, s->center.y - r[1].w, s->center.z - r[2].w};
+  box out;
+  for (int i = 0; i < 3; i++) {
+    double mid = m[i][0] * c[0] + m[i][1] * c[1] + m[i][2] * c[2];
+    double half = s->radius * sqrt(m[i][0] * m[i][0] + m[i][1] * m[i][1] + m[i][2] * m[i][2]);
+    double pad = 1e-6 * (fabs(mid) + half);
+    out.lo[i] = nextafterf((float)(mid - half - pad), -FLT_MAX);
+    out.hi[i] = nextafterf((float)(mid + half + pad), FLT_MAX);
+  }
+  return out;
+}
+
 rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   memset(stats, 0, sizeof *stats);
   double t0 = rc_now_ms();
@@ -212,7 +239,9 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   for (uint32_t i = 0; i < n; i++) {
     prim_info *q = &b.info[i];
     q->bounds = empty_box();
-    if (i < f->sphere_count) {
+    if (i < f->sphere_count && p->spheres[i].transform != RC_NO_TRANSFORM) {
+      q->bounds = ellipsoid_box(&p->spheres[i], &p->transforms[p->spheres[i].transform]);
+    } else if (i < f->sphere_count) {
       const gpu_sphere *s = &p->spheres[i];
       const float c[3] = {s->center.x, s->center.y, s->center.z};
       for (int k = 0; k < 3; k++) {

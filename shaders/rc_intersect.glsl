@@ -44,6 +44,28 @@ real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side)
   return real(RC_T_FAR);
 }
 
+// A point and a direction taken into a transformed sphere's object space.
+rvec3 transform_point(gpu_transform m, rvec3 p) {
+  return rvec3(dot(rvec3(m.row0.xyz), p) + real(m.row0.w), dot(rvec3(m.row1.xyz), p) + real(m.row1.w),
+               dot(rvec3(m.row2.xyz), p) + real(m.row2.w));
+}
+
+rvec3 transform_vector(gpu_transform m, rvec3 v) {
+  return rvec3(dot(rvec3(m.row0.xyz), v), dot(rvec3(m.row1.xyz), v), dot(rvec3(m.row2.xyz), v));
+}
+
+// A sphere, transformed or not. Through a transform the ray is intersected in object
+// space with its direction renormalised, and t scaled back by the direction's length, so
+// t stays the packed-space t (and t_max keeps its meaning).
+real intersect_any_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+  if (s.transform == RC_NO_TRANSFORM) return intersect_sphere(o, d, s, t_max, side);
+  gpu_transform m = load_transform(s.transform);
+  rvec3 d_obj = transform_vector(m, d);
+  real len = length(d_obj);
+  real t = intersect_sphere(transform_point(m, o), d_obj / len, s, t_max * len, side);
+  return (t >= real(RC_T_FAR)) ? t : t / len;
+}
+
 // Per-ray constants of the watertight test: the axis permutation that makes the largest
 // direction component z, and the shear that maps the ray onto +z.
 struct ray_shear {
@@ -101,7 +123,7 @@ real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out
 real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary) {
   side = 0.0;
   bary = rvec3(0.0);
-  if (object < frame.sphere_count) return intersect_sphere(o, d, load_sphere(object), t_max, side);
+  if (object < frame.sphere_count) return intersect_any_sphere(o, d, load_sphere(object), t_max, side);
   return intersect_triangle(o, sh, load_triangle(object - frame.sphere_count), t_max, bary);
 }
 

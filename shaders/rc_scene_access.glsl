@@ -12,6 +12,7 @@ layout(binding = RC_BINDING_MATERIALS) uniform usamplerBuffer scene_materials;
 layout(binding = RC_BINDING_LIGHTS) uniform usamplerBuffer scene_lights;
 layout(binding = RC_BINDING_BVH_NODES) uniform usamplerBuffer scene_bvh_nodes;
 layout(binding = RC_BINDING_BVH_PRIMS) uniform usamplerBuffer scene_bvh_prims;
+layout(binding = RC_BINDING_TRANSFORMS) uniform usamplerBuffer scene_transforms;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 
@@ -22,7 +23,16 @@ gpu_sphere load_sphere(uint i) {
   s.center = uintBitsToFloat(a.xyz);
   s.radius = uintBitsToFloat(a.w);
   s.material = b.x;
+  s.transform = b.y;
   return s;
+}
+
+gpu_transform load_transform(uint i) {
+  gpu_transform m;
+  m.row0 = uintBitsToFloat(texel(scene_transforms, i * RC_TEXELS_PER_TRANSFORM));
+  m.row1 = uintBitsToFloat(texel(scene_transforms, i * RC_TEXELS_PER_TRANSFORM + 1u));
+  m.row2 = uintBitsToFloat(texel(scene_transforms, i * RC_TEXELS_PER_TRANSFORM + 2u));
+  return m;
 }
 
 gpu_triangle load_triangle(uint i) {
@@ -90,6 +100,7 @@ layout(std430, binding = RC_BINDING_MATERIALS) readonly buffer Materials { gpu_m
 layout(std430, binding = RC_BINDING_LIGHTS) readonly buffer Lights { gpu_light scene_lights[]; };
 layout(std430, binding = RC_BINDING_BVH_NODES) readonly buffer BvhNodes { gpu_bvh_node scene_bvh_nodes[]; };
 layout(std430, binding = RC_BINDING_BVH_PRIMS) readonly buffer BvhPrims { uint scene_bvh_prims[]; };
+layout(std430, binding = RC_BINDING_TRANSFORMS) readonly buffer Transforms { gpu_transform scene_transforms[]; };
 
 gpu_sphere load_sphere(uint i) { return scene_spheres[i]; }
 gpu_triangle load_triangle(uint i) { return scene_triangles[i]; }
@@ -97,4 +108,5 @@ gpu_material load_material(uint i) { return scene_materials[i]; }
 gpu_light load_light(uint i) { return scene_lights[i]; }
 gpu_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
 uint load_bvh_prim(uint i) { return scene_bvh_prims[i]; }
+gpu_transform load_transform(uint i) { return scene_transforms[i]; }
 #endif

@@ -17,12 +17,26 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     // where normalize(o + t d - C) loses digits with |o - C| (ROBUSTNESS.md §2.3).
     gpu_sphere s = load_sphere(h.index);
     real r = real(s.radius);
-    precise rvec3 f = o - rvec3(s.center);
-    precise real b = dot(f, d);
-    precise rvec3 l = f - b * d;
+    rvec3 oo = o;
+    rvec3 dd = d;
+    gpu_transform m;
+    if (s.transform != RC_NO_TRANSFORM) {
+      m = load_transform(s.transform);
+      oo = transform_point(m, o);
+      dd = normalize(transform_vector(m, d));
+    }
+    precise rvec3 f = oo - rvec3(s.center);
+    precise real b = dot(f, dd);
+    precise rvec3 l = f - b * dd;
     precise real sq = sqrt(max(r * r - dot(l, l), 0.0));
-    n = normalize(l + h.side * sq * d);
-    sf.p = rvec3(s.center) + r * n;
+    n = normalize(l + h.side * sq * dd);
+    if (s.transform == RC_NO_TRANSFORM) {
+      sf.p = rvec3(s.center) + r * n;
+    } else {
+      // Normals go back by the transpose of object_from_packed's linear part.
+      n = normalize(rvec3(m.row0.xyz) * n.x + rvec3(m.row1.xyz) * n.y + rvec3(m.row2.xyz) * n.z);
+      sf.p = o + h.t * d;
+    }
     sf.material = s.material;
   } else {
     gpu_triangle tri = load_triangle(h.index);

@@ -29,6 +29,7 @@ typedef struct gpu_status gpu_status;
 typedef struct gpu_push gpu_push;
 typedef struct gpu_aov gpu_aov;
 typedef struct gpu_bvh_node gpu_bvh_node;
+typedef struct gpu_transform gpu_transform;
 #endif
 
 /* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
@@ -44,7 +45,8 @@ typedef struct gpu_bvh_node gpu_bvh_node;
 #define RC_BINDING_AOV 7       /* gpu_aov per tile pixel (written only when aov_enabled) */
 #define RC_BINDING_BVH_NODES 8 /* gpu_bvh_node[] (texel or storage, like the scene arrays) */
 #define RC_BINDING_BVH_PRIMS 9 /* uint[] object references of the leaves, 4 per texel */
-#define RC_BINDING_COUNT 10
+#define RC_BINDING_TRANSFORMS 10 /* gpu_transform[] of transformed spheres */
+#define RC_BINDING_COUNT 11
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -110,10 +112,24 @@ struct gpu_frame {
   uint object_count;      uint bvh_node_count; uint pad0; uint pad1;
 };
 
+/* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
+ * object space and the ray is taken there by gpu_transform: an ellipsoid (CSE167 format,
+ * JSON "transform"). */
+#define RC_NO_TRANSFORM 0xffffffffu
 struct gpu_sphere {
   vec3 center; float radius;
-  uint material; uint pad0; uint pad1; uint pad2;
+  uint material; uint transform; uint pad1; uint pad2;
 };
+
+/* object_from_packed as the rows of a 3x4 affine matrix: p_obj = (row . (p, 1)). Its
+ * linear part A also carries normals back: n_world ~ A^T n_obj (the inverse transpose of
+ * world_from_object). */
+struct gpu_transform {
+  vec4 row0;
+  vec4 row1;
+  vec4 row2;
+};
+#define RC_TEXELS_PER_TRANSFORM 3
 
 /* Vertices in the packed space; the geometric normal is cross(v1 - v0, v2 - v0). */
 struct gpu_triangle {
@@ -215,7 +231,10 @@ RC_ASSERT_LAYOUT(gpu_bvh_node, hi1, 48);  RC_ASSERT_LAYOUT(gpu_bvh_node, count1,
 RC_ASSERT_SIZE(gpu_bvh_node, 16 * RC_TEXELS_PER_BVH_NODE);
 
 RC_ASSERT_LAYOUT(gpu_sphere, center, 0); RC_ASSERT_LAYOUT(gpu_sphere, radius, 12);
-RC_ASSERT_LAYOUT(gpu_sphere, material, 16);
+RC_ASSERT_LAYOUT(gpu_sphere, material, 16); RC_ASSERT_LAYOUT(gpu_sphere, transform, 20);
+RC_ASSERT_LAYOUT(gpu_transform, row0, 0);   RC_ASSERT_LAYOUT(gpu_transform, row1, 16);
+RC_ASSERT_LAYOUT(gpu_transform, row2, 32);
+RC_ASSERT_SIZE(gpu_transform, 16 * RC_TEXELS_PER_TRANSFORM);
 RC_ASSERT_SIZE(gpu_sphere, 16 * RC_TEXELS_PER_SPHERE);
 
 RC_ASSERT_LAYOUT(gpu_triangle, v0, 0);  RC_ASSERT_LAYOUT(gpu_triangle, material, 12);

@@ -48,11 +48,15 @@ int main(void) {
   OFF("scene_bvh_nodes.count1", gpu_bvh_node, count1);
   printf("scene_bvh_nodes stride %zu\n", sizeof(gpu_bvh_node));
   printf("scene_bvh_prims stride %zu\n", sizeof(uint32_t));
+  OFF("scene_transforms.row0", gpu_transform, row0);
+  OFF("scene_transforms.row1", gpu_transform, row1);
+  OFF("scene_transforms.row2", gpu_transform, row2);
+  printf("scene_transforms stride %zu\n", sizeof(gpu_transform));
 
   OFF("scene_spheres.center", gpu_sphere, center);
   OFF("scene_spheres.radius", gpu_sphere, radius);
   OFF("scene_spheres.material", gpu_sphere, material);
-  OFF("scene_spheres.pad0", gpu_sphere, pad0);
+  OFF("scene_spheres.transform", gpu_sphere, transform);
   OFF("scene_spheres.pad1", gpu_sphere, pad1);
   OFF("scene_spheres.pad2", gpu_sphere, pad2);
   printf("scene_spheres stride %zu\n", sizeof(gpu_sphere));
@@ -112,6 +116,7 @@ int main(void) {
   printf("scene_lights binding %d\n", RC_BINDING_LIGHTS);
   printf("scene_bvh_nodes binding %d\n", RC_BINDING_BVH_NODES);
   printf("scene_bvh_prims binding %d\n", RC_BINDING_BVH_PRIMS);
+  printf("scene_transforms binding %d\n", RC_BINDING_TRANSFORMS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
   printf("Aov binding %d\n", RC_BINDING_AOV);

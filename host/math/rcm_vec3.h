@@ -40,6 +40,7 @@ typedef struct { double x, y, z; } dvec3;
 RCM_DEFINE_VEC3(vec3, float, f, sqrtf, fabsf)
 RCM_DEFINE_VEC3(dvec3, double, d, sqrt, fabs)
 
+static inline vec3 rcm_xyz(vec4 a) { vec3 r = {a.x, a.y, a.z}; return r; }
 static inline vec3 rcm_to_f(dvec3 a) { vec3 r = {(float)a.x, (float)a.y, (float)a.z}; return r; }
 static inline dvec3 rcm_to_d(vec3 a) { dvec3 r = {a.x, a.y, a.z}; return r; }
 

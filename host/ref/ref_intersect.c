@@ -39,6 +39,26 @@ real REF(intersect_sphere)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *sid
   return (real)RC_T_FAR;
 }
 
+rvec3 REF(transform_point)(const gpu_transform *m, rvec3 p) {
+  return RV(make)(RV(dot)(rvec3_from(rcm_xyz(m->row0)), p) + (real)m->row0.w,
+                  RV(dot)(rvec3_from(rcm_xyz(m->row1)), p) + (real)m->row1.w,
+                  RV(dot)(rvec3_from(rcm_xyz(m->row2)), p) + (real)m->row2.w);
+}
+
+rvec3 REF(transform_vector)(const gpu_transform *m, rvec3 v) {
+  return RV(make)(RV(dot)(rvec3_from(rcm_xyz(m->row0)), v), RV(dot)(rvec3_from(rcm_xyz(m->row1)), v),
+                  RV(dot)(rvec3_from(rcm_xyz(m->row2)), v));
+}
+
+real REF(intersect_any_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+  if (s.transform == RC_NO_TRANSFORM) return REF(intersect_sphere)(o, d, s, t_max, side);
+  const gpu_transform *m = &sc->transforms[s.transform];
+  rvec3 d_obj = REF(transform_vector)(m, d);
+  real len = RV(length)(d_obj);
+  real t = REF(intersect_sphere)(REF(transform_point)(m, o), RV(scale)(d_obj, 1 / len), s, t_max * len, side);
+  return (t >= (real)RC_T_FAR) ? t : t / len;
+}
+
 ref_shear REF(ray_shear_for)(rvec3 d) {
   rvec3 a = RV(make)(R_ABS(d.x), R_ABS(d.y), R_ABS(d.z));
   int kz = (a.x > a.y) ? ((a.x > a.z) ? 0 : 2) : ((a.y > a.z) ? 1 : 2);
@@ -83,7 +103,7 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
                            real *side, rvec3 *bary) {
   *side = 0;
   *bary = RV(make)(0, 0, 0);
-  if (object < sc->frame->sphere_count) return REF(intersect_sphere)(o, d, sc->spheres[object], t_max, side);
+  if (object < sc->frame->sphere_count) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[object], t_max, side);
   return REF(intersect_triangle)(o, sh, sc->triangles[object - sc->frame->sphere_count], t_max, bary);
 }
 

@@ -14,6 +14,7 @@ typedef struct ref_scene {
   const gpu_light *lights;
   const gpu_bvh_node *bvh_nodes;
   const uint32_t *bvh_prims;
+  const gpu_transform *transforms;
   bool use_bvh;
 } ref_scene;
 
@@ -21,6 +22,9 @@ typedef struct ref_scene {
   typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_intersect_sphere_##S(V o, V d, gpu_sphere s, R t_max, R *side);                         \
+  V ref_transform_point_##S(const gpu_transform *m, V p);                                       \
+  V ref_transform_vector_##S(const gpu_transform *m, V v);                                      \
+  R ref_intersect_any_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side); \
   ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
   V ref_permute_##S(V a, const int k[3]);                                                       \
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \

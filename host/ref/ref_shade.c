@@ -21,13 +21,26 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
   if (h->kind == RC_HIT_SPHERE) {
     gpu_sphere s = sc->spheres[h->index];
     real r = (real)s.radius;
-    rvec3 f = RV(sub)(o, rvec3_from(s.center));
-    real b = RV(dot)(f, d);
-    rvec3 l = RV(sub)(f, RV(scale)(d, b));
+    rvec3 oo = o, dd = d;
+    const gpu_transform *m = NULL;
+    if (s.transform != RC_NO_TRANSFORM) {
+      m = &sc->transforms[s.transform];
+      oo = REF(transform_point)(m, o);
+      dd = RV(normalize)(REF(transform_vector)(m, d));
+    }
+    rvec3 f = RV(sub)(oo, rvec3_from(s.center));
+    real b = RV(dot)(f, dd);
+    rvec3 l = RV(sub)(f, RV(scale)(dd, b));
     real disc = r * r - RV(dot)(l, l);
     real sq = R_SQRT(disc > 0 ? disc : 0);
-    n = RV(normalize)(RV(add)(l, RV(scale)(d, h->side * sq)));
-    sf.p = RV(add)(rvec3_from(s.center), RV(scale)(n, r));
+    n = RV(normalize)(RV(add)(l, RV(scale)(dd, h->side * sq)));
+    if (!m) {
+      sf.p = RV(add)(rvec3_from(s.center), RV(scale)(n, r));
+    } else {
+      n = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(rcm_xyz(m->row0)), n.x), RV(scale)(rvec3_from(rcm_xyz(m->row1)), n.y)),
+                                RV(scale)(rvec3_from(rcm_xyz(m->row2)), n.z)));
+      sf.p = RV(add)(o, RV(scale)(d, h->t));
+    }
     sf.material = s.material;
   } else {
     gpu_triangle tri = sc->triangles[h->index];

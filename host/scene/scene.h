@@ -21,10 +21,17 @@ typedef struct rc_light_def {
   dvec3 attenuation; /* point lights: c0, c1, c2 of 1 / (c0 + c1 r + c2 r^2) */
 } rc_light_def;
 
+/* An affine world_from_object transform: rows of a 3x4 matrix. */
+typedef struct rc_affine {
+  double m[3][4];
+} rc_affine;
+
 typedef struct rc_sphere_def {
-  dvec3 center;
+  dvec3 center; /* in object space when transformed */
   double radius;
   uint32_t material;
+  bool transformed;
+  rc_affine world_from_object;
 } rc_sphere_def;
 
 typedef struct rc_triangle_def {

@@ -60,6 +60,29 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
   return RC_ERR_INPUT;
 }
 
+/* object_from_packed = inverse(world_from_object) composed with packed -> world (+origin),
+ * in f64. Returns false for a singular transform. */
+static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *out) {
+  const double(*a)[4] = w->m;
+  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (!(fabs(det) > 0) || !isfinite(det)) return false;
+  double inv[3][3] = {{(a[1][1] * a[2][2] - a[1][2] * a[2][1]) / det, (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det,
+                       (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det},
+                      {(a[1][2] * a[2][0] - a[1][0] * a[2][2]) / det, (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det,
+                       (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det},
+                      {(a[1][0] * a[2][1] - a[1][1] * a[2][0]) / det, (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det,
+                       (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det}};
+  /* p_obj = inv (p_world - t) with p_world = p_packed + origin. */
+  double shift[3] = {origin.x - a[0][3], origin.y - a[1][3], origin.z - a[2][3]};
+  vec4 *rows[3] = {&out->row0, &out->row1, &out->row2};
+  for (int i = 0; i < 3; i++) {
+    double tr = inv[i][0] * shift[0] + inv[i][1] * shift[1] + inv[i][2] * shift[2];
+    *rows[i] = (vec4){(float)inv[i][0], (float)inv[i][1], (float)inv[i][2], (float)tr};
+  }
+  return true;
+}
+
 rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   memset(p, 0, sizeof *p);
   p->origin = s->camera.eye;
@@ -90,14 +113,27 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   p->triangles = rc_alloc(s->triangle_count + 1, sizeof *p->triangles, "packed triangles");
   p->materials = rc_alloc(s->material_count + 1, sizeof *p->materials, "packed materials");
   p->lights = rc_alloc(s->light_count + 1, sizeof *p->lights, "packed lights");
-  if (!p->spheres || !p->triangles || !p->materials || !p->lights) {
+  p->transforms = rc_alloc(s->sphere_count + 1, sizeof *p->transforms, "packed transforms");
+  if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms) {
     rc_packed_scene_free(p);
     return RC_ERR_TOO_LARGE;
   }
   for (size_t i = 0; i < s->sphere_count; i++) {
-    p->spheres[i].center = to_packed(p, s->spheres[i].center);
-    p->spheres[i].radius = (float)s->spheres[i].radius;
-    p->spheres[i].material = s->spheres[i].material;
+    const rc_sphere_def *d = &s->spheres[i];
+    p->spheres[i].radius = (float)d->radius;
+    p->spheres[i].material = d->material;
+    p->spheres[i].transform = RC_NO_TRANSFORM;
+    if (!d->transformed) {
+      p->spheres[i].center = to_packed(p, d->center);
+    } else {
+      p->spheres[i].center = rcm_to_f(d->center); /* object space */
+      if (!object_from_packed(&d->world_from_object, p->origin, &p->transforms[p->transform_count])) {
+        fprintf(stderr, "%s: error: sphere %zu: its transform is singular (a zero scale?)\n", s->path, i);
+        rc_packed_scene_free(p);
+        return RC_ERR_INPUT;
+      }
+      p->spheres[i].transform = p->transform_count++;
+    }
   }
   for (size_t i = 0; i < s->triangle_count; i++) {
     p->triangles[i].v0 = to_packed(p, s->triangles[i].v[0]);
@@ -134,5 +170,6 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->lights);
   free(p->bvh_nodes);
   free(p->bvh_prims);
+  free(p->transforms);
   memset(p, 0, sizeof *p);
 }

@@ -15,6 +15,8 @@ typedef struct rc_packed_scene {
   gpu_light *lights;
   gpu_bvh_node *bvh_nodes; /* NULL until rc_bvh_build (bvh.h) */
   uint32_t *bvh_prims;     /* object references of the leaves, padded to a multiple of 4 */
+  gpu_transform *transforms; /* of the transformed spheres (at least one element) */
+  uint32_t transform_count;
   dvec3 origin; /* world position of the packed space's origin (the eye) */
 } rc_packed_scene;
 

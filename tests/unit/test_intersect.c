@@ -4,7 +4,7 @@
 #include "rc_test.h"
 
 static gpu_sphere sphere(float x, float y, float z, float r) {
-  gpu_sphere s = {{x, y, z}, r, 0, 0, 0, 0};
+  gpu_sphere s = {{x, y, z}, r, 0, RC_NO_TRANSFORM, 0, 0};
   return s;
 }
 
