@@ -165,7 +165,7 @@ rc_status rc_cmd_compare(int argc, char **argv) {
       } else {
         double floor = fail > 0 ? fail : 1e-7;
         rc_compare_heat_map(a.px, b.px, a.w, a.h, a.c, floor, isfinite(r.max) ? r.max : 1.0, heat);
-        if (rc_image_write(diff, a.w, a.h, 3, heat, RC_ENCODING_LINEAR, err, sizeof err) != 0) {
+        if (rc_image_write(diff, a.w, a.h, 3, heat, RC_ENCODING_LINEAR, false, err, sizeof err) != 0) {
           rc_error("%s: cannot write the heat map: %s", diff, err);
           st = RC_ERR_IO;
         }

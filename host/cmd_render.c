@@ -29,6 +29,7 @@ static const char render_usage[] =
     "  --device N              Vulkan device index (see `vkraycast devices`); default: discrete >\n"
     "                          integrated > virtual > CPU\n"
     "  --srgb                  8-bit outputs get the sRGB transfer curve (default: linear, clamped)\n"
+    "  --quantize Q            8-bit outputs: round (JSON scenes' default) or truncate (.test scenes')\n"
     "  --repeat N              render N frames; statistics report the first and the median of the rest\n"
     "  --stats-json FILE       write the statistics as one JSON object\n"
     "  --aov FILE.exr          also write the decision outputs of each pixel's first sample: colour,\n"
@@ -40,8 +41,9 @@ static const char render_usage[] =
     "  --staging               upload and read back through staging buffers even on unified memory\n"
     "                          (also VKRAYCAST_FORCE_STAGING=1)\n"
     "  --tile N                tile side in pixels (default 256); one submit per dispatch\n"
-    "  --plan-budget N         loop budget the host plans batches with (default and minimum 49152,\n"
-    "                          the shader's); larger values test the shader's exhaustion flag\n";
+    "  --plan-budget N         loop budget the host plans batches with (default: the shader's, 49152\n"
+    "                          divided by the subgroup size on llvmpipe); larger values test the\n"
+    "                          shader's exhaustion flag\n";
 
 typedef struct {
   const char *scene, *output, *stats_json, *aov;
@@ -50,6 +52,7 @@ typedef struct {
   bool quiet, srgb;
   bool cpu;
   bool no_bvh;
+  int truncate; /* -1: the scene format's rule */
   int precision; /* -1 default, 0 f32, 1 f64 */
   uint32_t threads;
   rc_gpu_options gpu;
@@ -70,7 +73,7 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
 static bool option_takes_value(const char *o) {
   static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
-                                           "--backend", "--precision", "--threads", "--aov", "--accel"};
+                                           "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -81,9 +84,10 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->device = -1;
   a->repeat = 1;
   a->precision = -1;
+  a->truncate = -1;
   a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
   a->gpu.tile_size = 256;
-  a->gpu.plan_budget = RC_LOOP_BUDGET;
+  a->gpu.plan_budget = 0;
   const char *force = getenv("VKRAYCAST_FORCE_STAGING");
   a->gpu.force_staging = force && force[0] && strcmp(force, "0") != 0;
   for (int i = 0; i < argc; i++) {
@@ -127,7 +131,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     } else if (strcmp(o, "--tile") == 0) {
       st = rc_cli_uint(o, v, 8, 4096, &a->gpu.tile_size);
     } else if (strcmp(o, "--plan-budget") == 0) {
-      st = rc_cli_uint(o, v, RC_LOOP_BUDGET, UINT32_MAX, &a->gpu.plan_budget);
+      st = rc_cli_uint(o, v, 1, UINT32_MAX, &a->gpu.plan_budget);
     } else if (strcmp(o, "--threads") == 0) {
       st = rc_cli_uint(o, v, 1, 1024, &a->threads);
     } else if (strcmp(o, "--backend") == 0) {
@@ -135,6 +139,13 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
         a->cpu = strcmp(v, "cpu") == 0;
       } else {
         rc_error("--backend: expected gpu or cpu, got '%s'", v);
+        st = RC_ERR_USAGE;
+      }
+    } else if (strcmp(o, "--quantize") == 0) {
+      if (strcmp(v, "round") == 0 || strcmp(v, "truncate") == 0) {
+        a->truncate = strcmp(v, "truncate") == 0;
+      } else {
+        rc_error("--quantize: expected round or truncate, got '%s'", v);
         st = RC_ERR_USAGE;
       }
     } else if (strcmp(o, "--accel") == 0) {
@@ -336,7 +347,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
     char err[512];
     t0 = rc_now_ms();
     if (rc_image_write(a.output, (int)scene.width, (int)scene.height, 3, rgb,
-                       a.srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR, err, sizeof err) != 0) {
+                       a.srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+                       a.truncate < 0 ? scene.truncate_8bit : a.truncate == 1, err, sizeof err) != 0) {
       rc_error("%s: cannot write image: %s", a.output, err);
       st = RC_ERR_IO;
     }

@@ -18,7 +18,7 @@ rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budg
     rc_error("scene too large for brute-force GPU rendering: one sample needs up to %llu loop "
              "iterations (%u spheres + %u triangles, %u lights, reflection depth %u), more than the "
              "per-invocation budget of %u that keeps llvmpipe under its 65,535-iteration cap; use "
-             "fewer primitives, lights or reflection bounces",
+             "the BVH (--accel bvh), or fewer objects, lights or reflection bounces",
              (unsigned long long)plan->steps_per_sample, f->sphere_count, f->triangle_count,
              f->light_count, f->reflection_depth, budget);
     return RC_ERR_TOO_LARGE;

@@ -12,6 +12,7 @@
 struct rc_gpu_renderer {
   rc_vk_ctx *ctx;
   rc_gpu_options opts;
+  uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
   gpu_frame frame;
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
@@ -161,7 +162,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
   VkShaderModule module;
   RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
   /* A bool specialization constant is 4 bytes (VkBool32). */
-  const uint32_t spec_values[5] = {LOCAL_SIZE, LOCAL_SIZE, RC_LOOP_BUDGET, r->opts.aov ? VK_TRUE : VK_FALSE,
+  const uint32_t spec_values[5] = {LOCAL_SIZE, LOCAL_SIZE, r->budget, r->opts.aov ? VK_TRUE : VK_FALSE,
                                    r->opts.bvh_depth ? VK_TRUE : VK_FALSE};
   const VkSpecializationMapEntry entries[5] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
                                                {RC_SPEC_LOOP_BUDGET, 8, 4}, {RC_SPEC_AOV, 12, 4}, {RC_SPEC_BVH, 16, 4}};
@@ -247,7 +248,11 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->ctx = ctx;
   r->opts = *opts;
   r->frame = scene->frame;
-  rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget, &stats->plan);
+  r->budget = rc_vk_loop_budget(ctx);
+  stats->loop_budget = r->budget;
+  stats->subgroup_size = ctx->subgroup_size;
+  rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget ? opts->plan_budget : r->budget,
+                                  &stats->plan);
   if (st == RC_OK && opts->f64 && !ctx->float64) {
     rc_error("--precision f64: device %u (%s) does not support shaderFloat64 and shaderInt64; use f32, or "
              "--backend cpu for an f64 render",
@@ -410,7 +415,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
       if (push.batch_samples == 1) {
         rc_error("%u pixel%s of tile (%u, %u) ran out of the shader loop budget (%u iterations) within a "
                  "single sample; refusing to write a wrong image",
-                 status.exhausted_pixels, status.exhausted_pixels == 1 ? "" : "s", x0, y0, RC_LOOP_BUDGET);
+                 status.exhausted_pixels, status.exhausted_pixels == 1 ? "" : "s", x0, y0, r->budget);
         return RC_ERR_TOO_LARGE;
       }
       push.batch_samples /= 2;

@@ -17,8 +17,8 @@ typedef struct rc_gpu_options {
   rc_scene_buffers scene_buffers;
   bool force_staging;   /* upload and read back through staging buffers even if mappable */
   uint32_t tile_size;   /* pixels per tile side; one submit per dispatch */
-  uint32_t plan_budget; /* budget the host plans with; above RC_LOOP_BUDGET only in tests,
-                           to make the shader's exhaustion flag fire */
+  uint32_t plan_budget; /* 0: the device's budget (rc_vk_loop_budget); larger values only in
+                           tests, to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
   bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
   bool aov;             /* record the decision outputs (gpu_aov) of each pixel's first sample */
@@ -35,6 +35,8 @@ typedef struct rc_gpu_stats {
   uint32_t dispatches, tiles;
   uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
   rc_gpu_plan plan;
+  uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
+  uint32_t subgroup_size;
   bool staging;            /* uploads and readback went through staging buffers */
   rc_scene_buffers scene_buffers;
 } rc_gpu_stats;

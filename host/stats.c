@@ -72,6 +72,8 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "batch_samples", s->gpu.plan.batch_samples);
   cJSON_AddNumberToObject(o, "loop_steps_per_sample", (double)s->gpu.plan.steps_per_sample);
   cJSON_AddNumberToObject(o, "budget_retries", s->gpu.budget_retries);
+  cJSON_AddNumberToObject(o, "loop_budget", s->gpu.loop_budget);
+  cJSON_AddNumberToObject(o, "subgroup_size", s->gpu.subgroup_size);
   char *text = cJSON_Print(o);
   cJSON_Delete(o);
   rc_status st = RC_OK;

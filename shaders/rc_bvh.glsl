@@ -60,9 +60,11 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
     if (n.count0 != 0u && ta < real(RC_T_FAR) && test_leaf(n.child0, n.count0, o, d, sh, any, t_max, h)) return true;
     if (n.count1 != 0u && tb < real(RC_T_FAR) && test_leaf(n.child1, n.count1, o, d, sh, any, t_max, h)) return true;
     if (budget_exhausted) return false;
+    // A missed box is RC_T_FAR, which the limit also is until something is hit: compare
+    // with both.
     limit = any ? t_max : h.t;
-    bool go_a = n.count0 == 0u && ta <= limit;
-    bool go_b = n.count1 == 0u && tb <= limit;
+    bool go_a = n.count0 == 0u && ta < real(RC_T_FAR) && ta <= limit;
+    bool go_b = n.count1 == 0u && tb < real(RC_T_FAR) && tb <= limit;
     if (go_a && go_b) {
       bool a_first = ta <= tb;
       stack_node[sp] = a_first ? n.child1 : n.child0;

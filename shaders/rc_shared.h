@@ -65,9 +65,10 @@ typedef struct gpu_transform gpu_transform;
 #define RC_BOX_FAR_SCALE 1.0000003576278687
 
 /* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
- * in total (ECOSYSTEM.md §8). Every shader loop counts into one per-invocation budget of
- * this many steps, a quarter below the cap, and the host plans each dispatch's work so
- * that its worst case fits (host/gpu_plan.c). */
+ * in total (ECOSYSTEM.md §8), where an "invocation" is a SIMD vector of lanes. Every
+ * shader loop counts into one per-lane budget (a specialization constant: this, a quarter
+ * below the cap, divided by the subgroup size on llvmpipe, rc_vk_loop_budget), and the
+ * host plans each dispatch's work so that its worst case fits (host/gpu_plan.c). */
 #define RC_LOOP_BUDGET 49152u
 
 #define RC_PROJECTION_PERSPECTIVE 0u

@@ -45,7 +45,7 @@ std::string temp_name(const std::string &path) {
 namespace {
 
 int write_image(const char *path, int width, int height, int channels, const char *const *names, const float *pixels,
-                rc_encoding enc, char *err, size_t err_len) {
+                rc_encoding enc, bool truncate, char *err, size_t err_len) {
   try {
     auto out = ImageOutput::create(path);
     if (!out) {
@@ -73,7 +73,9 @@ int write_image(const char *path, int width, int height, int channels, const cha
       encoded.resize(n);
       for (size_t i = 0; i < n; i++) {
         float x = pixels[i];
-        encoded[i] = enc == RC_ENCODING_SRGB ? srgb_encode(x) : (x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f));
+        float e = enc == RC_ENCODING_SRGB ? srgb_encode(x) : (x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f));
+        // OIIO rounds x * 255; a value already on a level stays there.
+        encoded[i] = truncate ? std::floor(e * 255.0f) / 255.0f : e;
       }
       data = encoded.data();
     }
@@ -106,13 +108,13 @@ int write_image(const char *path, int width, int height, int channels, const cha
 }  // namespace
 
 extern "C" int rc_image_write(const char *path, int width, int height, int channels, const float *pixels,
-                              rc_encoding enc, char *err, size_t err_len) {
-  return write_image(path, width, height, channels, nullptr, pixels, enc, err, err_len);
+                              rc_encoding enc, bool truncate, char *err, size_t err_len) {
+  return write_image(path, width, height, channels, nullptr, pixels, enc, truncate, err, err_len);
 }
 
 extern "C" int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,
                                     const float *pixels, char *err, size_t err_len) {
-  return write_image(path, width, height, channels, names, pixels, RC_ENCODING_LINEAR, err, err_len);
+  return write_image(path, width, height, channels, names, pixels, RC_ENCODING_LINEAR, false, err, err_len);
 }
 
 extern "C" int rc_image_can_write(const char *path) {

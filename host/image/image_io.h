@@ -3,6 +3,7 @@
 #ifndef RC_IMAGE_IO_H
 #define RC_IMAGE_IO_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -15,11 +16,12 @@ typedef enum {
 } rc_encoding;
 
 /* Writes `path` in the format its extension names: float pixels for EXR, HDR, TIFF with
- * ".exr/.hdr/.tif" and 8 bits for PNG, JPEG, BMP, PPM... The file is written to a temporary
+ * ".exr/.hdr/.tif" and 8 bits for PNG, JPEG, BMP, PPM..., rounded to the nearest level or,
+ * with `truncate`, truncated (int)(255 c) as the CSE167 format specifies. The file is written to a temporary
  * name in the same directory and renamed into place, so an existing image is never left
  * half overwritten. Returns 0, or -1 with a message in err. */
 int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
-                   char *err, size_t err_len);
+                   bool truncate, char *err, size_t err_len);
 
 /* Writes a float image (EXR) with named channels, atomically as rc_image_write. */
 int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,

@@ -57,8 +57,8 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
     if (n->count1 != 0 && tb < (real)RC_T_FAR && REF(test_leaf)(sc, n->child1, n->count1, o, d, &sh, any, t_max, h))
       return true;
     limit = any ? t_max : h->t;
-    bool go_a = n->count0 == 0 && ta <= limit;
-    bool go_b = n->count1 == 0 && tb <= limit;
+    bool go_a = n->count0 == 0 && ta < (real)RC_T_FAR && ta <= limit;
+    bool go_b = n->count1 == 0 && tb < (real)RC_T_FAR && tb <= limit;
     if (go_a && go_b) {
       bool a_first = ta <= tb;
       RC_ASSERT(sp < RC_BVH_STACK_SIZE);

@@ -38,7 +38,10 @@ rc_status rc_scene_load(const char *path, rc_scene *scene) {
     }
   }
   fclose(f);
-  if (st == RC_OK) st = rc_scene_parse_json(path, text, len, scene);
+  size_t n = strlen(path);
+  bool test_format = n >= 5 && strcmp(path + n - 5, ".test") == 0;
+  if (st == RC_OK)
+    st = test_format ? rc_scene_parse_test(path, text, len, scene) : rc_scene_parse_json(path, text, len, scene);
   free(text);
   if (st == RC_OK && scene->degenerate_triangles)
     rc_warning("%s: skipped %zu degenerate (zero-area) triangle%s", path, scene->degenerate_triangles,

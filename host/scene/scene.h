@@ -68,10 +68,14 @@ typedef struct rc_scene {
   rc_triangle_def *triangles;
   size_t triangle_count;
   size_t degenerate_triangles; /* zero-area triangles skipped at load */
+  bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
 } rc_scene;
 
-/* Reads and validates a scene file; errors are printed as FILE:LINE:COL: error: ... */
+/* Reads and validates a scene file, JSON or (by the extension .test) the CSE167 format;
+ * errors are printed as FILE:LINE:COL: error: ... */
 rc_status rc_scene_load(const char *path, rc_scene *scene);
+/* The CSE167x ray-tracer format (scene_test.c). */
+rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc_scene *scene);
 /* The same from text in memory; `path` names it in messages. */
 rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc_scene *scene);
 void rc_scene_free(rc_scene *scene);

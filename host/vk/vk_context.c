@@ -1,5 +1,7 @@
 #include "vk/vk_context.h"
 
+#include "rc_shared.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -198,6 +200,12 @@ static rc_status pick_device(rc_vk_ctx *ctx, int wanted) {
   driver_props(ctx->physical, &ctx->props, &ctx->driver);
   vkGetPhysicalDeviceMemoryProperties(ctx->physical, &ctx->memory);
   ctx->queue_family = (uint32_t)compute_family(ctx->physical, &ctx->timestamp_bits);
+  VkPhysicalDeviceSubgroupProperties sg = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sg};
+  vkGetPhysicalDeviceProperties2(ctx->physical, &p2);
+  ctx->subgroup_size = sg.subgroupSize ? sg.subgroupSize : 1;
+  ctx->llvmpipe = ctx->driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE ||
+                  strstr(ctx->props.deviceName, "llvmpipe") != NULL;
   if (!ctx->props.limits.timestampComputeAndGraphics) ctx->timestamp_bits = 0;
   return RC_OK;
 }
@@ -231,6 +239,10 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
                                   .queueFamilyIndex = ctx->queue_family};
   RC_VK_TRY(vkCreateCommandPool(ctx->device, &pool, NULL, &ctx->pool));
   return RC_OK;
+}
+
+uint32_t rc_vk_loop_budget(const rc_vk_ctx *ctx) {
+  return ctx->llvmpipe ? RC_LOOP_BUDGET / ctx->subgroup_size : RC_LOOP_BUDGET;
 }
 
 rc_status rc_vk_destroy(rc_vk_ctx *ctx) {

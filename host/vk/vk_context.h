@@ -23,9 +23,18 @@ typedef struct rc_vk_ctx {
   VkPhysicalDeviceMemoryProperties memory;
   bool float64;            /* shaderFloat64 supported and enabled */
   uint32_t timestamp_bits; /* timestampValidBits of the queue family; 0 = no timestamps */
+  uint32_t subgroup_size;
+  bool llvmpipe;           /* Mesa's CPU driver, with its loop-iteration cap */
   bool validation;
   uint32_t validation_messages; /* VALIDATION-type warnings and errors seen */
 } rc_vk_ctx;
+
+/* The per-invocation loop budget the shader and the planner use on this device. llvmpipe
+ * caps the loop iterations of one SIMD vector (a subgroup of invocations run as lanes) at
+ * 65,535; with divergent nested loops the vector runs the union of its lanes' iterations,
+ * so only lanes x the per-lane count bounds it: the budget is RC_LOOP_BUDGET divided by
+ * the subgroup size there. Other drivers have no such cap. */
+uint32_t rc_vk_loop_budget(const rc_vk_ctx *ctx);
 
 typedef struct rc_vk_options {
   int device_index; /* -1: pick discrete > integrated > virtual > CPU */
