@@ -7,7 +7,7 @@
 #include "gpu_shaders.h"
 
 #define LOCAL_SIZE 8 /* 8x8 = 64 invocations: a multiple of every subgroup size (4..64) */
-#define SCENE_ARRAYS 7 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms */
+#define SCENE_ARRAYS 8 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals */
 
 struct rc_gpu_renderer {
   rc_vk_ctx *ctx;
@@ -33,9 +33,9 @@ struct rc_gpu_renderer {
 
 static const uint32_t array_bindings[SCENE_ARRAYS] = {
     RC_BINDING_SPHERES,   RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS, RC_BINDING_LIGHTS,
-    RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS};
-static const char *const array_names[SCENE_ARRAYS] = {"spheres",   "triangles",      "materials", "lights",
-                                                      "BVH nodes", "BVH references", "transforms"};
+    RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS, RC_BINDING_NORMALS};
+static const char *const array_names[SCENE_ARRAYS] = {"spheres",   "triangles",      "materials",  "lights",
+                                                      "BVH nodes", "BVH references", "transforms", "normals"};
 
 /* Chooses the buffer kind the device can take for this scene: texel buffers need the
  * RGBA32UI uniform-texel-buffer format feature and maxTexelBufferElements room. */
@@ -67,14 +67,14 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
   bool bvh = r->opts.bvh_depth > 0 && s->bvh_nodes;
   const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
                                     bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs,
-                                    s->transforms};
+                                    s->transforms, s->normals};
   /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
   VkDeviceSize sizes[SCENE_ARRAYS] = {
       (f->sphere_count + 1) * sizeof(gpu_sphere), (f->triangle_count + 1) * sizeof(gpu_triangle),
       (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
       bvh ? f->bvh_node_count * sizeof(gpu_bvh_node) : sizeof no_node,
       bvh ? (f->object_count + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
-      (s->transform_count + 1) * sizeof(gpu_transform)};
+      (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals)};
   r->opts.scene_buffers = choose_buffers(ctx, r->opts.scene_buffers, sizes);
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   for (int i = 0; i < SCENE_ARRAYS; i++) {

@@ -18,5 +18,5 @@ vec2 sample_offset(uvec2 pixel, uint s) {
   uint h = hash_pcg(pixel.x ^ hash_pcg(pixel.y ^ hash_pcg(s ^ hash_pcg(frame.seed))));
   vec2 jitter = vec2(hash_to_unit(h), hash_to_unit(hash_pcg(h)));
   uvec2 cell = uvec2(s % frame.strata_x, s / frame.strata_x);
-  return (vec2(cell) + jitter) / vec2(frame.strata_x, frame.strata_y);
+  return (vec2(cell) + jitter) * vec2(frame.inv_strata_x, frame.inv_strata_y);
 }

@@ -13,6 +13,7 @@ layout(binding = RC_BINDING_LIGHTS) uniform usamplerBuffer scene_lights;
 layout(binding = RC_BINDING_BVH_NODES) uniform usamplerBuffer scene_bvh_nodes;
 layout(binding = RC_BINDING_BVH_PRIMS) uniform usamplerBuffer scene_bvh_prims;
 layout(binding = RC_BINDING_TRANSFORMS) uniform usamplerBuffer scene_transforms;
+layout(binding = RC_BINDING_NORMALS) uniform usamplerBuffer scene_normals;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 
@@ -43,8 +44,17 @@ gpu_triangle load_triangle(uint i) {
   t.v0 = uintBitsToFloat(a.xyz);
   t.material = a.w;
   t.v1 = uintBitsToFloat(b.xyz);
+  t.normals = b.w;
   t.v2 = uintBitsToFloat(c.xyz);
   return t;
+}
+
+gpu_vertex_normals load_vertex_normals(uint i) {
+  gpu_vertex_normals n;
+  n.n0 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS).xyz);
+  n.n1 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS + 1u).xyz);
+  n.n2 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS + 2u).xyz);
+  return n;
 }
 
 gpu_material load_material(uint i) {
@@ -101,6 +111,7 @@ layout(std430, binding = RC_BINDING_LIGHTS) readonly buffer Lights { gpu_light s
 layout(std430, binding = RC_BINDING_BVH_NODES) readonly buffer BvhNodes { gpu_bvh_node scene_bvh_nodes[]; };
 layout(std430, binding = RC_BINDING_BVH_PRIMS) readonly buffer BvhPrims { uint scene_bvh_prims[]; };
 layout(std430, binding = RC_BINDING_TRANSFORMS) readonly buffer Transforms { gpu_transform scene_transforms[]; };
+layout(std430, binding = RC_BINDING_NORMALS) readonly buffer Normals { gpu_vertex_normals scene_normals[]; };
 
 gpu_sphere load_sphere(uint i) { return scene_spheres[i]; }
 gpu_triangle load_triangle(uint i) { return scene_triangles[i]; }
@@ -109,4 +120,5 @@ gpu_light load_light(uint i) { return scene_lights[i]; }
 gpu_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
 uint load_bvh_prim(uint i) { return scene_bvh_prims[i]; }
 gpu_transform load_transform(uint i) { return scene_transforms[i]; }
+gpu_vertex_normals load_vertex_normals(uint i) { return scene_normals[i]; }
 #endif

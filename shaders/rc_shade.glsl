@@ -5,7 +5,8 @@
 
 struct surface {
   rvec3 p;        // hit point, rebuilt from the primitive rather than o + t d
-  rvec3 n;        // unit geometric normal, facing the incoming ray
+  rvec3 n;        // unit shading normal, on the side facing the incoming ray
+  rvec3 ng;       // unit geometric normal, facing the incoming ray: ray origins move along it
   uint material;
 };
 
@@ -44,8 +45,17 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     sf.p = p;
     n = normalize(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
     sf.material = tri.material;
+    if (tri.normals != RC_NO_NORMALS) {
+      gpu_vertex_normals vn = load_vertex_normals(tri.normals);
+      rvec3 ng = (dot(n, d) > 0.0) ? -n : n;
+      rvec3 ns = normalize(h.bary.x * rvec3(vn.n0) + h.bary.y * rvec3(vn.n1) + h.bary.z * rvec3(vn.n2));
+      sf.ng = ng;
+      sf.n = (dot(ns, ng) < 0.0) ? -ns : ns;
+      return sf;
+    }
   }
   sf.n = (dot(n, d) > 0.0) ? -n : n;
+  sf.ng = sf.n;
   return sf;
 }
 
@@ -90,7 +100,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
   gpu_material m = load_material(sf.material);
   rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
   rvec3 v = -d;
-  rvec3 origin = offset_ray_origin(sf.p, sf.n);
+  rvec3 origin = offset_ray_origin(sf.p, sf.ng);
   for (uint i = 0u; i < frame.light_count; i++) {
     if (!budget_step()) break;
     gpu_light light = load_light(i);

@@ -30,6 +30,7 @@ typedef struct gpu_push gpu_push;
 typedef struct gpu_aov gpu_aov;
 typedef struct gpu_bvh_node gpu_bvh_node;
 typedef struct gpu_transform gpu_transform;
+typedef struct gpu_vertex_normals gpu_vertex_normals;
 #endif
 
 /* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
@@ -46,7 +47,8 @@ typedef struct gpu_transform gpu_transform;
 #define RC_BINDING_BVH_NODES 8 /* gpu_bvh_node[] (texel or storage, like the scene arrays) */
 #define RC_BINDING_BVH_PRIMS 9 /* uint[] object references of the leaves, 4 per texel */
 #define RC_BINDING_TRANSFORMS 10 /* gpu_transform[] of transformed spheres */
-#define RC_BINDING_COUNT 11
+#define RC_BINDING_NORMALS 11    /* gpu_vertex_normals[] of smooth-shaded triangles */
+#define RC_BINDING_COUNT 12
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -110,7 +112,9 @@ struct gpu_frame {
   vec3 ambient_light; uint reflection_depth;
   uint sphere_count;  uint triangle_count; uint material_count; uint light_count;
   uint samples_per_pixel; uint seed; uint strata_x; uint strata_y;
-  uint object_count;      uint bvh_node_count; uint pad0; uint pad1;
+  uint object_count;      uint bvh_node_count;
+  float inv_strata_x;     float inv_strata_y; /* 1/strata in f32: a multiply rounds the same on
+                                                 both backends, a GPU division may not */
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -132,12 +136,22 @@ struct gpu_transform {
 };
 #define RC_TEXELS_PER_TRANSFORM 3
 
-/* Vertices in the packed space; the geometric normal is cross(v1 - v0, v2 - v0). */
+/* Vertices in the packed space; the geometric normal is cross(v1 - v0, v2 - v0). With
+ * normals != RC_NO_NORMALS the triangle is smooth shaded: its shading normal interpolates
+ * gpu_vertex_normals[normals] by the barycentrics (mesh files with vertex normals). */
+#define RC_NO_NORMALS 0xffffffffu
 struct gpu_triangle {
   vec3 v0; uint material;
-  vec3 v1; float pad0;
+  vec3 v1; uint normals;
   vec3 v2; float pad1;
 };
+
+struct gpu_vertex_normals {
+  vec3 n0; float pad0;
+  vec3 n1; float pad1;
+  vec3 n2; float pad2;
+};
+#define RC_TEXELS_PER_VERTEX_NORMALS 3
 
 /* Phong material: L = ambient*Ia + emission + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
  * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel. */
@@ -223,6 +237,7 @@ RC_ASSERT_LAYOUT(gpu_frame, material_count, 120); RC_ASSERT_LAYOUT(gpu_frame, li
 RC_ASSERT_LAYOUT(gpu_frame, samples_per_pixel, 128); RC_ASSERT_LAYOUT(gpu_frame, seed, 132);
 RC_ASSERT_LAYOUT(gpu_frame, strata_x, 136);      RC_ASSERT_LAYOUT(gpu_frame, strata_y, 140);
 RC_ASSERT_LAYOUT(gpu_frame, object_count, 144);  RC_ASSERT_LAYOUT(gpu_frame, bvh_node_count, 148);
+RC_ASSERT_LAYOUT(gpu_frame, inv_strata_x, 152);  RC_ASSERT_LAYOUT(gpu_frame, inv_strata_y, 156);
 RC_ASSERT_SIZE(gpu_frame, 160);
 
 RC_ASSERT_LAYOUT(gpu_bvh_node, lo0, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, child0, 12);
@@ -239,7 +254,11 @@ RC_ASSERT_SIZE(gpu_transform, 16 * RC_TEXELS_PER_TRANSFORM);
 RC_ASSERT_SIZE(gpu_sphere, 16 * RC_TEXELS_PER_SPHERE);
 
 RC_ASSERT_LAYOUT(gpu_triangle, v0, 0);  RC_ASSERT_LAYOUT(gpu_triangle, material, 12);
-RC_ASSERT_LAYOUT(gpu_triangle, v1, 16); RC_ASSERT_LAYOUT(gpu_triangle, v2, 32);
+RC_ASSERT_LAYOUT(gpu_triangle, v1, 16); RC_ASSERT_LAYOUT(gpu_triangle, normals, 28);
+RC_ASSERT_LAYOUT(gpu_triangle, v2, 32);
+RC_ASSERT_LAYOUT(gpu_vertex_normals, n0, 0); RC_ASSERT_LAYOUT(gpu_vertex_normals, n1, 16);
+RC_ASSERT_LAYOUT(gpu_vertex_normals, n2, 32);
+RC_ASSERT_SIZE(gpu_vertex_normals, 16 * RC_TEXELS_PER_VERTEX_NORMALS);
 RC_ASSERT_SIZE(gpu_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
 
 RC_ASSERT_LAYOUT(gpu_material, ambient, 0);   RC_ASSERT_LAYOUT(gpu_material, shininess, 12);

@@ -34,8 +34,8 @@ int main(void) {
   OFF("frame.strata_y", gpu_frame, strata_y);
   OFF("frame.object_count", gpu_frame, object_count);
   OFF("frame.bvh_node_count", gpu_frame, bvh_node_count);
-  OFF("frame.pad0", gpu_frame, pad0);
-  OFF("frame.pad1", gpu_frame, pad1);
+  OFF("frame.inv_strata_x", gpu_frame, inv_strata_x);
+  OFF("frame.inv_strata_y", gpu_frame, inv_strata_y);
   printf("Frame size %zu\n", sizeof(gpu_frame));
 
   OFF("scene_bvh_nodes.lo0", gpu_bvh_node, lo0);
@@ -52,6 +52,13 @@ int main(void) {
   OFF("scene_transforms.row1", gpu_transform, row1);
   OFF("scene_transforms.row2", gpu_transform, row2);
   printf("scene_transforms stride %zu\n", sizeof(gpu_transform));
+  OFF("scene_normals.n0", gpu_vertex_normals, n0);
+  OFF("scene_normals.pad0", gpu_vertex_normals, pad0);
+  OFF("scene_normals.n1", gpu_vertex_normals, n1);
+  OFF("scene_normals.pad1", gpu_vertex_normals, pad1);
+  OFF("scene_normals.n2", gpu_vertex_normals, n2);
+  OFF("scene_normals.pad2", gpu_vertex_normals, pad2);
+  printf("scene_normals stride %zu\n", sizeof(gpu_vertex_normals));
 
   OFF("scene_spheres.center", gpu_sphere, center);
   OFF("scene_spheres.radius", gpu_sphere, radius);
@@ -63,7 +70,7 @@ int main(void) {
   OFF("scene_triangles.v0", gpu_triangle, v0);
   OFF("scene_triangles.material", gpu_triangle, material);
   OFF("scene_triangles.v1", gpu_triangle, v1);
-  OFF("scene_triangles.pad0", gpu_triangle, pad0);
+  OFF("scene_triangles.normals", gpu_triangle, normals);
   OFF("scene_triangles.v2", gpu_triangle, v2);
   OFF("scene_triangles.pad1", gpu_triangle, pad1);
   printf("scene_triangles stride %zu\n", sizeof(gpu_triangle));
@@ -117,6 +124,7 @@ int main(void) {
   printf("scene_bvh_nodes binding %d\n", RC_BINDING_BVH_NODES);
   printf("scene_bvh_prims binding %d\n", RC_BINDING_BVH_PRIMS);
   printf("scene_transforms binding %d\n", RC_BINDING_TRANSFORMS);
+  printf("scene_normals binding %d\n", RC_BINDING_NORMALS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
   printf("Aov binding %d\n", RC_BINDING_AOV);

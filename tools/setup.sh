@@ -12,6 +12,7 @@ packages=(
   glslang-tools spirv-tools
   libopenimageio-dev openimageio-tools
   libcjson-dev
+  libassimp-dev assimp-testmodels
 )
 
 missing=()

@@ -15,6 +15,7 @@ typedef struct ref_scene {
   const gpu_bvh_node *bvh_nodes;
   const uint32_t *bvh_prims;
   const gpu_transform *transforms;
+  const gpu_vertex_normals *normals;
   bool use_bvh;
 } ref_scene;
 

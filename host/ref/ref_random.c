@@ -16,5 +16,5 @@ ref_vec2 ref_sample_offset(const ref_scene *sc, uint32_t px, uint32_t py, uint32
   uint32_t h = ref_hash_pcg(px ^ ref_hash_pcg(py ^ ref_hash_pcg(s ^ ref_hash_pcg(f->seed))));
   float jx = ref_hash_to_unit(h), jy = ref_hash_to_unit(ref_hash_pcg(h));
   uint32_t cx = s % f->strata_x, cy = s / f->strata_x;
-  return (ref_vec2){((float)cx + jx) / (float)f->strata_x, ((float)cy + jy) / (float)f->strata_y};
+  return (ref_vec2){((float)cx + jx) * f->inv_strata_x, ((float)cy + jy) * f->inv_strata_y};
 }

@@ -70,6 +70,7 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, fl
                      .bvh_nodes = p->bvh_nodes,
                      .bvh_prims = p->bvh_prims,
                      .transforms = p->transforms,
+                     .normals = p->normals,
                      .use_bvh = p->bvh_nodes != NULL},
            .frame = &p->frame,
            .f64 = opts->f64,

@@ -48,8 +48,18 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     sf.p = RV(add)(RV(add)(RV(scale)(v0, h->bary.x), RV(scale)(v1, h->bary.y)), RV(scale)(v2, h->bary.z));
     n = RV(normalize)(RV(cross)(RV(sub)(v1, v0), RV(sub)(v2, v0)));
     sf.material = tri.material;
+    if (tri.normals != RC_NO_NORMALS) {
+      const gpu_vertex_normals *vn = &sc->normals[tri.normals];
+      rvec3 ng = (RV(dot)(n, d) > 0) ? RV(neg)(n) : n;
+      rvec3 ns = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(vn->n0), h->bary.x), RV(scale)(rvec3_from(vn->n1), h->bary.y)),
+                                       RV(scale)(rvec3_from(vn->n2), h->bary.z)));
+      sf.ng = ng;
+      sf.n = (RV(dot)(ns, ng) < 0) ? RV(neg)(ns) : ns;
+      return sf;
+    }
   }
   sf.n = (RV(dot)(n, d) > 0) ? RV(neg)(n) : n;
+  sf.ng = sf.n;
   return sf;
 }
 
@@ -96,7 +106,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   gpu_material m = sc->materials[sf->material];
   rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
   rvec3 v = RV(neg)(d);
-  rvec3 origin = REF(offset_ray_origin)(sf->p, sf->n);
+  rvec3 origin = REF(offset_ray_origin)(sf->p, sf->ng);
   for (uint32_t i = 0; i < sc->frame->light_count; i++) {
     gpu_light light = sc->lights[i];
     rvec3 l, irradiance, to_light;

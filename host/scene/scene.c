@@ -49,6 +49,20 @@ rc_status rc_scene_load(const char *path, rc_scene *scene) {
   return st;
 }
 
+rc_status rc_scene_reserve_triangles(rc_scene *s, size_t extra) {
+  if (s->triangle_count + extra <= s->triangle_capacity) return RC_OK;
+  size_t cap = s->triangle_capacity ? s->triangle_capacity : 64;
+  while (cap < s->triangle_count + extra) cap *= 2;
+  rc_triangle_def *t = realloc(s->triangles, cap * sizeof *t);
+  if (!t) {
+    rc_error("out of memory: %zu triangles", cap);
+    return RC_ERR_TOO_LARGE;
+  }
+  s->triangles = t;
+  s->triangle_capacity = cap;
+  return RC_OK;
+}
+
 void rc_scene_free(rc_scene *scene) {
   for (size_t i = 0; i < scene->material_count; i++) free(scene->materials[i].name);
   free(scene->materials);

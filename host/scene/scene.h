@@ -37,6 +37,8 @@ typedef struct rc_sphere_def {
 typedef struct rc_triangle_def {
   dvec3 v[3];
   uint32_t material;
+  bool smooth;   /* vertex normals below give the shading normal */
+  dvec3 n[3];
 } rc_triangle_def;
 
 typedef struct rc_camera_def {
@@ -66,7 +68,7 @@ typedef struct rc_scene {
   rc_sphere_def *spheres;
   size_t sphere_count;
   rc_triangle_def *triangles;
-  size_t triangle_count;
+  size_t triangle_count, triangle_capacity;
   size_t degenerate_triangles; /* zero-area triangles skipped at load */
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
 } rc_scene;
@@ -79,6 +81,8 @@ rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc
 /* The same from text in memory; `path` names it in messages. */
 rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc_scene *scene);
 void rc_scene_free(rc_scene *scene);
+/* Room for `extra` more triangles (meshes and JSON triangles both append). */
+rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
 
 /* Camera checks shared by the parser and by command-line overrides: eye != look_at, up
  * neither zero nor parallel to the view direction, fov in (0, 180), view_height > 0.

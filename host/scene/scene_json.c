@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "scene/json_locate.h"
+#include "scene/mesh.h"
 #include "scene/scene.h"
 
 #define MAX_DEPTH 16
@@ -370,6 +371,155 @@ static rc_status get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, 
   return fail(c, "unknown material");
 }
 
+static void affine_identity(rc_affine *a) {
+  memset(a, 0, sizeof *a);
+  a->m[0][0] = a->m[1][1] = a->m[2][2] = 1;
+}
+
+/* a = a * b (b applied first to points). */
+static void affine_multiply(rc_affine *a, const rc_affine *b) {
+  rc_affine r;
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 4; j++) {
+      r.m[i][j] = a->m[i][0] * b->m[0][j] + a->m[i][1] * b->m[1][j] + a->m[i][2] * b->m[2][j] + (j == 3 ? a->m[i][3] : 0);
+    }
+  }
+  *a = r;
+}
+
+/* Rodrigues: rotation by deg degrees about a unit axis. */
+static rc_affine rotation(dvec3 axis, double deg) {
+  double t = deg * M_PI / 180.0, c = cos(t), s = sin(t), x = axis.x, y = axis.y, z = axis.z;
+  rc_affine r = {{{c + (1 - c) * x * x, (1 - c) * x * y - s * z, (1 - c) * x * z + s * y, 0},
+                  {(1 - c) * y * x + s * z, c + (1 - c) * y * y, (1 - c) * y * z - s * x, 0},
+                  {(1 - c) * z * x - s * y, (1 - c) * z * y + s * x, c + (1 - c) * z * z, 0}}};
+  return r;
+}
+
+/* "transform": {"matrix", "translate", "rotate_deg", "scale"}, composed so that points
+ * are scaled first, then rotated, translated, and last taken through the raw matrix:
+ * M = matrix * T * R * S. rotate_deg is {"axis": [x, y, z], "angle": a} or Euler angles
+ * [x, y, z] applied about X, then Y, then Z. */
+static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *present) {
+  affine_identity(out);
+  const cJSON *t = cJSON_GetObjectItemCaseSensitive(obj, "transform");
+  *present = t != NULL;
+  if (!t) return RC_OK;
+  push_key(c, "transform");
+  TRY(expect_object(c, t));
+  static const char *const allowed[] = {"matrix", "translate", "rotate_deg", "scale", NULL};
+  TRY(check_members(c, t, allowed));
+  const cJSON *m = cJSON_GetObjectItemCaseSensitive(t, "matrix");
+  if (m) {
+    push_key(c, "matrix");
+    if (!cJSON_IsArray(m) || cJSON_GetArraySize(m) != 4) return fail(c, "expected 4 rows of 4 numbers");
+    for (int i = 0; i < 4; i++) {
+      push_index(c, (size_t)i);
+      const cJSON *row = cJSON_GetArrayItem(m, i);
+      if (!cJSON_IsArray(row) || cJSON_GetArraySize(row) != 4) return fail(c, "expected a row of 4 numbers");
+      for (int j = 0; j < 4; j++) {
+        push_index(c, (size_t)j);
+        double x;
+        TRY(number_value(c, cJSON_GetArrayItem(row, j), &x));
+        if (i < 3) out->m[i][j] = x;
+        else if (x != (j == 3 ? 1.0 : 0.0)) return fail(c, "the last row must be [0, 0, 0, 1] (affine transforms only)");
+        pop(c);
+      }
+      pop(c);
+    }
+    pop(c);
+  }
+  dvec3 v;
+  if (cJSON_GetObjectItemCaseSensitive(t, "translate")) {
+    TRY(get_vec3(c, t, "translate", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
+    rc_affine tr;
+    affine_identity(&tr);
+    tr.m[0][3] = v.x, tr.m[1][3] = v.y, tr.m[2][3] = v.z;
+    affine_multiply(out, &tr);
+  }
+  const cJSON *r = cJSON_GetObjectItemCaseSensitive(t, "rotate_deg");
+  if (r) {
+    push_key(c, "rotate_deg");
+    if (cJSON_IsObject(r)) {
+      static const char *const rfields[] = {"axis", "angle", NULL};
+      TRY(check_members(c, r, rfields));
+      double angle;
+      TRY(get_vec3(c, r, "axis", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
+      TRY(get_number(c, r, "angle", true, 0, -HUGE_VAL, HUGE_VAL, &angle));
+      if (rcm_max_abs_comp_d(v) == 0) {
+        push_key(c, "axis");
+        return fail(c, "must not be the zero vector");
+      }
+      rc_affine rot = rotation(rcm_normalize_d(v), angle);
+      affine_multiply(out, &rot);
+    } else {
+      TRY(vec3_value(c, r, -HUGE_VAL, &v));
+      rc_affine rz = rotation(rcm_make_d(0, 0, 1), v.z), ry = rotation(rcm_make_d(0, 1, 0), v.y),
+                rx = rotation(rcm_make_d(1, 0, 0), v.x);
+      affine_multiply(out, &rz);
+      affine_multiply(out, &ry);
+      affine_multiply(out, &rx);
+    }
+    pop(c);
+  }
+  const cJSON *sc = cJSON_GetObjectItemCaseSensitive(t, "scale");
+  if (sc) {
+    if (cJSON_IsNumber(sc)) {
+      double k;
+      TRY(get_number(c, t, "scale", true, 1, -HUGE_VAL, HUGE_VAL, &k));
+      v = rcm_make_d(k, k, k);
+    } else {
+      TRY(get_vec3(c, t, "scale", true, rcm_make_d(1, 1, 1), -HUGE_VAL, &v));
+    }
+    if (v.x == 0 || v.y == 0 || v.z == 0) {
+      push_key(c, "scale");
+      return fail(c, "a zero scale makes the object vanish");
+    }
+    rc_affine s3;
+    affine_identity(&s3);
+    s3.m[0][0] = v.x, s3.m[1][1] = v.y, s3.m[2][2] = v.z;
+    affine_multiply(out, &s3);
+  }
+  pop(c);
+  return RC_OK;
+}
+
+static dvec3 affine_point(const rc_affine *a, dvec3 p) {
+  const double(*m)[4] = a->m;
+  return rcm_make_d(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+}
+
+/* A mesh object: the file relative to the scene file's folder. */
+static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m) {
+  const cJSON *f = cJSON_GetObjectItemCaseSensitive(o, "file");
+  if (!f) return fail(c, "missing field \"file\"");
+  push_key(c, "file");
+  if (!cJSON_IsString(f) || !f->valuestring[0]) return fail(c, "expected a file name");
+  char path[4096];
+  const char *slash = strrchr(c->file, '/');
+  if (f->valuestring[0] == '/' || !slash)
+    snprintf(path, sizeof path, "%s", f->valuestring);
+  else
+    snprintf(path, sizeof path, "%.*s/%s", (int)(slash - c->file), c->file, f->valuestring);
+  size_t off = rc_json_locate(c->text, c->len, c->path, c->depth);
+  int line, col;
+  rc_json_line_col(c->text, c->len, off, &line, &col);
+  char where[4400];
+  char fpath[256];
+  format_path(c, fpath, sizeof fpath);
+  snprintf(where, sizeof where, "%s:%d:%d: error: %s", c->file, line, col, fpath);
+  pop(c);
+  int material = -1;
+  if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
+    uint32_t id;
+    TRY(get_material_ref(c, o, s, &id));
+    material = (int)id;
+  }
+  return rc_mesh_load(path, m, material, s, where);
+}
+
 static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *objs = cJSON_GetObjectItemCaseSensitive(root, "objects");
   if (!objs) return RC_OK;
@@ -377,28 +527,32 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   if (!cJSON_IsArray(objs)) return fail(c, "expected an array, got %s", type_name(objs));
   size_t n = (size_t)cJSON_GetArraySize(objs);
   s->spheres = rc_alloc(n, sizeof *s->spheres, "spheres");
-  s->triangles = rc_alloc(n, sizeof *s->triangles, "triangles");
-  if (!s->spheres || !s->triangles) return RC_ERR_TOO_LARGE;
+  if (!s->spheres) return RC_ERR_TOO_LARGE;
   size_t i = 0;
   for (const cJSON *o = objs->child; o; o = o->next, i++) {
     push_index(c, i);
     TRY(expect_object(c, o));
-    static const char *const types[] = {"sphere", "triangle", NULL};
+    static const char *const types[] = {"sphere", "triangle", "mesh", NULL};
     if (!cJSON_GetObjectItemCaseSensitive(o, "type")) return fail(c, "missing field \"type\"");
     uint32_t type;
     TRY(get_enum(c, o, "type", types, 0, &type));
     dvec3 zero = rcm_make_d(0, 0, 0);
+    rc_affine m;
+    bool transformed;
     if (type == 0) {
-      static const char *const allowed[] = {"type", "center", "radius", "material", NULL};
+      static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
       TRY(check_members(c, o, allowed));
       rc_sphere_def *d = &s->spheres[s->sphere_count++];
       TRY(get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
       TRY(get_positive(c, o, "radius", true, 0, &d->radius));
       TRY(get_material_ref(c, o, s, &d->material));
-    } else {
-      static const char *const allowed[] = {"type", "vertices", "material", NULL};
+      TRY(get_transform(c, o, &m, &transformed));
+      d->transformed = transformed;
+      d->world_from_object = m;
+    } else if (type == 1) {
+      static const char *const allowed[] = {"type", "vertices", "material", "transform", NULL};
       TRY(check_members(c, o, allowed));
-      rc_triangle_def d;
+      rc_triangle_def d = {0};
       const cJSON *vs = cJSON_GetObjectItemCaseSensitive(o, "vertices");
       if (!vs) return fail(c, "missing field \"vertices\"");
       push_key(c, "vertices");
@@ -411,12 +565,21 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       }
       pop(c);
       TRY(get_material_ref(c, o, s, &d.material));
+      TRY(get_transform(c, o, &m, &transformed));
+      for (int k = 0; k < 3; k++) d.v[k] = affine_point(&m, d.v[k]);
       /* Zero area in f64: degenerate but meaningful (ROBUSTNESS.md §8.3): skip, count. */
-      dvec3 n = rcm_cross_d(rcm_sub_d(d.v[1], d.v[0]), rcm_sub_d(d.v[2], d.v[0]));
-      if (rcm_max_abs_comp_d(n) == 0.0)
+      dvec3 nrm = rcm_cross_d(rcm_sub_d(d.v[1], d.v[0]), rcm_sub_d(d.v[2], d.v[0]));
+      if (rcm_max_abs_comp_d(nrm) == 0.0) {
         s->degenerate_triangles++;
-      else
+      } else {
+        TRY(rc_scene_reserve_triangles(s, 1));
         s->triangles[s->triangle_count++] = d;
+      }
+    } else {
+      static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
+      TRY(check_members(c, o, allowed));
+      TRY(get_transform(c, o, &m, &transformed));
+      TRY(parse_mesh(c, o, s, &m));
     }
     pop(c);
   }

@@ -96,6 +96,8 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   f->seed = s->seed;
   f->strata_x = (uint32_t)ceil(sqrt((double)s->samples_per_pixel));
   f->strata_y = (s->samples_per_pixel + f->strata_x - 1) / f->strata_x;
+  f->inv_strata_x = 1.0f / (float)f->strata_x;
+  f->inv_strata_y = 1.0f / (float)f->strata_y;
   f->sphere_count = (uint32_t)s->sphere_count;
   f->triangle_count = (uint32_t)s->triangle_count;
   f->material_count = (uint32_t)s->material_count;
@@ -114,7 +116,10 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   p->materials = rc_alloc(s->material_count + 1, sizeof *p->materials, "packed materials");
   p->lights = rc_alloc(s->light_count + 1, sizeof *p->lights, "packed lights");
   p->transforms = rc_alloc(s->sphere_count + 1, sizeof *p->transforms, "packed transforms");
-  if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms) {
+  size_t smooth = 0;
+  for (size_t i = 0; i < s->triangle_count; i++) smooth += s->triangles[i].smooth;
+  p->normals = rc_alloc(smooth + 1, sizeof *p->normals, "packed normals");
+  if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals) {
     rc_packed_scene_free(p);
     return RC_ERR_TOO_LARGE;
   }
@@ -140,6 +145,14 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     p->triangles[i].v1 = to_packed(p, s->triangles[i].v[1]);
     p->triangles[i].v2 = to_packed(p, s->triangles[i].v[2]);
     p->triangles[i].material = s->triangles[i].material;
+    p->triangles[i].normals = RC_NO_NORMALS;
+    if (s->triangles[i].smooth) {
+      gpu_vertex_normals *vn = &p->normals[p->normal_count];
+      vn->n0 = rcm_to_f(s->triangles[i].n[0]);
+      vn->n1 = rcm_to_f(s->triangles[i].n[1]);
+      vn->n2 = rcm_to_f(s->triangles[i].n[2]);
+      p->triangles[i].normals = p->normal_count++;
+    }
   }
   for (size_t i = 0; i < s->material_count; i++) {
     const rc_material_def *m = &s->materials[i];
@@ -171,5 +184,6 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->bvh_nodes);
   free(p->bvh_prims);
   free(p->transforms);
+  free(p->normals);
   memset(p, 0, sizeof *p);
 }

@@ -17,6 +17,8 @@ typedef struct rc_packed_scene {
   uint32_t *bvh_prims;     /* object references of the leaves, padded to a multiple of 4 */
   gpu_transform *transforms; /* of the transformed spheres (at least one element) */
   uint32_t transform_count;
+  gpu_vertex_normals *normals; /* of the smooth-shaded triangles (at least one element) */
+  uint32_t normal_count;
   dvec3 origin; /* world position of the packed space's origin (the eye) */
 } rc_packed_scene;
 

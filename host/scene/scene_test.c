@@ -167,7 +167,7 @@ typedef struct {
   dvec3 attenuation;
   dvec3 *verts;
   size_t nverts, verts_cap;
-  size_t mat_cap, light_cap, sphere_cap, tri_cap;
+  size_t mat_cap, light_cap, sphere_cap;
   bool have_size, have_camera;
   int normal_warnings;
 } state;
@@ -249,14 +249,14 @@ static rc_status command(state *g, ctx *c) {
       if ((size_t)idx[k] >= g->nverts)
         return fail(c, 1 + k, "vertex index out of range (%zu vertices defined so far)", g->nverts);
     }
-    rc_triangle_def t;
+    rc_triangle_def t = {0};
     for (int k = 0; k < 3; k++) t.v[k] = mat_point(g->stack[g->top], g->verts[idx[k]]);
     TRY(material_index(s, &g->mat_cap, &g->mat, &t.material));
     dvec3 n = rcm_cross_d(rcm_sub_d(t.v[1], t.v[0]), rcm_sub_d(t.v[2], t.v[0]));
     if (rcm_max_abs_comp_d(n) == 0.0) {
       s->degenerate_triangles++;
     } else {
-      GROW(s->triangles, s->triangle_count, g->tri_cap);
+      TRY(rc_scene_reserve_triangles(s, 1));
       s->triangles[s->triangle_count++] = t;
     }
   } else if (!strcmp(cmd, "translate") || !strcmp(cmd, "scale")) {

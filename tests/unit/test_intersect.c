@@ -9,7 +9,7 @@ static gpu_sphere sphere(float x, float y, float z, float r) {
 }
 
 static gpu_triangle triangle(vec3 a, vec3 b, vec3 c) {
-  gpu_triangle t = {a, 0, b, 0, c, 0};
+  gpu_triangle t = {a, 0, b, RC_NO_NORMALS, c, 0};
   return t;
 }
 

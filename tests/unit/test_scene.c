@@ -80,11 +80,52 @@ TEST(camera_problems_are_named) {
   CHECK(rc_scene_camera_problem(&c, &field) != NULL && strcmp(field, "fov_y_deg") == 0);
 }
 
+/* JSON transforms compose as matrix * T * R * S (points scaled first). */
+TEST(transforms_compose_scale_rotate_translate) {
+  rc_scene s;
+  CHECK_EQ_INT(parse("{\"image\":{\"width\":4,\"height\":4},\"camera\":{\"eye\":[0,0,5],\"look_at\":[0,0,0]},"
+                     "\"materials\":{\"m\":{}},\"objects\":[{\"type\":\"triangle\",\"vertices\":[[1,0,0],[0,1,0],[0,0,1]],"
+                     "\"material\":\"m\",\"transform\":{\"translate\":[10,0,0],\"rotate_deg\":{\"axis\":[0,0,1],"
+                     "\"angle\":90},\"scale\":2}},{\"type\":\"sphere\",\"center\":[0,0,0],\"radius\":1,\"material\":\"m\","
+                     "\"transform\":{\"scale\":[2,1,1]}}]}",
+                     &s),
+               RC_OK);
+  /* (1,0,0) -> scale (2,0,0) -> rotate 90 about z (0,2,0) -> translate (10,2,0) */
+  CHECK_NEAR(s.triangles[0].v[0].x, 10, 1e-12);
+  CHECK_NEAR(s.triangles[0].v[0].y, 2, 1e-12);
+  CHECK_NEAR(s.triangles[0].v[1].x, 8, 1e-12); /* (0,1,0) -> (0,2,0) -> (-2,0,0) -> (8,0,0) */
+  CHECK(s.spheres[0].transformed && s.spheres[0].world_from_object.m[0][0] == 2);
+  rc_scene_free(&s);
+}
+
+/* A mesh through assimp: assimp-testmodels' OBJ cube (6 quads -> 12 triangles), its MTL
+ * material, and the transform applied to every vertex. */
+TEST(obj_mesh_is_triangulated_and_transformed) {
+  rc_scene s;
+  CHECK_EQ_INT(parse("{\"image\":{\"width\":4,\"height\":4},\"camera\":{\"eye\":[0,0,5],\"look_at\":[0,0,0]},"
+                     "\"objects\":[{\"type\":\"mesh\",\"file\":\"/usr/share/assimp/models/OBJ/box.obj\","
+                     "\"transform\":{\"translate\":[100,0,0]}}]}",
+                     &s),
+               RC_OK);
+  CHECK_EQ_INT(s.triangle_count, 12);
+  CHECK(s.material_count >= 1);
+  double min_x = 1e30, max_x = -1e30;
+  for (size_t i = 0; i < s.triangle_count; i++)
+    for (int k = 0; k < 3; k++) {
+      if (s.triangles[i].v[k].x < min_x) min_x = s.triangles[i].v[k].x;
+      if (s.triangles[i].v[k].x > max_x) max_x = s.triangles[i].v[k].x;
+    }
+  CHECK(min_x > 98 && max_x < 102 && max_x > min_x);
+  rc_scene_free(&s);
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(defaults_are_the_documented_ones);
   RUN(materials_lights_objects_are_read);
   RUN(camera_basis_is_right_handed_and_window_follows_fov_and_aspect);
   RUN(camera_problems_are_named);
+  RUN(transforms_compose_scale_rotate_translate);
+  RUN(obj_mesh_is_triangulated_and_transformed);
   TEST_MAIN_END
 }

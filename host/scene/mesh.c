@@ -1,0 +1,128 @@
+#include "scene/mesh.h"
+
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static dvec3 apply_point(const rc_affine *a, dvec3 p) {
+  const double(*m)[4] = a->m;
+  return rcm_make_d(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+}
+
+/* Normals go through the inverse transpose of the linear part: the cofactor matrix,
+ * whose scale does not matter once normalised. */
+static dvec3 apply_normal(const rc_affine *a, dvec3 n) {
+  const double(*m)[4] = a->m;
+  double c[3][3] = {{m[1][1] * m[2][2] - m[1][2] * m[2][1], m[1][2] * m[2][0] - m[1][0] * m[2][2],
+                     m[1][0] * m[2][1] - m[1][1] * m[2][0]},
+                    {m[0][2] * m[2][1] - m[0][1] * m[2][2], m[0][0] * m[2][2] - m[0][2] * m[2][0],
+                     m[0][1] * m[2][0] - m[0][0] * m[2][1]},
+                    {m[0][1] * m[1][2] - m[0][2] * m[1][1], m[0][2] * m[1][0] - m[0][0] * m[1][2],
+                     m[0][0] * m[1][1] - m[0][1] * m[1][0]}};
+  dvec3 r = rcm_make_d(c[0][0] * n.x + c[0][1] * n.y + c[0][2] * n.z, c[1][0] * n.x + c[1][1] * n.y + c[1][2] * n.z,
+                       c[2][0] * n.x + c[2][1] * n.y + c[2][2] * n.z);
+  double len = rcm_length_d(r);
+  return len > 0 ? rcm_scale_d(r, 1 / len) : r;
+}
+
+static dvec3 color(const struct aiMaterial *m, const char *key, unsigned type, unsigned index, dvec3 fallback) {
+  struct aiColor4D c;
+  if (aiGetMaterialColor(m, key, type, index, &c) != AI_SUCCESS) return fallback;
+  return rcm_make_d(c.r < 0 ? 0 : c.r, c.g < 0 ? 0 : c.g, c.b < 0 ? 0 : c.b);
+}
+
+/* One of our materials per assimp material: Ka, Kd, Ks, Ns (absent or 0 Ns -> 1). */
+static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char *file, uint32_t *first) {
+  size_t n = s->material_count + ai->mNumMaterials;
+  rc_material_def *m = realloc(s->materials, (n ? n : 1) * sizeof *m);
+  if (!m) return RC_ERR_TOO_LARGE;
+  s->materials = m;
+  *first = (uint32_t)s->material_count;
+  for (unsigned i = 0; i < ai->mNumMaterials; i++) {
+    const struct aiMaterial *am = ai->mMaterials[i];
+    rc_material_def *d = &s->materials[s->material_count];
+    memset(d, 0, sizeof *d);
+    char name[300];
+    snprintf(name, sizeof name, "%s#%u", file, i);
+    d->name = strdup(name);
+    d->ambient = color(am, AI_MATKEY_COLOR_AMBIENT, rcm_make_d(0, 0, 0));
+    d->diffuse = color(am, AI_MATKEY_COLOR_DIFFUSE, rcm_make_d(0.8, 0.8, 0.8));
+    d->specular = color(am, AI_MATKEY_COLOR_SPECULAR, rcm_make_d(0, 0, 0));
+    d->emission = color(am, AI_MATKEY_COLOR_EMISSIVE, rcm_make_d(0, 0, 0));
+    ai_real shininess = 0;
+    d->shininess = aiGetMaterialFloatArray(am, AI_MATKEY_SHININESS, &shininess, NULL) == AI_SUCCESS && shininess > 0
+                       ? (double)shininess
+                       : 1.0;
+    s->material_count++;
+  }
+  return RC_OK;
+}
+
+rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int material, rc_scene *s,
+                       const char *where) {
+  /* Triangulate n-gons; flatten the node hierarchy into the vertices; drop points and
+   * lines. No normal generation: files without normals are flat shaded. */
+  const struct aiScene *ai = aiImportFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                    aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  if (!ai) {
+    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, aiGetErrorString());
+    return RC_ERR_IO;
+  }
+  rc_status st = RC_OK;
+  uint32_t first_material = 0;
+  if (material < 0) st = add_materials(ai, s, file, &first_material);
+  size_t faces = 0;
+  for (unsigned i = 0; i < ai->mNumMeshes; i++) faces += ai->mMeshes[i]->mNumFaces;
+  if (st == RC_OK && faces == 0) {
+    fprintf(stderr, "%s: mesh %s has no triangles\n", where, file);
+    st = RC_ERR_INPUT;
+  }
+  if (st == RC_OK) st = rc_scene_reserve_triangles(s, faces);
+  for (unsigned i = 0; st == RC_OK && i < ai->mNumMeshes; i++) {
+    const struct aiMesh *mesh = ai->mMeshes[i];
+    for (unsigned f = 0; st == RC_OK && f < mesh->mNumFaces; f++) {
+      const struct aiFace *face = &mesh->mFaces[f];
+      if (face->mNumIndices != 3) continue; /* points and lines */
+      rc_triangle_def d = {0};
+      d.material = material >= 0 ? (uint32_t)material : first_material + mesh->mMaterialIndex;
+      d.smooth = mesh->mNormals != NULL;
+      for (int k = 0; k < 3 && st == RC_OK; k++) {
+        unsigned idx = face->mIndices[k];
+        if (idx >= mesh->mNumVertices) {
+          fprintf(stderr, "%s: mesh %s: face %u of mesh %u uses vertex %u of %u\n", where, file, f, i, idx,
+                  mesh->mNumVertices);
+          st = RC_ERR_INPUT;
+          break;
+        }
+        struct aiVector3D v = mesh->mVertices[idx];
+        if (!isfinite(v.x) || !isfinite(v.y) || !isfinite(v.z)) {
+          fprintf(stderr, "%s: mesh %s: vertex %u of mesh %u is not finite\n", where, file, idx, i);
+          st = RC_ERR_INPUT;
+          break;
+        }
+        d.v[k] = apply_point(world_from_object, rcm_make_d(v.x, v.y, v.z));
+        if (d.smooth) {
+          struct aiVector3D n = mesh->mNormals[idx];
+          d.n[k] = apply_normal(world_from_object, rcm_make_d(n.x, n.y, n.z));
+          /* A zero or broken normal falls back to flat shading. */
+          if (!(rcm_length_d(d.n[k]) > 0.5)) d.smooth = false;
+        }
+      }
+      if (st != RC_OK) break;
+      dvec3 n = rcm_cross_d(rcm_sub_d(d.v[1], d.v[0]), rcm_sub_d(d.v[2], d.v[0]));
+      if (rcm_max_abs_comp_d(n) == 0.0)
+        s->degenerate_triangles++;
+      else
+        s->triangles[s->triangle_count++] = d;
+    }
+  }
+  aiReleaseImport(ai);
+  return st;
+}

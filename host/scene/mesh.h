@@ -1,0 +1,17 @@
+/* mesh.h: triangle meshes from files through assimp's C API (OBJ+MTL, PLY, STL, glTF,
+ * and the other formats assimp reads). */
+#ifndef RC_MESH_H
+#define RC_MESH_H
+
+#include "scene/scene.h"
+
+/* Appends the triangles of `file` (already resolved against the scene's folder) to the
+ * scene, through world_from_object. material < 0: each assimp material (MTL's Ka, Kd, Ks,
+ * Ns) becomes one of ours; else every triangle gets that material. Vertex normals, where
+ * the file has them, make the triangles smooth shaded. `where` prefixes error messages
+ * (FILE:LINE:COL: error: objects[i].file:). Zero-area triangles are counted in
+ * scene->degenerate_triangles. */
+rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int material, rc_scene *scene,
+                       const char *where);
+
+#endif
