@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 double rc_stats_mrays_per_s(const rc_render_stats *s) {
   double rays = (double)(s->rays_primary + s->rays_shadow + s->rays_reflection);
@@ -65,6 +66,8 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "readback_ms", s->gpu.readback_ms);
   cJSON_AddNumberToObject(o, "write_ms", s->write_ms);
   cJSON_AddNumberToObject(o, "cpu_ms", s->cpu_ms);
+  struct rusage ru;
+  if (getrusage(RUSAGE_SELF, &ru) == 0) cJSON_AddNumberToObject(o, "peak_rss_mib", (double)ru.ru_maxrss / 1024.0);
   cJSON_AddNumberToObject(o, "mrays_per_s", rc_stats_mrays_per_s(s));
   cJSON_AddNumberToObject(o, "repeat", s->repeat);
   cJSON_AddNumberToObject(o, "tiles", s->gpu.tiles);

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Benchmark against Intel Embree 3 (issue 4): procedural meshes of about 1k, 100k and 1M
+# triangles, 4096 spheres, and real meshes from Debian's assimp-testmodels, at 1024x768,
+# 1 spp, 2 point lights with shadows, on each vkraycast backend and with Embree (single
+# rays and 8-wide packets) from the same packed scene, in one run. Prints one markdown
+# table. Mrays/s counts primary + shadow rays; steady state = median of frames 2..N.
+# Usage: tools/bench_vs_embree.sh   (FRAMES=6, THREADS=nproc)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if ! dpkg-query -W -f='${Status}' libembree-dev 2>/dev/null | grep -q 'install ok installed'; then
+  [ "$(id -u)" -eq 0 ] && sudo= || sudo=sudo
+  $sudo apt-get install -y -qq --no-install-recommends libembree-dev >&2
+fi
+tools/setup.sh
+cmake -S . -B build >/dev/null && cmake --build build --target bench_embree gen_mesh -j"$(nproc)" >&2
+export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
+export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
+frames=${FRAMES:-6} threads=${THREADS:-$(nproc)}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+
+# A scene around a mesh file: framed from its bounding box, a floor under it, two lights.
+mesh_scene() { # name file [transform-json]
+  read -r x0 y0 z0 x1 y1 z1 _ < <(build/bench_embree --bbox "$2")
+  awk -v x0="$x0" -v y0="$y0" -v z0="$z0" -v x1="$x1" -v y1="$y1" -v z1="$z1" -v file="$2" 'BEGIN {
+    cx = (x0 + x1) / 2; cy = (y0 + y1) / 2; cz = (z0 + z1) / 2
+    r = sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2 + (z1 - z0) ^ 2) / 2; d = r / sin(3.14159265 / 9) * 1.05
+    printf "{ \"image\": { \"width\": 1024, \"height\": 768 },\n"
+    printf "  \"camera\": { \"eye\": [%g, %g, %g], \"look_at\": [%g, %g, %g], \"fov_y_deg\": 40 },\n",
+      cx + 0.6 * d, cy + 0.45 * d, cz + 0.66 * d, cx, cy, cz
+    printf "  \"materials\": { \"m\": { \"ambient\": [0.05, 0.05, 0.05], \"diffuse\": [0.7, 0.6, 0.5], \"specular\": [0.3, 0.3, 0.3], \"shininess\": 30 },\n"
+    printf "                 \"floor\": { \"ambient\": [0.05, 0.05, 0.05], \"diffuse\": [0.6, 0.6, 0.6] } },\n"
+    printf "  \"lights\": [ { \"type\": \"point\", \"position\": [%g, %g, %g], \"intensity\": [%g, %g, %g] },\n",
+      cx - 2 * r, cy + 3 * r, cz + 2 * r, 10 * r * r, 10 * r * r, 10 * r * r
+    printf "              { \"type\": \"point\", \"position\": [%g, %g, %g], \"intensity\": [%g, %g, %g] } ],\n",
+      cx + 3 * r, cy + 1.5 * r, cz - r, 4 * r * r, 4 * r * r, 4 * r * r
+    printf "  \"objects\": [ { \"type\": \"mesh\", \"file\": \"%s\", \"material\": \"m\" },\n", file
+    f = 4 * r
+    printf "    { \"type\": \"triangle\", \"vertices\": [[%g, %g, %g], [%g, %g, %g], [%g, %g, %g]], \"material\": \"floor\" },\n",
+      cx - f, y0, cz - f, cx - f, y0, cz + f, cx + f, y0, cz + f
+    printf "    { \"type\": \"triangle\", \"vertices\": [[%g, %g, %g], [%g, %g, %g], [%g, %g, %g]], \"material\": \"floor\" } ] }\n",
+      cx - f, y0, cz - f, cx + f, y0, cz + f, cx + f, y0, cz - f
+  }' >"$work/$1.json"
+}
+
+for n in 1000 100000 1000000; do
+  build/gen_mesh $n "$work/mesh$n.ply" >/dev/null
+  mesh_scene "mesh$n" "$work/mesh$n.ply"
+done
+tools/gen_sphere_grid.sh 64 >"$work/spheres4096.json"
+mesh_scene wuson /usr/share/assimp/models/OBJ/WusonOBJ.obj
+mesh_scene spider /usr/share/assimp/models/OBJ/spider.obj
+mesh_scene engine /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
+
+cpu_model=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
+echo "Machine: $cpu_model, $(nproc) cores; $(build/vkraycast devices | sed -n 2p | cut -c7-46 | sed 's/ *$//'); Embree $(pkg-config --modversion embree3 2>/dev/null || echo 3); $threads threads for the CPU renderers."
+echo "Command: tools/bench_vs_embree.sh (FRAMES=$frames). 1024x768, 1 spp, primary + shadow rays."
+echo
+echo "| scene | objects | BVH build ms | GPU first frame ms, cold / warm cache | GPU Mrays/s | CPU f64 Mrays/s | Embree 1-ray | Embree 8-packet | GPU / Embree-8 | CPU / Embree-8 | peak RSS MiB (GPU) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
+size="--width 1024 --height 768 --spp 1"
+for name in mesh1000 mesh100000 mesh1000000 spheres4096 wuson spider engine; do
+  s=$work/$name.json
+  MESA_SHADER_CACHE_DISABLE=true build/vkraycast render "$s" -o "$work/o.png" $size --quiet --stats-json "$work/cold.json"
+  export MESA_SHADER_CACHE_DIR=$work/cache
+  build/vkraycast render "$s" -o "$work/o.png" $size --quiet >/dev/null # fills the cache
+  build/vkraycast render "$s" -o "$work/$name.png" $size --repeat "$frames" --quiet --stats-json "$work/gpu.json"
+  build/vkraycast render "$s" -o "$work/o.png" $size --repeat "$frames" --backend cpu --threads "$threads" --quiet \
+    --stats-json "$work/cpu.json"
+  build/bench_embree "$s" --width 1024 --height 768 --repeat "$frames" --threads "$threads" >"$work/embree.json"
+  objects=$(( $(num spheres "$work/gpu.json") + $(num triangles "$work/gpu.json") ))
+  g=$(num mrays_per_s "$work/gpu.json") c=$(num mrays_per_s "$work/cpu.json")
+  e1=$(num embree_single_mrays_per_s "$work/embree.json") e8=$(num embree_packet8_mrays_per_s "$work/embree.json")
+  printf "| %s | %s | %.0f | %.0f / %.0f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f |\n" "$name" "$objects" \
+    "$(num bvh_build_ms "$work/gpu.json")" "$(num first_frame_ms "$work/cold.json")" "$(num first_frame_ms "$work/gpu.json")" \
+    "$g" "$c" "$e1" "$e8" "$(awk -v a="$g" -v b="$e8" 'BEGIN{print a/b}')" "$(awk -v a="$c" -v b="$e8" 'BEGIN{print a/b}')" \
+    "$(num peak_rss_mib "$work/gpu.json")"
+  unset MESA_SHADER_CACHE_DIR
+done
