@@ -3,29 +3,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image/image_io.h"
-
 const char *const rc_aov_channel_names[RC_AOV_CHANNELS] = {"R", "G", "B", "hit", "object", "t",
                                                            "N.X", "N.Y", "N.Z", "shadow"};
 
-rc_status rc_aov_write(const char *path, int w, int h, const float *rgb, const gpu_aov *aov) {
-  float *px = rc_alloc((size_t)w * h * RC_AOV_CHANNELS, sizeof(float), "the AOV image");
-  if (!px) return RC_ERR_TOO_LARGE;
-  for (size_t i = 0; i < (size_t)w * h; i++) {
-    float *o = px + i * RC_AOV_CHANNELS;
+void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, float *out) {
+  for (size_t i = 0; i < count; i++) {
     const gpu_aov *a = &aov[i];
-    const float v[RC_AOV_CHANNELS] = {rgb[3 * i],  rgb[3 * i + 1], rgb[3 * i + 2], a->hit,      a->object,
-                                      a->t,        a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits};
-    memcpy(o, v, sizeof v);
+    const float v[RC_AOV_CHANNELS] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], a->hit,      a->object,
+                                      a->t,       a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits};
+    memcpy(out + i * RC_AOV_CHANNELS, v, sizeof v);
   }
-  char err[512];
-  rc_status st = RC_OK;
-  if (rc_image_write_named(path, w, h, RC_AOV_CHANNELS, rc_aov_channel_names, px, err, sizeof err) != 0) {
-    rc_error("%s: cannot write the AOV file: %s", path, err);
-    st = RC_ERR_IO;
-  }
-  free(px);
-  return st;
 }
 
 static int find(char names[][32], int count, const char *name) {

@@ -10,8 +10,8 @@
 #define RC_AOV_MAX_CHANNELS 64
 extern const char *const rc_aov_channel_names[RC_AOV_CHANNELS]; /* R G B hit object t N.X N.Y N.Z shadow */
 
-/* Writes rgb and the records as an AOV file. */
-rc_status rc_aov_write(const char *path, int width, int height, const float *rgb, const gpu_aov *aov);
+/* Interleaves count pixels of colour and records into the AOV channel layout. */
+void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, float *out);
 /* Where the decision channels of a file are (files may reorder channels: OpenEXR stores
  * them sorted by name). */
 typedef struct rc_aov_layout { int hit, object, shadow; } rc_aov_layout;

@@ -8,8 +8,8 @@
 
 #include "cli.h"
 #include "gpu_render.h"
-#include "aov.h"
 #include "bvh.h"
+#include "output.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
@@ -40,7 +40,9 @@ static const char render_usage[] =
     "  --scene-buffers K       texel (default) or storage: how the shader reads the scene arrays\n"
     "  --staging               upload and read back through staging buffers even on unified memory\n"
     "                          (also VKRAYCAST_FORCE_STAGING=1)\n"
-    "  --tile N                tile side in pixels (default 256); one submit per dispatch\n"
+    "  --tile-budget-ms T      the longest one dispatch (one submit) should run: tiles adapt to it\n"
+    "                          (default 100; real GPUs reset after ~2 s)\n"
+    "  --tile N                fixed N x N tiles instead of adaptive ones\n"
     "  --plan-budget N         loop budget the host plans batches with (default: the shader's, 49152\n"
     "                          divided by the subgroup size on llvmpipe); larger values test the\n"
     "                          shader's exhaustion flag\n";
@@ -73,7 +75,8 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
 static bool option_takes_value(const char *o) {
   static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
-                                           "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize"};
+                                           "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize",
+                                           "--tile-budget-ms"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -86,7 +89,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->precision = -1;
   a->truncate = -1;
   a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
-  a->gpu.tile_size = 256;
+  a->gpu.tile_size = 0;
+  a->gpu.tile_budget_ms = 100;
   a->gpu.plan_budget = 0;
   const char *force = getenv("VKRAYCAST_FORCE_STAGING");
   a->gpu.force_staging = force && force[0] && strcmp(force, "0") != 0;
@@ -128,6 +132,10 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     } else if (strcmp(o, "--device") == 0) {
       st = rc_cli_uint(o, v, 0, 1000, &n);
       a->device = (int)n;
+    } else if (strcmp(o, "--tile-budget-ms") == 0) {
+      uint32_t ms;
+      st = rc_cli_uint(o, v, 1, 60000, &ms);
+      a->gpu.tile_budget_ms = ms;
     } else if (strcmp(o, "--tile") == 0) {
       st = rc_cli_uint(o, v, 8, 4096, &a->gpu.tile_size);
     } else if (strcmp(o, "--plan-budget") == 0) {
@@ -202,28 +210,26 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   return RC_OK;
 }
 
-/* The host image is width * height * 12 bytes; refuse what cannot fit in memory before
- * any work, with the numbers. */
-static rc_status check_image_memory(uint32_t w, uint32_t h) {
-  uint64_t bytes = (uint64_t)w * h * 3 * sizeof(float);
-  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  uint64_t ram = pages > 0 && page > 0 ? (uint64_t)pages * (uint64_t)page : 0;
-  if (ram && bytes > ram / 2) {
-    rc_error("a %ux%u image needs %.1f GiB of host memory for its float pixels, more than half of this "
-             "machine's %.1f GiB",
-             w, h, (double)bytes / (1u << 30), (double)ram / (1u << 30));
-    return RC_ERR_TOO_LARGE;
-  }
-  return RC_OK;
-}
-
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
 }
 
-static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_packed_scene *packed, float *rgb,
-                               gpu_aov *aov, rc_render_stats *rs) {
+/* Median of frames 2..N (the steady state), or the only frame. */
+static double steady(double *v, uint32_t n) {
+  if (n == 1) return v[0];
+  qsort(v + 1, n - 1, sizeof *v, cmp_double);
+  return v[1 + (n - 1) / 2];
+}
+
+/* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
+static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
+  return rc_output_open(a->output, a->aov, scene->width, scene->height, a->srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+                        a->truncate < 0 ? scene->truncate_8bit : a->truncate == 1, out);
+}
+
+static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
+                               const rc_packed_scene *packed, rc_render_stats *rs, rc_output **out) {
   rc_gpu_renderer *r = NULL;
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
@@ -231,21 +237,16 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_pa
   double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
   if (!gpu_ms || !wall_ms) st = RC_ERR_TOO_LARGE;
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
-    st = rc_gpu_renderer_render(r, rgb, aov, &rs->gpu);
+    bool last = i + 1 == a->repeat;
+    if (last) st = open_output(a, scene, out);
+    if (st == RC_OK) st = rc_gpu_renderer_render(r, last ? rc_output_band : rc_output_discard, last ? *out : NULL, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
     wall_ms[i] = rs->gpu.render_ms;
   }
   if (st == RC_OK) {
     rs->first_frame_ms = wall_ms[0];
-    if (a->repeat > 1) {
-      qsort(gpu_ms + 1, a->repeat - 1, sizeof *gpu_ms, cmp_double);
-      qsort(wall_ms + 1, a->repeat - 1, sizeof *wall_ms, cmp_double);
-      rs->render_ms = gpu_ms[1 + (a->repeat - 1) / 2];
-      rs->render_wall_ms = wall_ms[1 + (a->repeat - 1) / 2];
-    } else {
-      rs->render_ms = gpu_ms[0];
-      rs->render_wall_ms = wall_ms[0];
-    }
+    rs->render_ms = steady(gpu_ms, a->repeat);
+    rs->render_wall_ms = steady(wall_ms, a->repeat);
     rs->rays_shadow = rs->gpu.shadow_rays;
     rs->rays_reflection = rs->gpu.reflection_rays;
   }
@@ -255,28 +256,42 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_pa
   return st;
 }
 
-static rc_status render_frames_cpu(const render_args *a, const rc_packed_scene *packed, float *rgb, gpu_aov *aov,
-                                   rc_render_stats *rs) {
+/* The CPU reference in bands of CPU_BAND_ROWS rows. */
+#define CPU_BAND_ROWS 32u
+
+static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
+                                   rc_render_stats *rs, rc_output **out) {
   rc_ref_options opts = {.f64 = a->precision == 1, .threads = a->threads};
+  uint32_t w = scene->width, h = scene->height;
+  uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
   double *ms = calloc(a->repeat, sizeof *ms);
-  if (!ms) return RC_ERR_TOO_LARGE;
-  rc_ref_stats st = {0};
-  for (uint32_t i = 0; i < a->repeat; i++) {
-    rc_status s = rc_ref_render(packed, &opts, rgb, aov, &st);
-    if (s != RC_OK) {
-      free(ms);
-      return s;
+  float *rgb = rc_alloc((size_t)w * band * 3, sizeof(float), "one band of the image");
+  gpu_aov *aov = a->aov ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
+  rc_status st = ms && rgb && (!a->aov || aov) ? RC_OK : RC_ERR_TOO_LARGE;
+  rc_ref_stats last_stats = {0};
+  for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
+    bool last = i + 1 == a->repeat;
+    rc_ref_stats fs = {0};
+    if (last) st = open_output(a, scene, out);
+    for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += band) {
+      uint32_t rows = h - y0 < band ? h - y0 : band;
+      st = rc_ref_render(packed, &opts, y0, rows, rgb, aov, &fs);
+      if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, aov, *out);
     }
-    ms[i] = st.render_ms;
+    ms[i] = fs.render_ms;
+    last_stats = fs;
   }
-  rs->first_frame_ms = ms[0];
-  if (a->repeat > 1) qsort(ms + 1, a->repeat - 1, sizeof *ms, cmp_double);
-  rs->render_ms = rs->render_wall_ms = a->repeat > 1 ? ms[1 + (a->repeat - 1) / 2] : ms[0];
-  rs->rays_shadow = st.shadow_rays;
-  rs->rays_reflection = st.reflection_rays;
-  rs->threads = st.threads;
+  if (st == RC_OK) {
+    rs->first_frame_ms = ms[0];
+    rs->render_ms = rs->render_wall_ms = steady(ms, a->repeat);
+    rs->rays_shadow = last_stats.shadow_rays;
+    rs->rays_reflection = last_stats.reflection_rays;
+    rs->threads = last_stats.threads;
+  }
   free(ms);
-  return RC_OK;
+  free(rgb);
+  free(aov);
+  return st;
 }
 
 rc_status rc_cmd_render(int argc, char **argv) {
@@ -299,22 +314,12 @@ rc_status rc_cmd_render(int argc, char **argv) {
 
   rc_packed_scene packed = {0};
   rc_vk_ctx ctx = {0};
-  float *rgb = NULL;
-  gpu_aov *aov = NULL;
-  st = check_image_memory(scene.width, scene.height);
-  if (st == RC_OK) st = rc_scene_pack(&scene, &packed);
+  rc_output *out = NULL;
+  st = rc_scene_pack(&scene, &packed);
   if (st == RC_OK && !a.no_bvh) {
     st = rc_bvh_build(&packed, &rs.bvh);
     /* The plan's traversal estimate uses the depth; 0 means brute force. */
     a.gpu.bvh_depth = packed.bvh_nodes ? rs.bvh.depth + 1 : 0;
-  }
-  if (st == RC_OK) {
-    rgb = rc_alloc((size_t)scene.width * scene.height * 3, sizeof(float), "the image");
-    if (!rgb) st = RC_ERR_TOO_LARGE;
-  }
-  if (st == RC_OK && a.aov) {
-    aov = rc_alloc((size_t)scene.width * scene.height, sizeof *aov, "the AOV records");
-    if (!aov) st = RC_ERR_TOO_LARGE;
   }
   rs.width = scene.width;
   rs.height = scene.height;
@@ -325,12 +330,13 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
   rs.precision = a.precision == 1 ? "f64" : "f32";
   char driver[600] = "";
+  rc_output_install_signal_handlers();
   if (st == RC_OK && a.cpu) {
     rs.backend = "cpu";
     rs.device = "CPU reference";
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
-    st = render_frames_cpu(&a, &packed, rgb, aov, &rs);
+    st = render_frames_cpu(&a, &scene, &packed, &rs, &out);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a.device};
     st = rc_vk_create(&vo, &ctx);
@@ -340,27 +346,16 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rs.device = ctx.props.deviceName;
       rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
       rs.driver = driver;
-      st = render_frames(&a, &ctx, &packed, rgb, aov, &rs);
+      st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
     }
   }
-  if (st == RC_OK) {
-    char err[512];
-    t0 = rc_now_ms();
-    if (rc_image_write(a.output, (int)scene.width, (int)scene.height, 3, rgb,
-                       a.srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
-                       a.truncate < 0 ? scene.truncate_8bit : a.truncate == 1, err, sizeof err) != 0) {
-      rc_error("%s: cannot write image: %s", a.output, err);
-      st = RC_ERR_IO;
-    }
-    if (st == RC_OK && a.aov) st = rc_aov_write(a.aov, (int)scene.width, (int)scene.height, rgb, aov);
-    rs.write_ms = rc_now_ms() - t0;
-  }
+  rs.write_ms = rc_output_write_ms(out);
+  rc_status cst = rc_output_close(out, st == RC_OK);
+  if (st == RC_OK) st = cst;
   rs.cpu_ms = rc_cpu_ms();
   if (st == RC_OK && !a.quiet) rc_stats_print(&rs);
   if (st == RC_OK && a.stats_json) st = rc_stats_write_json(&rs, a.stats_json);
   rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
-  free(rgb);
-  free(aov);
   rc_packed_scene_free(&packed);
   rc_scene_free(&scene);
   return st != RC_OK ? st : vst;

@@ -1,5 +1,6 @@
 #include "gpu_render.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,6 +8,9 @@
 #include "gpu_shaders.h"
 
 #define LOCAL_SIZE 8 /* 8x8 = 64 invocations: a multiple of every subgroup size (4..64) */
+/* The tile buffers hold this many pixels: adaptive tiles never exceed it. */
+#define MAX_TILE_PIXELS (1u << 20)
+#define MAX_BAND_ROWS 256u
 #define SCENE_ARRAYS 8 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals */
 
 struct rc_gpu_renderer {
@@ -20,6 +24,8 @@ struct rc_gpu_renderer {
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
+  float *band_rgb;             /* one band of rows on the host */
+  gpu_aov *band_aov;
   VkDescriptorSetLayout set_layout;
   VkPipelineLayout pipeline_layout;
   VkPipeline pipeline;
@@ -105,13 +111,26 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
 
 /* The per-tile accumulation buffer and the status counters, with readback copies when
  * they are not mapped directly. */
+static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
+  return r->opts.tile_size ? r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
+}
+
+static uint32_t max_band_rows(const rc_gpu_renderer *r) {
+  uint32_t rows = r->opts.tile_size ? r->opts.tile_size : MAX_BAND_ROWS;
+  return rows < r->frame.camera.height ? rows : r->frame.camera.height;
+}
+
 static rc_status create_outputs(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
-  VkDeviceSize accum_size = (VkDeviceSize)r->opts.tile_size * r->opts.tile_size * 16;
+  VkDeviceSize tile_pixels = max_tile_pixels(r);
+  VkDeviceSize accum_size = tile_pixels * 16;
   VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  VkDeviceSize aov_size = r->opts.aov ? (VkDeviceSize)r->opts.tile_size * r->opts.tile_size * sizeof(gpu_aov)
-                                       : sizeof(gpu_aov);
+  VkDeviceSize aov_size = r->opts.aov ? tile_pixels * sizeof(gpu_aov) : sizeof(gpu_aov);
+  size_t band = (size_t)r->frame.camera.width * max_band_rows(r);
+  r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
+  r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(gpu_aov), "one band of AOVs") : NULL;
+  if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_TOO_LARGE;
   rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
   if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(gpu_status), usage, RC_MEM_DEVICE, &r->status);
   if (st == RC_OK) st = rc_buffer_create(ctx, aov_size, usage, RC_MEM_DEVICE, &r->aov);
@@ -300,6 +319,8 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   rc_buffer_destroy(ctx, &r->status_readback);
   rc_buffer_destroy(ctx, &r->aov);
   rc_buffer_destroy(ctx, &r->aov_readback);
+  free(r->band_rgb);
+  free(r->band_aov);
   free(r);
 }
 
@@ -351,7 +372,7 @@ static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_b
 
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
  * first batch), run the shader between two timestamps, and bring the status back. */
-static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *gpu_ms) {
+static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *ms) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   VkCommandBuffer cmd = r->cmd;
@@ -388,27 +409,33 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
     /* Only the low timestampValidBits count; the difference wraps modulo 2^bits. */
     uint64_t mask = r->ctx->timestamp_bits >= 64 ? ~0ull : ((1ull << r->ctx->timestamp_bits) - 1);
     uint64_t ticks = (ts[1] - ts[0]) & mask;
-    *gpu_ms += (double)ticks * r->ctx->props.limits.timestampPeriod * 1e-6;
+    *ms = (double)ticks * r->ctx->props.limits.timestampPeriod * 1e-6;
   } else {
-    *gpu_ms += wall;
+    *ms = wall;
   }
   return RC_OK;
 }
 
-/* Renders one tile: batches until every pixel has all its samples. A dispatch whose pixels
- * ran out of loop budget (the plan was wrong) is repeated with half the batch; exhaustion
- * at one sample per batch is an error, never a silently wrong pixel. */
-static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th, float *rgb,
-                             gpu_aov *aov, rc_gpu_stats *stats) {
+/* Renders one tile (a piece of the current band): batches until every pixel has all its
+ * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
+ * with half the batch; exhaustion at one sample per batch is an error, never a silently
+ * wrong pixel. Returns the GPU time of the tile's longest dispatch per pixel in *ms_per_px. */
+static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
+                             rc_gpu_stats *stats, double *ms_per_px) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples};
   bool first = true;
+  double worst = 0;
   for (;;) {
     gpu_status status;
-    rc_status st = dispatch(r, &push, first, &status, &stats->gpu_ms);
+    double ms = 0;
+    rc_status st = dispatch(r, &push, first, &status, &ms);
     if (st != RC_OK) return st;
     first = false;
     stats->dispatches++;
+    stats->gpu_ms += ms;
+    if (ms > worst) worst = ms;
+    if (ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
     stats->shadow_rays += status.shadow_rays;
     stats->reflection_rays += status.reflection_rays;
     if (status.exhausted_pixels) {
@@ -423,58 +450,90 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     }
     if (status.incomplete_pixels == 0) break;
   }
+  *ms_per_px = worst / ((double)tw * th);
   double t0 = rc_now_ms();
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
-  if (aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
+  if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
   st = submit(r);
   const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
   const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
-  if (st == RC_OK && aov) st = rc_buffer_invalidate(r->ctx, vb);
+  if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
   if (st != RC_OK) return st;
-  if (aov) {
+  uint32_t width = r->frame.camera.width;
+  if (r->band_aov) {
     const gpu_aov *src = vb->mapped;
     for (uint32_t y = 0; y < th; y++)
-      memcpy(aov + (size_t)(y0 + y) * r->frame.camera.width + x0, src + (size_t)y * tw, tw * sizeof *src);
+      memcpy(r->band_aov + (size_t)y * width + x0, src + (size_t)y * tw, tw * sizeof *src);
   }
   const float *acc = ab->mapped;
-  uint32_t width = r->frame.camera.width;
   for (uint32_t y = 0; y < th; y++) {
     for (uint32_t x = 0; x < tw; x++) {
       const float *a = acc + 4 * ((size_t)y * tw + x);
-      float *o = rgb + 3 * ((size_t)(y0 + y) * width + (x0 + x));
+      float *o = r->band_rgb + 3 * ((size_t)y * width + (x0 + x));
       RC_ASSERT(a[3] == (float)r->frame.samples_per_pixel);
       for (int c = 0; c < 3; c++) o[c] = a[c] / a[3];
     }
   }
   stats->readback_ms += rc_now_ms() - t0;
+  stats->tiles++;
   return RC_OK;
 }
 
-rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, gpu_aov *aov, rc_gpu_stats *stats) {
-  if (!r->opts.aov) aov = NULL;
-  stats->gpu_ms = stats->readback_ms = 0;
+static uint32_t clamp_u(double v, uint32_t lo, uint32_t hi) {
+  if (!(v > lo)) return lo;
+  if (v > hi) return hi;
+  return (uint32_t)v;
+}
+
+/* Tiles of a band: fixed (--tile), or sized from the GPU time per pixel of the previous
+ * dispatch so that the next one takes about 70% of the budget. The first tile of a frame
+ * is 32 x 32, to measure. */
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {
+  stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
   stats->dispatches = stats->tiles = stats->budget_retries = 0;
-  uint32_t w = r->frame.camera.width, h = r->frame.camera.height, ts = r->opts.tile_size;
-  uint32_t tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
+  const uint32_t w = r->frame.camera.width, h = r->frame.camera.height, fixed = r->opts.tile_size;
+  const double target_ms = 0.7 * r->opts.tile_budget_ms;
+  const uint64_t total = (uint64_t)w * h;
+  uint64_t done = 0;
+  double ms_per_px = 0; /* unknown until the first tile */
   double t0 = rc_now_ms();
-  for (uint32_t ty = 0; ty < tiles_y; ty++) {
-    for (uint32_t tx = 0; tx < tiles_x; tx++) {
-      uint32_t x0 = tx * ts, y0 = ty * ts;
-      uint32_t tw = w - x0 < ts ? w - x0 : ts, th = h - y0 < ts ? h - y0 : ts;
-      rc_status st = render_tile(r, x0, y0, tw, th, rgb, aov, stats);
+  for (uint32_t y0 = 0; y0 < h;) {
+    uint32_t rows;
+    if (fixed) {
+      rows = fixed;
+    } else {
+      double area = ms_per_px > 0 ? target_ms / ms_per_px : 32.0 * 32.0;
+      rows = clamp_u(sqrt(area), 8, MAX_BAND_ROWS) / 8 * 8;
+    }
+    if (rows > h - y0) rows = h - y0;
+    for (uint32_t x0 = 0; x0 < w;) {
+      uint32_t cols;
+      if (fixed) {
+        cols = fixed;
+      } else {
+        double area = ms_per_px > 0 ? target_ms / ms_per_px : 32.0 * 32.0;
+        cols = clamp_u(area / rows, 8, MAX_TILE_PIXELS / rows);
+      }
+      if (cols > w - x0) cols = w - x0;
+      double tile_ms_per_px = 0;
+      rc_status st = render_tile(r, x0, y0, cols, rows, stats, &tile_ms_per_px);
       if (st != RC_OK) return st;
-      stats->tiles++;
+      if (tile_ms_per_px > 0) ms_per_px = tile_ms_per_px;
+      x0 += cols;
+      done += (uint64_t)cols * rows;
       if (r->opts.progress) {
-        double el = rc_now_ms() - t0;
-        uint32_t done = stats->tiles, total = tiles_x * tiles_y;
-        fprintf(stderr, "\rvkraycast: tile %u/%u, %.1f s elapsed, about %.1f s left ", done, total, el * 1e-3,
-                el * 1e-3 * (total - done) / done);
+        double el = (rc_now_ms() - t0) * 1e-3;
+        fprintf(stderr, "\rvkraycast: %5.1f%%, %u tiles, %.1f s elapsed, about %.1f s left ", 100.0 * (double)done / total,
+                stats->tiles, el, el * (double)(total - done) / (double)done);
       }
     }
+    rc_status st = band(y0, rows, r->band_rgb, r->band_aov, user);
+    if (st != RC_OK) return st;
+    y0 += rows;
   }
   if (r->opts.progress) fputc('\n', stderr);
   stats->render_ms = rc_now_ms() - t0;

@@ -16,7 +16,9 @@ typedef enum {
 typedef struct rc_gpu_options {
   rc_scene_buffers scene_buffers;
   bool force_staging;   /* upload and read back through staging buffers even if mappable */
-  uint32_t tile_size;   /* pixels per tile side; one submit per dispatch */
+  uint32_t tile_size;   /* fixed tiles of this side; 0: adapt the tiles to tile_budget_ms */
+  double tile_budget_ms;  /* the longest a dispatch (one submit) should run: real GPUs reset
+                             after ~2 s (Windows TDR) or kill long dispatches */
   uint32_t plan_budget; /* 0: the device's budget (rc_vk_loop_budget); larger values only in
                            tests, to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
@@ -33,6 +35,7 @@ typedef struct rc_gpu_stats {
   double readback_ms;  /* accumulation buffer to the host image, wall */
   uint64_t shadow_rays, reflection_rays;
   uint32_t dispatches, tiles;
+  double max_dispatch_ms;  /* the longest single dispatch (GPU timestamps) */
   uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
@@ -45,9 +48,12 @@ typedef struct rc_gpu_renderer rc_gpu_renderer;
 
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats);
-/* Renders one frame into rgb (width * height * 3 floats, rows top to bottom) and, when
- * the renderer was created with opts.aov, aov (width * height records). */
-rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, float *rgb, gpu_aov *aov, rc_gpu_stats *stats);
+/* Receives the image in bands of rows, top to bottom: rgb (rows * width * 3 floats) and,
+ * when the renderer records AOVs, aov (rows * width records); NULL aov otherwise. */
+typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *user);
+
+/* Renders one frame, band by band: host memory is one band, whatever the image size. */
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats);
 void rc_gpu_renderer_destroy(rc_gpu_renderer *r);
 
 #endif

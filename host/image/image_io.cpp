@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,67 +43,122 @@ std::string temp_name(const std::string &path) {
 
 }  // namespace
 
-namespace {
+struct rc_image_writer {
+  std::unique_ptr<ImageOutput> out;
+  std::string path, tmp;
+  int width = 0, height = 0, channels = 0, next_row = 0;
+  bool fp = false, truncate = false;
+  rc_encoding enc = RC_ENCODING_LINEAR;
+  std::vector<float> encoded;
+};
 
-int write_image(const char *path, int width, int height, int channels, const char *const *names, const float *pixels,
-                rc_encoding enc, bool truncate, char *err, size_t err_len) {
+extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels,
+                                                 const char *const *names, rc_encoding enc, bool truncate, char *err,
+                                                 size_t err_len) {
   try {
-    auto out = ImageOutput::create(path);
-    if (!out) {
+    auto w = std::make_unique<rc_image_writer>();
+    w->out = ImageOutput::create(path);
+    if (!w->out) {
       set_error(err, err_len, std::string("no image format for this file name (") + OIIO::geterror() + ")");
-      return -1;
+      return nullptr;
     }
-    std::string format = out->format_name();
-    bool fp = is_float_format(format);
-    if (names && !fp) {
+    std::string format = w->out->format_name();
+    w->fp = is_float_format(format);
+    if (names && !w->fp) {
       set_error(err, err_len, "named channels need a float format such as .exr");
-      return -1;
+      return nullptr;
     }
-    ImageSpec spec(width, height, channels, fp ? TypeDesc::FLOAT : TypeDesc::UINT8);
+    ImageSpec spec(width, height, channels, w->fp ? TypeDesc::FLOAT : TypeDesc::UINT8);
     if (names) {
       spec.channelnames.clear();
       for (int i = 0; i < channels; i++) spec.channelnames.emplace_back(names[i]);
     }
-    spec.attribute("oiio:ColorSpace", fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
+    spec.attribute("oiio:ColorSpace", w->fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
     spec.attribute("Software", "vkraycast");
-    std::vector<float> encoded;
+    w->path = path;
+    w->tmp = temp_name(path);
+    w->width = width, w->height = height, w->channels = channels;
+    w->enc = enc, w->truncate = truncate;
+    if (!w->out->open(w->tmp, spec)) {
+      set_error(err, err_len, w->out->geterror());
+      std::remove(w->tmp.c_str());
+      return nullptr;
+    }
+    return w.release();
+  } catch (const std::exception &e) {
+    set_error(err, err_len, e.what());
+    return nullptr;
+  }
+}
+
+extern "C" const char *rc_image_writer_temp_path(const rc_image_writer *w) { return w->tmp.c_str(); }
+
+extern "C" int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len) {
+  try {
+    if (rows <= 0) return 0;
+    if (w->next_row + rows > w->height) {
+      set_error(err, err_len, "more rows than the image has");
+      return -1;
+    }
     const float *data = pixels;
-    if (!fp) {
-      // 8-bit: clamp to [0, 1] here, so OIIO's quantisation is the only rounding.
-      size_t n = static_cast<size_t>(width) * height * channels;
-      encoded.resize(n);
+    if (!w->fp) {
+      // 8-bit: clamp (and encode) here, so OIIO's quantisation is the only rounding.
+      size_t n = static_cast<size_t>(w->width) * rows * w->channels;
+      w->encoded.resize(n);
       for (size_t i = 0; i < n; i++) {
         float x = pixels[i];
-        float e = enc == RC_ENCODING_SRGB ? srgb_encode(x) : (x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f));
+        float e = w->enc == RC_ENCODING_SRGB ? srgb_encode(x) : (x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f));
         // OIIO rounds x * 255; a value already on a level stays there.
-        encoded[i] = truncate ? std::floor(e * 255.0f) / 255.0f : e;
+        w->encoded[i] = w->truncate ? std::floor(e * 255.0f) / 255.0f : e;
       }
-      data = encoded.data();
+      data = w->encoded.data();
     }
-    std::string tmp = temp_name(path);
-    if (!out->open(tmp, spec)) {
-      set_error(err, err_len, out->geterror());
-      std::remove(tmp.c_str());
+    if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, TypeDesc::FLOAT, data)) {
+      set_error(err, err_len, w->out->geterror());
       return -1;
     }
-    bool ok = out->write_image(TypeDesc::FLOAT, data);
-    std::string msg = ok ? "" : out->geterror();
-    ok = out->close() && ok;
-    if (ok && std::rename(tmp.c_str(), path) != 0) {
-      msg = std::string("cannot rename the finished image into place: ") + std::strerror(errno);
-      ok = false;
-    }
-    if (!ok) {
-      if (msg.empty()) msg = out->geterror();
-      std::remove(tmp.c_str());
-      set_error(err, err_len, msg);
-      return -1;
-    }
+    w->next_row += rows;
     return 0;
   } catch (const std::exception &e) {
     set_error(err, err_len, e.what());
     return -1;
   }
+}
+
+extern "C" int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len) {
+  std::unique_ptr<rc_image_writer> owned(w);
+  try {
+    bool ok = commit && w->next_row == w->height;
+    if (commit && !ok) set_error(err, err_len, "the image is incomplete");
+    bool closed = w->out->close();
+    if (ok && !closed) {
+      set_error(err, err_len, w->out->geterror());
+      ok = false;
+    }
+    if (ok && std::rename(w->tmp.c_str(), w->path.c_str()) != 0) {
+      set_error(err, err_len, std::string("cannot rename the finished image into place: ") + std::strerror(errno));
+      ok = false;
+    }
+    if (!ok) std::remove(w->tmp.c_str());
+    return (ok || !commit) ? 0 : -1;
+  } catch (const std::exception &e) {
+    std::remove(w->tmp.c_str());
+    set_error(err, err_len, e.what());
+    return -1;
+  }
+}
+
+namespace {
+
+int write_image(const char *path, int width, int height, int channels, const char *const *names, const float *pixels,
+                rc_encoding enc, bool truncate, char *err, size_t err_len) {
+  rc_image_writer *w = rc_image_writer_open(path, width, height, channels, names, enc, truncate, err, err_len);
+  if (!w) return -1;
+  if (rc_image_writer_rows(w, height, pixels, err, err_len) != 0) {
+    rc_image_writer_close(w, 0, nullptr, 0);
+    return -1;
+  }
+  return rc_image_writer_close(w, 1, err, err_len);
 }
 
 }  // namespace

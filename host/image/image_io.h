@@ -23,6 +23,18 @@ typedef enum {
 int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
                    bool truncate, char *err, size_t err_len);
 
+/* A writer that takes the image in bands of rows, top to bottom, so that no whole frame
+ * need ever be in memory (16384 x 16384 renders). The file is written to a temporary
+ * name beside `path`; close(commit = 1) renames it into place, close(commit = 0) removes
+ * it. names: NULL, or one name per channel (float formats only). */
+typedef struct rc_image_writer rc_image_writer;
+rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels, const char *const *names,
+                                      rc_encoding enc, bool truncate, char *err, size_t err_len);
+int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len);
+int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len);
+/* The temporary file's name while the writer is open (for a signal handler to unlink). */
+const char *rc_image_writer_temp_path(const rc_image_writer *w);
+
 /* Writes a float image (EXR) with named channels, atomically as rc_image_write. */
 int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,
                          const float *pixels, char *err, size_t err_len);

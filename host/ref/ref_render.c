@@ -22,13 +22,14 @@ typedef struct {
   bool f64;
   float *rgb;
   gpu_aov *aov;
+  uint32_t y0, rows;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays, reflection_rays;
 } job;
 
 static void render_pixel(job *j, uint32_t x, uint32_t y) {
   const uint32_t spp = j->frame->samples_per_pixel;
-  size_t index = (size_t)y * j->frame->camera.width + x;
+  size_t index = (size_t)(y - j->y0) * j->frame->camera.width + x;
   float *o = j->rgb + 3 * index;
   if (j->f64) {
     dvec3 sum = {0, 0, 0};
@@ -48,9 +49,9 @@ static void *worker(void *arg) {
   job *j = arg;
   ref_shadow_rays = ref_reflection_rays = 0;
   ref_aov_enabled = j->aov != NULL;
-  const uint32_t w = j->frame->camera.width, h = j->frame->camera.height;
+  const uint32_t w = j->frame->camera.width, h = j->y0 + j->rows;
   for (;;) {
-    uint32_t y0 = atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
+    uint32_t y0 = j->y0 + atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
     if (y0 >= h) break;
     for (uint32_t y = y0; y < y0 + ROWS_PER_JOB && y < h; y++)
       for (uint32_t x = 0; x < w; x++) render_pixel(j, x, y);
@@ -60,8 +61,8 @@ static void *worker(void *arg) {
   return NULL;
 }
 
-rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, float *rgb, gpu_aov *aov,
-                        rc_ref_stats *stats) {
+rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, uint32_t y0, uint32_t rows, float *rgb,
+                        gpu_aov *aov, rc_ref_stats *stats) {
   job j = {.scene = {.frame = &p->frame,
                      .spheres = p->spheres,
                      .triangles = p->triangles,
@@ -75,7 +76,9 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, fl
            .frame = &p->frame,
            .f64 = opts->f64,
            .rgb = rgb,
-           .aov = aov};
+           .aov = aov,
+           .y0 = y0,
+           .rows = rows};
   atomic_init(&j.next_row, 0);
   atomic_init(&j.shadow_rays, 0);
   atomic_init(&j.reflection_rays, 0);
@@ -90,10 +93,10 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, fl
   if (started == 0) worker(&j); /* no threads could start: render on this one */
   for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
   free(threads);
-  stats->render_ms = rc_now_ms() - t0;
-  stats->cpu_ms = rc_cpu_ms() - c0;
+  stats->render_ms += rc_now_ms() - t0;
+  stats->cpu_ms += rc_cpu_ms() - c0;
   stats->threads = started ? started : 1;
-  stats->shadow_rays = atomic_load(&j.shadow_rays);
-  stats->reflection_rays = atomic_load(&j.reflection_rays);
+  stats->shadow_rays += atomic_load(&j.shadow_rays);
+  stats->reflection_rays += atomic_load(&j.reflection_rays);
   return RC_OK;
 }

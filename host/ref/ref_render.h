@@ -19,8 +19,10 @@ typedef struct rc_ref_stats {
 } rc_ref_stats;
 
 /* Renders into rgb (width * height * 3 floats, rows top to bottom). */
-/* aov: NULL, or width * height gpu_aov records of each pixel's first sample. */
-rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, float *rgb, gpu_aov *aov,
-                        rc_ref_stats *stats);
+/* Renders rows [y0, y0 + rows) into rgb (rows * width * 3 floats) and, if aov is not
+ * NULL, the gpu_aov records of each pixel's first sample (rows * width). The stats add up
+ * over calls. */
+rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, uint32_t y0, uint32_t rows,
+                        float *rgb, gpu_aov *aov, rc_ref_stats *stats);
 
 #endif

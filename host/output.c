@@ -1,0 +1,122 @@
+#include "output.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "aov.h"
+
+/* Temporary files the signal handler must unlink; written before any signal can need
+ * them, read only by the handler (unlink() is async-signal-safe). */
+static char pending[2][4096];
+
+static void on_fatal_signal(int sig) {
+  for (int i = 0; i < 2; i++)
+    if (pending[i][0]) unlink(pending[i]);
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+void rc_output_install_signal_handlers(void) {
+  signal(SIGINT, on_fatal_signal);
+  signal(SIGTERM, on_fatal_signal);
+  signal(SIGHUP, on_fatal_signal);
+  signal(SIGXFSZ, SIG_IGN);
+}
+
+struct rc_output {
+  rc_image_writer *image, *aov;
+  const char *image_path, *aov_path;
+  uint32_t width;
+  float *aov_band; /* rows * width * RC_AOV_CHANNELS */
+  uint32_t aov_band_rows;
+  double write_ms;
+};
+
+static void remember(int slot, rc_image_writer *w) {
+  const char *p = w ? rc_image_writer_temp_path(w) : "";
+  snprintf(pending[slot], sizeof pending[slot], "%s", p);
+}
+
+rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
+                         rc_encoding enc, bool truncate, rc_output **out) {
+  rc_output *o = calloc(1, sizeof *o);
+  if (!o) return RC_ERR_TOO_LARGE;
+  o->image_path = image_path, o->aov_path = aov_path, o->width = width;
+  char err[512];
+  o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, err, sizeof err);
+  if (!o->image) {
+    rc_error("%s: cannot write image: %s", image_path, err);
+    free(o);
+    return RC_ERR_IO;
+  }
+  remember(0, o->image);
+  if (aov_path) {
+    o->aov = rc_image_writer_open(aov_path, (int)width, (int)height, RC_AOV_CHANNELS, rc_aov_channel_names,
+                                  RC_ENCODING_LINEAR, false, err, sizeof err);
+    if (!o->aov) {
+      rc_error("%s: cannot write the AOV file: %s", aov_path, err);
+      rc_output_close(o, false);
+      return RC_ERR_IO;
+    }
+    remember(1, o->aov);
+  }
+  *out = o;
+  return RC_OK;
+}
+
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *unused) {
+  (void)y0, (void)rows, (void)rgb, (void)aov, (void)unused;
+  return RC_OK;
+}
+
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output) {
+  (void)y0; /* bands arrive in order */
+  rc_output *o = output;
+  double t0 = rc_now_ms();
+  char err[512];
+  if (rc_image_writer_rows(o->image, (int)rows, rgb, err, sizeof err) != 0) {
+    rc_error("%s: cannot write image: %s", o->image_path, err);
+    return RC_ERR_IO;
+  }
+  if (o->aov && aov) {
+    if (rows > o->aov_band_rows) {
+      free(o->aov_band);
+      o->aov_band = rc_alloc((size_t)rows * o->width * RC_AOV_CHANNELS, sizeof(float), "one band of AOVs");
+      o->aov_band_rows = o->aov_band ? rows : 0;
+      if (!o->aov_band) return RC_ERR_TOO_LARGE;
+    }
+    rc_aov_pack(rgb, aov, (size_t)rows * o->width, o->aov_band);
+    if (rc_image_writer_rows(o->aov, (int)rows, o->aov_band, err, sizeof err) != 0) {
+      rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
+      return RC_ERR_IO;
+    }
+  }
+  o->write_ms += rc_now_ms() - t0;
+  return RC_OK;
+}
+
+rc_status rc_output_close(rc_output *o, bool commit) {
+  if (!o) return RC_OK;
+  rc_status st = RC_OK;
+  char err[512];
+  double t0 = rc_now_ms();
+  if (o->image && rc_image_writer_close(o->image, commit, err, sizeof err) != 0) {
+    rc_error("%s: cannot write image: %s", o->image_path, err);
+    st = RC_ERR_IO;
+    commit = false;
+  }
+  if (o->aov && rc_image_writer_close(o->aov, commit, err, sizeof err) != 0) {
+    rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
+    st = RC_ERR_IO;
+  }
+  o->write_ms += rc_now_ms() - t0;
+  pending[0][0] = pending[1][0] = '\0';
+  free(o->aov_band);
+  free(o);
+  return st;
+}
+
+double rc_output_write_ms(const rc_output *o) { return o ? o->write_ms : 0; }

@@ -1,0 +1,28 @@
+/* output.h: where a render's bands of rows go: the image file (and the AOV file) through
+ * OpenImageIO's scanline writers, into temporary files renamed into place only when the
+ * whole frame is written. If the process is interrupted or killed (SIGINT, SIGTERM,
+ * SIGHUP), the handler unlinks the temporary files before dying; SIGXFSZ (a file size
+ * limit) is ignored so that a full disk or a size limit becomes a write error. Either
+ * way an existing image is never left half overwritten. */
+#ifndef RC_OUTPUT_H
+#define RC_OUTPUT_H
+
+#include "image/image_io.h"
+#include "rc_base.h"
+#include "rc_shared.h"
+
+typedef struct rc_output rc_output;
+
+rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
+                         rc_encoding enc, bool truncate, rc_output **out);
+/* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows). */
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output);
+/* A band function for frames that are not written (--repeat). */
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *unused);
+/* Renames the files into place (commit) or removes them; frees the output. */
+rc_status rc_output_close(rc_output *o, bool commit);
+double rc_output_write_ms(const rc_output *o);
+
+void rc_output_install_signal_handlers(void);
+
+#endif
