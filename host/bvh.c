@@ -234,7 +234,7 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   if (!b.info || !b.refs) {
     free(b.info);
     free(b.refs);
-    return RC_ERR_TOO_LARGE;
+    return RC_ERR_OUT_OF_MEMORY;
   }
   for (uint32_t i = 0; i < n; i++) {
     prim_info *q = &b.info[i];
@@ -258,19 +258,19 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
     b.refs[i] = i;
   }
   uint32_t root = build(&b, 0, n, 0);
-  rc_status st = root == UINT32_MAX ? RC_ERR_TOO_LARGE : RC_OK;
+  rc_status st = root == UINT32_MAX ? RC_ERR_OUT_OF_MEMORY : RC_OK;
   if (st == RC_OK) {
     /* Flatten: every interior build node becomes one gpu node holding its children's
      * boxes; a root that is a leaf gets a wrapper with one empty child. */
     uint32_t interior = 0;
     uint32_t *gpu_index = rc_alloc(b.node_count, sizeof *gpu_index, "BVH flatten");
-    if (!gpu_index) st = RC_ERR_TOO_LARGE;
+    if (!gpu_index) st = RC_ERR_OUT_OF_MEMORY;
     for (uint32_t i = 0; st == RC_OK && i < b.node_count; i++) gpu_index[i] = b.nodes[i].count ? 0 : interior++;
     uint32_t count = interior ? interior : 1;
     if (st == RC_OK) {
       p->bvh_nodes = rc_alloc(count, sizeof *p->bvh_nodes, "BVH nodes");
       p->bvh_prims = rc_alloc((n + 3) / 4 * 4, sizeof *p->bvh_prims, "BVH references");
-      if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_TOO_LARGE;
+      if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_OUT_OF_MEMORY;
     }
     if (st == RC_OK) {
       memcpy(p->bvh_prims, b.refs, n * sizeof *b.refs);

@@ -161,7 +161,7 @@ rc_status rc_cmd_compare(int argc, char **argv) {
       float *heat = rc_alloc((size_t)a.w * a.h * 3, sizeof(float), "the heat map");
       char err[512];
       if (!heat) {
-        st = RC_ERR_TOO_LARGE;
+        st = RC_ERR_OUT_OF_MEMORY;
       } else {
         double floor = fail > 0 ? fail : 1e-7;
         rc_compare_heat_map(a.px, b.px, a.w, a.h, a.c, floor, isfinite(r.max) ? r.max : 1.0, heat);

@@ -235,7 +235,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
   rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
   double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
-  if (!gpu_ms || !wall_ms) st = RC_ERR_TOO_LARGE;
+  if (!gpu_ms || !wall_ms) st = RC_ERR_OUT_OF_MEMORY;
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
     bool last = i + 1 == a->repeat;
     if (last) st = open_output(a, scene, out);
@@ -267,7 +267,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
   double *ms = calloc(a->repeat, sizeof *ms);
   float *rgb = rc_alloc((size_t)w * band * 3, sizeof(float), "one band of the image");
   gpu_aov *aov = a->aov ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
-  rc_status st = ms && rgb && (!a->aov || aov) ? RC_OK : RC_ERR_TOO_LARGE;
+  rc_status st = ms && rgb && (!a->aov || aov) ? RC_OK : RC_ERR_OUT_OF_MEMORY;
   rc_ref_stats last_stats = {0};
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
     bool last = i + 1 == a->repeat;

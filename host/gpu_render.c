@@ -130,7 +130,7 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   size_t band = (size_t)r->frame.camera.width * max_band_rows(r);
   r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
   r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(gpu_aov), "one band of AOVs") : NULL;
-  if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_TOO_LARGE;
+  if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_OUT_OF_MEMORY;
   rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
   if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(gpu_status), usage, RC_MEM_DEVICE, &r->status);
   if (st == RC_OK) st = rc_buffer_create(ctx, aov_size, usage, RC_MEM_DEVICE, &r->aov);
@@ -196,7 +196,16 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                     .layout = r->pipeline_layout};
   VkResult res = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &r->pipeline);
   vkDestroyShaderModule(ctx->device, module, NULL);
-  RC_VK_TRY(res);
+  if (res == VK_SUCCESS && rc_fault("pipeline")) {
+    vkDestroyPipeline(ctx->device, r->pipeline, NULL);
+    r->pipeline = VK_NULL_HANDLE;
+    res = VK_ERROR_INITIALIZATION_FAILED;
+  }
+  if (res != VK_SUCCESS) {
+    rc_error("the device could not create the compute pipeline (%s); its driver may not support this shader",
+             rc_vk_result_str(res));
+    return RC_ERR_VULKAN;
+  }
   return RC_OK;
 }
 
@@ -338,6 +347,7 @@ static rc_status submit(rc_gpu_renderer *r) {
   RC_VK_TRY(vkResetFences(ctx->device, 1, &r->fence));
   VkResult res = vkQueueSubmit(ctx->queue, 1, &si, r->fence);
   if (res == VK_SUCCESS) res = vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+  if (res == VK_SUCCESS && rc_fault("device-lost")) res = VK_ERROR_DEVICE_LOST;
   if (res == VK_ERROR_DEVICE_LOST) {
     rc_error("the Vulkan device was lost during rendering (a driver reset, often a dispatch that ran too "
              "long); try a smaller tile size");
@@ -435,7 +445,9 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     stats->dispatches++;
     stats->gpu_ms += ms;
     if (ms > worst) worst = ms;
-    if (ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
+    /* The first tile measures (and on lavapipe includes the JIT): not counted. */
+    if (stats->tiles > 0 && ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
+    if (stats->tiles > 0 && ms > r->opts.tile_budget_ms) stats->over_budget++;
     stats->shadow_rays += status.shadow_rays;
     stats->reflection_rays += status.reflection_rays;
     if (status.exhausted_pixels) {
@@ -488,26 +500,46 @@ static uint32_t clamp_u(double v, uint32_t lo, uint32_t hi) {
   return (uint32_t)v;
 }
 
-/* Tiles of a band: fixed (--tile), or sized from the GPU time per pixel of the previous
- * dispatch so that the next one takes about 70% of the budget. The first tile of a frame
- * is 32 x 32, to measure. */
+/* Tiles of a band: fixed (--tile), or sized from a model of a dispatch's GPU time,
+ * overhead + slope * pixels, so that the next dispatch takes about half the budget (the
+ * margin absorbs tiles that are costlier per pixel than the one before).
+ * The overhead is the fastest dispatch seen (Mesa 22 lavapipe spends ~8 ms on any
+ * dispatch, so a budget below that cannot be met there: tiles then stay at twice the
+ * overhead rather than shrinking to nothing). The first tile of a frame is 32 x 32. */
+typedef struct {
+  double overhead_ms, slope_ms; /* per dispatch, per pixel */
+  bool known;
+} tile_model;
+
+static void model_update(tile_model *m, double ms, double pixels) {
+  if (!m->known || ms < m->overhead_ms) m->overhead_ms = ms;
+  double slope = (ms - m->overhead_ms) / pixels;
+  if (!m->known || slope > 0) m->slope_ms = slope > 0 ? slope : ms / pixels;
+  m->known = true;
+}
+
+static double model_area(const tile_model *m, double budget_ms) {
+  if (!m->known) return 32.0 * 32.0;
+  double room = 0.5 * budget_ms - m->overhead_ms;
+  if (room < m->overhead_ms) room = m->overhead_ms;
+  return room / (m->slope_ms > 0 ? m->slope_ms : 1e-9);
+}
+
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {
   stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
-  stats->dispatches = stats->tiles = stats->budget_retries = 0;
+  stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
   const uint32_t w = r->frame.camera.width, h = r->frame.camera.height, fixed = r->opts.tile_size;
-  const double target_ms = 0.7 * r->opts.tile_budget_ms;
   const uint64_t total = (uint64_t)w * h;
   uint64_t done = 0;
-  double ms_per_px = 0; /* unknown until the first tile */
+  tile_model model = {0};
   double t0 = rc_now_ms();
   for (uint32_t y0 = 0; y0 < h;) {
     uint32_t rows;
     if (fixed) {
       rows = fixed;
     } else {
-      double area = ms_per_px > 0 ? target_ms / ms_per_px : 32.0 * 32.0;
-      rows = clamp_u(sqrt(area), 8, MAX_BAND_ROWS) / 8 * 8;
+      rows = clamp_u(sqrt(model_area(&model, r->opts.tile_budget_ms)), 8, MAX_BAND_ROWS) / 8 * 8;
     }
     if (rows > h - y0) rows = h - y0;
     for (uint32_t x0 = 0; x0 < w;) {
@@ -515,14 +547,13 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
       if (fixed) {
         cols = fixed;
       } else {
-        double area = ms_per_px > 0 ? target_ms / ms_per_px : 32.0 * 32.0;
-        cols = clamp_u(area / rows, 8, MAX_TILE_PIXELS / rows);
+        cols = clamp_u(model_area(&model, r->opts.tile_budget_ms) / rows, 8, MAX_TILE_PIXELS / rows);
       }
       if (cols > w - x0) cols = w - x0;
       double tile_ms_per_px = 0;
       rc_status st = render_tile(r, x0, y0, cols, rows, stats, &tile_ms_per_px);
       if (st != RC_OK) return st;
-      if (tile_ms_per_px > 0) ms_per_px = tile_ms_per_px;
+      model_update(&model, tile_ms_per_px * cols * rows, (double)cols * rows);
       x0 += cols;
       done += (uint64_t)cols * rows;
       if (r->opts.progress) {

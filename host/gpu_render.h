@@ -35,7 +35,8 @@ typedef struct rc_gpu_stats {
   double readback_ms;  /* accumulation buffer to the host image, wall */
   uint64_t shadow_rays, reflection_rays;
   uint32_t dispatches, tiles;
-  double max_dispatch_ms;  /* the longest single dispatch (GPU timestamps) */
+  double max_dispatch_ms;  /* the longest dispatch after the first tile (GPU timestamps) */
+  uint32_t over_budget;    /* dispatches longer than tile_budget_ms, after the first tile */
   uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */

@@ -43,7 +43,7 @@ static void remember(int slot, rc_image_writer *w) {
 rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
                          rc_encoding enc, bool truncate, rc_output **out) {
   rc_output *o = calloc(1, sizeof *o);
-  if (!o) return RC_ERR_TOO_LARGE;
+  if (!o) return RC_ERR_OUT_OF_MEMORY;
   o->image_path = image_path, o->aov_path = aov_path, o->width = width;
   char err[512];
   o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, err, sizeof err);
@@ -86,7 +86,7 @@ rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu
       free(o->aov_band);
       o->aov_band = rc_alloc((size_t)rows * o->width * RC_AOV_CHANNELS, sizeof(float), "one band of AOVs");
       o->aov_band_rows = o->aov_band ? rows : 0;
-      if (!o->aov_band) return RC_ERR_TOO_LARGE;
+      if (!o->aov_band) return RC_ERR_OUT_OF_MEMORY;
     }
     rc_aov_pack(rgb, aov, (size_t)rows * o->width, o->aov_band);
     if (rc_image_writer_rows(o->aov, (int)rows, o->aov_band, err, sizeof err) != 0) {

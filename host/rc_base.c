@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 const char *rc_status_str(rc_status s) {
@@ -61,7 +62,16 @@ static double clock_ms(clockid_t id) {
 double rc_now_ms(void) { return clock_ms(CLOCK_MONOTONIC); }
 double rc_cpu_ms(void) { return clock_ms(CLOCK_PROCESS_CPUTIME_ID); }
 
+bool rc_fault(const char *name) {
+  const char *f = getenv("VKRAYCAST_FAULT");
+  return f && strcmp(f, name) == 0;
+}
+
 void *rc_alloc(size_t count, size_t size, const char *what) {
+  if (rc_fault("host-memory") && count * size >= (1u << 20)) {
+    rc_error("out of memory: %s needs %zu bytes (injected fault)", what, count * size);
+    return NULL;
+  }
   if (count != 0 && size > SIZE_MAX / count) {
     rc_error("out of memory: %s needs more than SIZE_MAX bytes", what);
     return NULL;

@@ -17,6 +17,7 @@
   X(ERR_IO, 2, "file error")                                        \
   X(ERR_TOO_LARGE, 2, "request too large")                          \
   X(ERR_DEVICE, 3, "no usable Vulkan device")                       \
+  X(ERR_OUT_OF_MEMORY, 3, "out of memory")                          \
   X(ERR_VULKAN, 3, "Vulkan call failed")                            \
   X(ERR_VALIDATION, 3, "Vulkan validation reported errors")
 
@@ -44,7 +45,13 @@ _Noreturn void rc_assert_fail(const char *file, int line, const char *expr);
 double rc_now_ms(void);
 double rc_cpu_ms(void);
 
-/* malloc/calloc that report failure with the size asked for; NULL on failure. */
+/* calloc that reports failure with the size asked for; NULL on failure (callers return
+ * RC_ERR_OUT_OF_MEMORY, exit status 3). */
 void *rc_alloc(size_t count, size_t size, const char *what);
+
+/* Fault injection for the tests of the error paths: true when VKRAYCAST_FAULT names this
+ * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling
+ * code then runs as if the driver or the allocator had failed. */
+bool rc_fault(const char *name);
 
 #endif

@@ -72,6 +72,8 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "repeat", s->repeat);
   cJSON_AddNumberToObject(o, "tiles", s->gpu.tiles);
   cJSON_AddNumberToObject(o, "dispatches", s->gpu.dispatches);
+  cJSON_AddNumberToObject(o, "max_dispatch_ms", s->gpu.max_dispatch_ms);
+  cJSON_AddNumberToObject(o, "dispatches_over_budget", s->gpu.over_budget);
   cJSON_AddNumberToObject(o, "batch_samples", s->gpu.plan.batch_samples);
   cJSON_AddNumberToObject(o, "loop_steps_per_sample", (double)s->gpu.plan.steps_per_sample);
   cJSON_AddNumberToObject(o, "budget_retries", s->gpu.budget_retries);

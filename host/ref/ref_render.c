@@ -85,7 +85,7 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, ui
   long cores = sysconf(_SC_NPROCESSORS_ONLN);
   uint32_t n = opts->threads ? opts->threads : (uint32_t)(cores > 0 ? cores : 1);
   pthread_t *threads = calloc(n, sizeof *threads);
-  if (!threads) return RC_ERR_TOO_LARGE;
+  if (!threads) return RC_ERR_OUT_OF_MEMORY;
   double t0 = rc_now_ms(), c0 = rc_cpu_ms();
   uint32_t started = 0;
   for (; started < n; started++)

@@ -42,7 +42,7 @@ static dvec3 color(const struct aiMaterial *m, const char *key, unsigned type, u
 static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char *file, uint32_t *first) {
   size_t n = s->material_count + ai->mNumMaterials;
   rc_material_def *m = realloc(s->materials, (n ? n : 1) * sizeof *m);
-  if (!m) return RC_ERR_TOO_LARGE;
+  if (!m) return RC_ERR_OUT_OF_MEMORY;
   s->materials = m;
   *first = (uint32_t)s->material_count;
   for (unsigned i = 0; i < ai->mNumMaterials; i++) {

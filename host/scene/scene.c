@@ -56,7 +56,7 @@ rc_status rc_scene_reserve_triangles(rc_scene *s, size_t extra) {
   rc_triangle_def *t = realloc(s->triangles, cap * sizeof *t);
   if (!t) {
     rc_error("out of memory: %zu triangles", cap);
-    return RC_ERR_TOO_LARGE;
+    return RC_ERR_OUT_OF_MEMORY;
   }
   s->triangles = t;
   s->triangle_capacity = cap;

@@ -288,7 +288,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
   TRY(expect_object(c, mats));
   size_t n = (size_t)cJSON_GetArraySize(mats);
   s->materials = rc_alloc(n, sizeof *s->materials, "materials");
-  if (!s->materials) return RC_ERR_TOO_LARGE;
+  if (!s->materials) return RC_ERR_OUT_OF_MEMORY;
   for (const cJSON *m = mats->child; m; m = m->next) {
     push_key(c, m->string);
     for (const cJSON *p = mats->child; p != m; p = p->next)
@@ -298,7 +298,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(check_members(c, m, allowed));
     rc_material_def *d = &s->materials[s->material_count];
     d->name = strdup(m->string);
-    if (!d->name) return RC_ERR_TOO_LARGE;
+    if (!d->name) return RC_ERR_OUT_OF_MEMORY;
     s->material_count++;
     dvec3 zero = rcm_make_d(0, 0, 0);
     TRY(get_vec3(c, m, "ambient", false, zero, 0.0, &d->ambient));
@@ -320,7 +320,7 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
   if (!cJSON_IsArray(lights)) return fail(c, "expected an array, got %s", type_name(lights));
   size_t n = (size_t)cJSON_GetArraySize(lights);
   s->lights = rc_alloc(n, sizeof *s->lights, "lights");
-  if (!s->lights) return RC_ERR_TOO_LARGE;
+  if (!s->lights) return RC_ERR_OUT_OF_MEMORY;
   size_t i = 0;
   for (const cJSON *l = lights->child; l; l = l->next, i++) {
     push_index(c, i);
@@ -527,7 +527,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   if (!cJSON_IsArray(objs)) return fail(c, "expected an array, got %s", type_name(objs));
   size_t n = (size_t)cJSON_GetArraySize(objs);
   s->spheres = rc_alloc(n, sizeof *s->spheres, "spheres");
-  if (!s->spheres) return RC_ERR_TOO_LARGE;
+  if (!s->spheres) return RC_ERR_OUT_OF_MEMORY;
   size_t i = 0;
   for (const cJSON *o = objs->child; o; o = o->next, i++) {
     push_index(c, i);

@@ -121,7 +121,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   p->normals = rc_alloc(smooth + 1, sizeof *p->normals, "packed normals");
   if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals) {
     rc_packed_scene_free(p);
-    return RC_ERR_TOO_LARGE;
+    return RC_ERR_OUT_OF_MEMORY;
   }
   for (size_t i = 0; i < s->sphere_count; i++) {
     const rc_sphere_def *d = &s->spheres[i];

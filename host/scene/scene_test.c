@@ -136,7 +136,7 @@ static rc_status material_index(rc_scene *s, size_t *cap, const material_state *
   if (s->material_count == *cap) {
     size_t n = *cap ? 2 * *cap : 16;
     rc_material_def *p = realloc(s->materials, n * sizeof *p);
-    if (!p) return RC_ERR_TOO_LARGE;
+    if (!p) return RC_ERR_OUT_OF_MEMORY;
     s->materials = p;
     *cap = n;
   }
@@ -153,7 +153,7 @@ static rc_status material_index(rc_scene *s, size_t *cap, const material_state *
     if ((count) == (cap)) {                                              \
       size_t n_ = (cap) ? 2 * (cap) : 64;                                \
       void *p_ = realloc((array), n_ * sizeof *(array));                 \
-      if (!p_) return RC_ERR_TOO_LARGE;                                  \
+      if (!p_) return RC_ERR_OUT_OF_MEMORY;                                  \
       (array) = p_;                                                      \
       (cap) = n_;                                                        \
     }                                                                    \

@@ -53,7 +53,14 @@ rc_status rc_buffer_create(rc_vk_ctx *ctx, VkDeviceSize size, VkBufferUsageFlags
   VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
                                 .allocationSize = req.size,
                                 .memoryTypeIndex = (uint32_t)type};
-  RC_VK_TRY(vkAllocateMemory(ctx->device, &alloc, NULL, &out->memory));
+  VkResult r = rc_fault("device-memory") ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                         : vkAllocateMemory(ctx->device, &alloc, NULL, &out->memory);
+  if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    rc_error("out of %s memory allocating a %llu-byte buffer on the Vulkan device", r == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "device" : "host",
+             (unsigned long long)req.size);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
+  RC_VK_TRY(r);
   RC_VK_TRY(vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
   VkMemoryPropertyFlags flags = ctx->memory.memoryTypes[type].propertyFlags;
   out->coherent = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;

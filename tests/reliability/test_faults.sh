@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Faults and interruptions (issue 7): every failure gives a clear message and its exit
+# status, never a crash or a hang, and an existing image is never left half overwritten
+# nor a temporary file left behind. Faults the driver will not produce on demand (device
+# loss, out of device memory, a failed pipeline, host out of memory) are injected with
+# VKRAYCAST_FAULT into the real handling code. Also: tiles adapt to a tiny time budget.
+# Usage: test_faults.sh VKRAYCAST SCENES_DIR WORKDIR
+set -uo pipefail
+bin=$1 scenes=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+failed=0 passed=0
+num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+check() { # name condition-result
+  if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi
+}
+# A previous image that must survive every failure below.
+"$bin" render "$scenes/shadows.json" -o "$work/keep.png" --width 64 --height 48 --quiet || exit 1
+sum=$(md5sum <"$work/keep.png")
+intact() { # name
+  local why=ok
+  [[ "$(md5sum <"$work/keep.png")" == "$sum" ]] || why="the existing image changed"
+  [[ -z "$(find "$work" -name '.keep.png.tmp*')" ]] || why="a temporary file was left: $(find "$work" -name '.keep.png.tmp*')"
+  check "$1 (old image intact, no temporary)" "$why"
+}
+expect() { # name status message -- command...
+  local name=$1 want=$2 msg=$3
+  shift 4
+  "$@" >"$work/out" 2>"$work/err"
+  local got=$?
+  local why=ok
+  [[ $got == "$want" ]] || why="exit status $got, expected $want"
+  grep -qF -- "$msg" "$work/err" || why="$why; stderr lacks '$msg': $(head -c 300 "$work/err")"
+  check "$name" "$why"
+}
+
+render=("$bin" render "$scenes/shadows.json" -o "$work/keep.png" --width 64 --height 48 --quiet)
+expect "missing ICD" 3 "no Vulkan" -- env VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json "${render[@]}"
+intact "missing ICD"
+expect "device lost" 3 "the Vulkan device was lost" -- env VKRAYCAST_FAULT=device-lost "${render[@]}"
+intact "device lost"
+expect "out of device memory" 3 "out of device memory allocating" -- env VKRAYCAST_FAULT=device-memory "${render[@]}"
+intact "out of device memory"
+expect "pipeline creation" 3 "could not create the compute pipeline" -- env VKRAYCAST_FAULT=pipeline "${render[@]}"
+intact "pipeline creation"
+expect "host out of memory" 3 "out of memory" -- env VKRAYCAST_FAULT=host-memory "$bin" render "$scenes/shadows.json" \
+  -o "$work/keep.png" --width 1024 --height 1024 --quiet
+intact "host out of memory"
+
+# A full disk: a 64 KiB file size limit, and an EXR of about 800 KB.
+expect "disk full" 2 "cannot write image" -- bash -c "ulimit -f 64; exec \"\$@\"" _ "$bin" render \
+  "$scenes/shadows.json" -o "$work/keep.exr" --width 256 --height 256 --quiet
+[[ -z "$(find "$work" -name '.keep.exr.tmp*')" ]] && check "disk full: no temporary left" ok ||
+  check "disk full: no temporary left" "$(find "$work" -name '.keep.exr.tmp*')"
+cp "$work/keep.png" "$work/keep_copy.png"
+
+# Killed while writing: wait for the temporary image to appear, then SIGTERM.
+"$bin" render "$scenes/showcase.json" -o "$work/keep.png" --width 1024 --height 1024 --spp 4 --quiet 2>/dev/null &
+pid=$!
+for _ in $(seq 1 600); do
+  [[ -n "$(find "$work" -name '.keep.png.tmp*')" ]] && break
+  sleep 0.05
+done
+seen=$(find "$work" -name '.keep.png.tmp*')
+kill -TERM $pid
+wait $pid
+status=$?
+check "killed mid-render: the temporary file existed" "$([[ -n "$seen" ]] && echo ok || echo 'never saw it')"
+check "killed mid-render: died of SIGTERM" "$([[ $status == 143 ]] && echo ok || echo "status $status")"
+intact "killed mid-render"
+
+# Tiles adapt to a 40 ms budget (the showcase takes ~200 ms in one dispatch here; Mesa 22
+# lavapipe spends ~8 ms on any dispatch, so a budget must be above that): nearly every
+# dispatch after the first (measuring) tile stays within it, and the image equals one
+# rendered with fixed tiles.
+"$bin" render "$scenes/showcase.json" -o "$work/adaptive.exr" --width 640 --height 400 --tile-budget-ms 40 --quiet \
+  --stats-json "$work/adaptive.json"
+"$bin" render "$scenes/showcase.json" -o "$work/fixed.exr" --width 640 --height 400 --tile 256 --quiet
+d=$(num dispatches "$work/adaptive.json") over=$(num dispatches_over_budget "$work/adaptive.json")
+check "adaptive tiles: the frame is split" "$( ((d >= 6)) && echo ok || echo "only $d dispatches")"
+check "adaptive tiles: at most 10% over the budget" "$( ((over * 10 <= d)) && echo ok || echo "$over of $d over 40 ms")"
+max=$(num max_dispatch_ms "$work/adaptive.json")
+check "adaptive tiles: none beyond 2.5 x the budget" "$(awk -v m="$max" 'BEGIN { print (m <= 100) ? "ok" : "longest " m " ms" }')"
+"$bin" compare "$work/adaptive.exr" "$work/fixed.exr" --fail 0 >/dev/null
+check "adaptive tiles: the same image as fixed tiles" "$([[ $? == 0 ]] && echo ok || echo differs)"
+echo "$passed passed, $failed failed"
+((failed == 0))
