@@ -1,8 +1,19 @@
 #!/usr/bin/env bash
 # Quick start, command 2: set up, build, and run the whole test suite (ctest) on lavapipe
-# with the Khronos validation layer on. A missing Vulkan device fails the suite.
+# with the Khronos validation layer on (synchronization validation included). A missing
+# Vulkan device fails the suite. Then the same suite again in an AddressSanitizer +
+# UndefinedBehaviorSanitizer build (build-asan/), and a short libFuzzer run of each
+# input parser (tools/fuzz.sh). VKRAYCAST_QUICK=1 skips those two (local iteration only;
+# CI runs everything).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh
-cd build
-ctest --output-on-failure --timeout 600 -j"$(nproc)" "$@"
+(cd build && ctest --output-on-failure --timeout 900 -j"$(nproc)" "$@")
+if [ "${VKRAYCAST_QUICK:-0}" = 1 ]; then exit 0; fi
+echo "== the suite under AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/)" >&2
+if [ ! -f build-asan/CMakeCache.txt ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAYCAST_SANITIZE=ON >&2
+fi
+cmake --build build-asan -j"$(nproc)" >&2
+(cd build-asan && ctest --output-on-failure --timeout 1800 -j"$(nproc)" "$@")
+if [ -x tools/fuzz.sh ]; then tools/fuzz.sh; fi
