@@ -13,6 +13,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libcjson-dev
   libassimp-dev assimp-testmodels
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -4,7 +4,12 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <errno.h>
 #include <math.h>
+#include <pthread.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,12 +70,70 @@ static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char
   return RC_OK;
 }
 
+/* assimp 5.2.4 can loop forever on a malformed file (fuzz_mesh found a 171-byte ASCII PLY
+ * that spins in fread at end of file). The import runs on a helper thread; if it has not
+ * finished after 20 s + 1 s per MiB, the process reports the file and exits with status 2
+ * (no output file exists yet at load time), rather than hang. */
+typedef struct {
+  const char *file;
+  const struct aiScene *scene;
+  bool done;
+  pthread_mutex_t lock;
+  pthread_cond_t cond;
+} import_job;
+
+static void *import_thread(void *arg) {
+  import_job *j = arg;
+  const struct aiScene *s = aiImportFile(j->file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                      aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  pthread_mutex_lock(&j->lock);
+  j->scene = s;
+  j->done = true;
+  pthread_cond_signal(&j->cond);
+  pthread_mutex_unlock(&j->lock);
+  return NULL;
+}
+
+static const struct aiScene *import_with_watchdog(const char *file, off_t bytes, const char *where) {
+  static import_job job; /* static: a timed-out import thread may still touch it */
+  job = (import_job){.file = file};
+  pthread_mutex_init(&job.lock, NULL);
+  pthread_cond_init(&job.cond, NULL);
+  pthread_t t;
+  if (pthread_create(&t, NULL, import_thread, &job) != 0) {
+    import_thread(&job);
+    return job.scene;
+  }
+  long limit_s = 20 + (long)(bytes >> 20);
+  const char *env = getenv("VKRAYCAST_MESH_TIMEOUT_S");
+  if (env && atol(env) > 0) limit_s = atol(env);
+  struct timespec until;
+  clock_gettime(CLOCK_REALTIME, &until);
+  until.tv_sec += limit_s;
+  pthread_mutex_lock(&job.lock);
+  while (!job.done) {
+    if (pthread_cond_timedwait(&job.cond, &job.lock, &until) != 0 && !job.done) {
+      fprintf(stderr, "%s: cannot load mesh %s: the importer did not finish within %ld s (a malformed file?)\n",
+              where, file, limit_s);
+      _exit(2);
+    }
+  }
+  pthread_mutex_unlock(&job.lock);
+  pthread_join(t, NULL);
+  return job.scene;
+}
+
 rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int material, rc_scene *s,
                        const char *where) {
   /* Triangulate n-gons; flatten the node hierarchy into the vertices; drop points and
    * lines. No normal generation: files without normals are flat shaded. */
-  const struct aiScene *ai = aiImportFile(file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                                    aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  struct stat sb;
+  if (stat(file, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file,
+            stat(file, &sb) != 0 ? strerror(errno) : "not a regular file");
+    return RC_ERR_IO;
+  }
+  const struct aiScene *ai = import_with_watchdog(file, sb.st_size, where);
   if (!ai) {
     fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, aiGetErrorString());
     return RC_ERR_IO;

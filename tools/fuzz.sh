@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Fuzzes the input parsers with libFuzzer (clang), ASan and UBSan: the JSON scene parser,
+# the CSE167 .test parser and mesh loading through assimp, each for FUZZ_SECONDS (60) from
+# the seed corpus in tests/fuzz/corpus/. Prints the executions per target; exits 1 on
+# any crash, hang (10 s an input), leak or sanitizer report, leaving the input in
+# build-fuzz/findings/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${FUZZ_SECONDS:-60}
+if [ ! -f build-fuzz/CMakeCache.txt ]; then
+  CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAYCAST_FUZZ=ON >&2
+fi
+cmake --build build-fuzz --target fuzz_json fuzz_test fuzz_mesh -j"$(nproc)" >&2
+mkdir -p build-fuzz/findings
+export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp
+failed=0
+for target in json test mesh; do
+  corpus=build-fuzz/corpus-$target
+  mkdir -p "$corpus"
+  cp -n tests/fuzz/corpus/$target/* "$corpus"/ 2>/dev/null || true
+  log=build-fuzz/fuzz-$target.log
+  if build-fuzz/fuzz_$target "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+    -print_final_stats=1 -close_fd_mask=2 -artifact_prefix=build-fuzz/findings/$target- >"$log" 2>&1; then
+    result=ok
+  else
+    result="FAILED (see $log and build-fuzz/findings/)"
+    failed=1
+  fi
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  echo "fuzz $target: ${runs:-?} executions in ${seconds} s, corpus $(ls "$corpus" | wc -l) inputs: $result"
+done
+exit $failed
