@@ -63,6 +63,15 @@ static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, 
   return RC_SCENE_BUFFERS_TEXEL;
 }
 
+static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
+  return r->opts.tile_size ? r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
+}
+
+static uint32_t max_band_rows(const rc_gpu_renderer *r) {
+  uint32_t rows = r->opts.tile_size ? r->opts.tile_size : MAX_BAND_ROWS;
+  return rows < r->frame.camera.height ? rows : r->frame.camera.height;
+}
+
 static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
   rc_vk_ctx *ctx = r->ctx;
   const gpu_frame *f = &s->frame;
@@ -82,6 +91,20 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
       bvh ? (f->object_count + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
       (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals)};
   r->opts.scene_buffers = choose_buffers(ctx, r->opts.scene_buffers, sizes);
+  /* Everything the render allocates on the device, against its largest device-local heap:
+   * refuse what cannot fit before allocating anything. */
+  VkDeviceSize need = sizeof(gpu_frame) + max_tile_pixels(r) * (16 + (r->opts.aov ? sizeof(gpu_aov) : 0));
+  for (int i = 0; i < SCENE_ARRAYS; i++) need += sizes[i];
+  VkDeviceSize heap = 0;
+  for (uint32_t i = 0; i < ctx->memory.memoryHeapCount; i++)
+    if ((ctx->memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) && ctx->memory.memoryHeaps[i].size > heap)
+      heap = ctx->memory.memoryHeaps[i].size;
+  if (heap && need > heap) {
+    rc_error("scene too large for the device: it needs %.1f MiB of device memory, the largest device-local heap "
+             "has %.1f MiB",
+             (double)need / (1 << 20), (double)heap / (1 << 20));
+    return RC_ERR_TOO_LARGE;
+  }
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   for (int i = 0; i < SCENE_ARRAYS; i++) {
     if (!texel && sizes[i] > ctx->props.limits.maxStorageBufferRange) {
@@ -111,15 +134,6 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
 
 /* The per-tile accumulation buffer and the status counters, with readback copies when
  * they are not mapped directly. */
-static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
-  return r->opts.tile_size ? r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
-}
-
-static uint32_t max_band_rows(const rc_gpu_renderer *r) {
-  uint32_t rows = r->opts.tile_size ? r->opts.tile_size : MAX_BAND_ROWS;
-  return rows < r->frame.camera.height ? rows : r->frame.camera.height;
-}
-
 static rc_status create_outputs(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
   VkDeviceSize tile_pixels = max_tile_pixels(r);
