@@ -1,5 +1,7 @@
 #include "bvh.h"
 
+#include "math/rcm_mat3.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -200,14 +202,8 @@ static void set_child(gpu_bvh_node *g, int which, const build_node *c, uint32_t 
 static box ellipsoid_box(const gpu_sphere *s, const gpu_transform *t) {
   const vec4 r[3] = {t->row0, t->row1, t->row2};
   double a[3][3] = {{r[0].x, r[0].y, r[0].z}, {r[1].x, r[1].y, r[1].z}, {r[2].x, r[2].y, r[2].z}};
-  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-  double m[3][3] = {{(a[1][1] * a[2][2] - a[1][2] * a[2][1]) / det, (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det,
-                     (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det},
-                    {(a[1][2] * a[2][0] - a[1][0] * a[2][2]) / det, (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det,
-                     (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det},
-                    {(a[1][0] * a[2][1] - a[1][1] * a[2][0]) / det, (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det,
-                     (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det}};
+  double m[3][3];
+  if (!rcm_mat3_inverse_d(a, m)) m[0][0] = m[1][1] = m[2][2] = 1, m[0][1] = m[0][2] = m[1][0] = m[1][2] = m[2][0] = m[2][1] = 0;
   /* p_obj = A p + b  =>  p = M (p_obj - b) */
   double c[3] = {s->center.x - r[0].w, s->center.y - r[1].w, s->center.z - r[2].w};
   box out;

@@ -1,14 +1,7 @@
 /* ref_bvh.c: mirrors shaders/rc_bvh.glsl: the same traversal, stack and box test. */
-#include "ref/ref_intersect.h"
+#include "ref/ref_shader.h"
 #include "ref/ref_real.h"
 
-#if REF_F64
-typedef ref_hit_d ref_hit;
-typedef ref_shear_d ref_shear;
-#else
-typedef ref_hit_f ref_hit;
-typedef ref_shear_f ref_shear;
-#endif
 
 static real rmin(real a, real b) { return a < b ? a : b; }
 static real rmax(real a, real b) { return a > b ? a : b; }

@@ -1,17 +1,10 @@
 /* ref_intersect.c: mirrors shaders/rc_intersect.glsl function by function, same order,
  * same formulas (see the shader for the papers). Built with -ffp-contract=off, so the
  * `precise` of the shader is the default here. */
-#include "ref/ref_intersect.h"
+#include "ref/ref_shader.h"
 
 #include "ref/ref_real.h"
 
-#if REF_F64
-typedef ref_hit_d ref_hit;
-typedef ref_shear_d ref_shear;
-#else
-typedef ref_hit_f ref_hit;
-typedef ref_shear_f ref_shear;
-#endif
 
 real REF(intersect_sphere)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
   *side = 0;

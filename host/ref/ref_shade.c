@@ -5,15 +5,6 @@
 #include "ref/ref_real.h"
 #include "ref/ref_shader.h"
 
-#if REF_F64
-typedef ref_hit_d ref_hit;
-typedef ref_surface_d ref_surface;
-typedef int64_t offset_int;
-#else
-typedef ref_hit_f ref_hit;
-typedef ref_surface_f ref_surface;
-typedef int32_t offset_int;
-#endif
 
 ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit *h) {
   ref_surface sf;
@@ -62,6 +53,13 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
   sf.ng = sf.n;
   return sf;
 }
+
+/* The integer of a real's width, for the Wächter-Binder ulp offset. */
+#if REF_F64
+typedef int64_t offset_int;
+#else
+typedef int32_t offset_int;
+#endif
 
 static offset_int bits_of(real x) {
   offset_int i;

@@ -32,4 +32,17 @@ extern _Thread_local gpu_aov ref_aov_record;
 REF_DECLARE_SHADER(d, double, dvec3)
 REF_DECLARE_SHADER(f, float, vec3)
 
+/* In a file compiled for one precision (ref_real.h), the plain names. */
+#ifdef REF_F64
+#if REF_F64
+typedef ref_hit_d ref_hit;
+typedef ref_shear_d ref_shear;
+typedef ref_surface_d ref_surface;
+#else
+typedef ref_hit_f ref_hit;
+typedef ref_shear_f ref_shear;
+typedef ref_surface_f ref_surface;
+#endif
+#endif
+
 #endif

@@ -2,13 +2,6 @@
 #include "ref/ref_real.h"
 #include "ref/ref_shader.h"
 
-#if REF_F64
-typedef ref_hit_d ref_hit;
-typedef ref_surface_d ref_surface;
-#else
-typedef ref_hit_f ref_hit;
-typedef ref_surface_f ref_surface;
-#endif
 
 void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
   ref_aov_record.hit = (h->kind == RC_HIT_NONE) ? 0.0f : 1.0f;

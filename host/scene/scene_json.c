@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "math/rcm_mat3.h"
 #include "scene/json_locate.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
@@ -387,13 +388,11 @@ static void affine_multiply(rc_affine *a, const rc_affine *b) {
   *a = r;
 }
 
-/* Rodrigues: rotation by deg degrees about a unit axis. */
 static rc_affine rotation(dvec3 axis, double deg) {
-  double t = deg * M_PI / 180.0, c = cos(t), s = sin(t), x = axis.x, y = axis.y, z = axis.z;
-  rc_affine r = {{{c + (1 - c) * x * x, (1 - c) * x * y - s * z, (1 - c) * x * z + s * y, 0},
-                  {(1 - c) * y * x + s * z, c + (1 - c) * y * y, (1 - c) * y * z - s * x, 0},
-                  {(1 - c) * z * x - s * y, (1 - c) * z * y + s * x, c + (1 - c) * z * z, 0}}};
-  return r;
+  double r[3][3];
+  rcm_mat3_rotation_d(axis, deg, r);
+  rc_affine a = {{{r[0][0], r[0][1], r[0][2], 0}, {r[1][0], r[1][1], r[1][2], 0}, {r[2][0], r[2][1], r[2][2], 0}}};
+  return a;
 }
 
 /* "transform": {"matrix", "translate", "rotate_deg", "scale"}, composed so that points

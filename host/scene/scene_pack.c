@@ -1,5 +1,7 @@
 #include "scene/scene_pack.h"
 
+#include "math/rcm_mat3.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,15 +66,9 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
  * in f64. Returns false for a singular transform. */
 static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *out) {
   const double(*a)[4] = w->m;
-  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-  if (!(fabs(det) > 0) || !isfinite(det)) return false;
-  double inv[3][3] = {{(a[1][1] * a[2][2] - a[1][2] * a[2][1]) / det, (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det,
-                       (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det},
-                      {(a[1][2] * a[2][0] - a[1][0] * a[2][2]) / det, (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det,
-                       (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det},
-                      {(a[1][0] * a[2][1] - a[1][1] * a[2][0]) / det, (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det,
-                       (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det}};
+  double lin[3][3] = {{a[0][0], a[0][1], a[0][2]}, {a[1][0], a[1][1], a[1][2]}, {a[2][0], a[2][1], a[2][2]}};
+  double inv[3][3];
+  if (!rcm_mat3_inverse_d(lin, inv)) return false;
   /* p_obj = inv (p_world - t) with p_world = p_packed + origin. */
   double shift[3] = {origin.x - a[0][3], origin.y - a[1][3], origin.z - a[2][3]};
   vec4 *rows[3] = {&out->row0, &out->row1, &out->row2};

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "math/rcm_mat3.h"
 #include "scene/scene.h"
 
 #define MAX_ARGS 10
@@ -108,13 +109,12 @@ static bool mat_is_identity(const mat4 m) {
   return true;
 }
 
-/* Rodrigues' rotation about a unit axis by deg degrees. */
 static void mat_rotation(mat4 r, dvec3 axis, double deg) {
-  double a = deg * M_PI / 180.0, c = cos(a), s = sin(a), x = axis.x, y = axis.y, z = axis.z;
+  double m[3][3];
+  rcm_mat3_rotation_d(axis, deg, m);
   mat_identity(r);
-  r[0][0] = c + (1 - c) * x * x, r[0][1] = (1 - c) * x * y - s * z, r[0][2] = (1 - c) * x * z + s * y;
-  r[1][0] = (1 - c) * y * x + s * z, r[1][1] = c + (1 - c) * y * y, r[1][2] = (1 - c) * y * z - s * x;
-  r[2][0] = (1 - c) * z * x - s * y, r[2][1] = (1 - c) * z * y + s * x, r[2][2] = c + (1 - c) * z * z;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) r[i][j] = m[i][j];
 }
 
 typedef struct {
