@@ -525,10 +525,14 @@ typedef struct {
   bool known;
 } tile_model;
 
+/* The slope rises at once and decays slowly (a quarter of the way to each new
+ * measurement): a mirror sphere can cost several times the background per pixel, and
+ * tiles stay sized for it a while after, without one noisy dispatch pinning them small. */
 static void model_update(tile_model *m, double ms, double pixels) {
   if (!m->known || ms < m->overhead_ms) m->overhead_ms = ms;
   double slope = (ms - m->overhead_ms) / pixels;
-  if (!m->known || slope > 0) m->slope_ms = slope > 0 ? slope : ms / pixels;
+  if (!(slope > 0)) slope = ms / pixels;
+  m->slope_ms = (!m->known || slope > m->slope_ms) ? slope : 0.75 * m->slope_ms + 0.25 * slope;
   m->known = true;
 }
 
