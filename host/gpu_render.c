@@ -443,9 +443,9 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
 /* Renders one tile (a piece of the current band): batches until every pixel has all its
  * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
  * with half the batch; exhaustion at one sample per batch is an error, never a silently
- * wrong pixel. Returns the GPU time of the tile's longest dispatch per pixel in *ms_per_px. */
+ * wrong pixel. *worst_ms: the GPU time of the tile's longest dispatch. */
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
-                             rc_gpu_stats *stats, double *ms_per_px) {
+                             rc_gpu_stats *stats, double *worst_ms) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples};
   bool first = true;
@@ -476,7 +476,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     }
     if (status.incomplete_pixels == 0) break;
   }
-  *ms_per_px = worst / ((double)tw * th);
+  *worst_ms = worst;
   double t0 = rc_now_ms();
   rc_status st = begin(r);
   if (st != RC_OK) return st;
@@ -568,10 +568,10 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
         cols = clamp_u(model_area(&model, r->opts.tile_budget_ms) / rows, 8, MAX_TILE_PIXELS / rows);
       }
       if (cols > w - x0) cols = w - x0;
-      double tile_ms_per_px = 0;
-      rc_status st = render_tile(r, x0, y0, cols, rows, stats, &tile_ms_per_px);
+      double tile_ms = 0;
+      rc_status st = render_tile(r, x0, y0, cols, rows, stats, &tile_ms);
       if (st != RC_OK) return st;
-      model_update(&model, tile_ms_per_px * cols * rows, (double)cols * rows);
+      model_update(&model, tile_ms, (double)cols * rows);
       x0 += cols;
       done += (uint64_t)cols * rows;
       if (r->opts.progress) {

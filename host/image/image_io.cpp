@@ -150,9 +150,9 @@ extern "C" int rc_image_writer_close(rc_image_writer *w, int commit, char *err, 
 
 namespace {
 
-int write_image(const char *path, int width, int height, int channels, const char *const *names, const float *pixels,
-                rc_encoding enc, bool truncate, char *err, size_t err_len) {
-  rc_image_writer *w = rc_image_writer_open(path, width, height, channels, names, enc, truncate, err, err_len);
+int write_image(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
+                bool truncate, char *err, size_t err_len) {
+  rc_image_writer *w = rc_image_writer_open(path, width, height, channels, nullptr, enc, truncate, err, err_len);
   if (!w) return -1;
   if (rc_image_writer_rows(w, height, pixels, err, err_len) != 0) {
     rc_image_writer_close(w, 0, nullptr, 0);
@@ -165,12 +165,7 @@ int write_image(const char *path, int width, int height, int channels, const cha
 
 extern "C" int rc_image_write(const char *path, int width, int height, int channels, const float *pixels,
                               rc_encoding enc, bool truncate, char *err, size_t err_len) {
-  return write_image(path, width, height, channels, nullptr, pixels, enc, truncate, err, err_len);
-}
-
-extern "C" int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,
-                                    const float *pixels, char *err, size_t err_len) {
-  return write_image(path, width, height, channels, names, pixels, RC_ENCODING_LINEAR, false, err, err_len);
+  return write_image(path, width, height, channels, pixels, enc, truncate, err, err_len);
 }
 
 extern "C" int rc_image_can_write(const char *path) {

@@ -35,10 +35,6 @@ int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_
 /* The temporary file's name while the writer is open (for a signal handler to unlink). */
 const char *rc_image_writer_temp_path(const rc_image_writer *w);
 
-/* Writes a float image (EXR) with named channels, atomically as rc_image_write. */
-int rc_image_write_named(const char *path, int width, int height, int channels, const char *const *names,
-                         const float *pixels, char *err, size_t err_len);
-
 /* Like rc_image_read, also returning up to max_names channel names (31 chars each). */
 int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
                         int max_names, int *name_count, char *err, size_t err_len);

@@ -14,13 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static dvec3 apply_point(const rc_affine *a, dvec3 p) {
-  const double(*m)[4] = a->m;
-  return rcm_make_d(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
-                    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-                    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
-}
-
 /* Normals go through the inverse transpose of the linear part: the cofactor matrix,
  * whose scale does not matter once normalised. */
 static dvec3 apply_normal(const rc_affine *a, dvec3 n) {
@@ -147,7 +140,7 @@ rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int
     fprintf(stderr, "%s: mesh %s has no triangles\n", where, file);
     st = RC_ERR_INPUT;
   }
-  if (st == RC_OK) st = rc_scene_reserve_triangles(s, faces);
+  if (st == RC_OK) st = rc_scene_reserve_triangles(s, faces); /* one allocation for the whole mesh */
   for (unsigned i = 0; st == RC_OK && i < ai->mNumMeshes; i++) {
     const struct aiMesh *mesh = ai->mMeshes[i];
     for (unsigned f = 0; st == RC_OK && f < mesh->mNumFaces; f++) {
@@ -170,7 +163,7 @@ rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int
           st = RC_ERR_INPUT;
           break;
         }
-        d.v[k] = apply_point(world_from_object, rcm_make_d(v.x, v.y, v.z));
+        d.v[k] = rc_affine_point(world_from_object, rcm_make_d(v.x, v.y, v.z));
         if (d.smooth) {
           struct aiVector3D n = mesh->mNormals[idx];
           d.n[k] = apply_normal(world_from_object, rcm_make_d(n.x, n.y, n.z));
@@ -178,12 +171,7 @@ rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int
           if (!(rcm_length_d(d.n[k]) > 0.5)) d.smooth = false;
         }
       }
-      if (st != RC_OK) break;
-      dvec3 n = rcm_cross_d(rcm_sub_d(d.v[1], d.v[0]), rcm_sub_d(d.v[2], d.v[0]));
-      if (rcm_max_abs_comp_d(n) == 0.0)
-        s->degenerate_triangles++;
-      else
-        s->triangles[s->triangle_count++] = d;
+      if (st == RC_OK) st = rc_scene_add_triangle(s, &d);
     }
   }
   aiReleaseImport(ai);

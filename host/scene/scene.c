@@ -63,6 +63,24 @@ rc_status rc_scene_reserve_triangles(rc_scene *s, size_t extra) {
   return RC_OK;
 }
 
+rc_status rc_scene_add_triangle(rc_scene *s, const rc_triangle_def *t) {
+  dvec3 n = rcm_cross_d(rcm_sub_d(t->v[1], t->v[0]), rcm_sub_d(t->v[2], t->v[0]));
+  if (rcm_max_abs_comp_d(n) == 0.0) {
+    s->degenerate_triangles++;
+    return RC_OK;
+  }
+  rc_status st = rc_scene_reserve_triangles(s, 1);
+  if (st == RC_OK) s->triangles[s->triangle_count++] = *t;
+  return st;
+}
+
+dvec3 rc_affine_point(const rc_affine *a, dvec3 p) {
+  const double(*m)[4] = a->m;
+  return rcm_make_d(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+}
+
 void rc_scene_free(rc_scene *scene) {
   for (size_t i = 0; i < scene->material_count; i++) free(scene->materials[i].name);
   free(scene->materials);

@@ -83,6 +83,12 @@ rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc
 void rc_scene_free(rc_scene *scene);
 /* Room for `extra` more triangles (meshes and JSON triangles both append). */
 rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
+/* Appends a triangle, or counts it in degenerate_triangles when its area is exactly zero
+ * in f64: degenerate but meaningful input is skipped and counted (ROBUSTNESS.md §8.3).
+ * The one rule for JSON triangles, .test triangles and mesh faces. */
+rc_status rc_scene_add_triangle(rc_scene *scene, const rc_triangle_def *t);
+/* world_from_object applied to a point. */
+dvec3 rc_affine_point(const rc_affine *a, dvec3 p);
 
 /* Camera checks shared by the parser and by command-line overrides: eye != look_at, up
  * neither zero nor parallel to the view direction, fov in (0, 180), view_height > 0.

@@ -483,13 +483,6 @@ static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *
   return RC_OK;
 }
 
-static dvec3 affine_point(const rc_affine *a, dvec3 p) {
-  const double(*m)[4] = a->m;
-  return rcm_make_d(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
-                    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-                    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
-}
-
 /* A mesh object: the file relative to the scene file's folder. */
 static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m) {
   const cJSON *f = cJSON_GetObjectItemCaseSensitive(o, "file");
@@ -565,15 +558,8 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       pop(c);
       TRY(get_material_ref(c, o, s, &d.material));
       TRY(get_transform(c, o, &m, &transformed));
-      for (int k = 0; k < 3; k++) d.v[k] = affine_point(&m, d.v[k]);
-      /* Zero area in f64: degenerate but meaningful (ROBUSTNESS.md §8.3): skip, count. */
-      dvec3 nrm = rcm_cross_d(rcm_sub_d(d.v[1], d.v[0]), rcm_sub_d(d.v[2], d.v[0]));
-      if (rcm_max_abs_comp_d(nrm) == 0.0) {
-        s->degenerate_triangles++;
-      } else {
-        TRY(rc_scene_reserve_triangles(s, 1));
-        s->triangles[s->triangle_count++] = d;
-      }
+      for (int k = 0; k < 3; k++) d.v[k] = rc_affine_point(&m, d.v[k]);
+      TRY(rc_scene_add_triangle(s, &d));
     } else {
       static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
       TRY(check_members(c, o, allowed));

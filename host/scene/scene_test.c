@@ -252,13 +252,7 @@ static rc_status command(state *g, ctx *c) {
     rc_triangle_def t = {0};
     for (int k = 0; k < 3; k++) t.v[k] = mat_point(g->stack[g->top], g->verts[idx[k]]);
     TRY(material_index(s, &g->mat_cap, &g->mat, &t.material));
-    dvec3 n = rcm_cross_d(rcm_sub_d(t.v[1], t.v[0]), rcm_sub_d(t.v[2], t.v[0]));
-    if (rcm_max_abs_comp_d(n) == 0.0) {
-      s->degenerate_triangles++;
-    } else {
-      TRY(rc_scene_reserve_triangles(s, 1));
-      s->triangles[s->triangle_count++] = t;
-    }
+    TRY(rc_scene_add_triangle(s, &t));
   } else if (!strcmp(cmd, "translate") || !strcmp(cmd, "scale")) {
     ARGS(3);
     TRY(numbers(c, 1, 3, v));
