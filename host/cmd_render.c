@@ -1,6 +1,7 @@
 /* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
  * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +11,7 @@
 #include "gpu_render.h"
 #include "bvh.h"
 #include "output.h"
+#include "precision_budget.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
@@ -22,8 +24,9 @@ static const char render_usage[] =
     "  --width W, --height H   override the scene's image size\n"
     "  --spp N                 override samples per pixel (1..1024)\n"
     "  --backend B             gpu (default: the Vulkan compute shader) or cpu (the reference renderer)\n"
-    "  --precision P           f32 or f64 geometry and shading math (default: f32 on gpu, f64 on cpu;\n"
-    "                          f64 on gpu needs shaderFloat64)\n"
+    "  --precision P           auto (default), f32 or f64 geometry and shading math. auto: f64 on cpu;\n"
+    "                          on gpu f32 unless the precision-budget pass finds the scene needs f64\n"
+    "                          and the device has shaderFloat64 (docs/accuracy.md)\n"
     "  --accel A               bvh (default) or none: brute force over every object, for comparison\n"
     "  --threads N             cpu backend: threads (default: all cores); the image does not depend on it\n"
     "  --device N              Vulkan device index (see `vkraycast devices`); default: discrete >\n"
@@ -35,6 +38,14 @@ static const char render_usage[] =
     "  --aov FILE.exr          also write the decision outputs of each pixel's first sample: colour,\n"
     "                          hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)\n"
     "  --quiet                 no progress or summary on stderr\n"
+    "\n"
+    "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):\n"
+    "  --sphere F              geometric (default) or algebraic ray/sphere formula\n"
+    "  --triangle F            watertight (default), moller-trumbore or cramer ray/triangle test\n"
+    "  --shadow-offset S       error-bound (default), ulp or epsilon: where shadow/reflection rays start\n"
+    "  --shadow-epsilon E      the epsilon strategy's offset in scene units (default 1e-4)\n"
+    "  --camera-relative B     on (default) or off: positions relative to the eye before f32 rounding\n"
+    "  --reflection-depth N    mirror bounces (0..16)\n"
     "\n"
     "tuning and testing:\n"
     "  --scene-buffers K       texel (default) or storage: how the shader reads the scene arrays\n"
@@ -55,7 +66,9 @@ typedef struct {
   bool cpu;
   bool no_bvh;
   int truncate; /* -1: the scene format's rule */
-  int precision; /* -1 default, 0 f32, 1 f64 */
+  int precision; /* -1: the scene's (RC_PRECISION_*) */
+  int sphere, triangle, offset, camera_relative, reflection_depth; /* -1: the scene's */
+  double offset_epsilon; /* 0: the scene's */
   uint32_t threads;
   rc_gpu_options gpu;
 } render_args;
@@ -72,11 +85,24 @@ rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t 
   return RC_OK;
 }
 
+static rc_status cli_enum(const char *name, const char *v, const char *const *names, int *out) {
+  int i = rc_name_index(names, v);
+  if (i < 0) {
+    char list[160] = "";
+    for (int k = 0; names[k]; k++) snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", names[k]);
+    rc_error("%s: expected one of %s, got '%s'", name, list, v);
+    return RC_ERR_USAGE;
+  }
+  *out = i;
+  return RC_OK;
+}
+
 static bool option_takes_value(const char *o) {
   static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
                                            "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize",
-                                           "--tile-budget-ms"};
+                                           "--tile-budget-ms", "--sphere", "--triangle", "--shadow-offset",
+                                           "--shadow-epsilon", "--camera-relative", "--reflection-depth"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -86,7 +112,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
   a->device = -1;
   a->repeat = 1;
-  a->precision = -1;
+  a->precision = a->sphere = a->triangle = a->offset = a->camera_relative = a->reflection_depth = -1;
   a->truncate = -1;
   a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
   a->gpu.tile_size = 0;
@@ -164,10 +190,25 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
         st = RC_ERR_USAGE;
       }
     } else if (strcmp(o, "--precision") == 0) {
-      if (strcmp(v, "f32") == 0 || strcmp(v, "f64") == 0) {
-        a->precision = strcmp(v, "f64") == 0;
-      } else {
-        rc_error("--precision: expected f32 or f64, got '%s'", v);
+      st = cli_enum(o, v, rc_precision_names, &a->precision);
+    } else if (strcmp(o, "--sphere") == 0) {
+      st = cli_enum(o, v, rc_sphere_formula_names, &a->sphere);
+    } else if (strcmp(o, "--triangle") == 0) {
+      st = cli_enum(o, v, rc_triangle_formula_names, &a->triangle);
+    } else if (strcmp(o, "--shadow-offset") == 0) {
+      st = cli_enum(o, v, rc_offset_names, &a->offset);
+    } else if (strcmp(o, "--camera-relative") == 0) {
+      static const char *const off_on[] = {"off", "on", NULL};
+      st = cli_enum(o, v, off_on, &a->camera_relative);
+    } else if (strcmp(o, "--reflection-depth") == 0) {
+      st = rc_cli_uint(o, v, 0, RC_MAX_REFLECTION_DEPTH, &n);
+      a->reflection_depth = (int)n;
+    } else if (strcmp(o, "--shadow-epsilon") == 0) {
+      char *end = NULL;
+      a->offset_epsilon = strtod(v, &end);
+      if (!v[0] || *end || !(a->offset_epsilon > 0) || !((float)a->offset_epsilon > 0) ||
+          !isfinite((float)a->offset_epsilon)) {
+        rc_error("--shadow-epsilon: expected a positive number within f32 range, got '%s'", v);
         st = RC_ERR_USAGE;
       }
     } else if (strcmp(o, "--scene-buffers") == 0) {
@@ -193,8 +234,6 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     fputs(render_usage, stderr);
     return RC_ERR_USAGE;
   }
-  if (a->precision < 0) a->precision = a->cpu ? 1 : 0;
-  a->gpu.f64 = a->precision == 1;
   a->gpu.aov = a->aov != NULL;
   if (a->aov) {
     size_t n = strlen(a->aov);
@@ -261,7 +300,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
 
 static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
                                    rc_render_stats *rs, rc_output **out) {
-  rc_ref_options opts = {.f64 = a->precision == 1, .threads = a->threads};
+  rc_ref_options opts = {.f64 = a->gpu.f64, .threads = a->threads};
   uint32_t w = scene->width, h = scene->height;
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
   double *ms = calloc(a->repeat, sizeof *ms);
@@ -294,6 +333,47 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
   return st;
 }
 
+static void apply_quality_overrides(const render_args *a, rc_scene *s) {
+  rc_quality *q = &s->quality;
+  if (a->precision >= 0) q->precision = (uint32_t)a->precision;
+  if (a->sphere >= 0) q->sphere = (uint32_t)a->sphere;
+  if (a->triangle >= 0) q->triangle = (uint32_t)a->triangle;
+  if (a->offset >= 0) q->offset = (uint32_t)a->offset;
+  if (a->camera_relative >= 0) q->camera_relative = a->camera_relative == 1;
+  if (a->offset_epsilon > 0) q->offset_epsilon = a->offset_epsilon;
+  if (a->reflection_depth >= 0) s->reflection_depth = (uint32_t)a->reflection_depth;
+}
+
+/* The precision-budget findings, once, before rendering (ROBUSTNESS.md §7). */
+static void report_budget(const rc_scene *s, const rc_precision_report *b) {
+  if (b->needs_f64)
+    fprintf(stderr, "%s: warning: precision: %u object(s) need more than f32 arithmetic, first %s\n", s->path,
+            b->needs_f64, b->first_f64);
+  if (b->quantized)
+    fprintf(stderr,
+            "%s: warning: precision: rounding positions to f32 moves %u object(s) by more than %g of their size, "
+            "first %s; no shader precision restores this: bring the scene nearer the origin%s\n",
+            s->path, b->quantized, RC_BUDGET_QUANTIZATION, b->first_quantized,
+            s->quality.camera_relative ? "" : " or leave --camera-relative on");
+}
+
+/* --precision auto on the GPU: f32 unless the scene needs f64 and the device has it. */
+static bool gpu_precision(const rc_scene *s, const rc_precision_report *b, const rc_vk_ctx *ctx) {
+  if (s->quality.precision == RC_PRECISION_F64) return true;
+  if (s->quality.precision == RC_PRECISION_F32) {
+    if (b->needs_f64) fprintf(stderr, "%s: warning: precision: rendering in f32 as asked; the output is degraded\n", s->path);
+    return false;
+  }
+  if (!b->needs_f64) return false;
+  if (ctx->float64) {
+    fprintf(stderr, "%s: note: precision auto: rendering in f64\n", s->path);
+    return true;
+  }
+  fprintf(stderr, "%s: warning: precision auto: device %s has no shaderFloat64; rendering in f32, the output is "
+          "degraded (--backend cpu renders in f64)\n", s->path, ctx->props.deviceName);
+  return false;
+}
+
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
@@ -311,6 +391,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   if (a.width) scene.width = a.width;
   if (a.height) scene.height = a.height;
   if (a.spp) scene.samples_per_pixel = a.spp;
+  apply_quality_overrides(&a, &scene);
 
   rc_packed_scene packed = {0};
   rc_vk_ctx ctx = {0};
@@ -328,7 +409,19 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rs.triangles = scene.triangle_count;
   rs.lights = scene.light_count;
   rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
-  rs.precision = a.precision == 1 ? "f64" : "f32";
+  rc_precision_report budget = {0};
+  if (st == RC_OK) {
+    rc_precision_budget(&packed, scene.quality.sphere == RC_SPHERE_ALGEBRAIC, &budget);
+    report_budget(&scene, &budget);
+  }
+  rs.budget_needs_f64 = budget.needs_f64;
+  rs.budget_quantized = budget.quantized;
+  rs.budget_ms = budget.ms;
+  rs.precision_requested = rc_precision_names[scene.quality.precision];
+  rs.sphere_formula = rc_sphere_formula_names[scene.quality.sphere];
+  rs.triangle_formula = rc_triangle_formula_names[scene.quality.triangle];
+  rs.shadow_offset = rc_offset_names[scene.quality.offset];
+  rs.camera_relative = scene.quality.camera_relative;
   char driver[600] = "";
   rc_output_install_signal_handlers();
   if (st == RC_OK && a.cpu) {
@@ -336,6 +429,9 @@ rc_status rc_cmd_render(int argc, char **argv) {
     rs.device = "CPU reference";
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
+    /* The reference renders in f64 unless f32 is asked for: it is the accuracy yardstick. */
+    a.gpu.f64 = scene.quality.precision != RC_PRECISION_F32;
+    rs.precision = a.gpu.f64 ? "f64" : "f32";
     st = render_frames_cpu(&a, &scene, &packed, &rs, &out);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a.device};
@@ -346,6 +442,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rs.device = ctx.props.deviceName;
       rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
       rs.driver = driver;
+      a.gpu.f64 = gpu_precision(&scene, &budget, &ctx);
+      rs.precision = a.gpu.f64 ? "f64" : "f32";
       st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
     }
   }

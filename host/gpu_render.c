@@ -194,12 +194,18 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                   .pCode = code.words};
   VkShaderModule module;
   RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
-  /* A bool specialization constant is 4 bytes (VkBool32). */
-  const uint32_t spec_values[5] = {LOCAL_SIZE, LOCAL_SIZE, r->budget, r->opts.aov ? VK_TRUE : VK_FALSE,
-                                   r->opts.bvh_depth ? VK_TRUE : VK_FALSE};
-  const VkSpecializationMapEntry entries[5] = {{RC_SPEC_LOCAL_SIZE_X, 0, 4}, {RC_SPEC_LOCAL_SIZE_Y, 4, 4},
-                                               {RC_SPEC_LOOP_BUDGET, 8, 4}, {RC_SPEC_AOV, 12, 4}, {RC_SPEC_BVH, 16, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 5, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  /* A bool specialization constant is 4 bytes (VkBool32); a float one is its 4 bytes. */
+  float epsilon = r->frame.offset_epsilon;
+  uint32_t epsilon_bits;
+  memcpy(&epsilon_bits, &epsilon, sizeof epsilon_bits);
+  const uint32_t spec_values[9] = {LOCAL_SIZE, LOCAL_SIZE, r->budget, r->opts.aov ? VK_TRUE : VK_FALSE,
+                                   r->opts.bvh_depth ? VK_TRUE : VK_FALSE, r->frame.sphere_formula,
+                                   r->frame.triangle_formula, r->frame.offset_strategy, epsilon_bits};
+  const VkSpecializationMapEntry entries[9] = {
+      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},        {RC_SPEC_LOOP_BUDGET, 8, 4},
+      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},                {RC_SPEC_SPHERE_FORMULA, 20, 4},
+      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},    {RC_SPEC_OFFSET_EPSILON, 32, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 9, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,

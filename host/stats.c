@@ -41,6 +41,14 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddStringToObject(o, "driver", s->driver);
   cJSON_AddStringToObject(o, "backend", s->backend);
   cJSON_AddStringToObject(o, "precision", s->precision);
+  cJSON_AddStringToObject(o, "precision_requested", s->precision_requested);
+  cJSON_AddStringToObject(o, "sphere_intersection", s->sphere_formula);
+  cJSON_AddStringToObject(o, "triangle_intersection", s->triangle_formula);
+  cJSON_AddStringToObject(o, "shadow_offset", s->shadow_offset);
+  cJSON_AddBoolToObject(o, "camera_relative", s->camera_relative);
+  cJSON_AddNumberToObject(o, "budget_needs_f64", s->budget_needs_f64);
+  cJSON_AddNumberToObject(o, "budget_quantized", s->budget_quantized);
+  cJSON_AddNumberToObject(o, "budget_ms", s->budget_ms);
   if (s->threads) cJSON_AddNumberToObject(o, "threads", s->threads);
   cJSON_AddNumberToObject(o, "width", s->width);
   cJSON_AddNumberToObject(o, "height", s->height);

@@ -8,7 +8,12 @@
 typedef struct rc_render_stats {
   const char *device, *device_type, *driver;
   const char *backend;   /* "gpu" or "cpu" */
-  const char *precision; /* "f32" or "f64" */
+  const char *precision; /* "f32" or "f64": what ran */
+  const char *precision_requested; /* "auto", "f32" or "f64" */
+  const char *sphere_formula, *triangle_formula, *shadow_offset;
+  bool camera_relative;
+  uint32_t budget_needs_f64, budget_quantized; /* precision-budget findings (precision_budget.h) */
+  double budget_ms;
   uint32_t threads;      /* cpu backend */
   uint32_t width, height, samples_per_pixel;
   size_t spheres, triangles, lights;

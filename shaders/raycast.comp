@@ -13,6 +13,10 @@ layout(local_size_x_id = RC_SPEC_LOCAL_SIZE_X, local_size_y_id = RC_SPEC_LOCAL_S
 layout(constant_id = RC_SPEC_LOOP_BUDGET) const uint loop_budget = RC_LOOP_BUDGET;
 layout(constant_id = RC_SPEC_AOV) const bool aov_enabled = false;
 layout(constant_id = RC_SPEC_BVH) const bool use_bvh = true;
+layout(constant_id = RC_SPEC_SPHERE_FORMULA) const uint sphere_formula = RC_SPHERE_GEOMETRIC;
+layout(constant_id = RC_SPEC_TRIANGLE_FORMULA) const uint triangle_formula = RC_TRIANGLE_WATERTIGHT;
+layout(constant_id = RC_SPEC_OFFSET_STRATEGY) const uint offset_strategy = RC_OFFSET_ERROR_BOUND;
+layout(constant_id = RC_SPEC_OFFSET_EPSILON) const float offset_epsilon = 1.0e-4;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };

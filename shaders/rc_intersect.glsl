@@ -12,13 +12,16 @@ struct hit_record {
   real side;   // sphere: -1 entry root (ray from outside), +1 exit root
 };
 
+// pbrt's gamma(n) = n u / (1 - n u): the relative error bound of n chained roundings.
+real gamma_bound(real n) { return (n * RC_UNIT_ROUNDOFF) / (1.0 - n * RC_UNIT_ROUNDOFF); }
+
 // Ray/sphere after Haines, Günther & Akenine-Möller, "Precision Improvements for
 // Ray/Sphere Intersection" (Ray Tracing Gems ch. 7, 2019): the Hearn-Baker discriminant
 // r^2 - |l|^2 (l = centre-to-ray-line offset) instead of b^2 - 4ac, and the stable root
 // pair q = -(b + sign(b) sqrt(D)), t0 = c/q, t1 = q (Press et al.). Nearest root in
 // (0, t_max], else RC_T_FAR. (t_max is inclusive so that a BVH, visiting objects out of
 // order, still sees equal-t hits and can apply the tie rule.)
-real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
   side = 0.0;
   real r = real(s.radius);
   precise rvec3 f = o - rvec3(s.center);
@@ -42,6 +45,38 @@ real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side)
     return t_exit;
   }
   return real(RC_T_FAR);
+}
+
+// The textbook quadratic a t^2 + b t + c = 0, a = d.d, b = 2 f.d, c = f.f - r^2: the fast
+// variant, kept to measure what the geometric form buys (docs/accuracy.md). b^2 and 4ac
+// cancel once the sphere is far compared to its radius (ROBUSTNESS.md §2.1). Not `precise`:
+// as shipped in textbooks, the driver may contract it.
+real intersect_sphere_algebraic(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+  side = 0.0;
+  real r = real(s.radius);
+  rvec3 f = o - rvec3(s.center);
+  real a = dot(d, d);
+  real b = 2.0 * dot(f, d);
+  real c = dot(f, f) - r * r;
+  real disc = b * b - 4.0 * a * c;
+  if (disc < 0.0) return real(RC_T_FAR);
+  real sq = sqrt(disc);
+  real t_near = (-b - sq) / (2.0 * a);
+  real t_exit = (-b + sq) / (2.0 * a);
+  if (t_near > 0.0 && t_near <= t_max) {
+    side = -1.0;
+    return t_near;
+  }
+  if (t_exit > 0.0 && t_exit <= t_max) {
+    side = 1.0;
+    return t_exit;
+  }
+  return real(RC_T_FAR);
+}
+
+real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+  if (sphere_formula == RC_SPHERE_ALGEBRAIC) return intersect_sphere_algebraic(o, d, s, t_max, side);
+  return intersect_sphere_geometric(o, d, s, t_max, side);
 }
 
 // A point and a direction taken into a transformed sphere's object space.
@@ -115,7 +150,71 @@ real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out
   precise real t_scaled = u * (sh.s.z * a.z) + v * (sh.s.z * b.z) + w * (sh.s.z * c.z);
   precise real t = t_scaled / det;
   if (!(t > 0.0 && t <= t_max)) return real(RC_T_FAR);
+  // pbrt-v4's conservative bound on the rounding error of t (shapes.cpp, IntersectTriangle):
+  // a hit nearer than it may be the very surface a spawned ray left (or its neighbour across
+  // an edge), so it does not count. This is what lets the error-bound offset stay small.
+  real max_zt = max(max(abs(sh.s.z * a.z), abs(sh.s.z * b.z)), abs(sh.s.z * c.z));
+  real max_xt = max(max(abs(ax), abs(bx)), abs(cx));
+  real max_yt = max(max(abs(ay), abs(by)), abs(cy));
+  real delta_z = gamma_bound(3.0) * max_zt;
+  real delta_x = gamma_bound(5.0) * (max_xt + max_zt);
+  real delta_y = gamma_bound(5.0) * (max_yt + max_zt);
+  real delta_e = 2.0 * (gamma_bound(2.0) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  real max_e = max(max(abs(u), abs(v)), abs(w));
+  real delta_t = 3.0 * (gamma_bound(3.0) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / abs(det);
+  if (t <= delta_t) return real(RC_T_FAR);
   bary = rvec3(u, v, w) / det;
+  return t;
+}
+
+// Moller & Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection", JGT 2(1), 1997,
+// with the paper's |det| < 1e-6 test: a fast variant. Each triangle is solved from its own
+// v0 and edges, so rays can slip between neighbours (ROBUSTNESS.md §3.1), and the fixed
+// epsilon drops small triangles whatever the scene's scale.
+real intersect_triangle_moller_trumbore(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, out rvec3 bary) {
+  bary = rvec3(0.0);
+  rvec3 v0 = rvec3(tri.v0);
+  rvec3 e1 = rvec3(tri.v1) - v0;
+  rvec3 e2 = rvec3(tri.v2) - v0;
+  rvec3 pv = cross(d, e2);
+  real det = dot(e1, pv);
+  if (abs(det) < 1.0e-6) return real(RC_T_FAR);
+  real inv_det = 1.0 / det;
+  rvec3 tv = o - v0;
+  real u = dot(tv, pv) * inv_det;
+  if (u < 0.0 || u > 1.0) return real(RC_T_FAR);
+  rvec3 qv = cross(tv, e1);
+  real v = dot(d, qv) * inv_det;
+  if (v < 0.0 || u + v > 1.0) return real(RC_T_FAR);
+  real t = dot(e2, qv) * inv_det;
+  if (!(t > 0.0 && t <= t_max)) return real(RC_T_FAR);
+  bary = rvec3(1.0 - u - v, u, v);
+  return t;
+}
+
+// The textbook solve of o + t d = v0 + beta (v1 - v0) + gamma (v2 - v0) by Cramer's rule,
+// as written in Shirley's Fundamentals of Computer Graphics (§4.4.2): a fast variant with
+// no epsilon, still not watertight.
+real intersect_triangle_cramer(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, out rvec3 bary) {
+  bary = rvec3(0.0);
+  rvec3 ab = rvec3(tri.v0) - rvec3(tri.v1);
+  rvec3 ac = rvec3(tri.v0) - rvec3(tri.v2);
+  rvec3 ao = rvec3(tri.v0) - o;
+  real ei_hf = ac.y * d.z - d.y * ac.z;
+  real gf_di = d.x * ac.z - ac.x * d.z;
+  real dh_eg = ac.x * d.y - ac.y * d.x;
+  real m = ab.x * ei_hf + ab.y * gf_di + ab.z * dh_eg;
+  if (m == 0.0) return real(RC_T_FAR);
+  real ak_jb = ab.x * ao.y - ao.x * ab.y;
+  real jc_al = ao.x * ab.z - ab.x * ao.z;
+  real bl_kc = ab.y * ao.z - ao.y * ab.z;
+  real t = -(ac.z * ak_jb + ac.y * jc_al + ac.x * bl_kc) / m;
+  if (!(t > 0.0 && t <= t_max)) return real(RC_T_FAR);
+  real gamma = (d.z * ak_jb + d.y * jc_al + d.x * bl_kc) / m;
+  if (gamma < 0.0 || gamma > 1.0) return real(RC_T_FAR);
+  real beta = (ao.x * ei_hf + ao.y * gf_di + ao.z * dh_eg) / m;
+  if (beta < 0.0 || beta > 1.0 - gamma) return real(RC_T_FAR);
+  bary = rvec3(1.0 - beta - gamma, beta, gamma);
   return t;
 }
 
@@ -124,7 +223,10 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
   side = 0.0;
   bary = rvec3(0.0);
   if (object < frame.sphere_count) return intersect_any_sphere(o, d, load_sphere(object), t_max, side);
-  return intersect_triangle(o, sh, load_triangle(object - frame.sphere_count), t_max, bary);
+  gpu_triangle tri = load_triangle(object - frame.sphere_count);
+  if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
+  if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
+  return intersect_triangle(o, sh, tri, t_max, bary);
 }
 
 // The tie rule of both backends and both traversals: the nearer hit wins, and on equal

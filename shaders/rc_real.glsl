@@ -1,12 +1,18 @@
 // rc_real.glsl: the working precision of the geometry and shading math. The f32 module
 // is the default; RC_F64 builds the double-precision module (needs shaderFloat64). The
 // scene arrays stay f32 either way; loads widen them.
+// RC_UNIT_ROUNDOFF is u of the working precision (pbrt's gamma(n) = n u / (1 - n u));
+// RC_SMALLEST_NORMAL stands in for "the next float above 0", as GPUs may flush subnormals.
 #if RC_F64
 #define real double
 #define rvec2 dvec2
 #define rvec3 dvec3
+#define RC_UNIT_ROUNDOFF 1.1102230246251565e-16LF
+#define RC_SMALLEST_NORMAL 2.2250738585072014e-308LF
 #else
 #define real float
 #define rvec2 vec2
 #define rvec3 vec3
+#define RC_UNIT_ROUNDOFF 5.9604644775390625e-8
+#define RC_SMALLEST_NORMAL 1.17549435e-38
 #endif

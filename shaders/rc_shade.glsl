@@ -7,42 +7,67 @@ struct surface {
   rvec3 p;        // hit point, rebuilt from the primitive rather than o + t d
   rvec3 n;        // unit shading normal, on the side facing the incoming ray
   rvec3 ng;       // unit geometric normal, facing the incoming ray: ray origins move along it
+  rvec3 p_error;  // per-coordinate bound on |p - exact hit point| (pbrt's pError), for spawning
   uint material;
 };
+
 
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
   rvec3 n;
   if (h.kind == RC_HIT_SPHERE) {
-    // Centre-relative hit: l -/+ sqrt(D) d is exact to a few ulps of r at any distance,
-    // where normalize(o + t d - C) loses digits with |o - C| (ROBUSTNESS.md §2.3).
     gpu_sphere s = load_sphere(h.index);
     real r = real(s.radius);
     rvec3 oo = o;
     rvec3 dd = d;
+    real t_obj = h.t;
     gpu_transform m;
     if (s.transform != RC_NO_TRANSFORM) {
       m = load_transform(s.transform);
       oo = transform_point(m, o);
-      dd = normalize(transform_vector(m, d));
+      rvec3 d_obj = transform_vector(m, d);
+      t_obj = h.t * length(d_obj);
+      dd = normalize(d_obj);
     }
-    precise rvec3 f = oo - rvec3(s.center);
-    precise real b = dot(f, dd);
-    precise rvec3 l = f - b * dd;
-    precise real sq = sqrt(max(r * r - dot(l, l), 0.0));
-    n = normalize(l + h.side * sq * dd);
-    if (s.transform == RC_NO_TRANSFORM) {
-      sf.p = rvec3(s.center) + r * n;
+    if (sphere_formula == RC_SPHERE_ALGEBRAIC) {
+      // The textbook normal from the hit point; its error grows with |o - C| (ROBUSTNESS.md §2.3).
+      n = normalize(oo + t_obj * dd - rvec3(s.center));
     } else {
-      // Normals go back by the transpose of object_from_packed's linear part.
-      n = normalize(rvec3(m.row0.xyz) * n.x + rvec3(m.row1.xyz) * n.y + rvec3(m.row2.xyz) * n.z);
-      sf.p = o + h.t * d;
+      // Centre-relative hit: l -/+ sqrt(D) d is exact to a few ulps of r at any distance,
+      // where normalize(o + t d - C) loses digits with |o - C|.
+      precise rvec3 f = oo - rvec3(s.center);
+      precise real b = dot(f, dd);
+      precise rvec3 l = f - b * dd;
+      precise real sq = sqrt(max(r * r - dot(l, l), 0.0));
+      n = normalize(l + h.side * sq * dd);
+    }
+    if (s.transform == RC_NO_TRANSFORM && sphere_formula == RC_SPHERE_GEOMETRIC) {
+      precise rvec3 rn = r * n;
+      sf.p = rvec3(s.center) + rn;
+      // pbrt bounds its re-projected sphere point by gamma(5)|p| in object space; here p is
+      // assembled in packed space from C and r n, and n went through a GPU sqrt and
+      // normalize (not correctly rounded, ROBUSTNESS.md §1.3): both terms, with headroom.
+      sf.p_error = gamma_bound(10.0) * (abs(rvec3(s.center)) + abs(rn));
+    } else {
+      if (s.transform != RC_NO_TRANSFORM) {
+        // Normals go back by the transpose of object_from_packed's linear part.
+        n = normalize(rvec3(m.row0.xyz) * n.x + rvec3(m.row1.xyz) * n.y + rvec3(m.row2.xyz) * n.z);
+      }
+      precise rvec3 td = h.t * d;
+      sf.p = o + td;
+      // o + t d carries t's own error, which no short formula bounds; 32 roundings' worth
+      // of |o| + |t d| is a measured, not derived, margin (docs/accuracy.md).
+      sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
     }
     sf.material = s.material;
   } else {
     gpu_triangle tri = load_triangle(h.index);
-    precise rvec3 p = h.bary.x * rvec3(tri.v0) + h.bary.y * rvec3(tri.v1) + h.bary.z * rvec3(tri.v2);
-    sf.p = p;
+    precise rvec3 p0 = h.bary.x * rvec3(tri.v0);
+    precise rvec3 p1 = h.bary.y * rvec3(tri.v1);
+    precise rvec3 p2 = h.bary.z * rvec3(tri.v2);
+    sf.p = p0 + p1 + p2;
+    // pbrt-v4 (shapes.h, Triangle): gamma(7) (|b0 p0| + |b1 p1| + |b2 p2|).
+    sf.p_error = gamma_bound(7.0) * (abs(p0) + abs(p1) + abs(p2));
     n = normalize(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
     sf.material = tri.material;
     if (tri.normals != RC_NO_NORMALS) {
@@ -81,6 +106,31 @@ rvec3 offset_ray_origin(rvec3 p, rvec3 n) {
   return rvec3(offset_coordinate(p.x, n.x), offset_coordinate(p.y, n.y), offset_coordinate(p.z, n.z));
 }
 
+// The neighbouring float of v away from 0 in the direction `up` (pbrt's NextFloatUp/Down).
+real next_float(real v, bool up) {
+  if (v == 0.0) return up ? RC_SMALLEST_NORMAL : -RC_SMALLEST_NORMAL;
+  RC_OFFSET_INT step = ((v > 0.0) == up) ? RC_OFFSET_INT(1) : RC_OFFSET_INT(-1);
+  return RC_OFFSET_FROM_BITS(RC_OFFSET_BITS(v) + step);
+}
+
+// A coordinate moved one float further along the normal's component n.
+real round_away(real c, real n) { return (n > 0.0) ? next_float(c, true) : ((n < 0.0) ? next_float(c, false) : c); }
+
+// pbrt's OffsetRayOrigin (pbrt-v4 ray.h): out of the error box of p along n, by
+// |n| . p_error, then one more float away so that rounding cannot land back inside it.
+rvec3 offset_error_bound(rvec3 p, rvec3 n, rvec3 p_error) {
+  precise real dist = dot(abs(n), p_error);
+  precise rvec3 po = p + dist * n;
+  return rvec3(round_away(po.x, n.x), round_away(po.y, n.y), round_away(po.z, n.z));
+}
+
+// The origin of a shadow or reflection ray leaving the surface, by the chosen strategy.
+rvec3 spawn_origin(surface sf) {
+  if (offset_strategy == RC_OFFSET_ULP) return offset_ray_origin(sf.p, sf.ng);
+  if (offset_strategy == RC_OFFSET_EPSILON) return sf.p + real(offset_epsilon) * sf.ng;
+  return offset_error_bound(sf.p, sf.ng, sf.p_error);
+}
+
 // cos^p of the highlight angle. pow(0, p) and pow(x, 0) are left undefined by GLSL for
 // some inputs, so both ends are explicit.
 real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
@@ -100,7 +150,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
   gpu_material m = load_material(sf.material);
   rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
   rvec3 v = -d;
-  rvec3 origin = offset_ray_origin(sf.p, sf.ng);
+  rvec3 origin = spawn_origin(sf);
   for (uint i = 0u; i < frame.light_count; i++) {
     if (!budget_step()) break;
     gpu_light light = load_light(i);

@@ -56,6 +56,22 @@ typedef struct gpu_vertex_normals gpu_vertex_normals;
 #define RC_SPEC_LOOP_BUDGET 2
 #define RC_SPEC_AOV 3 /* bool: record the decision outputs (gpu_aov) */
 #define RC_SPEC_BVH 4 /* bool: traverse the BVH (else test every object) */
+#define RC_SPEC_SPHERE_FORMULA 5   /* RC_SPHERE_* */
+#define RC_SPEC_TRIANGLE_FORMULA 6 /* RC_TRIANGLE_* */
+#define RC_SPEC_OFFSET_STRATEGY 7  /* RC_OFFSET_* */
+#define RC_SPEC_OFFSET_EPSILON 8   /* float: the epsilon strategy's distance */
+
+/* The speed/accuracy knobs (docs/accuracy.md). The first of each is the robust default;
+ * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in gpu_frame. */
+#define RC_SPHERE_GEOMETRIC 0u  /* Hearn-Baker discriminant, stable roots, centre-relative normal */
+#define RC_SPHERE_ALGEBRAIC 1u  /* textbook b^2 - 4ac, (-b -/+ sqrt)/2a, normal from o + t d */
+#define RC_TRIANGLE_WATERTIGHT 0u       /* Woop-Benthin-Wald, precise edge functions */
+#define RC_TRIANGLE_MOLLER_TRUMBORE 1u  /* Moller-Trumbore 1997, with the paper's |det| < 1e-6 */
+#define RC_TRIANGLE_CRAMER 2u           /* the textbook 3x3 Cramer solve (Shirley) */
+#define RC_OFFSET_ERROR_BOUND 0u /* pbrt: along the normal by the hit point's rounding-error bound */
+#define RC_OFFSET_ULP 1u         /* Wachter-Binder: a fixed count of ulps along the normal */
+#define RC_OFFSET_EPSILON 2u     /* a fixed distance along the normal (quality.shadow_epsilon) */
+#define RC_OFFSET_EPSILON_DEFAULT 1.0e-4
 
 /* BVH traversal stack entries per invocation; the builder caps the tree depth so the
  * stack cannot overflow (host/bvh.c). 48 x 8 bytes stays far below the scratch limits
@@ -115,6 +131,8 @@ struct gpu_frame {
   uint object_count;      uint bvh_node_count;
   float inv_strata_x;     float inv_strata_y; /* 1/strata in f32: a multiply rounds the same on
                                                  both backends, a GPU division may not */
+  /* The formula knobs, for the CPU reference; the GPU reads its specialization constants. */
+  uint sphere_formula;    uint triangle_formula; uint offset_strategy; float offset_epsilon;
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -238,7 +256,9 @@ RC_ASSERT_LAYOUT(gpu_frame, samples_per_pixel, 128); RC_ASSERT_LAYOUT(gpu_frame,
 RC_ASSERT_LAYOUT(gpu_frame, strata_x, 136);      RC_ASSERT_LAYOUT(gpu_frame, strata_y, 140);
 RC_ASSERT_LAYOUT(gpu_frame, object_count, 144);  RC_ASSERT_LAYOUT(gpu_frame, bvh_node_count, 148);
 RC_ASSERT_LAYOUT(gpu_frame, inv_strata_x, 152);  RC_ASSERT_LAYOUT(gpu_frame, inv_strata_y, 156);
-RC_ASSERT_SIZE(gpu_frame, 160);
+RC_ASSERT_LAYOUT(gpu_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(gpu_frame, triangle_formula, 164);
+RC_ASSERT_LAYOUT(gpu_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(gpu_frame, offset_epsilon, 172);
+RC_ASSERT_SIZE(gpu_frame, 176);
 
 RC_ASSERT_LAYOUT(gpu_bvh_node, lo0, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, child0, 12);
 RC_ASSERT_LAYOUT(gpu_bvh_node, hi0, 16);  RC_ASSERT_LAYOUT(gpu_bvh_node, count0, 28);

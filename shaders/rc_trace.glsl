@@ -38,7 +38,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     rvec3 mirror = rvec3(load_material(sf.material).mirror);
     if (depth == frame.reflection_depth || mirror == rvec3(0.0)) break;
     weight *= mirror;
-    o = offset_ray_origin(sf.p, sf.ng);
+    o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));
     reflection_rays++;
   }

@@ -36,6 +36,10 @@ int main(void) {
   OFF("frame.bvh_node_count", gpu_frame, bvh_node_count);
   OFF("frame.inv_strata_x", gpu_frame, inv_strata_x);
   OFF("frame.inv_strata_y", gpu_frame, inv_strata_y);
+  OFF("frame.sphere_formula", gpu_frame, sphere_formula);
+  OFF("frame.triangle_formula", gpu_frame, triangle_formula);
+  OFF("frame.offset_strategy", gpu_frame, offset_strategy);
+  OFF("frame.offset_epsilon", gpu_frame, offset_epsilon);
   printf("Frame size %zu\n", sizeof(gpu_frame));
 
   OFF("scene_bvh_nodes.lo0", gpu_bvh_node, lo0);

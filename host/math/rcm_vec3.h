@@ -20,6 +20,7 @@ typedef struct { double x, y, z; } dvec3;
   static inline V rcm_mul_##S(V a, V b) { return rcm_make_##S(a.x * b.x, a.y * b.y, a.z * b.z); } \
   static inline V rcm_scale_##S(V a, R s) { return rcm_make_##S(a.x * s, a.y * s, a.z * s); }   \
   static inline V rcm_neg_##S(V a) { return rcm_make_##S(-a.x, -a.y, -a.z); }                 \
+  static inline V rcm_abs_##S(V a) { return rcm_make_##S(FABS(a.x), FABS(a.y), FABS(a.z)); }   \
   static inline R rcm_dot_##S(V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; }         \
   static inline V rcm_cross_##S(V a, V b) {                                                    \
     return rcm_make_##S(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);  \

@@ -5,8 +5,12 @@
 
 #include "ref/ref_real.h"
 
+static real rmax3(real a, real b, real c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
 
-real REF(intersect_sphere)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+
+real REF(gamma_bound)(real n) { return (n * RC_UNIT_ROUNDOFF) / (1 - n * RC_UNIT_ROUNDOFF); }
+
+real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
   *side = 0;
   real r = (real)s.radius;
   rvec3 f = RV(sub)(o, rvec3_from(s.center));
@@ -32,6 +36,34 @@ real REF(intersect_sphere)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *sid
   return (real)RC_T_FAR;
 }
 
+real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+  *side = 0;
+  real r = (real)s.radius;
+  rvec3 f = RV(sub)(o, rvec3_from(s.center));
+  real a = RV(dot)(d, d);
+  real b = 2 * RV(dot)(f, d);
+  real c = RV(dot)(f, f) - r * r;
+  real disc = b * b - 4 * a * c;
+  if (disc < 0) return (real)RC_T_FAR;
+  real sq = R_SQRT(disc);
+  real t_near = (-b - sq) / (2 * a);
+  real t_exit = (-b + sq) / (2 * a);
+  if (t_near > 0 && t_near <= t_max) {
+    *side = -1;
+    return t_near;
+  }
+  if (t_exit > 0 && t_exit <= t_max) {
+    *side = 1;
+    return t_exit;
+  }
+  return (real)RC_T_FAR;
+}
+
+real REF(intersect_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+  if (sc->frame->sphere_formula == RC_SPHERE_ALGEBRAIC) return REF(intersect_sphere_algebraic)(o, d, s, t_max, side);
+  return REF(intersect_sphere_geometric)(o, d, s, t_max, side);
+}
+
 rvec3 REF(transform_point)(const gpu_transform *m, rvec3 p) {
   return RV(make)(RV(dot)(rvec3_from(rcm_xyz(m->row0)), p) + (real)m->row0.w,
                   RV(dot)(rvec3_from(rcm_xyz(m->row1)), p) + (real)m->row1.w,
@@ -44,11 +76,11 @@ rvec3 REF(transform_vector)(const gpu_transform *m, rvec3 v) {
 }
 
 real REF(intersect_any_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
-  if (s.transform == RC_NO_TRANSFORM) return REF(intersect_sphere)(o, d, s, t_max, side);
+  if (s.transform == RC_NO_TRANSFORM) return REF(intersect_sphere)(sc, o, d, s, t_max, side);
   const gpu_transform *m = &sc->transforms[s.transform];
   rvec3 d_obj = REF(transform_vector)(m, d);
   real len = RV(length)(d_obj);
-  real t = REF(intersect_sphere)(REF(transform_point)(m, o), RV(scale)(d_obj, 1 / len), s, t_max * len, side);
+  real t = REF(intersect_sphere)(sc, REF(transform_point)(m, o), RV(scale)(d_obj, 1 / len), s, t_max * len, side);
   return (t >= (real)RC_T_FAR) ? t : t / len;
 }
 
@@ -88,7 +120,61 @@ real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, rea
   real t_scaled = u * (sh->s.z * a.z) + v * (sh->s.z * b.z) + w * (sh->s.z * c.z);
   real t = t_scaled / det;
   if (!(t > 0 && t <= t_max)) return (real)RC_T_FAR;
+  real max_zt = rmax3(R_ABS(sh->s.z * a.z), R_ABS(sh->s.z * b.z), R_ABS(sh->s.z * c.z));
+  real max_xt = rmax3(R_ABS(ax), R_ABS(bx), R_ABS(cx));
+  real max_yt = rmax3(R_ABS(ay), R_ABS(by), R_ABS(cy));
+  real delta_z = REF(gamma_bound)(3) * max_zt;
+  real delta_x = REF(gamma_bound)(5) * (max_xt + max_zt);
+  real delta_y = REF(gamma_bound)(5) * (max_yt + max_zt);
+  real delta_e = 2 * (REF(gamma_bound)(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  real max_e = rmax3(R_ABS(u), R_ABS(v), R_ABS(w));
+  real delta_t = 3 * (REF(gamma_bound)(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / R_ABS(det);
+  if (t <= delta_t) return (real)RC_T_FAR;
   *bary = RV(make)(u / det, v / det, w / det);
+  return t;
+}
+
+real REF(intersect_triangle_moller_trumbore)(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, rvec3 *bary) {
+  *bary = RV(make)(0, 0, 0);
+  rvec3 v0 = rvec3_from(tri.v0);
+  rvec3 e1 = RV(sub)(rvec3_from(tri.v1), v0);
+  rvec3 e2 = RV(sub)(rvec3_from(tri.v2), v0);
+  rvec3 pv = RV(cross)(d, e2);
+  real det = RV(dot)(e1, pv);
+  if (R_ABS(det) < (real)1.0e-6) return (real)RC_T_FAR;
+  real inv_det = 1 / det;
+  rvec3 tv = RV(sub)(o, v0);
+  real u = RV(dot)(tv, pv) * inv_det;
+  if (u < 0 || u > 1) return (real)RC_T_FAR;
+  rvec3 qv = RV(cross)(tv, e1);
+  real v = RV(dot)(d, qv) * inv_det;
+  if (v < 0 || u + v > 1) return (real)RC_T_FAR;
+  real t = RV(dot)(e2, qv) * inv_det;
+  if (!(t > 0 && t <= t_max)) return (real)RC_T_FAR;
+  *bary = RV(make)(1 - u - v, u, v);
+  return t;
+}
+
+real REF(intersect_triangle_cramer)(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, rvec3 *bary) {
+  *bary = RV(make)(0, 0, 0);
+  rvec3 ab = RV(sub)(rvec3_from(tri.v0), rvec3_from(tri.v1));
+  rvec3 ac = RV(sub)(rvec3_from(tri.v0), rvec3_from(tri.v2));
+  rvec3 ao = RV(sub)(rvec3_from(tri.v0), o);
+  real ei_hf = ac.y * d.z - d.y * ac.z;
+  real gf_di = d.x * ac.z - ac.x * d.z;
+  real dh_eg = ac.x * d.y - ac.y * d.x;
+  real m = ab.x * ei_hf + ab.y * gf_di + ab.z * dh_eg;
+  if (m == 0) return (real)RC_T_FAR;
+  real ak_jb = ab.x * ao.y - ao.x * ab.y;
+  real jc_al = ao.x * ab.z - ab.x * ao.z;
+  real bl_kc = ab.y * ao.z - ao.y * ab.z;
+  real t = -(ac.z * ak_jb + ac.y * jc_al + ac.x * bl_kc) / m;
+  if (!(t > 0 && t <= t_max)) return (real)RC_T_FAR;
+  real gamma = (d.z * ak_jb + d.y * jc_al + d.x * bl_kc) / m;
+  if (gamma < 0 || gamma > 1) return (real)RC_T_FAR;
+  real beta = (ao.x * ei_hf + ao.y * gf_di + ao.z * dh_eg) / m;
+  if (beta < 0 || beta > 1 - gamma) return (real)RC_T_FAR;
+  *bary = RV(make)(1 - beta - gamma, beta, gamma);
   return t;
 }
 
@@ -97,7 +183,11 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
   *side = 0;
   *bary = RV(make)(0, 0, 0);
   if (object < sc->frame->sphere_count) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[object], t_max, side);
-  return REF(intersect_triangle)(o, sh, sc->triangles[object - sc->frame->sphere_count], t_max, bary);
+  gpu_triangle tri = sc->triangles[object - sc->frame->sphere_count];
+  if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
+    return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
+  if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
+  return REF(intersect_triangle)(o, sh, tri, t_max, bary);
 }
 
 void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, ref_hit *h) {

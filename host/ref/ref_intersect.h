@@ -22,13 +22,18 @@ typedef struct ref_scene {
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
   typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
-  R ref_intersect_sphere_##S(V o, V d, gpu_sphere s, R t_max, R *side);                         \
+  R ref_gamma_bound_##S(R n);                                                                   \
+  R ref_intersect_sphere_geometric_##S(V o, V d, gpu_sphere s, R t_max, R *side);               \
+  R ref_intersect_sphere_algebraic_##S(V o, V d, gpu_sphere s, R t_max, R *side);               \
+  R ref_intersect_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side);    \
   V ref_transform_point_##S(const gpu_transform *m, V p);                                       \
   V ref_transform_vector_##S(const gpu_transform *m, V v);                                      \
   R ref_intersect_any_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side); \
   ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
   V ref_permute_##S(V a, const int k[3]);                                                       \
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \
+  R ref_intersect_triangle_moller_trumbore_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);   \
+  R ref_intersect_triangle_cramer_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);            \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
                              R *side, V *bary);                                                 \
   void ref_consider_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, ref_hit_##S *h); \

@@ -13,30 +13,45 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     gpu_sphere s = sc->spheres[h->index];
     real r = (real)s.radius;
     rvec3 oo = o, dd = d;
+    real t_obj = h->t;
     const gpu_transform *m = NULL;
     if (s.transform != RC_NO_TRANSFORM) {
       m = &sc->transforms[s.transform];
       oo = REF(transform_point)(m, o);
-      dd = RV(normalize)(REF(transform_vector)(m, d));
+      rvec3 d_obj = REF(transform_vector)(m, d);
+      t_obj = h->t * RV(length)(d_obj);
+      dd = RV(normalize)(d_obj);
     }
-    rvec3 f = RV(sub)(oo, rvec3_from(s.center));
-    real b = RV(dot)(f, dd);
-    rvec3 l = RV(sub)(f, RV(scale)(dd, b));
-    real disc = r * r - RV(dot)(l, l);
-    real sq = R_SQRT(disc > 0 ? disc : 0);
-    n = RV(normalize)(RV(add)(l, RV(scale)(dd, h->side * sq)));
-    if (!m) {
-      sf.p = RV(add)(rvec3_from(s.center), RV(scale)(n, r));
+    bool algebraic = sc->frame->sphere_formula == RC_SPHERE_ALGEBRAIC;
+    if (algebraic) {
+      n = RV(normalize)(RV(sub)(RV(add)(oo, RV(scale)(dd, t_obj)), rvec3_from(s.center)));
     } else {
-      n = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(rcm_xyz(m->row0)), n.x), RV(scale)(rvec3_from(rcm_xyz(m->row1)), n.y)),
-                                RV(scale)(rvec3_from(rcm_xyz(m->row2)), n.z)));
-      sf.p = RV(add)(o, RV(scale)(d, h->t));
+      rvec3 f = RV(sub)(oo, rvec3_from(s.center));
+      real b = RV(dot)(f, dd);
+      rvec3 l = RV(sub)(f, RV(scale)(dd, b));
+      real disc = r * r - RV(dot)(l, l);
+      real sq = R_SQRT(disc > 0 ? disc : 0);
+      n = RV(normalize)(RV(add)(l, RV(scale)(dd, h->side * sq)));
+    }
+    if (!m && !algebraic) {
+      rvec3 rn = RV(scale)(n, r);
+      sf.p = RV(add)(rvec3_from(s.center), rn);
+      sf.p_error = RV(scale)(RV(add)(RV(abs)(rvec3_from(s.center)), RV(abs)(rn)), REF(gamma_bound)(10));
+    } else {
+      if (m)
+        n = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(rcm_xyz(m->row0)), n.x), RV(scale)(rvec3_from(rcm_xyz(m->row1)), n.y)),
+                                  RV(scale)(rvec3_from(rcm_xyz(m->row2)), n.z)));
+      rvec3 td = RV(scale)(d, h->t);
+      sf.p = RV(add)(o, td);
+      sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
     }
     sf.material = s.material;
   } else {
     gpu_triangle tri = sc->triangles[h->index];
     rvec3 v0 = rvec3_from(tri.v0), v1 = rvec3_from(tri.v1), v2 = rvec3_from(tri.v2);
-    sf.p = RV(add)(RV(add)(RV(scale)(v0, h->bary.x), RV(scale)(v1, h->bary.y)), RV(scale)(v2, h->bary.z));
+    rvec3 p0 = RV(scale)(v0, h->bary.x), p1 = RV(scale)(v1, h->bary.y), p2 = RV(scale)(v2, h->bary.z);
+    sf.p = RV(add)(RV(add)(p0, p1), p2);
+    sf.p_error = RV(scale)(RV(add)(RV(add)(RV(abs)(p0), RV(abs)(p1)), RV(abs)(p2)), REF(gamma_bound)(7));
     n = RV(normalize)(RV(cross)(RV(sub)(v1, v0), RV(sub)(v2, v0)));
     sf.material = tri.material;
     if (tri.normals != RC_NO_NORMALS) {
@@ -83,6 +98,29 @@ rvec3 REF(offset_ray_origin)(rvec3 p, rvec3 n) {
   return RV(make)(REF(offset_coordinate)(p.x, n.x), REF(offset_coordinate)(p.y, n.y), REF(offset_coordinate)(p.z, n.z));
 }
 
+real REF(next_float)(real v, bool up) {
+  if (v == 0) return up ? RC_SMALLEST_NORMAL : -RC_SMALLEST_NORMAL;
+  offset_int step = ((v > 0) == up) ? 1 : -1;
+  return from_bits(bits_of(v) + step);
+}
+
+real REF(round_away)(real c, real n) {
+  return (n > 0) ? REF(next_float)(c, true) : ((n < 0) ? REF(next_float)(c, false) : c);
+}
+
+rvec3 REF(offset_error_bound)(rvec3 p, rvec3 n, rvec3 p_error) {
+  real dist = RV(dot)(RV(abs)(n), p_error);
+  rvec3 po = RV(add)(p, RV(scale)(n, dist));
+  return RV(make)(REF(round_away)(po.x, n.x), REF(round_away)(po.y, n.y), REF(round_away)(po.z, n.z));
+}
+
+rvec3 REF(spawn_origin)(const ref_scene *sc, const ref_surface *sf) {
+  if (sc->frame->offset_strategy == RC_OFFSET_ULP) return REF(offset_ray_origin)(sf->p, sf->ng);
+  if (sc->frame->offset_strategy == RC_OFFSET_EPSILON)
+    return RV(add)(sf->p, RV(scale)(sf->ng, (real)sc->frame->offset_epsilon));
+  return REF(offset_error_bound)(sf->p, sf->ng, sf->p_error);
+}
+
 /* The shader raises to the power in f32 (GLSL has no double pow); the f64 reference
  * keeps double, as the accuracy reference. */
 real REF(specular_term)(const ref_scene *sc, rvec3 n, rvec3 l, rvec3 v, float shininess) {
@@ -104,7 +142,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   gpu_material m = sc->materials[sf->material];
   rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
   rvec3 v = RV(neg)(d);
-  rvec3 origin = REF(offset_ray_origin)(sf->p, sf->ng);
+  rvec3 origin = REF(spawn_origin)(sc, sf);
   for (uint32_t i = 0; i < sc->frame->light_count; i++) {
     gpu_light light = sc->lights[i];
     rvec3 l, irradiance, to_light;

@@ -19,11 +19,15 @@ extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
 extern _Thread_local gpu_aov ref_aov_record;
 
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
-  typedef struct ref_surface_##S { V p, n, ng; uint32_t material; } ref_surface_##S;           \
+  typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; } ref_surface_##S;  \
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
   ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \
   R ref_offset_coordinate_##S(R p, R n);                                                        \
   V ref_offset_ray_origin_##S(V p, V n);                                                        \
+  R ref_next_float_##S(R v, bool up);                                                           \
+  R ref_round_away_##S(R c, R n);                                                               \
+  V ref_offset_error_bound_##S(V p, V n, V p_error);                                            \
+  V ref_spawn_origin_##S(const ref_scene *sc, const ref_surface_##S *sf);                       \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
   V ref_shade_phong_##S(const ref_scene *sc, const ref_surface_##S *sf, V d);                   \
   void ref_aov_begin_##S(const ref_scene *sc, const ref_hit_##S *h);                            \

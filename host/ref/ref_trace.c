@@ -37,7 +37,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     rvec3 mirror = rvec3_from(sc->materials[sf.material].mirror);
     if (depth == sc->frame->reflection_depth || (mirror.x == 0 && mirror.y == 0 && mirror.z == 0)) break;
     weight = RV(mul)(weight, mirror);
-    o = REF(offset_ray_origin)(sf.p, sf.ng);
+    o = REF(spawn_origin)(sc, &sf);
     d = RV(normalize)(RV(reflect)(d, sf.n));
     ref_reflection_rays++;
   }

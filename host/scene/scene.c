@@ -119,3 +119,23 @@ const char *rc_scene_camera_problem(const rc_camera_def *c, const char **field) 
   }
   return NULL;
 }
+
+const char *const rc_precision_names[] = {"auto", "f32", "f64", NULL};
+const char *const rc_sphere_formula_names[] = {"geometric", "algebraic", NULL};
+const char *const rc_triangle_formula_names[] = {"watertight", "moller-trumbore", "cramer", NULL};
+const char *const rc_offset_names[] = {"error-bound", "ulp", "epsilon", NULL};
+
+rc_quality rc_quality_default(void) {
+  return (rc_quality){.precision = RC_PRECISION_AUTO,
+                      .sphere = RC_SPHERE_GEOMETRIC,
+                      .triangle = RC_TRIANGLE_WATERTIGHT,
+                      .offset = RC_OFFSET_ERROR_BOUND,
+                      .offset_epsilon = RC_OFFSET_EPSILON_DEFAULT,
+                      .camera_relative = true};
+}
+
+int rc_name_index(const char *const *names, const char *name) {
+  for (int i = 0; names[i]; i++)
+    if (strcmp(names[i], name) == 0) return i;
+  return -1;
+}

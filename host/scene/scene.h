@@ -48,6 +48,29 @@ typedef struct rc_camera_def {
   double view_height;  /* parallel: height of the view window in world units */
 } rc_camera_def;
 
+/* The speed/accuracy knobs (docs/accuracy.md): `quality` in JSON, --precision etc. on the
+ * command line (which wins). */
+#define RC_PRECISION_AUTO 0u /* f32 unless the precision-budget pass finds the scene needs f64 */
+#define RC_PRECISION_F32 1u
+#define RC_PRECISION_F64 2u
+typedef struct rc_quality {
+  uint32_t precision;     /* RC_PRECISION_* */
+  uint32_t sphere;        /* RC_SPHERE_* (rc_shared.h) */
+  uint32_t triangle;      /* RC_TRIANGLE_* */
+  uint32_t offset;        /* RC_OFFSET_*: where shadow and reflection rays start */
+  double offset_epsilon;  /* RC_OFFSET_EPSILON's distance, scene units */
+  bool camera_relative;   /* pack positions relative to the eye (in f64) before rounding to f32 */
+} rc_quality;
+/* Names as written in scenes and on the command line, indexed by the constants. */
+extern const char *const rc_precision_names[];      /* auto, f32, f64 */
+extern const char *const rc_sphere_formula_names[];  /* geometric, algebraic */
+extern const char *const rc_triangle_formula_names[]; /* watertight, moller-trumbore, cramer */
+extern const char *const rc_offset_names[];         /* error-bound, ulp, epsilon */
+/* The robust defaults. */
+rc_quality rc_quality_default(void);
+/* The index of `name` in a NULL-terminated name list, or -1. */
+int rc_name_index(const char *const *names, const char *name);
+
 /* Limits of the scene format (docs/scene-format.md). */
 #define RC_MAX_IMAGE_SIDE 65536u
 #define RC_MAX_SAMPLES_PER_PIXEL 1024u
@@ -61,6 +84,7 @@ typedef struct rc_scene {
   uint32_t specular_model;   /* RC_SPECULAR_* */
   uint32_t reflection_depth; /* mirror bounces; 0 = no reflection */
   uint32_t seed;             /* sample jitter */
+  rc_quality quality;
   rc_material_def *materials;
   size_t material_count;
   rc_light_def *lights;

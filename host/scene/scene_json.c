@@ -588,13 +588,29 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
   TRY(get_enum(c, root, "specular_model", models, RC_SPECULAR_BLINN_PHONG, &s->specular_model));
   TRY(get_uint(c, root, "seed", false, 0, 0, UINT32_MAX, &s->seed));
   s->reflection_depth = 5;
+  s->quality = rc_quality_default();
   const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
   if (q) {
     push_key(c, "quality");
     TRY(expect_object(c, q));
-    static const char *const qfields[] = {"reflection_depth", NULL};
+    static const char *const qfields[] = {"reflection_depth", "precision", "sphere_intersection",
+                                          "triangle_intersection", "shadow_offset", "shadow_epsilon",
+                                          "camera_relative", NULL};
     TRY(check_members(c, q, qfields));
+    rc_quality *k = &s->quality;
     TRY(get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
+    TRY(get_enum(c, q, "precision", rc_precision_names, k->precision, &k->precision));
+    TRY(get_enum(c, q, "sphere_intersection", rc_sphere_formula_names, k->sphere, &k->sphere));
+    TRY(get_enum(c, q, "triangle_intersection", rc_triangle_formula_names, k->triangle, &k->triangle));
+    TRY(get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
+    TRY(get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
+    const cJSON *cr = cJSON_GetObjectItemCaseSensitive(q, "camera_relative");
+    if (cr) {
+      push_key(c, "camera_relative");
+      if (!cJSON_IsBool(cr)) return fail(c, "expected true or false, got %s", type_name(cr));
+      k->camera_relative = cJSON_IsTrue(cr);
+      pop(c);
+    }
     pop(c);
   }
   TRY(parse_materials(c, root, s));

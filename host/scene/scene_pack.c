@@ -81,10 +81,16 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *
 
 rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   memset(p, 0, sizeof *p);
-  p->origin = s->camera.eye;
+  /* Camera-relative packing is the default; without it the packed space is world space,
+   * kept only to measure what the floating origin buys (docs/accuracy.md). */
+  p->origin = s->quality.camera_relative ? s->camera.eye : rcm_make_d(0, 0, 0);
   pack_camera(s, p);
 
   gpu_frame *f = &p->frame;
+  f->sphere_formula = s->quality.sphere;
+  f->triangle_formula = s->quality.triangle;
+  f->offset_strategy = s->quality.offset;
+  f->offset_epsilon = (float)s->quality.offset_epsilon;
   f->background = rcm_to_f(s->background);
   f->ambient_light = rcm_to_f(s->ambient_light);
   f->specular_model = s->specular_model;

@@ -340,6 +340,7 @@ rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc
   s->ambient_light = rcm_make_d(1, 1, 1);
   s->specular_model = RC_SPECULAR_BLINN_PHONG;
   s->truncate_8bit = true;
+  s->quality = rc_quality_default();
   state g = {.s = s};
   mat_identity(g.stack[0]);
   g.mat.ambient = rcm_make_d(0.2, 0.2, 0.2);

@@ -17,51 +17,51 @@ static gpu_triangle triangle(vec3 a, vec3 b, vec3 c) {
 
 TEST(sphere_hit_from_outside_takes_the_near_root) {
   double side;
-  double t = ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(0, 0, -10, 2), FAR, &side);
+  double t = ref_intersect_sphere_geometric_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(0, 0, -10, 2), FAR, &side);
   CHECK_NEAR(t, 8.0, 1e-12);
   CHECK(side == -1);
   float sidef;
-  float tf = ref_intersect_sphere_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -10, 2), (float)FAR, &sidef);
+  float tf = ref_intersect_sphere_geometric_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -10, 2), (float)FAR, &sidef);
   CHECK_NEAR(tf, 8.0, 1e-5);
 }
 
 TEST(sphere_miss) {
   double side;
-  CHECK(ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(3, 0, -10, 2), FAR, &side) == FAR);
+  CHECK(ref_intersect_sphere_geometric_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(3, 0, -10, 2), FAR, &side) == FAR);
   CHECK(side == 0);
 }
 
 TEST(sphere_behind_the_origin_is_missed) {
   double side;
-  CHECK(ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, 1), sphere(0, 0, -10, 2), FAR, &side) == FAR);
+  CHECK(ref_intersect_sphere_geometric_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, 1), sphere(0, 0, -10, 2), FAR, &side) == FAR);
 }
 
 TEST(sphere_origin_inside_hits_the_exit_root) {
   double side;
-  double t = ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(1, 0, 0), sphere(0.5f, 0, 0, 2), FAR, &side);
+  double t = ref_intersect_sphere_geometric_d(rcm_make_d(0, 0, 0), rcm_make_d(1, 0, 0), sphere(0.5f, 0, 0, 2), FAR, &side);
   CHECK_NEAR(t, 2.5, 1e-12);
   CHECK(side == 1);
 }
 
 TEST(sphere_respects_t_max) {
   double side;
-  CHECK(ref_intersect_sphere_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(0, 0, -10, 2), 7.9, &side) == FAR);
+  CHECK(ref_intersect_sphere_geometric_d(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), sphere(0, 0, -10, 2), 7.9, &side) == FAR);
 }
 
 TEST(sphere_grazing_rays_just_inside_hit_and_just_outside_miss) {
   /* Impact parameter 1 - 1e-6 and 1 + 1e-6 on a unit sphere 10 units away. */
   double side;
   dvec3 d = rcm_make_d(0, 0, -1);
-  double t_in = ref_intersect_sphere_d(rcm_make_d(1 - 1e-6, 0, 0), d, sphere(0, 0, -10, 1), FAR, &side);
+  double t_in = ref_intersect_sphere_geometric_d(rcm_make_d(1 - 1e-6, 0, 0), d, sphere(0, 0, -10, 1), FAR, &side);
   CHECK_NEAR(t_in, 10.0 - sqrt(1.0 - (1 - 1e-6) * (1 - 1e-6)), 1e-9);
-  CHECK(ref_intersect_sphere_d(rcm_make_d(1 + 1e-6, 0, 0), d, sphere(0, 0, -10, 1), FAR, &side) == FAR);
+  CHECK(ref_intersect_sphere_geometric_d(rcm_make_d(1 + 1e-6, 0, 0), d, sphere(0, 0, -10, 1), FAR, &side) == FAR);
 }
 
 TEST(sphere_far_away_and_small_stays_visible_in_f32) {
   /* D/r = 1e5: the textbook b^2 - 4ac loses the sphere in f32 (ROBUSTNESS.md §2.3); the
    * Hearn-Baker discriminant keeps it. */
   float side;
-  float t = ref_intersect_sphere_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -1e5f, 1), (float)FAR, &side);
+  float t = ref_intersect_sphere_geometric_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -1e5f, 1), (float)FAR, &side);
   CHECK_NEAR(t, 1e5 - 1, 0.02);
 }
 

@@ -1,0 +1,77 @@
+/* precision_budget.c: see precision_budget.h. Everything is measured in the packed space
+ * (relative to the eye by default), where the renderers compute. */
+#include "precision_budget.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+/* The spacing of f32 values near x. */
+static double ulp_f32(double x) {
+  float f = fabsf((float)x);
+  return (double)nextafterf(f, INFINITY) - (double)f;
+}
+
+/* Counts a finding; the first one's message is kept. */
+static void note(uint32_t *count, char *first, size_t size, const char *fmt, ...) {
+  if ((*count)++ != 0) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(first, size, fmt, ap);
+  va_end(ap);
+}
+
+static double max_abs3(vec3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
+
+static dvec3 d3(vec3 v) { return rcm_to_d(v); }
+
+void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_report *r) {
+  double t0 = rc_now_ms();
+  *r = (rc_precision_report){0};
+  const dvec3 eye = d3(p->frame.camera.eye);
+  for (size_t i = 0; i < p->frame.sphere_count; i++) {
+    const gpu_sphere *s = &p->spheres[i];
+    if (s->transform != RC_NO_TRANSFORM) continue; /* ellipsoids: object space, scale 1 by construction */
+    double rad = s->radius;
+    double dist = rcm_length_d(rcm_sub_d(d3(s->center), eye));
+    double reach = rcm_length_d(d3(s->center)) + rad; /* the largest |p| the sphere's math sees */
+    if (rad < RC_BUDGET_TINY_RADIUS || reach > RC_BUDGET_FAR_COORDINATE) {
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
+           "sphere %zu: radius %g at |p| %g leaves the f32 range once squared", i, rad, reach);
+      continue;
+    }
+    double height = fabs(dist - rad);
+    if (height > 0 && rad / height > RC_BUDGET_HUGE_SPHERE) {
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
+           "sphere %zu: the eye is %g above a sphere of radius %g (ratio %.3g)", i, height, rad, rad / height);
+    } else if (dist / rad > (algebraic ? RC_BUDGET_FAR_SPHERE_ALGEBRAIC : RC_BUDGET_FAR_SPHERE)) {
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "sphere %zu%s: distance %g over radius %g (ratio %.3g)",
+           i, algebraic ? " (algebraic formula)" : "", dist, rad, dist / rad);
+    }
+    double q = 0.5 * ulp_f32(max_abs3(s->center)) / rad;
+    if (q > RC_BUDGET_QUANTIZATION)
+      note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
+           "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, max_abs3(s->center), q);
+  }
+  for (size_t i = 0; i < p->frame.triangle_count; i++) {
+    const gpu_triangle *t = &p->triangles[i];
+    dvec3 a = d3(t->v0), b = d3(t->v1), c = d3(t->v2);
+    dvec3 e0 = rcm_sub_d(b, a), e1 = rcm_sub_d(c, b), e2 = rcm_sub_d(a, c);
+    double longest = fmax(rcm_length_d(e0), fmax(rcm_length_d(e1), rcm_length_d(e2)));
+    double twice_area = rcm_length_d(rcm_cross_d(e0, rcm_sub_d(c, a)));
+    double altitude = longest > 0 ? twice_area / longest : 0;
+    double reach = fmax(max_abs3(t->v0), fmax(max_abs3(t->v1), max_abs3(t->v2)));
+    if (reach > RC_BUDGET_FAR_COORDINATE) {
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "triangle %zu: |p| %g leaves the f32 range once squared",
+           i, reach);
+      continue;
+    }
+    double q = altitude > 0 ? 0.5 * ulp_f32(reach) / altitude : INFINITY;
+    if (q > RC_BUDGET_QUANTIZATION)
+      note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
+           "triangle %zu: its vertices at |p| %g are rounded to f32 by up to %.3g of its altitude %g", i, reach, q,
+           altitude);
+  }
+  r->ms = rc_now_ms() - t0;
+}

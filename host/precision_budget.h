@@ -1,0 +1,31 @@
+/* precision_budget.h: "model only what a scene requires" (ROBUSTNESS.md §7). Before
+ * rendering, an f64 pass over the packed scene measures each object's scale ratios and says
+ * whether f32 arithmetic can render it faithfully, naming the object and the ratio. */
+#ifndef RC_PRECISION_BUDGET_H
+#define RC_PRECISION_BUDGET_H
+
+#include "scene/scene_pack.h"
+
+/* The thresholds, from ROBUSTNESS.md §2.3, §5.1 and the extremes suite (docs/accuracy.md). */
+#define RC_BUDGET_HUGE_SPHERE 1.0e4      /* r / (eye's height over the sphere): f32 depth error > 0.1 % */
+#define RC_BUDGET_FAR_SPHERE 1.0e6       /* |C| / r, geometric form: f32 depth error > 6 % of r */
+#define RC_BUDGET_FAR_SPHERE_ALGEBRAIC 1.0e2 /* |C| / r, textbook form: f32 loses the sphere from ~1e3 */
+#define RC_BUDGET_TINY_RADIUS 1.0e-18    /* r^2 (and |l|^2 beside it) near the f32 normal range, 1.2e-38 */
+#define RC_BUDGET_FAR_COORDINATE 1.0e18  /* |f|^2 near the f32 range, 3.4e38 */
+#define RC_BUDGET_QUANTIZATION 1.0e-2    /* half an f32 ulp of |p| over the feature size */
+
+typedef struct rc_precision_report {
+  /* f32 arithmetic cannot render the scene faithfully but f64 arithmetic on the same packed
+   * arrays can: --precision auto picks f64 where the device has it. */
+  uint32_t needs_f64;
+  /* Rounding the positions to f32 (the packed arrays both backends read) moves a feature by
+   * more than RC_BUDGET_QUANTIZATION of its size: no shader precision helps. */
+  uint32_t quantized;
+  char first_f64[320];       /* the first object that needs f64: what, which, the ratio */
+  char first_quantized[320]; /* likewise for quantization */
+  double ms;                 /* time the pass took */
+} rc_precision_report;
+
+void rc_precision_budget(const rc_packed_scene *p, bool algebraic_spheres, rc_precision_report *out);
+
+#endif
