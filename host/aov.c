@@ -1,5 +1,6 @@
 #include "aov.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,21 +25,45 @@ static int find(char names[][32], int count, const char *name) {
 bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout) {
   for (int i = 0; i < RC_AOV_CHANNELS; i++)
     if (find(names, count, rc_aov_channel_names[i]) < 0) return false;
-  layout->hit = find(names, count, "hit");
-  layout->object = find(names, count, "object");
-  layout->shadow = find(names, count, "shadow");
+  int *slots[RC_AOV_CHANNELS] = {&layout->r,  &layout->g,  &layout->b,  &layout->hit, &layout->object,
+                                 &layout->t,  &layout->nx, &layout->ny, &layout->nz,  &layout->shadow};
+  for (int i = 0; i < RC_AOV_CHANNELS; i++) *slots[i] = find(names, count, rc_aov_channel_names[i]);
   return true;
 }
 
+bool rc_aov_same_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb, int c,
+                           size_t i) {
+  const float *x = a + i * c, *y = b + i * c;
+  return x[la->hit] == y[lb->hit] && x[la->object] == y[lb->object] && x[la->shadow] == y[lb->shadow];
+}
+
 void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb, int w,
-                              int h, int c, rc_compare_result *r) {
+                              int h, int c, const unsigned char *band, rc_compare_result *r) {
   r->decisions = true;
   for (size_t i = 0; i < (size_t)w * h; i++) {
     const float *x = a + i * c, *y = b + i * c;
+    r->a_hits += x[la->hit] != 0;
+    r->b_hits += y[lb->hit] != 0;
+    r->a_shadowed += x[la->shadow] != 0;
+    r->b_shadowed += y[lb->shadow] != 0;
+    if (band && band[i]) {
+      r->band_pixels++;
+      continue;
+    }
     bool same_hit = x[la->hit] == y[lb->hit];
     bool same_object = same_hit && x[la->object] == y[lb->object];
     r->hit_mismatch += !same_hit;
     r->object_mismatch += same_hit && !same_object;
     r->shadow_mismatch += same_object && x[la->shadow] != y[lb->shadow];
+    if (!same_object || y[lb->hit] == 0) continue;
+    /* Depth relative to the reference's; the normal as the angle between the two. */
+    double tb = y[lb->t], dt = fabs((double)x[la->t] - tb) / (tb != 0 ? fabs(tb) : 1);
+    if (!(dt <= r->max_depth_rel)) r->max_depth_rel = isnan(dt) ? INFINITY : dt;
+    double dot = (double)x[la->nx] * y[lb->nx] + (double)x[la->ny] * y[lb->ny] + (double)x[la->nz] * y[lb->nz];
+    double la_ = sqrt((double)x[la->nx] * x[la->nx] + (double)x[la->ny] * x[la->ny] + (double)x[la->nz] * x[la->nz]);
+    double lb_ = sqrt((double)y[lb->nx] * y[lb->nx] + (double)y[lb->ny] * y[lb->ny] + (double)y[lb->nz] * y[lb->nz]);
+    double cosine = dot / (la_ * lb_);
+    double angle = acos(cosine > 1 ? 1 : (cosine < -1 ? -1 : cosine));
+    if (!(angle <= r->max_normal_angle)) r->max_normal_angle = isnan(angle) ? INFINITY : angle;
   }
 }

@@ -19,6 +19,9 @@ static const char compare_usage[] =
     "  --hardfail H      fail if any channel differs by more than H (default: no limit)\n"
     "  --decisions N     AOV files: allow up to N pixels whose hit flag, object or shadow bits\n"
     "                    differ (default 0)\n"
+    "  --band REF2        AOV files: a re-render of B's scene with perturbed inputs (render\n"
+    "                    --perturb); pixels whose decisions differ between B and it form the\n"
+    "                    conditioning band and are left out of the decision counts (repeatable)\n"
     "  --diff OUT        write a heat map of the absolute difference: black up to --fail, white at\n"
     "                    the max error, logarithmic in between\n"
     "  --json            print the metrics as one JSON object\n"
@@ -55,12 +58,40 @@ static rc_status load(const char *path, loaded *im) {
   return RC_OK;
 }
 
+/* The conditioning band: pixels of the reference b whose decisions change when its scene's
+ * inputs are perturbed by a few f32 ulps (each band file is such a re-render). */
+static rc_status load_band(const char *const *paths, int n, const loaded *b, unsigned char **out) {
+  if (!b->aov) {
+    rc_error("compare: --band needs AOV files (render --aov)");
+    return RC_ERR_USAGE;
+  }
+  unsigned char *band = calloc((size_t)b->w * b->h, 1);
+  if (!band) return RC_ERR_OUT_OF_MEMORY;
+  rc_status st = RC_OK;
+  for (int k = 0; k < n && st == RC_OK; k++) {
+    loaded p = {0};
+    st = load(paths[k], &p);
+    if (st == RC_OK && (!p.aov || p.w != b->w || p.h != b->h)) {
+      rc_error("compare: --band %s is not an AOV file of the same size", paths[k]);
+      st = RC_ERR_INPUT;
+    }
+    for (size_t i = 0; st == RC_OK && i < (size_t)b->w * b->h; i++)
+      if (!rc_aov_same_decisions(p.px, &p.layout, b->px, &b->layout, b->c, i)) band[i] = 1;
+    free(p.px);
+  }
+  if (st != RC_OK) free(band), band = NULL;
+  *out = band;
+  return st;
+}
+
 rc_status rc_cmd_compare(int argc, char **argv) {
   const char *files[2] = {NULL, NULL}, *diff = NULL;
   double fail = 1e-6, failpercent = 0, hardfail = INFINITY;
   uint32_t decisions_allowed = 0;
   bool json = false;
   int nfiles = 0;
+  const char *bands[8];
+  int nbands = 0;
   for (int i = 0; i < argc; i++) {
     const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     rc_status st = RC_OK;
@@ -83,6 +114,12 @@ rc_status rc_cmd_compare(int argc, char **argv) {
       st = rc_cli_uint(o, v, 0, UINT32_MAX, &decisions_allowed);
     } else if (strcmp(o, "--diff") == 0) {
       diff = v;
+    } else if (strcmp(o, "--band") == 0) {
+      if (nbands == 8) {
+        rc_error("compare: at most 8 --band files");
+        return RC_ERR_USAGE;
+      }
+      bands[nbands++] = v;
     } else if (o[0] == '-' && o[1]) {
       rc_error("compare: unknown option %s (see vkraycast compare --help)", o);
       return RC_ERR_USAGE;
@@ -114,10 +151,12 @@ rc_status rc_cmd_compare(int argc, char **argv) {
              b.w, b.h, b.c);
     st = RC_ERR_INPUT;
   }
+  unsigned char *band = NULL;
+  if (st == RC_OK && nbands) st = load_band(bands, nbands, &b, &band);
   rc_compare_result r;
   if (st == RC_OK) {
     rc_compare_images(a.px, b.px, a.w, a.h, a.c, fail, &r);
-    if (a.aov && b.aov) rc_aov_compare_decisions(a.px, &a.layout, b.px, &b.layout, a.w, a.h, a.c, &r);
+    if (a.aov && b.aov) rc_aov_compare_decisions(a.px, &a.layout, b.px, &b.layout, a.w, a.h, a.c, band, &r);
     double share = r.pixels ? 100.0 * (double)r.over / (double)r.pixels : 0;
     uint64_t decision_total = r.hit_mismatch + r.object_mismatch + r.shadow_mismatch;
     bool ok = share <= failpercent && r.max <= hardfail && (!r.decisions || decision_total <= decisions_allowed);
@@ -136,10 +175,19 @@ rc_status rc_cmd_compare(int argc, char **argv) {
       cJSON_AddNumberToObject(o, "threshold", fail);
       cJSON_AddNumberToObject(o, "pixels_over", (double)r.over);
       cJSON_AddNumberToObject(o, "percent_over", share);
+      cJSON_AddNumberToObject(o, "nonfinite_a", (double)r.nan_a);
+      cJSON_AddNumberToObject(o, "nonfinite_b", (double)r.nan_b);
       if (r.decisions) {
         cJSON_AddNumberToObject(o, "hit_mismatch", (double)r.hit_mismatch);
         cJSON_AddNumberToObject(o, "object_mismatch", (double)r.object_mismatch);
         cJSON_AddNumberToObject(o, "shadow_mismatch", (double)r.shadow_mismatch);
+        cJSON_AddNumberToObject(o, "band_pixels", (double)r.band_pixels);
+        cJSON_AddNumberToObject(o, "a_hits", (double)r.a_hits);
+        cJSON_AddNumberToObject(o, "b_hits", (double)r.b_hits);
+        cJSON_AddNumberToObject(o, "a_shadowed", (double)r.a_shadowed);
+        cJSON_AddNumberToObject(o, "b_shadowed", (double)r.b_shadowed);
+        cJSON_AddNumberToObject(o, "max_depth_rel_error", isfinite(r.max_depth_rel) ? r.max_depth_rel : 1e300);
+        cJSON_AddNumberToObject(o, "max_normal_angle", isfinite(r.max_normal_angle) ? r.max_normal_angle : 1e300);
       }
       cJSON_AddBoolToObject(o, "pass", ok);
       char *text = cJSON_Print(o);
@@ -153,8 +201,12 @@ rc_status rc_cmd_compare(int argc, char **argv) {
              r.max_b);
       printf("  %llu pixels (%.4f%%) over %g\n", (unsigned long long)r.over, share, fail);
       if (r.decisions)
-        printf("  decisions differ: hit %llu, object %llu, shadow %llu pixels\n", (unsigned long long)r.hit_mismatch,
-               (unsigned long long)r.object_mismatch, (unsigned long long)r.shadow_mismatch);
+        printf("  decisions differ: hit %llu, object %llu, shadow %llu pixels%s; depth error %.3g (relative), "
+               "normal error %.3g rad\n",
+               (unsigned long long)r.hit_mismatch, (unsigned long long)r.object_mismatch,
+               (unsigned long long)r.shadow_mismatch, band ? " outside the band" : "", r.max_depth_rel,
+               r.max_normal_angle);
+      if (band) printf("  conditioning band: %llu pixels\n", (unsigned long long)r.band_pixels);
       printf("%s\n", ok ? "PASS" : "FAIL");
     }
     if (diff) {
@@ -176,5 +228,6 @@ rc_status rc_cmd_compare(int argc, char **argv) {
   }
   free(a.px);
   free(b.px);
+  free(band);
   return st;
 }

@@ -54,6 +54,9 @@ static const char render_usage[] =
     "  --tile-budget-ms T      the longest one dispatch (one submit) should run: tiles adapt to it\n"
     "                          (default 100; real GPUs reset after ~2 s)\n"
     "  --tile N                fixed N x N tiles instead of adaptive ones\n"
+    "  --perturb SEED          scale every packed position and radius by 1 + d, |d| <= 2^-22, d a hash\n"
+    "                          of SEED and the value (equal values move alike: meshes stay closed); its\n"
+    "                          renders give `compare --band` the conditioning band\n"
     "  --plan-budget N         loop budget the host plans batches with (default: the shader's, 49152\n"
     "                          divided by the subgroup size on llvmpipe); larger values test the\n"
     "                          shader's exhaustion flag\n";
@@ -69,6 +72,7 @@ typedef struct {
   int precision; /* -1: the scene's (RC_PRECISION_*) */
   int sphere, triangle, offset, camera_relative, reflection_depth; /* -1: the scene's */
   double offset_epsilon; /* 0: the scene's */
+  uint32_t perturb;      /* 0: none, else the seed */
   uint32_t threads;
   rc_gpu_options gpu;
 } render_args;
@@ -102,7 +106,7 @@ static bool option_takes_value(const char *o) {
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
                                            "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize",
                                            "--tile-budget-ms", "--sphere", "--triangle", "--shadow-offset",
-                                           "--shadow-epsilon", "--camera-relative", "--reflection-depth"};
+                                           "--shadow-epsilon", "--camera-relative", "--reflection-depth", "--perturb"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -203,6 +207,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     } else if (strcmp(o, "--reflection-depth") == 0) {
       st = rc_cli_uint(o, v, 0, RC_MAX_REFLECTION_DEPTH, &n);
       a->reflection_depth = (int)n;
+    } else if (strcmp(o, "--perturb") == 0) {
+      st = rc_cli_uint(o, v, 1, UINT32_MAX, &a->perturb);
     } else if (strcmp(o, "--shadow-epsilon") == 0) {
       char *end = NULL;
       a->offset_epsilon = strtod(v, &end);
@@ -333,6 +339,36 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
   return st;
 }
 
+/* ROBUSTNESS.md §8.1: a relative change of up to 2^-22 (a few f32 ulps) in every input
+ * coordinate. The amount hashes the value's bits with the seed, so a vertex shared by
+ * several triangles moves the same way in all of them. */
+static float perturb_value(float x, uint32_t seed) {
+  uint32_t bits;
+  memcpy(&bits, &x, sizeof bits);
+  uint32_t h = bits ^ (seed * 0x9e3779b9u);
+  h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
+  double d = ((double)h / 4294967295.0 * 2.0 - 1.0) * 0x1p-22;
+  return (float)((double)x * (1.0 + d));
+}
+
+static vec3 perturb_vec3(vec3 v, uint32_t seed) {
+  return (vec3){perturb_value(v.x, seed), perturb_value(v.y, seed), perturb_value(v.z, seed)};
+}
+
+static void perturb_packed(rc_packed_scene *p, uint32_t seed) {
+  for (uint32_t i = 0; i < p->frame.sphere_count; i++) {
+    p->spheres[i].center = perturb_vec3(p->spheres[i].center, seed);
+    p->spheres[i].radius = perturb_value(p->spheres[i].radius, seed);
+  }
+  for (uint32_t i = 0; i < p->frame.triangle_count; i++) {
+    p->triangles[i].v0 = perturb_vec3(p->triangles[i].v0, seed);
+    p->triangles[i].v1 = perturb_vec3(p->triangles[i].v1, seed);
+    p->triangles[i].v2 = perturb_vec3(p->triangles[i].v2, seed);
+  }
+  for (uint32_t i = 0; i < p->frame.light_count; i++)
+    if (p->lights[i].type == RC_LIGHT_POINT) p->lights[i].position = perturb_vec3(p->lights[i].position, seed);
+}
+
 static void apply_quality_overrides(const render_args *a, rc_scene *s) {
   rc_quality *q = &s->quality;
   if (a->precision >= 0) q->precision = (uint32_t)a->precision;
@@ -397,6 +433,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_vk_ctx ctx = {0};
   rc_output *out = NULL;
   st = rc_scene_pack(&scene, &packed);
+  if (st == RC_OK && a.perturb) perturb_packed(&packed, a.perturb);
   if (st == RC_OK && !a.no_bvh) {
     st = rc_bvh_build(&packed, &rs.bvh);
     /* The plan's traversal estimate uses the depth; 0 means brute force. */

@@ -13,6 +13,8 @@ void rc_compare_images(const float *a, const float *b, int w, int h, int c, doub
       size_t i = ((size_t)y * w + x) * c;
       bool over = false;
       for (int k = 0; k < c; k++) {
+        r->nan_a += !isfinite(a[i + k]);
+        r->nan_b += !isfinite(b[i + k]);
         double d = fabs((double)a[i + k] - (double)b[i + k]);
         if (!isfinite(d)) d = isnan(a[i + k]) && isnan(b[i + k]) ? 0 : HUGE_VAL;
         sum += isfinite(d) ? d : 0;

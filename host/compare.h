@@ -14,7 +14,12 @@ typedef struct rc_compare_result {
   double max_a, max_b; /* the two values at the max */
   uint64_t pixels, over; /* pixels with some channel over the threshold */
   bool decisions;        /* both files are AOV files: the counts below are meaningful */
-  uint64_t hit_mismatch, object_mismatch, shadow_mismatch;
+  uint64_t hit_mismatch, object_mismatch, shadow_mismatch; /* outside the band */
+  uint64_t band_pixels;           /* left out: the conditioning band */
+  uint64_t a_hits, b_hits, a_shadowed, b_shadowed; /* pixels that hit; with any shadow bit */
+  double max_depth_rel;           /* |t_a - t_b| / |t_b| where both hit the same object */
+  double max_normal_angle;        /* radians, likewise */
+  uint64_t nan_a, nan_b;          /* non-finite channel values */
 } rc_compare_result;
 
 /* a and b: width * height * channels floats. Non-finite values count as maximal error. */

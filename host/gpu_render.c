@@ -563,7 +563,9 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
     if (fixed) {
       rows = fixed;
     } else {
-      rows = clamp_u(sqrt(model_area(&model, r->opts.tile_budget_ms)), 8, MAX_BAND_ROWS) / 8 * 8;
+      /* Square tiles, unless the image is narrower than one: then its full width, taller. */
+      double area = model_area(&model, r->opts.tile_budget_ms), side = sqrt(area);
+      rows = clamp_u(w < side ? area / w : side, 8, MAX_BAND_ROWS) / 8 * 8;
     }
     if (rows > h - y0) rows = h - y0;
     for (uint32_t x0 = 0; x0 < w;) {

@@ -67,11 +67,30 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
            i, reach);
       continue;
     }
+    /* The eye's height over the triangle's plane, as for huge spheres: the hit point and
+     * its error bound are built from vertices far bigger than the distances that matter. */
+    dvec3 normal = rcm_cross_d(e0, rcm_sub_d(c, a));
+    double height = twice_area > 0 ? fabs(rcm_dot_d(rcm_sub_d(eye, a), normal)) / twice_area : 0;
+    /* ... or to its bounding box, when farther: a distant triangle whose plane happens to
+     * pass by the eye is not "seen up close". */
+    double gap2 = 0;
+    for (int k = 0; k < 3; k++) {
+      double e = k == 0 ? eye.x : (k == 1 ? eye.y : eye.z);
+      double va = k == 0 ? a.x : (k == 1 ? a.y : a.z), vb = k == 0 ? b.x : (k == 1 ? b.y : b.z);
+      double vc = k == 0 ? c.x : (k == 1 ? c.y : c.z);
+      double g = fmax(fmax(fmin(va, fmin(vb, vc)) - e, 0), e - fmax(va, fmax(vb, vc)));
+      gap2 += g * g;
+    }
+    height = fmax(height, sqrt(gap2));
+    /* A triangle thinner than a few f32 ulps of its coordinates: f32 edge functions and
+     * t-error bounds cannot resolve it (slivers), where f64 ones can. */
     double q = altitude > 0 ? 0.5 * ulp_f32(reach) / altitude : INFINITY;
-    if (q > RC_BUDGET_QUANTIZATION)
-      note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
-           "triangle %zu: its vertices at |p| %g are rounded to f32 by up to %.3g of its altitude %g", i, reach, q,
-           altitude);
+    if (height > 0 && reach / height > RC_BUDGET_HUGE_SPHERE)
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
+           "triangle %zu: the eye is %g above a triangle reaching |p| %g (ratio %.3g)", i, height, reach, reach / height);
+    else if (q > RC_BUDGET_QUANTIZATION)
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
+           "triangle %zu: altitude %g at |p| %g, %.3g of it per f32 ulp", i, altitude, reach, 2 * q);
   }
   r->ms = rc_now_ms() - t0;
 }

@@ -13,6 +13,8 @@
 #define RC_BUDGET_TINY_RADIUS 1.0e-18    /* r^2 (and |l|^2 beside it) near the f32 normal range, 1.2e-38 */
 #define RC_BUDGET_FAR_COORDINATE 1.0e18  /* |f|^2 near the f32 range, 3.4e38 */
 #define RC_BUDGET_QUANTIZATION 1.0e-2    /* half an f32 ulp of |p| over the feature size */
+/* Triangles use RC_BUDGET_HUGE_SPHERE for |p| over the eye's height above their plane, and
+ * RC_BUDGET_QUANTIZATION for thin ones: both need f64 arithmetic. */
 
 typedef struct rc_precision_report {
   /* f32 arithmetic cannot render the scene faithfully but f64 arithmetic on the same packed

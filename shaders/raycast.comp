@@ -26,6 +26,9 @@ layout(push_constant) uniform Push { gpu_push push; };
 
 uint shadow_rays = 0u;
 uint reflection_rays = 0u;
+// Whether the ray being traced left a surface (shadow and reflection rays): only those can
+// re-hit the surface they start on, so only they reject hits within t's error bound.
+bool spawned_ray = false;
 // The AOV record of this invocation's first sample (rc_trace.glsl fills it).
 bool aov_recording = false;
 gpu_aov aov_record;

@@ -151,8 +151,10 @@ real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out
   precise real t = t_scaled / det;
   if (!(t > 0.0 && t <= t_max)) return real(RC_T_FAR);
   // pbrt-v4's conservative bound on the rounding error of t (shapes.cpp, IntersectTriangle):
-  // a hit nearer than it may be the very surface a spawned ray left (or its neighbour across
-  // an edge), so it does not count. This is what lets the error-bound offset stay small.
+  // a hit of a spawned ray nearer than it may be the very surface the ray left (or its
+  // neighbour across an edge), so it does not count; this is what lets the error-bound
+  // offset stay small. The bound grows as 1/det, so it would drop slivers and huge
+  // triangles seen up close: primary rays, which leave no surface, skip it.
   real max_zt = max(max(abs(sh.s.z * a.z), abs(sh.s.z * b.z)), abs(sh.s.z * c.z));
   real max_xt = max(max(abs(ax), abs(bx)), abs(cx));
   real max_yt = max(max(abs(ay), abs(by)), abs(cy));
@@ -162,7 +164,7 @@ real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out
   real delta_e = 2.0 * (gamma_bound(2.0) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
   real max_e = max(max(abs(u), abs(v)), abs(w));
   real delta_t = 3.0 * (gamma_bound(3.0) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / abs(det);
-  if (t <= delta_t) return real(RC_T_FAR);
+  if (spawned_ray && t <= delta_t) return real(RC_T_FAR);
   bary = rvec3(u, v, w) / det;
   return t;
 }

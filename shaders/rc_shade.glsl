@@ -180,6 +180,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
     shadow_rays++;
+    spawned_ray = true;
     if (occluded(origin, to_light, shadow_t_max)) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;

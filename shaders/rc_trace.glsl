@@ -24,6 +24,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   for (uint depth = 0u; depth <= frame.reflection_depth; depth++) {
     if (!budget_step()) break;
     hit_record h;
+    spawned_ray = depth > 0u;
     bool hit = closest_hit(o, d, h);
     aov_recording = aov_enabled && s == 0u && depth == 0u;
     if (aov_recording) aov_begin(h);

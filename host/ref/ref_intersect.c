@@ -129,7 +129,7 @@ real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, rea
   real delta_e = 2 * (REF(gamma_bound)(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
   real max_e = rmax3(R_ABS(u), R_ABS(v), R_ABS(w));
   real delta_t = 3 * (REF(gamma_bound)(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / R_ABS(det);
-  if (t <= delta_t) return (real)RC_T_FAR;
+  if (ref_spawned_ray && t <= delta_t) return (real)RC_T_FAR;
   *bary = RV(make)(u / det, v / det, w / det);
   return t;
 }

@@ -19,6 +19,9 @@ typedef struct ref_scene {
   bool use_bvh;
 } ref_scene;
 
+/* The shader's `spawned_ray` global: the ray being traced left a surface. Per thread. */
+extern _Thread_local bool ref_spawned_ray;
+
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
   typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \

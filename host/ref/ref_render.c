@@ -11,6 +11,7 @@
 #include "ref/ref_shader.h"
 
 _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+_Thread_local bool ref_spawned_ray;
 _Thread_local bool ref_aov_enabled, ref_aov_recording;
 _Thread_local gpu_aov ref_aov_record;
 

@@ -169,6 +169,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     real n_dot_l = RV(dot)(sf->n, l);
     if (n_dot_l <= 0) continue;
     ref_shadow_rays++;
+    ref_spawned_ray = true;
     if (REF(occluded)(sc, origin, to_light, shadow_t_max)) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;

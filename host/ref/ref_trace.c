@@ -23,6 +23,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
   rvec3 weight = RV(make)(1, 1, 1);
   for (uint32_t depth = 0; depth <= sc->frame->reflection_depth; depth++) {
     ref_hit h;
+    ref_spawned_ray = depth > 0;
     bool hit = REF(closest_hit)(sc, o, d, &h);
     ref_aov_recording = ref_aov_enabled && s == 0 && depth == 0;
     if (ref_aov_recording) REF(aov_begin)(sc, &h);
