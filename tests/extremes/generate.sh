@@ -239,4 +239,14 @@ scene S19_light_on_surface 96x72 "$(persp "[0, 3, 6]" "[0, 0.5, 0]" 45)" "$(poin
 scene S19_light_inside_sphere 96x72 "$(persp "[0, 3, 6]" "[0, 0.5, 0]" 45)" "$(point "[1, 1, 0]" 10)" "$floor"
 scene S19_light_1e-6_above 96x72 "$(persp "[0, 3, 6]" "[0, 0.5, 0]" 45)" "$(point "[-1, 1e-6, 0]" 10)" "$floor"
 scene S19_light_1e8_away 96x72 "$(persp "[0, 3, 6]" "[0, 0.5, 0]" 45)" "$(point "[-1e8, 1e8, 0]" 2e16)" "$floor"
+# S21 many small spheres (sphereflake-like): 2,000 spheres, r in [1e-3, 1e-1], in a unit
+# cube seen from D = 2 and D = 1e3 (the field of view keeps the cube's size in the image).
+# (ROBUSTNESS.md asks 1e4 spheres; 2,000 keep the committed file at 0.2 MB.)
+balls=$(awk 'BEGIN { srand(21); for (i = 0; i < 2000; i++) {
+  r = exp(log(1e-3) + rand() * (log(1e-1) - log(1e-3)))
+  printf "%s{ \"type\": \"sphere\", \"center\": [%.6f, %.6f, %.6f], \"radius\": %.6g, \"material\": \"%s\" }", (i ? ",\n    " : ""), rand() - 0.5, rand() - 0.5, rand() - 0.5, r, (i % 3 ? "white" : "red") } }')
+for d in 2 1e3; do
+  scene "S21_many_spheres_D$d" 128x128 "$(persp "$(v3 0 0 "$d")" "[0, 0, 0]" "2 * atan2(0.9, $d) * 180 / 3.14159265358979323846")" \
+    "$(sun "[0.3, -0.6, -1]")" "$balls"
+done
 echo "wrote $(ls "$out"/*.json | wc -l) scenes to $out"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The extremes suite (ROBUSTNESS.md §8.2): renders each scene of a case with the default
-# (robust) settings on the GPU and with the CPU f64 reference, plus two reference renders
+# (robust) settings on the GPU and with the CPU f64 reference, plus four reference renders
 # with inputs perturbed by a few f32 ulps (the conditioning band, §8.1), and gates the
 # default's figures. Prints one markdown row per scene.
 #   tests/extremes/run.sh VKRAYCAST WORKDIR CASE [RENDER_ARGS...]
@@ -23,7 +23,7 @@ reference() {
   n=$(basename "$s" .json)
   if [[ ! -f $work/$n.ref.aov.exr ]]; then
     "$bin" render "$s" -o "$work/$n.ref.exr" --aov "$work/$n.ref.aov.exr" --backend cpu --precision f64 --quiet 2>/dev/null
-    for k in 1 2; do
+    for k in 1 2 3 4; do
       "$bin" render "$s" -o "$work/$n.band$k.exr" --aov "$work/$n.band$k.aov.exr" --backend cpu --precision f64 \
         --perturb $k --quiet 2>/dev/null
     done
@@ -43,7 +43,8 @@ for s in "${scenes[@]}"; do
   "$bin" render "$s" -o "$work/$tag.exr" --aov "$work/$tag.aov.exr" --stats-json "$work/$tag.stats.json" --quiet \
     "${variant[@]}" 2>"$work/$tag.stderr"
   "$bin" compare "$work/$tag.aov.exr" "$work/$ref.ref.aov.exr" --band "$work/$ref.band1.aov.exr" \
-    --band "$work/$ref.band2.aov.exr" --json >"$work/$tag.cmp.json" || true
+    --band "$work/$ref.band2.aov.exr" --band "$work/$ref.band3.aov.exr" --band "$work/$ref.band4.aov.exr" \
+    --json >"$work/$tag.cmp.json" || true
   "$bin" compare "$work/$tag.exr" "$work/$ref.ref.exr" --fail 0.008 --json >"$work/$tag.color.json" || true
   c=$work/$tag.cmp.json
   px=$(( $(num width "$c") * $(num height "$c") ))
