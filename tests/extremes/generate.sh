@@ -203,14 +203,15 @@ for size in 1x1 1x4096 4097x3; do
   scene "S15_size_$size" "$size" "$(persp "[0, 2, 2]" "[0, 0.8, -5]" 45)" "$(s01_light 0 0 0)" "$(s01_objects 0 0 0)"
 done
 
-# S16 shadow acne: a tilted quad alone under a light at elevation E: any shadowed pixel is
-# acne. The scene sits at offset X (camera and all).
+# S16 shadow acne: a tilted quad alone under a light at elevation E above its plane (on the
+# camera's side of it, normal (0, 0.958, -0.287)): any shadowed pixel is acne. The scene
+# sits at offset X (camera and all).
 for x in 0 1e2 1e4 1e5; do
   for e in 0.5 10 45 89; do
     ce=$(g "cos($e * 3.14159265358979323846 / 180)"); se=$(g "sin($e * 3.14159265358979323846 / 180)")
     q1=$(v3 "$x - 10" "$x - 3" "$x - 10"); q2=$(v3 "$x + 10" "$x - 3" "$x - 10"); q3=$(v3 "$x + 10" "$x + 3" "$x + 10"); q4=$(v3 "$x - 10" "$x + 3" "$x + 10")
     scene "S16_acne_X${x}_E$e" 96x96 "$(persp "$(v3 "$x" "$x + 8" "$x + 12")" "$(v3 "$x" "$x" "$x")" 60)" \
-      "$(sun "$(v3 "-$ce * 0.7071" "-$se" "-$ce * 0.7071")")" "$(tri "$q1" "$q2" "$q3"), $(tri "$q1" "$q3" "$q4")"
+      "$(sun "$(v3 "-$ce" "-$se * 0.95783" "$se * 0.28735")")" "$(tri "$q1" "$q2" "$q3"), $(tri "$q1" "$q3" "$q4")"
   done
 done
 

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# The speed/accuracy trade-off report (docs/accuracy.md): renders a fixed set of scenes
+# under each variant of ROBUSTNESS.md §8.5 and each spp in {1, 4, 16, 64} on the GPU,
+# measures the steady-state GPU time (median of --repeat frames) and the error against the
+# CPU f64 reference (decision mismatches at the first sample, outside nothing; PSNR and max
+# error against a 256-spp f64 render; acne and leaks where the scene defines them), and
+# writes docs/accuracy.csv, a markdown table and a PNG plot (gnuplot) with the Pareto front.
+#   tools/tradeoff.sh [OUTDIR]      (REPEAT=5 SIZE=96)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+out=${1:-$root/docs}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+bin=$root/build/vkraycast
+[[ -x $bin ]] || { echo "build first (tools/demo.sh)" >&2; exit 2; }
+command -v gnuplot >/dev/null || { echo "installing gnuplot-nox for the plot" >&2; apt-get install -y -qq gnuplot-nox >&2; }
+repeat=${REPEAT:-5} size=${SIZE:-96}
+ex=$root/tests/extremes/scenes
+scenes=("$ex/S01_baseline.json" "$ex/S03_distance_1e3.json" "$ex/S07_closed_mesh_embree.json"
+        "$ex/S13_translate_xyz_1e5.json" "$ex/S16_acne_X1e4_E10.json" "$ex/S17_contact_X1e2_h1e-3.json"
+        "$ex/S21_many_spheres_D1e3.json" "$root/scenes/showcase.json" "$root/scenes/shadows.json")
+# name | render options (V5 is the default; --precision pins what auto would choose)
+variants=(
+  "V0-fast|--sphere algebraic --triangle moller-trumbore --shadow-offset epsilon --camera-relative off --precision f32"
+  "V1|--sphere geometric --triangle moller-trumbore --shadow-offset epsilon --camera-relative off --precision f32"
+  "V2|--sphere geometric --triangle watertight --shadow-offset epsilon --camera-relative off --precision f32"
+  "V3|--sphere geometric --triangle watertight --shadow-offset ulp --camera-relative off --precision f32"
+  "V4|--sphere geometric --triangle watertight --shadow-offset error-bound --camera-relative off --precision f32"
+  "V5-default|--precision f32"
+  "V6-f64|--precision f64")
+num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+csv=$out/accuracy.csv
+echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,max_error,acne_pct,leak_pct" >"$csv"
+# One fixed tile: the adaptive tiles size themselves from the first frame's timings (which
+# include lavapipe's lazy JIT), so tile counts, and with them ~8 ms per dispatch, would
+# differ between variants and swamp the shaders' own cost.
+common=(--width "$size" --height "$size" --tile 128 --quiet)
+for s in "${scenes[@]}"; do
+  n=$(basename "$s" .json)
+  "$bin" render "$s" -o "$work/$n.ref256.exr" --backend cpu --precision f64 --spp 256 "${common[@]}" 2>/dev/null
+  for v in "${variants[@]}"; do
+    vn=${v%%|*} opts=${v#*|}
+    for spp in 1 4 16 64; do
+      t=$work/$n.$vn.$spp
+      # The AOVs record each pixel's first sample, whose position depends on spp: the
+      # decision reference renders the same samples.
+      [[ -f $work/$n.ref$spp.aov.exr ]] || "$bin" render "$s" -o "$work/$n.ref$spp.exr" --aov "$work/$n.ref$spp.aov.exr" \
+        --backend cpu --precision f64 --spp "$spp" "${common[@]}" 2>/dev/null
+      # shellcheck disable=SC2086
+      "$bin" render "$s" -o "$t.exr" --aov "$t.aov.exr" --spp "$spp" --repeat "$repeat" --stats-json "$t.json" \
+        "${common[@]}" $opts 2>/dev/null
+      "$bin" compare "$t.aov.exr" "$work/$n.ref$spp.aov.exr" --json >"$t.dec.json" || true
+      "$bin" compare "$t.exr" "$work/$n.ref256.exr" --json >"$t.col.json" || true
+      px=$((size * size)) hits=$(num a_hits "$t.dec.json") shadowed=$(num a_shadowed "$t.dec.json")
+      mm=$(( $(num hit_mismatch "$t.dec.json") + $(num object_mismatch "$t.dec.json") + $(num shadow_mismatch "$t.dec.json") ))
+      acne=0 leak=0
+      case $n in
+        S16_*) acne=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * a / h : 0 }') ;;
+        S07_*) leak=$(awk -v h="$hits" -v p="$px" 'BEGIN { printf "%.4g", 100 * (p - h) / p }') ;;
+        S17_*) leak=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * (h - a) / h : 0 }') ;;
+      esac
+      printf '%s,%s,%s,%s,%s,%s,%s,%s,%s\n' "$n" "$vn" "$spp" "$(num render_ms "$t.json")" \
+        "$(awk -v m="$mm" -v p="$px" 'BEGIN { printf "%.4g", 100 * m / p }')" "$(num psnr "$t.col.json")" \
+        "$(num max_error "$t.col.json")" "$acne" "$leak" >>"$csv"
+    done
+  done
+  echo "  $n done" >&2
+done
+
+# Per variant and spp: total GPU time over the scenes against the mean decision mismatch.
+awk -F, 'NR > 1 { k = $2 "," $3; t[k] += $4; m[k] += $5; a[k] += $8; l[k] += $9; p[k] += $6; c[k]++ }
+  END { for (k in t) printf "%s,%.2f,%.4f,%.3f,%.4f,%.4f\n", k, t[k], m[k] / c[k], p[k] / c[k], a[k] / c[k], l[k] / c[k] }' \
+  "$csv" | sort -t, -k3,3n -k1,1 >"$work/summary.csv"
+# The Pareto front: no other point is both faster and more accurate.
+awk -F, '{ t[NR] = $3; e[NR] = $4; line[NR] = $0 } END {
+  for (i = 1; i <= NR; i++) { dominated = 0
+    for (j = 1; j <= NR; j++) if (j != i && t[j] <= t[i] && e[j] <= e[i] && (t[j] < t[i] || e[j] < e[i])) dominated = 1
+    print line[i] "," (dominated ? 0 : 1) } }' "$work/summary.csv" >"$work/pareto.csv"
+{
+  echo "| variant | spp | GPU ms (sum of ${#scenes[@]} scenes) | decision mismatch % (mean) | PSNR dB vs 256 spp (mean) | acne % (S16) | leak % (S07, S17 mean) | Pareto |"
+  echo "|---|---|---|---|---|---|---|---|"
+  sort -t, -k2,2n -k1,1 "$work/pareto.csv" | awk -F, -v n="${#scenes[@]}" '{ printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6 * n, $7 * n / 2, ($8 ? "yes" : "") }'
+} >"$out/accuracy-table.md"
+awk -F, '$8 == 1' "$work/pareto.csv" | sort -t, -k3,3n >"$work/front.csv"
+gnuplot <<GP
+set terminal pngcairo size 900,560 font "sans,11"
+set output "$out/images/tradeoff.png"
+set datafile separator ","
+set logscale x
+set xlabel "GPU time, ms (sum over the ${#scenes[@]} scenes, lavapipe, ${size}x${size})"
+set ylabel "decision mismatches vs CPU f64, % of pixels (mean)"
+set key top right
+set grid
+plot "$work/pareto.csv" using 3:4:(sprintf("%s/%s", strcol(1), strcol(2))) with labels offset 0,0.7 font ",7" notitle, \
+     "$work/pareto.csv" using 3:4 with points pt 7 ps 0.8 title "variant / spp", \
+     "$work/front.csv" using 3:4 with linespoints lw 2 pt 6 ps 1.6 title "Pareto front"
+GP
+echo "wrote $csv, $out/accuracy-table.md, $out/images/tradeoff.png" >&2
