@@ -80,7 +80,7 @@ awk -F, '{ t[NR] = $3; e[NR] = $4; line[NR] = $0 } END {
   echo "| variant | spp | GPU ms (sum of ${#scenes[@]} scenes) | decision mismatch % (mean) | PSNR dB vs 256 spp (mean) | acne % (S16) | leak % (S07, S17 mean) | Pareto |"
   echo "|---|---|---|---|---|---|---|---|"
   sort -t, -k2,2n -k1,1 "$work/pareto.csv" | awk -F, -v n="${#scenes[@]}" '{ printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6 * n, $7 * n / 2, ($8 ? "yes" : "") }'
-} >"$out/accuracy-table.md"
+} >"$work/table.md"
 awk -F, '$8 == 1' "$work/pareto.csv" | sort -t, -k3,3n >"$work/front.csv"
 gnuplot <<GP
 set terminal pngcairo size 900,560 font "sans,11"
@@ -95,4 +95,5 @@ plot "$work/pareto.csv" using 3:4:(sprintf("%s/%s", strcol(1), strcol(2))) with 
      "$work/pareto.csv" using 3:4 with points pt 7 ps 0.8 title "variant / spp", \
      "$work/front.csv" using 3:4 with linespoints lw 2 pt 6 ps 1.6 title "Pareto front"
 GP
-echo "wrote $csv, $out/accuracy-table.md, $out/images/tradeoff.png" >&2
+cat "$work/table.md"
+echo "wrote $csv, the table (above), $out/images/tradeoff.png" >&2
