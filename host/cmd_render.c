@@ -339,36 +339,6 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
   return st;
 }
 
-/* ROBUSTNESS.md §8.1: a relative change of up to 2^-22 (a few f32 ulps) in every input
- * coordinate. The amount hashes the value's bits with the seed, so a vertex shared by
- * several triangles moves the same way in all of them. */
-static float perturb_value(float x, uint32_t seed) {
-  uint32_t bits;
-  memcpy(&bits, &x, sizeof bits);
-  uint32_t h = bits ^ (seed * 0x9e3779b9u);
-  h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
-  double d = ((double)h / 4294967295.0 * 2.0 - 1.0) * 0x1p-22;
-  return (float)((double)x * (1.0 + d));
-}
-
-static vec3 perturb_vec3(vec3 v, uint32_t seed) {
-  return (vec3){perturb_value(v.x, seed), perturb_value(v.y, seed), perturb_value(v.z, seed)};
-}
-
-static void perturb_packed(rc_packed_scene *p, uint32_t seed) {
-  for (uint32_t i = 0; i < p->frame.sphere_count; i++) {
-    p->spheres[i].center = perturb_vec3(p->spheres[i].center, seed);
-    p->spheres[i].radius = perturb_value(p->spheres[i].radius, seed);
-  }
-  for (uint32_t i = 0; i < p->frame.triangle_count; i++) {
-    p->triangles[i].v0 = perturb_vec3(p->triangles[i].v0, seed);
-    p->triangles[i].v1 = perturb_vec3(p->triangles[i].v1, seed);
-    p->triangles[i].v2 = perturb_vec3(p->triangles[i].v2, seed);
-  }
-  for (uint32_t i = 0; i < p->frame.light_count; i++)
-    if (p->lights[i].type == RC_LIGHT_POINT) p->lights[i].position = perturb_vec3(p->lights[i].position, seed);
-}
-
 static void apply_quality_overrides(const render_args *a, rc_scene *s) {
   rc_quality *q = &s->quality;
   if (a->precision >= 0) q->precision = (uint32_t)a->precision;
@@ -433,7 +403,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_vk_ctx ctx = {0};
   rc_output *out = NULL;
   st = rc_scene_pack(&scene, &packed);
-  if (st == RC_OK && a.perturb) perturb_packed(&packed, a.perturb);
+  if (st == RC_OK && a.perturb) rc_packed_scene_perturb(&packed, a.perturb);
   if (st == RC_OK && !a.no_bvh) {
     st = rc_bvh_build(&packed, &rs.bvh);
     /* The plan's traversal estimate uses the depth; 0 means brute force. */

@@ -2,7 +2,6 @@
  * (relative to the eye by default), where the renderers compute. */
 #include "precision_budget.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -22,20 +21,22 @@ static void note(uint32_t *count, char *first, size_t size, const char *fmt, ...
   va_end(ap);
 }
 
-static double max_abs3(vec3 v) { return fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z))); }
-
-static dvec3 d3(vec3 v) { return rcm_to_d(v); }
+/* How far e lies outside the interval spanned by a, b, c (0 inside): one axis of the
+ * distance from the eye to a triangle's bounding box. */
+static double gap(double e, double a, double b, double c) {
+  return fmax(fmax(fmin(a, fmin(b, c)) - e, 0), e - fmax(a, fmax(b, c)));
+}
 
 void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_report *r) {
   double t0 = rc_now_ms();
   *r = (rc_precision_report){0};
-  const dvec3 eye = d3(p->frame.camera.eye);
+  const dvec3 eye = rcm_to_d(p->frame.camera.eye);
   for (size_t i = 0; i < p->frame.sphere_count; i++) {
     const gpu_sphere *s = &p->spheres[i];
     if (s->transform != RC_NO_TRANSFORM) continue; /* ellipsoids: object space, scale 1 by construction */
     double rad = s->radius;
-    double dist = rcm_length_d(rcm_sub_d(d3(s->center), eye));
-    double reach = rcm_length_d(d3(s->center)) + rad; /* the largest |p| the sphere's math sees */
+    double dist = rcm_length_d(rcm_sub_d(rcm_to_d(s->center), eye));
+    double reach = rcm_length_d(rcm_to_d(s->center)) + rad; /* the largest |p| the sphere's math sees */
     if (rad < RC_BUDGET_TINY_RADIUS || reach > RC_BUDGET_FAR_COORDINATE) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
            "sphere %zu: radius %g at |p| %g leaves the f32 range once squared", i, rad, reach);
@@ -49,19 +50,20 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "sphere %zu%s: distance %g over radius %g (ratio %.3g)",
            i, algebraic ? " (algebraic formula)" : "", dist, rad, dist / rad);
     }
-    double q = 0.5 * ulp_f32(max_abs3(s->center)) / rad;
+    double centre = rcm_max_abs_comp_f(s->center), q = 0.5 * ulp_f32(centre) / rad;
     if (q > RC_BUDGET_QUANTIZATION)
       note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
-           "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, max_abs3(s->center), q);
+           "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, centre, q);
   }
   for (size_t i = 0; i < p->frame.triangle_count; i++) {
     const gpu_triangle *t = &p->triangles[i];
-    dvec3 a = d3(t->v0), b = d3(t->v1), c = d3(t->v2);
+    dvec3 a = rcm_to_d(t->v0), b = rcm_to_d(t->v1), c = rcm_to_d(t->v2);
     dvec3 e0 = rcm_sub_d(b, a), e1 = rcm_sub_d(c, b), e2 = rcm_sub_d(a, c);
     double longest = fmax(rcm_length_d(e0), fmax(rcm_length_d(e1), rcm_length_d(e2)));
-    double twice_area = rcm_length_d(rcm_cross_d(e0, rcm_sub_d(c, a)));
+    dvec3 normal = rcm_cross_d(e0, rcm_neg_d(e2));
+    double twice_area = rcm_length_d(normal);
     double altitude = longest > 0 ? twice_area / longest : 0;
-    double reach = fmax(max_abs3(t->v0), fmax(max_abs3(t->v1), max_abs3(t->v2)));
+    double reach = fmax(rcm_max_abs_comp_f(t->v0), fmax(rcm_max_abs_comp_f(t->v1), rcm_max_abs_comp_f(t->v2)));
     if (reach > RC_BUDGET_FAR_COORDINATE) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "triangle %zu: |p| %g leaves the f32 range once squared",
            i, reach);
@@ -69,19 +71,11 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
     }
     /* The eye's height over the triangle's plane, as for huge spheres: the hit point and
      * its error bound are built from vertices far bigger than the distances that matter. */
-    dvec3 normal = rcm_cross_d(e0, rcm_sub_d(c, a));
     double height = twice_area > 0 ? fabs(rcm_dot_d(rcm_sub_d(eye, a), normal)) / twice_area : 0;
     /* ... or to its bounding box, when farther: a distant triangle whose plane happens to
      * pass by the eye is not "seen up close". */
-    double gap2 = 0;
-    for (int k = 0; k < 3; k++) {
-      double e = k == 0 ? eye.x : (k == 1 ? eye.y : eye.z);
-      double va = k == 0 ? a.x : (k == 1 ? a.y : a.z), vb = k == 0 ? b.x : (k == 1 ? b.y : b.z);
-      double vc = k == 0 ? c.x : (k == 1 ? c.y : c.z);
-      double g = fmax(fmax(fmin(va, fmin(vb, vc)) - e, 0), e - fmax(va, fmax(vb, vc)));
-      gap2 += g * g;
-    }
-    height = fmax(height, sqrt(gap2));
+    dvec3 box_gap = rcm_make_d(gap(eye.x, a.x, b.x, c.x), gap(eye.y, a.y, b.y, c.y), gap(eye.z, a.z, b.z, c.z));
+    height = fmax(height, rcm_length_d(box_gap));
     /* A triangle thinner than a few f32 ulps of its coordinates: f32 edge functions and
      * t-error bounds cannot resolve it (slivers), where f64 ones can. */
     double q = altitude > 0 ? 0.5 * ulp_f32(reach) / altitude : INFINITY;

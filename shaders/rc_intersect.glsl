@@ -15,6 +15,21 @@ struct hit_record {
 // pbrt's gamma(n) = n u / (1 - n u): the relative error bound of n chained roundings.
 real gamma_bound(real n) { return (n * RC_UNIT_ROUNDOFF) / (1.0 - n * RC_UNIT_ROUNDOFF); }
 
+// The first root of a sphere in (0, t_max]: the entry (side -1, the ray comes from
+// outside), else the exit (side +1), else RC_T_FAR.
+real first_root(real t_near, real t_exit, real t_max, out real side) {
+  side = 0.0;
+  if (t_near > 0.0 && t_near <= t_max) {
+    side = -1.0;
+    return t_near;
+  }
+  if (t_exit > 0.0 && t_exit <= t_max) {
+    side = 1.0;
+    return t_exit;
+  }
+  return real(RC_T_FAR);
+}
+
 // Ray/sphere after Haines, Günther & Akenine-Möller, "Precision Improvements for
 // Ray/Sphere Intersection" (Ray Tracing Gems ch. 7, 2019): the Hearn-Baker discriminant
 // r^2 - |l|^2 (l = centre-to-ray-line offset) instead of b^2 - 4ac, and the stable root
@@ -34,17 +49,7 @@ real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
   if (q == 0.0) return real(RC_T_FAR);  // origin exactly at the tangent point
   precise real c = dot(f, f) - r * r;
   precise real t0 = c / q;
-  real t_near = min(t0, q);
-  real t_exit = max(t0, q);
-  if (t_near > 0.0 && t_near <= t_max) {
-    side = -1.0;
-    return t_near;
-  }
-  if (t_exit > 0.0 && t_exit <= t_max) {
-    side = 1.0;
-    return t_exit;
-  }
-  return real(RC_T_FAR);
+  return first_root(min(t0, q), max(t0, q), t_max, side);
 }
 
 // The textbook quadratic a t^2 + b t + c = 0, a = d.d, b = 2 f.d, c = f.f - r^2: the fast
@@ -61,17 +66,7 @@ real intersect_sphere_algebraic(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
   real disc = b * b - 4.0 * a * c;
   if (disc < 0.0) return real(RC_T_FAR);
   real sq = sqrt(disc);
-  real t_near = (-b - sq) / (2.0 * a);
-  real t_exit = (-b + sq) / (2.0 * a);
-  if (t_near > 0.0 && t_near <= t_max) {
-    side = -1.0;
-    return t_near;
-  }
-  if (t_exit > 0.0 && t_exit <= t_max) {
-    side = 1.0;
-    return t_exit;
-  }
-  return real(RC_T_FAR);
+  return first_root((-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a), t_max, side);
 }
 
 real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {

@@ -151,6 +151,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
   rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
   rvec3 v = -d;
   rvec3 origin = spawn_origin(sf);
+  spawned_ray = true; // every shadow ray below leaves the surface
   for (uint i = 0u; i < frame.light_count; i++) {
     if (!budget_step()) break;
     gpu_light light = load_light(i);
@@ -180,7 +181,6 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
     shadow_rays++;
-    spawned_ray = true;
     if (occluded(origin, to_light, shadow_t_max)) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;

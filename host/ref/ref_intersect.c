@@ -10,6 +10,19 @@ static real rmax3(real a, real b, real c) { return a > b ? (a > c ? a : c) : (b 
 
 real REF(gamma_bound)(real n) { return (n * RC_UNIT_ROUNDOFF) / (1 - n * RC_UNIT_ROUNDOFF); }
 
+real REF(first_root)(real t_near, real t_exit, real t_max, real *side) {
+  *side = 0;
+  if (t_near > 0 && t_near <= t_max) {
+    *side = -1;
+    return t_near;
+  }
+  if (t_exit > 0 && t_exit <= t_max) {
+    *side = 1;
+    return t_exit;
+  }
+  return (real)RC_T_FAR;
+}
+
 real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
   *side = 0;
   real r = (real)s.radius;
@@ -23,17 +36,7 @@ real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, gpu_sphere s, real t_max,
   if (q == 0) return (real)RC_T_FAR;
   real c = RV(dot)(f, f) - r * r;
   real t0 = c / q;
-  real t_near = t0 < q ? t0 : q;
-  real t_exit = t0 < q ? q : t0;
-  if (t_near > 0 && t_near <= t_max) {
-    *side = -1;
-    return t_near;
-  }
-  if (t_exit > 0 && t_exit <= t_max) {
-    *side = 1;
-    return t_exit;
-  }
-  return (real)RC_T_FAR;
+  return REF(first_root)(t0 < q ? t0 : q, t0 < q ? q : t0, t_max, side);
 }
 
 real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
@@ -46,17 +49,7 @@ real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, gpu_sphere s, real t_max,
   real disc = b * b - 4 * a * c;
   if (disc < 0) return (real)RC_T_FAR;
   real sq = R_SQRT(disc);
-  real t_near = (-b - sq) / (2 * a);
-  real t_exit = (-b + sq) / (2 * a);
-  if (t_near > 0 && t_near <= t_max) {
-    *side = -1;
-    return t_near;
-  }
-  if (t_exit > 0 && t_exit <= t_max) {
-    *side = 1;
-    return t_exit;
-  }
-  return (real)RC_T_FAR;
+  return REF(first_root)((-b - sq) / (2 * a), (-b + sq) / (2 * a), t_max, side);
 }
 
 real REF(intersect_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {

@@ -26,6 +26,7 @@ extern _Thread_local bool ref_spawned_ray;
   typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_gamma_bound_##S(R n);                                                                   \
+  R ref_first_root_##S(R t_near, R t_exit, R t_max, R *side);                                   \
   R ref_intersect_sphere_geometric_##S(V o, V d, gpu_sphere s, R t_max, R *side);               \
   R ref_intersect_sphere_algebraic_##S(V o, V d, gpu_sphere s, R t_max, R *side);               \
   R ref_intersect_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side);    \

@@ -143,6 +143,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
   rvec3 v = RV(neg)(d);
   rvec3 origin = REF(spawn_origin)(sc, sf);
+  ref_spawned_ray = true;
   for (uint32_t i = 0; i < sc->frame->light_count; i++) {
     gpu_light light = sc->lights[i];
     rvec3 l, irradiance, to_light;
@@ -169,7 +170,6 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     real n_dot_l = RV(dot)(sf->n, l);
     if (n_dot_l <= 0) continue;
     ref_shadow_rays++;
-    ref_spawned_ray = true;
     if (REF(occluded)(sc, origin, to_light, shadow_t_max)) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;

@@ -178,6 +178,36 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   return st;
 }
 
+/* ROBUSTNESS.md §8.1: a relative change of up to 2^-22 (a few f32 ulps) in every input
+ * coordinate. The amount hashes the value's bits with the seed, so a vertex shared by
+ * several triangles moves the same way in all of them. */
+static float perturb_value(float x, uint32_t seed) {
+  uint32_t bits;
+  memcpy(&bits, &x, sizeof bits);
+  uint32_t h = bits ^ (seed * 0x9e3779b9u);
+  h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
+  double d = ((double)h / 4294967295.0 * 2.0 - 1.0) * 0x1p-22;
+  return (float)((double)x * (1.0 + d));
+}
+
+static vec3 perturb_vec3(vec3 v, uint32_t seed) {
+  return (vec3){perturb_value(v.x, seed), perturb_value(v.y, seed), perturb_value(v.z, seed)};
+}
+
+void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
+  for (uint32_t i = 0; i < p->frame.sphere_count; i++) {
+    p->spheres[i].center = perturb_vec3(p->spheres[i].center, seed);
+    p->spheres[i].radius = perturb_value(p->spheres[i].radius, seed);
+  }
+  for (uint32_t i = 0; i < p->frame.triangle_count; i++) {
+    p->triangles[i].v0 = perturb_vec3(p->triangles[i].v0, seed);
+    p->triangles[i].v1 = perturb_vec3(p->triangles[i].v1, seed);
+    p->triangles[i].v2 = perturb_vec3(p->triangles[i].v2, seed);
+  }
+  for (uint32_t i = 0; i < p->frame.light_count; i++)
+    if (p->lights[i].type == RC_LIGHT_POINT) p->lights[i].position = perturb_vec3(p->lights[i].position, seed);
+}
+
 void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->spheres);
   free(p->triangles);

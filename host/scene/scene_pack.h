@@ -23,6 +23,9 @@ typedef struct rc_packed_scene {
 } rc_packed_scene;
 
 rc_status rc_scene_pack(const rc_scene *scene, rc_packed_scene *packed);
+/* Scales every position and radius by 1 + d, |d| <= 2^-22, d a hash of the seed and the
+ * value: the conditioning band's re-renders (render --perturb, compare --band). */
+void rc_packed_scene_perturb(rc_packed_scene *packed, uint32_t seed);
 void rc_packed_scene_free(rc_packed_scene *packed);
 
 #endif
