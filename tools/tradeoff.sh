@@ -5,7 +5,7 @@
 # CPU f64 reference (decision mismatches at the first sample, outside nothing; PSNR and max
 # error against a 256-spp f64 render; acne and leaks where the scene defines them), and
 # writes docs/accuracy.csv, a markdown table and a PNG plot (gnuplot) with the Pareto front.
-#   tools/tradeoff.sh [OUTDIR]      (REPEAT=5 SIZE=96)
+#   tools/tradeoff.sh [OUTDIR]      (REPEAT=9 SIZE=96)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/docs}
@@ -14,7 +14,7 @@ trap 'rm -rf "$work"' EXIT
 bin=$root/build/vkraycast
 [[ -x $bin ]] || { echo "build first (tools/demo.sh)" >&2; exit 2; }
 command -v gnuplot >/dev/null || { echo "installing gnuplot-nox for the plot" >&2; apt-get install -y -qq gnuplot-nox >&2; }
-repeat=${REPEAT:-5} size=${SIZE:-96}
+repeat=${REPEAT:-9} size=${SIZE:-96}
 ex=$root/tests/extremes/scenes
 scenes=("$ex/S01_baseline.json" "$ex/S03_distance_1e3.json" "$ex/S07_closed_mesh_embree.json"
         "$ex/S13_translate_xyz_1e5.json" "$ex/S16_acne_X1e4_E10.json" "$ex/S17_contact_X1e2_h1e-3.json"
@@ -30,7 +30,7 @@ variants=(
   "V6-f64|--precision f64")
 num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 csv=$out/accuracy.csv
-echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,max_error,acne_pct,leak_pct" >"$csv"
+echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,rms_error,max_error,acne_pct,leak_pct" >"$csv"
 # One fixed tile: the adaptive tiles size themselves from the first frame's timings (which
 # include lavapipe's lazy JIT), so tile counts, and with them ~8 ms per dispatch, would
 # differ between variants and swamp the shaders' own cost.
@@ -59,8 +59,10 @@ for s in "${scenes[@]}"; do
         S07_*) leak=$(awk -v h="$hits" -v p="$px" 'BEGIN { printf "%.4g", 100 * (p - h) / p }') ;;
         S17_*) leak=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * (h - a) / h : 0 }') ;;
       esac
-      printf '%s,%s,%s,%s,%s,%s,%s,%s,%s\n' "$n" "$vn" "$spp" "$(num render_ms "$t.json")" \
-        "$(awk -v m="$mm" -v p="$px" 'BEGIN { printf "%.4g", 100 * m / p }')" "$(num psnr "$t.col.json")" \
+      # compare writes 999 for the PSNR of identical images (MSE 0): the CSV says inf.
+      psnr=$(num psnr "$t.col.json"); [[ $psnr == 999 ]] && psnr=inf
+      printf '%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n' "$n" "$vn" "$spp" "$(num render_ms "$t.json")" \
+        "$(awk -v m="$mm" -v p="$px" 'BEGIN { printf "%.4g", 100 * m / p }')" "$psnr" "$(num rms_error "$t.col.json")" \
         "$(num max_error "$t.col.json")" "$acne" "$leak" >>"$csv"
     done
   done
@@ -68,8 +70,12 @@ for s in "${scenes[@]}"; do
 done
 
 # Per variant and spp: total GPU time over the scenes against the mean decision mismatch.
-awk -F, 'NR > 1 { k = $2 "," $3; t[k] += $4; m[k] += $5; a[k] += $8; l[k] += $9; p[k] += $6; c[k]++ }
-  END { for (k in t) printf "%s,%.2f,%.4f,%.3f,%.4f,%.4f\n", k, t[k], m[k] / c[k], p[k] / c[k], a[k] / c[k], l[k] / c[k] }' \
+# PSNR over the scenes is that of their mean MSE (the mean of rms^2), not the mean of the
+# per-scene PSNRs: a scene rendered identically (MSE 0, PSNR infinite) must count as no
+# error, not as a 999 dB sentinel that swamps the others.
+awk -F, 'NR > 1 { k = $2 "," $3; t[k] += $4; m[k] += $5; a[k] += $9; l[k] += $10; q[k] += $7 * $7; c[k]++ }
+  END { for (k in t) printf "%s,%.2f,%.4f,%.2f,%.4f,%.4f\n", k, t[k], m[k] / c[k],
+          q[k] > 0 ? 10 * log(c[k] / q[k]) / log(10) : 999, a[k] / c[k], l[k] / c[k] }' \
   "$csv" | sort -t, -k3,3n -k1,1 >"$work/summary.csv"
 # The Pareto front: no other point is both faster and more accurate.
 awk -F, '{ t[NR] = $3; e[NR] = $4; line[NR] = $0 } END {
@@ -77,7 +83,7 @@ awk -F, '{ t[NR] = $3; e[NR] = $4; line[NR] = $0 } END {
     for (j = 1; j <= NR; j++) if (j != i && t[j] <= t[i] && e[j] <= e[i] && (t[j] < t[i] || e[j] < e[i])) dominated = 1
     print line[i] "," (dominated ? 0 : 1) } }' "$work/summary.csv" >"$work/pareto.csv"
 {
-  echo "| variant | spp | GPU ms (sum of ${#scenes[@]} scenes) | decision mismatch % (mean) | PSNR dB vs 256 spp (mean) | acne % (S16) | leak % (S07, S17 mean) | Pareto |"
+  echo "| variant | spp | GPU ms (sum of ${#scenes[@]} scenes) | decision mismatch % (mean) | PSNR dB vs 256 spp (of the mean MSE) | acne % (S16) | leak % (S07, S17 mean) | Pareto |"
   echo "|---|---|---|---|---|---|---|---|"
   sort -t, -k2,2n -k1,1 "$work/pareto.csv" | awk -F, -v n="${#scenes[@]}" '{ printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6 * n, $7 * n / 2, ($8 ? "yes" : "") }'
 } >"$work/table.md"
