@@ -217,6 +217,35 @@ static box ellipsoid_box(const gpu_sphere *s, const gpu_transform *t) {
   return out;
 }
 
+/* A box from double bounds, widened by a relative 1e-6 (the f32 rounding of the frame and
+ * of the corners) and one f32 ulp outwards. */
+static box padded_box(const double lo[3], const double hi[3]) {
+  box out;
+  for (int i = 0; i < 3; i++) {
+    double pad = 1e-6 * (fabs(lo[i]) + fabs(hi[i]) + (hi[i] - lo[i]));
+    out.lo[i] = nextafterf((float)(lo[i] - pad), -FLT_MAX);
+    out.hi[i] = nextafterf((float)(hi[i] + pad), FLT_MAX);
+  }
+  return out;
+}
+
+/* A quadric's proxy: its clip box (in its own frame) carried to the packed space. */
+static box quadric_box(const gpu_quadric *q) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  const vec3 ax[3] = {q->axis_x, q->axis_y, q->axis_z};
+  for (int k = 0; k < 8; k++) {
+    double f[3] = {k & 1 ? q->hi.x : q->lo.x, k & 2 ? q->hi.y : q->lo.y, k & 4 ? q->hi.z : q->lo.z};
+    double p[3] = {q->center.x, q->center.y, q->center.z};
+    for (int j = 0; j < 3; j++) {
+      p[0] += (double)ax[j].x * f[j];
+      p[1] += (double)ax[j].y * f[j];
+      p[2] += (double)ax[j].z * f[j];
+    }
+    for (int i = 0; i < 3; i++) lo[i] = fmin(lo[i], p[i]), hi[i] = fmax(hi[i], p[i]);
+  }
+  return padded_box(lo, hi);
+}
+
 rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   memset(stats, 0, sizeof *stats);
   double t0 = rc_now_ms();
@@ -245,10 +274,15 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
         q->bounds.lo[k] = nextafterf(c[k] - s->radius, -FLT_MAX);
         q->bounds.hi[k] = nextafterf(c[k] + s->radius, FLT_MAX);
       }
-    } else {
+    } else if (i < f->sphere_count + f->triangle_count) {
       const gpu_triangle *t = &p->triangles[i - f->sphere_count];
       const vec3 v[3] = {t->v0, t->v1, t->v2};
       for (int j = 0; j < 3; j++) grow_point(&q->bounds, (const float[3]){v[j].x, v[j].y, v[j].z});
+    } else if (i < f->sphere_count + f->triangle_count + f->quadric_count) {
+      q->bounds = quadric_box(&p->quadrics[i - f->sphere_count - f->triangle_count]);
+    } else {
+      const gpu_csg *c = &p->csg[i - f->sphere_count - f->triangle_count - f->quadric_count];
+      q->bounds = padded_box((const double[3]){c->lo.x, c->lo.y, c->lo.z}, (const double[3]){c->hi.x, c->hi.y, c->hi.z});
     }
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
     b.refs[i] = i;

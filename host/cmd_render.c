@@ -46,9 +46,13 @@ static const char render_usage[] =
     "  --shadow-epsilon E      the epsilon strategy's offset in scene units (default 1e-4)\n"
     "  --camera-relative B     on (default) or off: positions relative to the eye before f32 rounding\n"
     "  --reflection-depth N    mirror bounces (0..16)\n"
+    "  --shadows B             on (default) or off: trace shadow rays\n"
     "\n"
     "tuning and testing:\n"
     "  --scene-buffers K       texel (default) or storage: how the shader reads the scene arrays\n"
+    "  --pipeline P            specialized (default: compiled for this scene's primitive kinds, light\n"
+    "                          count, shadows, specular model and bounces) or generic (one pipeline\n"
+    "                          for every scene; to measure what specializing buys)\n"
     "  --staging               upload and read back through staging buffers even on unified memory\n"
     "                          (also VKRAYCAST_FORCE_STAGING=1)\n"
     "  --tile-budget-ms T      the longest one dispatch (one submit) should run: tiles adapt to it\n"
@@ -70,7 +74,7 @@ typedef struct {
   bool no_bvh;
   int truncate; /* -1: the scene format's rule */
   int precision; /* -1: the scene's (RC_PRECISION_*) */
-  int sphere, triangle, offset, camera_relative, reflection_depth; /* -1: the scene's */
+  int sphere, triangle, offset, camera_relative, reflection_depth, shadows; /* -1: the scene's */
   double offset_epsilon; /* 0: the scene's */
   uint32_t perturb;      /* 0: none, else the seed */
   uint32_t threads;
@@ -106,7 +110,8 @@ static bool option_takes_value(const char *o) {
                                            "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
                                            "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize",
                                            "--tile-budget-ms", "--sphere", "--triangle", "--shadow-offset",
-                                           "--shadow-epsilon", "--camera-relative", "--reflection-depth", "--perturb"};
+                                           "--shadow-epsilon", "--camera-relative", "--reflection-depth", "--perturb",
+                                           "--shadows", "--pipeline"};
   for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
     if (strcmp(o, with_value[i]) == 0) return true;
   return false;
@@ -116,7 +121,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
   a->device = -1;
   a->repeat = 1;
-  a->precision = a->sphere = a->triangle = a->offset = a->camera_relative = a->reflection_depth = -1;
+  a->precision = a->sphere = a->triangle = a->offset = a->camera_relative = a->reflection_depth = a->shadows = -1;
   a->truncate = -1;
   a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
   a->gpu.tile_size = 0;
@@ -204,6 +209,14 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     } else if (strcmp(o, "--camera-relative") == 0) {
       static const char *const off_on[] = {"off", "on", NULL};
       st = cli_enum(o, v, off_on, &a->camera_relative);
+    } else if (strcmp(o, "--shadows") == 0) {
+      static const char *const off_on[] = {"off", "on", NULL};
+      st = cli_enum(o, v, off_on, &a->shadows);
+    } else if (strcmp(o, "--pipeline") == 0) {
+      static const char *const kinds[] = {"specialized", "generic", NULL};
+      int k = 0;
+      st = cli_enum(o, v, kinds, &k);
+      a->gpu.generic_pipeline = k == 1;
     } else if (strcmp(o, "--reflection-depth") == 0) {
       st = rc_cli_uint(o, v, 0, RC_MAX_REFLECTION_DEPTH, &n);
       a->reflection_depth = (int)n;
@@ -348,6 +361,7 @@ static void apply_quality_overrides(const render_args *a, rc_scene *s) {
   if (a->camera_relative >= 0) q->camera_relative = a->camera_relative == 1;
   if (a->offset_epsilon > 0) q->offset_epsilon = a->offset_epsilon;
   if (a->reflection_depth >= 0) s->reflection_depth = (uint32_t)a->reflection_depth;
+  if (a->shadows >= 0) q->shadows = a->shadows == 1;
 }
 
 /* The precision-budget findings, once, before rendering (ROBUSTNESS.md §7). */
@@ -415,6 +429,10 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rs.spheres = scene.sphere_count;
   rs.triangles = scene.triangle_count;
   rs.lights = scene.light_count;
+  rs.quadrics = scene.quadric_count;
+  rs.composites = scene.csg_count;
+  rs.shadows = scene.quality.shadows;
+  rs.generic_pipeline = a.gpu.generic_pipeline;
   rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
   rc_precision_report budget = {0};
   if (st == RC_OK) {

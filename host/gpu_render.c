@@ -7,11 +7,16 @@
 
 #include "gpu_shaders.h"
 
-#define LOCAL_SIZE 8 /* 8x8 = 64 invocations: a multiple of every subgroup size (4..64) */
+/* Workgroups are 8 invocations wide and hold max(64, subgroup size) invocations: whole
+ * subgroups (NVIDIA 32, AMD 64, llvmpipe 8 on AVX2, Intel 8-32), so no lane idles for
+ * want of a full subgroup, and 8 x 8 tiles of pixels share their rays' coherence. */
+#define LOCAL_X 8u
+#define MIN_WORKGROUP 64u
 /* The tile buffers hold this many pixels: adaptive tiles never exceed it. */
 #define MAX_TILE_PIXELS (1u << 20)
 #define MAX_BAND_ROWS 256u
-#define SCENE_ARRAYS 8 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals */
+#define SCENE_ARRAYS 11 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
+                           quadrics, composites, CSG programs */
 
 struct rc_gpu_renderer {
   rc_vk_ctx *ctx;
@@ -21,6 +26,7 @@ struct rc_gpu_renderer {
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];
+  uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
@@ -39,9 +45,11 @@ struct rc_gpu_renderer {
 
 static const uint32_t array_bindings[SCENE_ARRAYS] = {
     RC_BINDING_SPHERES,   RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS, RC_BINDING_LIGHTS,
-    RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS, RC_BINDING_NORMALS};
-static const char *const array_names[SCENE_ARRAYS] = {"spheres",   "triangles",      "materials",  "lights",
-                                                      "BVH nodes", "BVH references", "transforms", "normals"};
+    RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS, RC_BINDING_NORMALS,
+    RC_BINDING_QUADRICS,  RC_BINDING_CSG,       RC_BINDING_CSG_PROGRAM};
+static const char *const array_names[SCENE_ARRAYS] = {
+    "spheres",    "triangles", "materials", "lights", "BVH nodes", "BVH references", "transforms", "normals",
+    "quadrics", "composites", "CSG programs"};
 
 /* Chooses the buffer kind the device can take for this scene: texel buffers need the
  * RGBA32UI uniform-texel-buffer format feature and maxTexelBufferElements room. */
@@ -82,14 +90,16 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
   bool bvh = r->opts.bvh_depth > 0 && s->bvh_nodes;
   const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
                                     bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs,
-                                    s->transforms, s->normals};
+                                    s->transforms, s->normals, s->quadrics, s->csg, s->csg_program};
   /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
   VkDeviceSize sizes[SCENE_ARRAYS] = {
       (f->sphere_count + 1) * sizeof(gpu_sphere), (f->triangle_count + 1) * sizeof(gpu_triangle),
       (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
       bvh ? f->bvh_node_count * sizeof(gpu_bvh_node) : sizeof no_node,
       bvh ? (f->object_count + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
-      (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals)};
+      (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals),
+      (s->quadric_total + 1) * sizeof(gpu_quadric), (f->csg_count + 1) * sizeof(gpu_csg),
+      (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t)};
   r->opts.scene_buffers = choose_buffers(ctx, r->opts.scene_buffers, sizes);
   /* Everything the render allocates on the device, against its largest device-local heap:
    * refuse what cannot fit before allocating anything. */
@@ -198,14 +208,34 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
   float epsilon = r->frame.offset_epsilon;
   uint32_t epsilon_bits;
   memcpy(&epsilon_bits, &epsilon, sizeof epsilon_bits);
-  const uint32_t spec_values[9] = {LOCAL_SIZE, LOCAL_SIZE, r->budget, r->opts.aov ? VK_TRUE : VK_FALSE,
-                                   r->opts.bvh_depth ? VK_TRUE : VK_FALSE, r->frame.sphere_formula,
-                                   r->frame.triangle_formula, r->frame.offset_strategy, epsilon_bits};
-  const VkSpecializationMapEntry entries[9] = {
-      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},        {RC_SPEC_LOOP_BUDGET, 8, 4},
-      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},                {RC_SPEC_SPHERE_FORMULA, 20, 4},
-      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},    {RC_SPEC_OFFSET_EPSILON, 32, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 9, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  /* The scene's features (rc_shared.h, RC_SPEC_KINDS...): what the scene lacks is
+   * compiled out. A generic pipeline reads them from the frame instead. */
+  const gpu_frame *f = &r->frame;
+  bool generic = r->opts.generic_pipeline;
+  uint32_t kinds = generic ? RC_KIND_ALL
+                           : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
+                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0);
+  const uint32_t spec_values[14] = {r->local_x,
+                                    r->local_y,
+                                    r->budget,
+                                    r->opts.aov ? VK_TRUE : VK_FALSE,
+                                    r->opts.bvh_depth ? VK_TRUE : VK_FALSE,
+                                    f->sphere_formula,
+                                    f->triangle_formula,
+                                    f->offset_strategy,
+                                    epsilon_bits,
+                                    kinds,
+                                    generic ? RC_LIGHTS_FROM_FRAME : f->light_count,
+                                    generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
+                                    generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
+                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth};
+  const VkSpecializationMapEntry entries[14] = {
+      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
+      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
+      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
+      {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
+      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 14, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
@@ -299,6 +329,12 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->budget = rc_vk_loop_budget(ctx);
   stats->loop_budget = r->budget;
   stats->subgroup_size = ctx->subgroup_size;
+  uint32_t group = ctx->subgroup_size > MIN_WORKGROUP ? ctx->subgroup_size : MIN_WORKGROUP;
+  if (group > ctx->props.limits.maxComputeWorkGroupInvocations) group = MIN_WORKGROUP;
+  r->local_x = LOCAL_X;
+  r->local_y = group / LOCAL_X;
+  stats->workgroup_x = r->local_x;
+  stats->workgroup_y = r->local_y;
   rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget ? opts->plan_budget : r->budget,
                                   &stats->plan);
   if (st == RC_OK && opts->f64 && !ctx->float64) {
@@ -421,7 +457,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
   vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
-  vkCmdDispatch(cmd, (push->tile_width + LOCAL_SIZE - 1) / LOCAL_SIZE, (push->tile_height + LOCAL_SIZE - 1) / LOCAL_SIZE, 1);
+  vkCmdDispatch(cmd, (push->tile_width + r->local_x - 1) / r->local_x, (push->tile_height + r->local_y - 1) / r->local_y, 1);
   if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
   record_readback(r, &r->status, &r->status_readback, sizeof(gpu_status));
   double t0 = rc_now_ms();

@@ -25,6 +25,9 @@ typedef struct rc_gpu_options {
   bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
   bool aov;             /* record the decision outputs (gpu_aov) of each pixel's first sample */
   uint32_t bvh_depth;   /* 0: brute force (no BVH in the scene); else traverse the BVH */
+  bool generic_pipeline; /* one pipeline for every scene (all primitive kinds, light count,
+                            shadows, specular model and bounces read from the frame), to
+                            measure what specializing to the scene buys */
 } rc_gpu_options;
 
 typedef struct rc_gpu_stats {
@@ -41,6 +44,7 @@ typedef struct rc_gpu_stats {
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
   uint32_t subgroup_size;
+  uint32_t workgroup_x, workgroup_y; /* invocations per workgroup, chosen from the subgroup size */
   bool staging;            /* uploads and readback went through staging buffers */
   rc_scene_buffers scene_buffers;
 } rc_gpu_stats;

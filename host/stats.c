@@ -56,6 +56,10 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "spheres", (double)s->spheres);
   cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
   cJSON_AddNumberToObject(o, "lights", (double)s->lights);
+  cJSON_AddNumberToObject(o, "quadrics", (double)s->quadrics);
+  cJSON_AddNumberToObject(o, "composites", (double)s->composites);
+  cJSON_AddBoolToObject(o, "shadows", s->shadows);
+  cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
   cJSON_AddStringToObject(o, "scene_buffers", s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage");
   cJSON_AddBoolToObject(o, "staging", s->gpu.staging);
   cJSON_AddNumberToObject(o, "rays_primary", (double)s->rays_primary);
@@ -87,6 +91,8 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "budget_retries", s->gpu.budget_retries);
   cJSON_AddNumberToObject(o, "loop_budget", s->gpu.loop_budget);
   cJSON_AddNumberToObject(o, "subgroup_size", s->gpu.subgroup_size);
+  cJSON_AddNumberToObject(o, "workgroup_x", s->gpu.workgroup_x);
+  cJSON_AddNumberToObject(o, "workgroup_y", s->gpu.workgroup_y);
   char *text = cJSON_Print(o);
   cJSON_Delete(o);
   rc_status st = RC_OK;

@@ -16,7 +16,9 @@ typedef struct rc_render_stats {
   double budget_ms;
   uint32_t threads;      /* cpu backend */
   uint32_t width, height, samples_per_pixel;
-  size_t spheres, triangles, lights;
+  size_t spheres, triangles, lights, quadrics, composites;
+  bool shadows;
+  bool generic_pipeline;
   double parse_ms, pack_ms, write_ms;
   double first_frame_ms; /* includes the JIT on lavapipe */
   double render_ms;      /* GPU time of one frame: the first, or the median of the others with --repeat */

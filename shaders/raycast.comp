@@ -17,6 +17,11 @@ layout(constant_id = RC_SPEC_SPHERE_FORMULA) const uint sphere_formula = RC_SPHE
 layout(constant_id = RC_SPEC_TRIANGLE_FORMULA) const uint triangle_formula = RC_TRIANGLE_WATERTIGHT;
 layout(constant_id = RC_SPEC_OFFSET_STRATEGY) const uint offset_strategy = RC_OFFSET_ERROR_BOUND;
 layout(constant_id = RC_SPEC_OFFSET_EPSILON) const float offset_epsilon = 1.0e-4;
+layout(constant_id = RC_SPEC_KINDS) const uint scene_kinds = RC_KIND_ALL;
+layout(constant_id = RC_SPEC_LIGHT_COUNT) const uint spec_light_count = RC_LIGHTS_FROM_FRAME;
+layout(constant_id = RC_SPEC_SHADOWS) const uint spec_shadows = RC_SHADOWS_FROM_FRAME;
+layout(constant_id = RC_SPEC_SPECULAR_MODEL) const uint spec_specular_model = RC_SPECULAR_FROM_FRAME;
+layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth = RC_DEPTH_FROM_FRAME;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
@@ -33,11 +38,24 @@ bool spawned_ray = false;
 bool aov_recording = false;
 gpu_aov aov_record;
 
+// The scene's features: the specialized constant, or the frame's value in a generic
+// pipeline. A constant lets the compiler drop unused code and fix the loop counts.
+bool has_kind(uint kind) { return (scene_kinds & kind) != 0u; }
+uint scene_light_count() { return spec_light_count == RC_LIGHTS_FROM_FRAME ? frame.light_count : spec_light_count; }
+bool scene_shadows() { return (spec_shadows == RC_SHADOWS_FROM_FRAME ? frame.shadows : spec_shadows) != 0u; }
+uint scene_specular_model() {
+  return spec_specular_model == RC_SPECULAR_FROM_FRAME ? frame.specular_model : spec_specular_model;
+}
+uint scene_reflection_depth() {
+  return spec_reflection_depth == RC_DEPTH_FROM_FRAME ? frame.reflection_depth : spec_reflection_depth;
+}
+
 #include "rc_real.glsl"
 #include "rc_scene_access.glsl"
 #include "rc_budget.glsl"
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
+#include "rc_quadric.glsl"
 #include "rc_intersect.glsl"
 #include "rc_bvh.glsl"
 #include "rc_shade.glsl"

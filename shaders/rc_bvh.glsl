@@ -32,9 +32,10 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
     uint object = load_bvh_prim(k);
     real side;
     rvec3 bary;
-    real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary);
+    uint part;
+    real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary, part);
     if (any && t < real(RC_T_FAR)) return true;
-    consider_hit(object, t, side, bary, h);
+    consider_hit(object, t, side, bary, part, h);
   }
   return false;
 }

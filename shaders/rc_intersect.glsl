@@ -7,9 +7,10 @@ struct hit_record {
   real t;
   uint kind;   // RC_HIT_*
   uint index;  // into the sphere or triangle array
-  uint object; // spheres 0..S-1, then triangles S..S+T-1: the tie-breaking order
+  uint object; // spheres 0..S-1, then triangles, quadrics, composites: the tie-breaking order
   rvec3 bary;  // triangle: weights of v0, v1, v2
   real side;   // sphere: -1 entry root (ray from outside), +1 exit root
+  uint part;   // quadric or composite: the csg_code of the surface hit (rc_quadric.glsl)
 };
 
 // pbrt's gamma(n) = n u / (1 - n u): the relative error bound of n chained roundings.
@@ -215,28 +216,50 @@ real intersect_triangle_cramer(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, o
   return t;
 }
 
-// The ray against object `object` (spheres first, then triangles); t as above.
-real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary) {
+// The kind of object `object` (RC_HIT_*) and its index in its own array.
+uint object_kind(uint object, out uint index) {
+  uint first_quadric = frame.sphere_count + frame.triangle_count;
+  uint first_csg = first_quadric + frame.quadric_count;
+  index = (object < frame.sphere_count) ? object
+          : (object < first_quadric) ? object - frame.sphere_count
+          : (object < first_csg) ? object - first_quadric : object - first_csg;
+  return (object < frame.sphere_count) ? RC_HIT_SPHERE
+         : (object < first_quadric) ? RC_HIT_TRIANGLE
+         : (object < first_csg) ? RC_HIT_QUADRIC : RC_HIT_CSG;
+}
+
+// The ray against object `object`; t as above. Kinds the scene lacks are compiled out
+// (has_kind, a specialization constant).
+real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary,
+                      out uint part) {
   side = 0.0;
   bary = rvec3(0.0);
-  if (object < frame.sphere_count) return intersect_any_sphere(o, d, load_sphere(object), t_max, side);
-  gpu_triangle tri = load_triangle(object - frame.sphere_count);
-  if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
-  if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
-  return intersect_triangle(o, sh, tri, t_max, bary);
+  part = 0u;
+  uint index;
+  uint kind = object_kind(object, index);
+  if (has_kind(RC_KIND_SPHERES) && kind == RC_HIT_SPHERE) return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
+  if (has_kind(RC_KIND_TRIANGLES) && kind == RC_HIT_TRIANGLE) {
+    gpu_triangle tri = load_triangle(index);
+    if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
+    if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
+    return intersect_triangle(o, sh, tri, t_max, bary);
+  }
+  if (has_kind(RC_KIND_QUADRICS) && kind == RC_HIT_QUADRIC) return intersect_quadric(index, o, d, t_max, part);
+  if (has_kind(RC_KIND_CSG) && kind == RC_HIT_CSG) return intersect_csg(index, o, d, t_max, part);
+  return real(RC_T_FAR);
 }
 
 // The tie rule of both backends and both traversals: the nearer hit wins, and on equal
 // t the lower object number, whatever order the objects were visited in.
-void consider_hit(uint object, real t, real side, rvec3 bary, inout hit_record h) {
+void consider_hit(uint object, real t, real side, rvec3 bary, uint part, inout hit_record h) {
   if (t >= real(RC_T_FAR)) return;
   if (t < h.t || (t == h.t && object < h.object)) {
     h.t = t;
     h.object = object;
-    h.kind = (object < frame.sphere_count) ? RC_HIT_SPHERE : RC_HIT_TRIANGLE;
-    h.index = (object < frame.sphere_count) ? object : object - frame.sphere_count;
+    h.kind = object_kind(object, h.index);
     h.side = side;
     h.bary = bary;
+    h.part = part;
   }
 }
 
@@ -248,6 +271,7 @@ hit_record no_hit() {
   h.object = 0xffffffffu;
   h.bary = rvec3(0.0);
   h.side = 0.0;
+  h.part = 0u;
   return h;
 }
 
@@ -258,8 +282,9 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
     if (!budget_step()) break;
     real side;
     rvec3 bary;
-    real t = intersect_object(i, o, d, sh, h.t, side, bary);
-    consider_hit(i, t, side, bary, h);
+    uint part;
+    real t = intersect_object(i, o, d, sh, h.t, side, bary, part);
+    consider_hit(i, t, side, bary, part, h);
   }
 }
 
@@ -271,7 +296,8 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
     if (!budget_step()) return false;
     real side;
     rvec3 bary;
-    if (intersect_object(i, o, d, sh, t_max, side, bary) < real(RC_T_FAR)) return true;
+    uint part;
+    if (intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR)) return true;
   }
   return false;
 }

@@ -14,6 +14,9 @@ layout(binding = RC_BINDING_BVH_NODES) uniform usamplerBuffer scene_bvh_nodes;
 layout(binding = RC_BINDING_BVH_PRIMS) uniform usamplerBuffer scene_bvh_prims;
 layout(binding = RC_BINDING_TRANSFORMS) uniform usamplerBuffer scene_transforms;
 layout(binding = RC_BINDING_NORMALS) uniform usamplerBuffer scene_normals;
+layout(binding = RC_BINDING_QUADRICS) uniform usamplerBuffer scene_quadrics;
+layout(binding = RC_BINDING_CSG) uniform usamplerBuffer scene_csg;
+layout(binding = RC_BINDING_CSG_PROGRAM) uniform usamplerBuffer scene_csg_program;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 
@@ -92,6 +95,40 @@ gpu_bvh_node load_bvh_node(uint i) {
 
 uint load_bvh_prim(uint i) { return texel(scene_bvh_prims, i >> 2u)[i & 3u]; }
 
+gpu_quadric load_quadric(uint i) {
+  uint k = i * RC_TEXELS_PER_QUADRIC;
+  uvec4 a = texel(scene_quadrics, k);
+  uvec4 b = texel(scene_quadrics, k + 1u);
+  uvec4 c = texel(scene_quadrics, k + 2u);
+  gpu_quadric q;
+  q.center = uintBitsToFloat(a.xyz);
+  q.material = a.w;
+  q.axis_x = uintBitsToFloat(b.xyz);
+  q.constant = uintBitsToFloat(b.w);
+  q.axis_y = uintBitsToFloat(c.xyz);
+  q.flags = c.w;
+  q.axis_z = uintBitsToFloat(texel(scene_quadrics, k + 3u).xyz);
+  q.diag = uintBitsToFloat(texel(scene_quadrics, k + 4u).xyz);
+  q.off = uintBitsToFloat(texel(scene_quadrics, k + 5u).xyz);
+  q.linear = uintBitsToFloat(texel(scene_quadrics, k + 6u).xyz);
+  q.lo = uintBitsToFloat(texel(scene_quadrics, k + 7u).xyz);
+  q.hi = uintBitsToFloat(texel(scene_quadrics, k + 8u).xyz);
+  return q;
+}
+
+gpu_csg load_csg(uint i) {
+  uvec4 a = texel(scene_csg, i * RC_TEXELS_PER_CSG);
+  uvec4 b = texel(scene_csg, i * RC_TEXELS_PER_CSG + 1u);
+  gpu_csg c;
+  c.lo = uintBitsToFloat(a.xyz);
+  c.first = a.w;
+  c.hi = uintBitsToFloat(b.xyz);
+  c.count = b.w;
+  return c;
+}
+
+uint load_csg_instruction(uint i) { return texel(scene_csg_program, i >> 2u)[i & 3u]; }
+
 gpu_light load_light(uint i) {
   uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
   uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
@@ -112,6 +149,9 @@ layout(std430, binding = RC_BINDING_BVH_NODES) readonly buffer BvhNodes { gpu_bv
 layout(std430, binding = RC_BINDING_BVH_PRIMS) readonly buffer BvhPrims { uint scene_bvh_prims[]; };
 layout(std430, binding = RC_BINDING_TRANSFORMS) readonly buffer Transforms { gpu_transform scene_transforms[]; };
 layout(std430, binding = RC_BINDING_NORMALS) readonly buffer Normals { gpu_vertex_normals scene_normals[]; };
+layout(std430, binding = RC_BINDING_QUADRICS) readonly buffer Quadrics { gpu_quadric scene_quadrics[]; };
+layout(std430, binding = RC_BINDING_CSG) readonly buffer Csg { gpu_csg scene_csg[]; };
+layout(std430, binding = RC_BINDING_CSG_PROGRAM) readonly buffer CsgProgram { uint scene_csg_program[]; };
 
 gpu_sphere load_sphere(uint i) { return scene_spheres[i]; }
 gpu_triangle load_triangle(uint i) { return scene_triangles[i]; }
@@ -121,4 +161,7 @@ gpu_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
 uint load_bvh_prim(uint i) { return scene_bvh_prims[i]; }
 gpu_transform load_transform(uint i) { return scene_transforms[i]; }
 gpu_vertex_normals load_vertex_normals(uint i) { return scene_normals[i]; }
+gpu_quadric load_quadric(uint i) { return scene_quadrics[i]; }
+gpu_csg load_csg(uint i) { return scene_csg[i]; }
+uint load_csg_instruction(uint i) { return scene_csg_program[i]; }
 #endif

@@ -60,6 +60,13 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
     }
     sf.material = s.material;
+  } else if (h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG) {
+    precise rvec3 td = h.t * d;
+    sf.p = o + td;
+    // As for transformed spheres: t from a quadratic's root, no tighter short bound.
+    sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
+    n = normalize(quadric_normal(h.part, sf.p, d));
+    sf.material = load_quadric(h.part >> 4u).material;
   } else {
     gpu_triangle tri = load_triangle(h.index);
     precise rvec3 p0 = h.bary.x * rvec3(tri.v0);
@@ -135,7 +142,7 @@ rvec3 spawn_origin(surface sf) {
 // some inputs, so both ends are explicit.
 real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
   real c;
-  if (frame.specular_model == RC_SPECULAR_PHONG) {
+  if (scene_specular_model() == RC_SPECULAR_PHONG) {
     c = dot(v, 2.0 * dot(n, l) * n - l);
   } else {
     c = dot(n, normalize(l + v));
@@ -152,7 +159,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
   rvec3 v = -d;
   rvec3 origin = spawn_origin(sf);
   spawned_ray = true; // every shadow ray below leaves the surface
-  for (uint i = 0u; i < frame.light_count; i++) {
+  for (uint i = 0u; i < scene_light_count(); i++) {
     if (!budget_step()) break;
     gpu_light light = load_light(i);
     rvec3 l;
@@ -180,8 +187,8 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     }
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
-    shadow_rays++;
-    if (occluded(origin, to_light, shadow_t_max)) {
+    if (scene_shadows()) shadow_rays++;
+    if (scene_shadows() && occluded(origin, to_light, shadow_t_max)) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;
     }

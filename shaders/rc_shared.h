@@ -31,6 +31,8 @@ typedef struct gpu_aov gpu_aov;
 typedef struct gpu_bvh_node gpu_bvh_node;
 typedef struct gpu_transform gpu_transform;
 typedef struct gpu_vertex_normals gpu_vertex_normals;
+typedef struct gpu_quadric gpu_quadric;
+typedef struct gpu_csg gpu_csg;
 #endif
 
 /* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
@@ -48,7 +50,10 @@ typedef struct gpu_vertex_normals gpu_vertex_normals;
 #define RC_BINDING_BVH_PRIMS 9 /* uint[] object references of the leaves, 4 per texel */
 #define RC_BINDING_TRANSFORMS 10 /* gpu_transform[] of transformed spheres */
 #define RC_BINDING_NORMALS 11    /* gpu_vertex_normals[] of smooth-shaded triangles */
-#define RC_BINDING_COUNT 12
+#define RC_BINDING_QUADRICS 12   /* gpu_quadric[]: the standalone ones, then the CSG leaves */
+#define RC_BINDING_CSG 13        /* gpu_csg[] */
+#define RC_BINDING_CSG_PROGRAM 14 /* uint[] CSG instructions, 4 per texel */
+#define RC_BINDING_COUNT 15
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -60,6 +65,23 @@ typedef struct gpu_vertex_normals gpu_vertex_normals;
 #define RC_SPEC_TRIANGLE_FORMULA 6 /* RC_TRIANGLE_* */
 #define RC_SPEC_OFFSET_STRATEGY 7  /* RC_OFFSET_* */
 #define RC_SPEC_OFFSET_EPSILON 8   /* float: the epsilon strategy's distance */
+/* The scene's features (rc_pipeline_features, host/gpu_render.c): code for a kind the scene
+ * lacks is compiled out, and the light loop and bounce count become constants. A generic
+ * pipeline (render --pipeline generic) sets every kind and RC_LIGHTS_FROM_FRAME. */
+#define RC_SPEC_KINDS 9            /* bit mask of RC_KIND_* present */
+#define RC_SPEC_LIGHT_COUNT 10     /* the number of lights, or RC_LIGHTS_FROM_FRAME */
+#define RC_SPEC_SHADOWS 11         /* 1: trace shadow rays, 0: not, or RC_SHADOWS_FROM_FRAME */
+#define RC_SPEC_SPECULAR_MODEL 12  /* RC_SPECULAR_*, or RC_SPECULAR_FROM_FRAME */
+#define RC_SPEC_REFLECTION_DEPTH 13 /* mirror bounces, or RC_DEPTH_FROM_FRAME */
+#define RC_KIND_SPHERES 1u
+#define RC_KIND_TRIANGLES 2u
+#define RC_KIND_QUADRICS 4u
+#define RC_KIND_CSG 8u
+#define RC_KIND_ALL 15u
+#define RC_LIGHTS_FROM_FRAME 0xffffffffu
+#define RC_SPECULAR_FROM_FRAME 0xffffffffu
+#define RC_DEPTH_FROM_FRAME 0xffffffffu
+#define RC_SHADOWS_FROM_FRAME 0xffffffffu
 
 /* The speed/accuracy knobs (docs/accuracy.md). The first of each is the robust default;
  * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in gpu_frame. */
@@ -98,6 +120,8 @@ typedef struct gpu_vertex_normals gpu_vertex_normals;
 #define RC_HIT_NONE 0u
 #define RC_HIT_SPHERE 1u
 #define RC_HIT_TRIANGLE 2u
+#define RC_HIT_QUADRIC 3u
+#define RC_HIT_CSG 4u
 
 /* "No hit" is a large finite t: Vulkan lets shaders assume no Inf (ROBUSTNESS.md §1.3). */
 #define RC_T_FAR 3.0e38
@@ -133,6 +157,9 @@ struct gpu_frame {
                                                  both backends, a GPU division may not */
   /* The formula knobs, for the CPU reference; the GPU reads its specialization constants. */
   uint sphere_formula;    uint triangle_formula; uint offset_strategy; float offset_epsilon;
+  uint quadric_count;     uint csg_count;
+  uint shadows;           /* 0: no shadow rays */
+  uint csg_max_program;   /* the longest composite program (the host's loop plan) */
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -171,6 +198,52 @@ struct gpu_vertex_normals {
 };
 #define RC_TEXELS_PER_VERTEX_NORMALS 3
 
+/* A quadric surface Q = 0 clipped to a box, both in the quadric's own frame: f = R (p -
+ * center), R's rows axis_x, axis_y, axis_z (orthonormal), and
+ *   Q = f^T M f + 2 linear.f + constant,
+ *   M = [[diag.x, off.x, off.y], [off.x, diag.y, off.z], [off.y, off.z, diag.z]],
+ * the box lo <= f <= hi. The named shapes (ellipsoid, cylinder, cone, ...) are built in
+ * their principal frame (off = 0, centred), where the shader forms a, b, c from small,
+ * axis-aligned products (ROBUSTNESS.md §2.5) and a cylinder's caps are box faces; a
+ * general matrix keeps R = I (its bounds are world-aligned) and its off-diagonal terms.
+ * Q < 0 is the inside and grad Q the outward normal. With RC_QUADRIC_SOLID the object is
+ * the solid {Q <= 0} inside the box, whose boundary includes the box faces where they cut
+ * it (a capped cylinder; M = 0, linear = 0 and constant = -1 is the box itself); without
+ * it, the open surface alone. CSG leaves are always solid. */
+#define RC_QUADRIC_SOLID 1u
+struct gpu_quadric {
+  vec3 center; uint material;
+  vec3 axis_x; float constant;
+  vec3 axis_y; uint flags;
+  vec3 axis_z; float pad0;
+  vec3 diag;   float pad1;
+  vec3 off;    float pad2;
+  vec3 linear; float pad3;
+  vec3 lo;     float pad4;
+  vec3 hi;     float pad5;
+};
+#define RC_TEXELS_PER_QUADRIC 9
+/* A composite solid: `count` instructions from `first` in the CSG program, in postfix
+ * order. An instruction is (op << 28) | operand: RC_CSG_LEAF pushes the intervals of the
+ * solid quadric `operand` along the ray; the others pop two lists (right on top) and push
+ * their combination. [lo, hi] bounds the composite (its proxy in the BVH). */
+#define RC_CSG_LEAF 0u
+#define RC_CSG_UNION 1u
+#define RC_CSG_INTERSECTION 2u
+#define RC_CSG_DIFFERENCE 3u
+#define RC_CSG_OP_SHIFT 28u
+#define RC_CSG_OPERAND_MASK 0x0fffffffu
+/* Fixed sizes of the shader's interval lists: a list holds at most RC_CSG_MAX_INTERVALS
+ * [in, out] intervals, and at most RC_CSG_STACK lists are live at once. The loader bounds
+ * both for each tree (a leaf has up to 2 intervals, a union or difference up to the sum of
+ * its operands', an intersection one fewer) and rejects a tree beyond them. */
+#define RC_CSG_MAX_INTERVALS 8u
+#define RC_CSG_STACK 4u
+struct gpu_csg {
+  vec3 lo; uint first;
+  vec3 hi; uint count;
+};
+#define RC_TEXELS_PER_CSG 2
 /* Phong material: L = ambient*Ia + emission + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
  * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel. */
 struct gpu_material {
@@ -200,7 +273,7 @@ struct gpu_status {
 
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
  * comparisons check before colour (ROBUSTNESS.md §6). object: spheres 0..S-1, then
- * triangles S..S+T-1; shadow_bits: bit i set when light i faces the surface but its shadow
+ * triangles S..S+T-1, quadrics, composites; shadow_bits: bit i set when light i faces the surface but its shadow
  * ray is blocked (lights 0..23: the bits stay exact in a float). */
 #define RC_AOV_SHADOW_LIGHTS 24u
 struct gpu_aov {
@@ -211,7 +284,8 @@ struct gpu_aov {
 /* A BVH node holds the boxes of both its children, so one fetch decides which child is
  * nearer. A child with count 0 is an interior node (child = node index); otherwise it is
  * a leaf of `count` objects starting at `child` in the object-reference array, whose
- * entries are object numbers (spheres 0..S-1, then triangles S..S+T-1). An empty child
+ * entries are object numbers (spheres 0..S-1, then triangles S..S+T-1, standalone
+ * quadrics, composites). An empty child
  * has lo > hi. */
 struct gpu_bvh_node {
   vec3 lo0; uint child0;
@@ -258,7 +332,19 @@ RC_ASSERT_LAYOUT(gpu_frame, object_count, 144);  RC_ASSERT_LAYOUT(gpu_frame, bvh
 RC_ASSERT_LAYOUT(gpu_frame, inv_strata_x, 152);  RC_ASSERT_LAYOUT(gpu_frame, inv_strata_y, 156);
 RC_ASSERT_LAYOUT(gpu_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(gpu_frame, triangle_formula, 164);
 RC_ASSERT_LAYOUT(gpu_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(gpu_frame, offset_epsilon, 172);
-RC_ASSERT_SIZE(gpu_frame, 176);
+RC_ASSERT_LAYOUT(gpu_frame, quadric_count, 176); RC_ASSERT_LAYOUT(gpu_frame, csg_count, 180);
+RC_ASSERT_LAYOUT(gpu_frame, shadows, 184); RC_ASSERT_LAYOUT(gpu_frame, csg_max_program, 188);
+RC_ASSERT_SIZE(gpu_frame, 192);
+RC_ASSERT_LAYOUT(gpu_quadric, center, 0);   RC_ASSERT_LAYOUT(gpu_quadric, material, 12);
+RC_ASSERT_LAYOUT(gpu_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(gpu_quadric, constant, 28);
+RC_ASSERT_LAYOUT(gpu_quadric, axis_y, 32);  RC_ASSERT_LAYOUT(gpu_quadric, flags, 44);
+RC_ASSERT_LAYOUT(gpu_quadric, axis_z, 48);  RC_ASSERT_LAYOUT(gpu_quadric, diag, 64);
+RC_ASSERT_LAYOUT(gpu_quadric, off, 80);     RC_ASSERT_LAYOUT(gpu_quadric, linear, 96);
+RC_ASSERT_LAYOUT(gpu_quadric, lo, 112);     RC_ASSERT_LAYOUT(gpu_quadric, hi, 128);
+RC_ASSERT_SIZE(gpu_quadric, 16 * RC_TEXELS_PER_QUADRIC);
+RC_ASSERT_LAYOUT(gpu_csg, lo, 0);  RC_ASSERT_LAYOUT(gpu_csg, first, 12);
+RC_ASSERT_LAYOUT(gpu_csg, hi, 16); RC_ASSERT_LAYOUT(gpu_csg, count, 28);
+RC_ASSERT_SIZE(gpu_csg, 16 * RC_TEXELS_PER_CSG);
 
 RC_ASSERT_LAYOUT(gpu_bvh_node, lo0, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, child0, 12);
 RC_ASSERT_LAYOUT(gpu_bvh_node, hi0, 16);  RC_ASSERT_LAYOUT(gpu_bvh_node, count0, 28);

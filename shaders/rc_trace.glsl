@@ -4,8 +4,7 @@
 // Starts the AOV record at the primary hit of sample 0.
 void aov_begin(hit_record h) {
   aov_record.hit = (h.kind == RC_HIT_NONE) ? 0.0 : 1.0;
-  aov_record.object = (h.kind == RC_HIT_NONE) ? -1.0
-                      : (h.kind == RC_HIT_TRIANGLE) ? float(frame.sphere_count + h.index) : float(h.index);
+  aov_record.object = (h.kind == RC_HIT_NONE) ? -1.0 : float(h.object);
   aov_record.t = (h.kind == RC_HIT_NONE) ? 0.0 : float(h.t);
   aov_record.shadow_bits = 0.0;
   aov_record.normal = vec3(0.0);
@@ -21,7 +20,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   camera_ray(raster, o, d);
   rvec3 color = rvec3(0.0);
   rvec3 weight = rvec3(1.0);
-  for (uint depth = 0u; depth <= frame.reflection_depth; depth++) {
+  for (uint depth = 0u; depth <= scene_reflection_depth(); depth++) {
     if (!budget_step()) break;
     hit_record h;
     spawned_ray = depth > 0u;
@@ -37,7 +36,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     color += weight * shade_phong(sf, d);
     aov_recording = false;
     rvec3 mirror = rvec3(load_material(sf.material).mirror);
-    if (depth == frame.reflection_depth || mirror == rvec3(0.0)) break;
+    if (depth == scene_reflection_depth() || mirror == rvec3(0.0)) break;
     weight *= mirror;
     o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));

@@ -6,7 +6,7 @@
 set -euo pipefail
 root=$1
 gpu_only="rc_budget rc_scene_access rc_real"
-glsl_functions() { sed -nE 's/^[a-z][a-z_0-9]* ([a-z_0-9]+)\(.*\) \{.*/\1/p' "$1"; }
+glsl_functions() { sed -nE 's/^[a-z][a-z_0-9]* ([a-z_0-9]+)\(.*/\1/p' "$1"; }
 c_functions() {
   grep -vE '^static ' "$1" | sed -nE -e 's/^[a-z][a-z_0-9 *]* REF\(([a-z_0-9]+)\)\(.*/\1/p' \
     -e 's/^[a-z][a-z_0-9 *]* ref_([a-z_0-9]+)\(.*/\1/p'

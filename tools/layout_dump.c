@@ -40,6 +40,10 @@ int main(void) {
   OFF("frame.triangle_formula", gpu_frame, triangle_formula);
   OFF("frame.offset_strategy", gpu_frame, offset_strategy);
   OFF("frame.offset_epsilon", gpu_frame, offset_epsilon);
+  OFF("frame.quadric_count", gpu_frame, quadric_count);
+  OFF("frame.csg_count", gpu_frame, csg_count);
+  OFF("frame.shadows", gpu_frame, shadows);
+  OFF("frame.csg_max_program", gpu_frame, csg_max_program);
   printf("Frame size %zu\n", sizeof(gpu_frame));
 
   OFF("scene_bvh_nodes.lo0", gpu_bvh_node, lo0);
@@ -97,6 +101,32 @@ int main(void) {
   OFF("scene_lights.pad1", gpu_light, pad1);
   printf("scene_lights stride %zu\n", sizeof(gpu_light));
 
+  OFF("scene_quadrics.center", gpu_quadric, center);
+  OFF("scene_quadrics.material", gpu_quadric, material);
+  OFF("scene_quadrics.axis_x", gpu_quadric, axis_x);
+  OFF("scene_quadrics.constant", gpu_quadric, constant);
+  OFF("scene_quadrics.axis_y", gpu_quadric, axis_y);
+  OFF("scene_quadrics.flags", gpu_quadric, flags);
+  OFF("scene_quadrics.axis_z", gpu_quadric, axis_z);
+  OFF("scene_quadrics.pad0", gpu_quadric, pad0);
+  OFF("scene_quadrics.diag", gpu_quadric, diag);
+  OFF("scene_quadrics.pad1", gpu_quadric, pad1);
+  OFF("scene_quadrics.off", gpu_quadric, off);
+  OFF("scene_quadrics.pad2", gpu_quadric, pad2);
+  OFF("scene_quadrics.linear", gpu_quadric, linear);
+  OFF("scene_quadrics.pad3", gpu_quadric, pad3);
+  OFF("scene_quadrics.lo", gpu_quadric, lo);
+  OFF("scene_quadrics.pad4", gpu_quadric, pad4);
+  OFF("scene_quadrics.hi", gpu_quadric, hi);
+  OFF("scene_quadrics.pad5", gpu_quadric, pad5);
+  printf("scene_quadrics stride %zu\n", sizeof(gpu_quadric));
+  OFF("scene_csg.lo", gpu_csg, lo);
+  OFF("scene_csg.first", gpu_csg, first);
+  OFF("scene_csg.hi", gpu_csg, hi);
+  OFF("scene_csg.count", gpu_csg, count);
+  printf("scene_csg stride %zu\n", sizeof(gpu_csg));
+  printf("scene_csg_program stride %zu\n", sizeof(uint32_t));
+
   OFF("push.tile_x", gpu_push, tile_x);
   OFF("push.tile_y", gpu_push, tile_y);
   OFF("push.tile_width", gpu_push, tile_width);
@@ -129,6 +159,9 @@ int main(void) {
   printf("scene_bvh_prims binding %d\n", RC_BINDING_BVH_PRIMS);
   printf("scene_transforms binding %d\n", RC_BINDING_TRANSFORMS);
   printf("scene_normals binding %d\n", RC_BINDING_NORMALS);
+  printf("scene_quadrics binding %d\n", RC_BINDING_QUADRICS);
+  printf("scene_csg binding %d\n", RC_BINDING_CSG);
+  printf("scene_csg_program binding %d\n", RC_BINDING_CSG_PROGRAM);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
   printf("Aov binding %d\n", RC_BINDING_AOV);

@@ -26,9 +26,10 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     uint32_t object = sc->bvh_prims[k];
     real side;
     rvec3 bary;
-    real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary);
+    uint32_t part;
+    real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
     if (any && t < (real)RC_T_FAR) return true;
-    REF(consider_hit)(sc, object, t, side, bary, h);
+    REF(consider_hit)(sc, object, t, side, bary, part, h);
   }
   return false;
 }

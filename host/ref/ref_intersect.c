@@ -171,33 +171,53 @@ real REF(intersect_triangle_cramer)(rvec3 o, rvec3 d, gpu_triangle tri, real t_m
   return t;
 }
 
-real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max,
-                           real *side, rvec3 *bary) {
-  *side = 0;
-  *bary = RV(make)(0, 0, 0);
-  if (object < sc->frame->sphere_count) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[object], t_max, side);
-  gpu_triangle tri = sc->triangles[object - sc->frame->sphere_count];
-  if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
-    return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
-  if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
-  return REF(intersect_triangle)(o, sh, tri, t_max, bary);
+uint32_t REF(object_kind)(const ref_scene *sc, uint32_t object, uint32_t *index) {
+  const gpu_frame *f = sc->frame;
+  uint32_t first_quadric = f->sphere_count + f->triangle_count;
+  uint32_t first_csg = first_quadric + f->quadric_count;
+  *index = (object < f->sphere_count) ? object
+           : (object < first_quadric) ? object - f->sphere_count
+           : (object < first_csg)     ? object - first_quadric
+                                      : object - first_csg;
+  return (object < f->sphere_count) ? RC_HIT_SPHERE
+         : (object < first_quadric) ? RC_HIT_TRIANGLE
+         : (object < first_csg)     ? RC_HIT_QUADRIC
+                                    : RC_HIT_CSG;
 }
 
-void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, ref_hit *h) {
+real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max,
+                           real *side, rvec3 *bary, uint32_t *part) {
+  *side = 0;
+  *bary = RV(make)(0, 0, 0);
+  *part = 0;
+  uint32_t index;
+  uint32_t kind = REF(object_kind)(sc, object, &index);
+  if (kind == RC_HIT_SPHERE) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
+  if (kind == RC_HIT_TRIANGLE) {
+    gpu_triangle tri = sc->triangles[index];
+    if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
+      return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
+    if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
+    return REF(intersect_triangle)(o, sh, tri, t_max, bary);
+  }
+  if (kind == RC_HIT_QUADRIC) return REF(intersect_quadric)(sc, index, o, d, t_max, part);
+  return REF(intersect_csg)(sc, index, o, d, t_max, part);
+}
+
+void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, uint32_t part, ref_hit *h) {
   if (t >= (real)RC_T_FAR) return;
   if (t < h->t || (t == h->t && object < h->object)) {
-    uint32_t spheres = sc->frame->sphere_count;
     h->t = t;
     h->object = object;
-    h->kind = (object < spheres) ? RC_HIT_SPHERE : RC_HIT_TRIANGLE;
-    h->index = (object < spheres) ? object : object - spheres;
+    h->kind = REF(object_kind)(sc, object, &h->index);
     h->side = side;
     h->bary = bary;
+    h->part = part;
   }
 }
 
 ref_hit REF(no_hit)(void) {
-  ref_hit h = {(real)RC_T_FAR, RC_HIT_NONE, 0, 0xffffffffu, RV(make)(0, 0, 0), 0};
+  ref_hit h = {(real)RC_T_FAR, RC_HIT_NONE, 0, 0xffffffffu, RV(make)(0, 0, 0), 0, 0};
   return h;
 }
 
@@ -206,8 +226,9 @@ void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) 
   for (uint32_t i = 0; i < sc->frame->object_count; i++) {
     real side;
     rvec3 bary;
-    real t = REF(intersect_object)(sc, i, o, d, &sh, h->t, &side, &bary);
-    REF(consider_hit)(sc, i, t, side, bary, h);
+    uint32_t part;
+    real t = REF(intersect_object)(sc, i, o, d, &sh, h->t, &side, &bary, &part);
+    REF(consider_hit)(sc, i, t, side, bary, part, h);
   }
 }
 
@@ -216,7 +237,8 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
   for (uint32_t i = 0; i < sc->frame->object_count; i++) {
     real side;
     rvec3 bary;
-    if (REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary) < (real)RC_T_FAR) return true;
+    uint32_t part;
+    if (REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR) return true;
   }
   return false;
 }

@@ -16,6 +16,9 @@ typedef struct ref_scene {
   const uint32_t *bvh_prims;
   const gpu_transform *transforms;
   const gpu_vertex_normals *normals;
+  const gpu_quadric *quadrics;
+  const gpu_csg *csg;
+  const uint32_t *csg_program;
   bool use_bvh;
 } ref_scene;
 
@@ -23,7 +26,7 @@ typedef struct ref_scene {
 extern _Thread_local bool ref_spawned_ray;
 
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
-  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; } ref_hit_##S; \
+  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; uint32_t part; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_gamma_bound_##S(R n);                                                                   \
   R ref_first_root_##S(R t_near, R t_exit, R t_max, R *side);                                   \
@@ -38,9 +41,10 @@ extern _Thread_local bool ref_spawned_ray;
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \
   R ref_intersect_triangle_moller_trumbore_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);   \
   R ref_intersect_triangle_cramer_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);            \
+  uint32_t ref_object_kind_##S(const ref_scene *sc, uint32_t object, uint32_t *index);           \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
-                             R *side, V *bary);                                                 \
-  void ref_consider_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, ref_hit_##S *h); \
+                             R *side, V *bary, uint32_t *part);                                 \
+  void ref_consider_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, uint32_t part, ref_hit_##S *h); \
   ref_hit_##S ref_no_hit_##S(void);                                                             \
   void ref_closest_hit_linear_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);               \
   bool ref_occluded_linear_##S(const ref_scene *sc, V o, V d, R t_max);                         \
@@ -51,6 +55,25 @@ extern _Thread_local bool ref_spawned_ray;
   bool ref_traverse_bvh_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);  \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);                      \
   bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max);
+
+/* ref_quadric.c, the twin of rc_quadric.glsl. */
+#define REF_DECLARE_QUADRIC(S, R, V)                                                            \
+  uint32_t ref_csg_code_##S(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip);           \
+  V ref_quadric_local_##S(const gpu_quadric *q, V v);                                           \
+  V ref_quadric_apply_##S(const gpu_quadric *q, V v);                                           \
+  uint32_t ref_quadric_roots_##S(const gpu_quadric *q, V f, V v, R *t_lo, R *t_hi);             \
+  void ref_box_slab_##S(R lo, R hi, R o, R d, uint32_t k, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
+  void ref_box_span_##S(V lo, V hi, V o, V d, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
+  uint32_t ref_solid_intervals_##S(uint32_t leaf, const gpu_quadric *q, V o, V d, bool flip, uint32_t base); \
+  R ref_intersect_quadric_surface_##S(const gpu_quadric *q, V o, V d, R t_max);                 \
+  R ref_first_interval_end_##S(uint32_t base, uint32_t n, R t_max, uint32_t *code);             \
+  R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
+  uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
+  R ref_intersect_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
+  V ref_quadric_normal_##S(const ref_scene *sc, uint32_t code, V p, V d);
+
+REF_DECLARE_QUADRIC(d, double, dvec3)
+REF_DECLARE_QUADRIC(f, float, vec3)
 
 REF_DECLARE_INTERSECT(d, double, dvec3)
 REF_DECLARE_INTERSECT(f, float, vec3)

@@ -46,6 +46,12 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
     }
     sf.material = s.material;
+  } else if (h->kind == RC_HIT_QUADRIC || h->kind == RC_HIT_CSG) {
+    rvec3 td = RV(scale)(d, h->t);
+    sf.p = RV(add)(o, td);
+    sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
+    n = RV(normalize)(REF(quadric_normal)(sc, h->part, sf.p, d));
+    sf.material = sc->quadrics[h->part >> 4u].material;
   } else {
     gpu_triangle tri = sc->triangles[h->index];
     rvec3 v0 = rvec3_from(tri.v0), v1 = rvec3_from(tri.v1), v2 = rvec3_from(tri.v2);
@@ -169,8 +175,8 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     }
     real n_dot_l = RV(dot)(sf->n, l);
     if (n_dot_l <= 0) continue;
-    ref_shadow_rays++;
-    if (REF(occluded)(sc, origin, to_light, shadow_t_max)) {
+    if (sc->frame->shadows) ref_shadow_rays++;
+    if (sc->frame->shadows && REF(occluded)(sc, origin, to_light, shadow_t_max)) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;
     }

@@ -4,10 +4,9 @@
 
 
 void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
+  (void)sc;
   ref_aov_record.hit = (h->kind == RC_HIT_NONE) ? 0.0f : 1.0f;
-  ref_aov_record.object = (h->kind == RC_HIT_NONE) ? -1.0f
-                          : (h->kind == RC_HIT_TRIANGLE) ? (float)(sc->frame->sphere_count + h->index)
-                                                         : (float)h->index;
+  ref_aov_record.object = (h->kind == RC_HIT_NONE) ? -1.0f : (float)h->object;
   ref_aov_record.t = (h->kind == RC_HIT_NONE) ? 0.0f : (float)h->t;
   ref_aov_record.shadow_bits = 0.0f;
   ref_aov_record.normal = rcm_make_f(0, 0, 0);

@@ -87,6 +87,10 @@ void rc_scene_free(rc_scene *scene) {
   free(scene->lights);
   free(scene->spheres);
   free(scene->triangles);
+  free(scene->quadrics);
+  free(scene->csg_leaves);
+  for (size_t i = 0; i < scene->csg_count; i++) free(scene->csgs[i].program);
+  free(scene->csgs);
   free(scene->path);
   memset(scene, 0, sizeof *scene);
 }
@@ -131,7 +135,21 @@ rc_quality rc_quality_default(void) {
                       .triangle = RC_TRIANGLE_WATERTIGHT,
                       .offset = RC_OFFSET_ERROR_BOUND,
                       .offset_epsilon = RC_OFFSET_EPSILON_DEFAULT,
-                      .camera_relative = true};
+                      .camera_relative = true,
+                      .shadows = true};
+}
+
+void rc_quadric_world_box(const rc_quadric_def *q, dvec3 *lo, dvec3 *hi) {
+  *lo = rcm_make_d(HUGE_VAL, HUGE_VAL, HUGE_VAL);
+  *hi = rcm_make_d(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
+  for (int k = 0; k < 8; k++) {
+    dvec3 f = rcm_make_d(k & 1 ? q->hi.x : q->lo.x, k & 2 ? q->hi.y : q->lo.y, k & 4 ? q->hi.z : q->lo.z);
+    /* p = center + R^T f: the axes are R's rows. */
+    dvec3 p = rcm_add_d(q->center, rcm_add_d(rcm_add_d(rcm_scale_d(q->axis[0], f.x), rcm_scale_d(q->axis[1], f.y)),
+                                             rcm_scale_d(q->axis[2], f.z)));
+    lo->x = fmin(lo->x, p.x), lo->y = fmin(lo->y, p.y), lo->z = fmin(lo->z, p.z);
+    hi->x = fmax(hi->x, p.x), hi->y = fmax(hi->y, p.y), hi->z = fmax(hi->z, p.z);
+  }
 }
 
 int rc_name_index(const char *const *names, const char *name) {

@@ -41,6 +41,25 @@ typedef struct rc_triangle_def {
   dvec3 n[3];
 } rc_triangle_def;
 
+/* A quadric in its own frame (gpu_quadric has the formula): world centre, the frame's
+ * axes as rows, M (diag, off), linear, constant, and the clip box [lo, hi] in the frame. */
+typedef struct rc_quadric_def {
+  dvec3 center, axis[3];
+  dvec3 diag, off, linear;
+  double constant;
+  dvec3 lo, hi;
+  uint32_t material;
+  bool solid;
+} rc_quadric_def;
+
+/* A composite solid: a postfix program (RC_CSG_* << RC_CSG_OP_SHIFT | operand) whose leaf
+ * operands index rc_scene.csg_leaves; its world-space bounding box. */
+typedef struct rc_csg_def {
+  uint32_t *program;
+  uint32_t length;
+  dvec3 lo, hi;
+} rc_csg_def;
+
 typedef struct rc_camera_def {
   uint32_t projection; /* RC_PROJECTION_* */
   dvec3 eye, look_at, up;
@@ -60,6 +79,7 @@ typedef struct rc_quality {
   uint32_t offset;        /* RC_OFFSET_*: where shadow and reflection rays start */
   double offset_epsilon;  /* RC_OFFSET_EPSILON's distance, scene units */
   bool camera_relative;   /* pack positions relative to the eye (in f64) before rounding to f32 */
+  bool shadows;           /* trace shadow rays (off: every light reaches every surface facing it) */
 } rc_quality;
 /* Names as written in scenes and on the command line, indexed by the constants. */
 extern const char *const rc_precision_names[];      /* auto, f32, f64 */
@@ -94,6 +114,12 @@ typedef struct rc_scene {
   rc_triangle_def *triangles;
   size_t triangle_count, triangle_capacity;
   size_t degenerate_triangles; /* zero-area triangles skipped at load */
+  rc_quadric_def *quadrics;    /* standalone quadrics */
+  size_t quadric_count, quadric_capacity;
+  rc_quadric_def *csg_leaves;  /* the solids composites are made of */
+  size_t csg_leaf_count, csg_leaf_capacity;
+  rc_csg_def *csgs;
+  size_t csg_count, csg_capacity;
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
 } rc_scene;
 
@@ -111,6 +137,8 @@ rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
  * in f64: degenerate but meaningful input is skipped and counted (ROBUSTNESS.md §8.3).
  * The one rule for JSON triangles, .test triangles and mesh faces. */
 rc_status rc_scene_add_triangle(rc_scene *scene, const rc_triangle_def *t);
+/* The world-space bounding box of a quadric's clip box (its 8 corners). */
+void rc_quadric_world_box(const rc_quadric_def *q, dvec3 *lo, dvec3 *hi);
 /* world_from_object applied to a point. */
 dvec3 rc_affine_point(const rc_affine *a, dvec3 p);
 

@@ -11,35 +11,27 @@
 #include "math/rcm_mat3.h"
 #include "scene/json_locate.h"
 #include "scene/mesh.h"
+#include "scene/scene_json.h"
 #include "scene/scene.h"
 
-#define MAX_DEPTH 16
 
-typedef struct {
-  const char *file;
-  const char *text;
-  size_t len;
-  rc_json_step path[MAX_DEPTH];
-  size_t depth;
-} jctx;
-
-static void push_key(jctx *c, const char *key) {
-  RC_ASSERT(c->depth < MAX_DEPTH);
+void js_push_key(jctx *c, const char *key) {
+  RC_ASSERT(c->depth < RC_JSON_MAX_DEPTH);
   c->path[c->depth].key = key;
   c->path[c->depth].index = 0;
   c->depth++;
 }
 
-static void push_index(jctx *c, size_t index) {
-  RC_ASSERT(c->depth < MAX_DEPTH);
+void js_push_index(jctx *c, size_t index) {
+  RC_ASSERT(c->depth < RC_JSON_MAX_DEPTH);
   c->path[c->depth].key = NULL;
   c->path[c->depth].index = index;
   c->depth++;
 }
 
-static void pop(jctx *c) { c->depth--; }
+void js_pop(jctx *c) { c->depth--; }
 
-static void format_path(const jctx *c, char *out, size_t cap) {
+void js_format_path(const jctx *c, char *out, size_t cap) {
   size_t n = 0;
   out[0] = '\0';
   for (size_t i = 0; i < c->depth && n < cap; i++) {
@@ -52,10 +44,10 @@ static void format_path(const jctx *c, char *out, size_t cap) {
 }
 
 /* Prints the error at the current path; the value shown is the source token there. */
-static rc_status fail(jctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static rc_status fail(jctx *c, const char *fmt, ...) {
+rc_status js_fail(jctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+rc_status js_fail(jctx *c, const char *fmt, ...) {
   char path[256], what[256];
-  format_path(c, path, sizeof path);
+  js_format_path(c, path, sizeof path);
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(what, sizeof what, fmt, ap);
@@ -73,7 +65,7 @@ static rc_status fail(jctx *c, const char *fmt, ...) {
   return RC_ERR_INPUT;
 }
 
-static const char *type_name(const cJSON *v) {
+const char *js_type_name(const cJSON *v) {
   if (cJSON_IsNumber(v)) return "a number";
   if (cJSON_IsString(v)) return "a string";
   if (cJSON_IsBool(v)) return "a boolean";
@@ -84,111 +76,111 @@ static const char *type_name(const cJSON *v) {
 }
 
 /* Rejects members not in `allowed` (NULL-terminated) and repeated members. */
-static rc_status check_members(jctx *c, const cJSON *obj, const char *const *allowed) {
+rc_status js_check_members(jctx *c, const cJSON *obj, const char *const *allowed) {
   for (const cJSON *m = obj->child; m; m = m->next) {
     bool known = false;
     for (const char *const *a = allowed; *a; a++) known |= strcmp(*a, m->string) == 0;
-    push_key(c, m->string);
-    if (!known) return fail(c, "unknown field");
+    js_push_key(c, m->string);
+    if (!known) return js_fail(c, "unknown field");
     for (const cJSON *p = obj->child; p != m; p = p->next)
-      if (strcmp(p->string, m->string) == 0) return fail(c, "field given twice");
-    pop(c);
+      if (strcmp(p->string, m->string) == 0) return js_fail(c, "field given twice");
+    js_pop(c);
   }
   return RC_OK;
 }
 
-static rc_status expect_object(jctx *c, const cJSON *v) {
-  return cJSON_IsObject(v) ? RC_OK : fail(c, "expected an object, got %s", type_name(v));
+rc_status js_expect_object(jctx *c, const cJSON *v) {
+  return cJSON_IsObject(v) ? RC_OK : js_fail(c, "expected an object, got %s", js_type_name(v));
 }
 
-static rc_status number_value(jctx *c, const cJSON *v, double *out) {
-  if (!cJSON_IsNumber(v)) return fail(c, "expected a number, got %s", type_name(v));
-  if (!isfinite(v->valuedouble)) return fail(c, "number is not finite");
+rc_status js_number_value(jctx *c, const cJSON *v, double *out) {
+  if (!cJSON_IsNumber(v)) return js_fail(c, "expected a number, got %s", js_type_name(v));
+  if (!isfinite(v->valuedouble)) return js_fail(c, "number is not finite");
   *out = v->valuedouble;
   return RC_OK;
 }
 
 /* Member `key` of `obj`: a finite number in [lo, hi]; `def` when absent unless required. */
-static rc_status get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def,
+rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def,
                             double lo, double hi, double *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (!v) {
-    if (required) return fail(c, "missing field \"%s\"", key);
+    if (required) return js_fail(c, "missing field \"%s\"", key);
     *out = def;
     return RC_OK;
   }
-  push_key(c, key);
-  rc_status st = number_value(c, v, out);
+  js_push_key(c, key);
+  rc_status st = js_number_value(c, v, out);
   if (st != RC_OK) return st;
-  if (*out < lo || *out > hi) return fail(c, "must be in [%g, %g]", lo, hi);
-  pop(c);
+  if (*out < lo || *out > hi) return js_fail(c, "must be in [%g, %g]", lo, hi);
+  js_pop(c);
   return RC_OK;
 }
 
 /* Like get_number, with an exclusive lower bound (radius > 0, view_height > 0). */
-static rc_status get_positive(jctx *c, const cJSON *obj, const char *key, bool required,
+rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool required,
                               double def, double *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (!v) {
-    if (required) return fail(c, "missing field \"%s\"", key);
+    if (required) return js_fail(c, "missing field \"%s\"", key);
     *out = def;
     return RC_OK;
   }
-  push_key(c, key);
-  rc_status st = number_value(c, v, out);
+  js_push_key(c, key);
+  rc_status st = js_number_value(c, v, out);
   if (st != RC_OK) return st;
-  if (!(*out > 0.0)) return fail(c, "must be greater than 0");
-  pop(c);
+  if (!(*out > 0.0)) return js_fail(c, "must be greater than 0");
+  js_pop(c);
   return RC_OK;
 }
 
-static rc_status get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def,
+rc_status js_get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def,
                           uint32_t lo, uint32_t hi, uint32_t *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (!v) {
-    if (required) return fail(c, "missing field \"%s\"", key);
+    if (required) return js_fail(c, "missing field \"%s\"", key);
     *out = def;
     return RC_OK;
   }
-  push_key(c, key);
+  js_push_key(c, key);
   double x;
-  rc_status st = number_value(c, v, &x);
+  rc_status st = js_number_value(c, v, &x);
   if (st != RC_OK) return st;
-  if (x != floor(x)) return fail(c, "expected a whole number");
-  if (x < lo || x > hi) return fail(c, "must be in [%u, %u]", lo, hi);
+  if (x != floor(x)) return js_fail(c, "expected a whole number");
+  if (x < lo || x > hi) return js_fail(c, "must be in [%u, %u]", lo, hi);
   *out = (uint32_t)x;
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
-static rc_status vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out) {
+rc_status js_vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out) {
   if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
-    return fail(c, "expected an array of 3 numbers, got %s", cJSON_IsArray(v) ? "another length" : type_name(v));
+    return js_fail(c, "expected an array of 3 numbers, got %s", cJSON_IsArray(v) ? "another length" : js_type_name(v));
   double xyz[3];
   for (int i = 0; i < 3; i++) {
-    push_index(c, (size_t)i);
-    rc_status st = number_value(c, cJSON_GetArrayItem(v, i), &xyz[i]);
+    js_push_index(c, (size_t)i);
+    rc_status st = js_number_value(c, cJSON_GetArrayItem(v, i), &xyz[i]);
     if (st != RC_OK) return st;
-    if (xyz[i] < lo) return fail(c, "must not be negative");
-    pop(c);
+    if (xyz[i] < lo) return js_fail(c, "must not be negative");
+    js_pop(c);
   }
   *out = rcm_make_d(xyz[0], xyz[1], xyz[2]);
   return RC_OK;
 }
 
 /* Member `key`: [x, y, z]; lo = 0 for colours and coefficients, -HUGE_VAL for positions. */
-static rc_status get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def,
+rc_status js_get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def,
                           double lo, dvec3 *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (!v) {
-    if (required) return fail(c, "missing field \"%s\"", key);
+    if (required) return js_fail(c, "missing field \"%s\"", key);
     *out = def;
     return RC_OK;
   }
-  push_key(c, key);
-  rc_status st = vec3_value(c, v, lo, out);
+  js_push_key(c, key);
+  rc_status st = js_vec3_value(c, v, lo, out);
   if (st != RC_OK) return st;
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
@@ -197,179 +189,173 @@ static rc_status get_color_or_scalar(jctx *c, const cJSON *obj, const char *key,
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (v && cJSON_IsNumber(v)) {
     double x;
-    rc_status st = get_number(c, obj, key, true, 0, 0, HUGE_VAL, &x);
+    rc_status st = js_get_number(c, obj, key, true, 0, 0, HUGE_VAL, &x);
     *out = rcm_make_d(x, x, x);
     return st;
   }
-  return get_vec3(c, obj, key, false, rcm_make_d(0, 0, 0), 0.0, out);
+  return js_get_vec3(c, obj, key, false, rcm_make_d(0, 0, 0), 0.0, out);
 }
 
-static rc_status get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names,
+rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names,
                           uint32_t def, uint32_t *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (!v) {
     *out = def;
     return RC_OK;
   }
-  push_key(c, key);
-  if (!cJSON_IsString(v)) return fail(c, "expected a string, got %s", type_name(v));
+  js_push_key(c, key);
+  if (!cJSON_IsString(v)) return js_fail(c, "expected a string, got %s", js_type_name(v));
   for (uint32_t i = 0; names[i]; i++) {
     if (strcmp(names[i], v->valuestring) == 0) {
       *out = i;
-      pop(c);
+      js_pop(c);
       return RC_OK;
     }
   }
   char list[256] = "";
   for (uint32_t i = 0; names[i]; i++)
     snprintf(list + strlen(list), sizeof list - strlen(list), "%s\"%s\"", i ? ", " : "", names[i]);
-  return fail(c, "expected one of %s", list);
+  return js_fail(c, "expected one of %s", list);
 }
-
-#define TRY(expr)                     \
-  do {                                \
-    rc_status st_ = (expr);           \
-    if (st_ != RC_OK) return st_;     \
-  } while (0)
 
 static rc_status parse_image(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *img = cJSON_GetObjectItemCaseSensitive(root, "image");
-  if (!img) return fail(c, "missing field \"image\"");
-  push_key(c, "image");
-  TRY(expect_object(c, img));
+  if (!img) return js_fail(c, "missing field \"image\"");
+  js_push_key(c, "image");
+  TRY(js_expect_object(c, img));
   static const char *const allowed[] = {"width", "height", "samples_per_pixel", NULL};
-  TRY(check_members(c, img, allowed));
-  TRY(get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
-  TRY(get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
-  TRY(get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
-  pop(c);
+  TRY(js_check_members(c, img, allowed));
+  TRY(js_get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
+  TRY(js_get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
+  TRY(js_get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
+  js_pop(c);
   return RC_OK;
 }
 
 static rc_status parse_camera(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
-  if (!cam) return fail(c, "missing field \"camera\"");
-  push_key(c, "camera");
-  TRY(expect_object(c, cam));
+  if (!cam) return js_fail(c, "missing field \"camera\"");
+  js_push_key(c, "camera");
+  TRY(js_expect_object(c, cam));
   static const char *const allowed[] = {"projection", "eye", "look_at", "up", "fov_y_deg", "view_height", NULL};
-  TRY(check_members(c, cam, allowed));
+  TRY(js_check_members(c, cam, allowed));
   static const char *const projections[] = {"perspective", "parallel", NULL};
   rc_camera_def *k = &s->camera;
-  TRY(get_enum(c, cam, "projection", projections, RC_PROJECTION_PERSPECTIVE, &k->projection));
-  TRY(get_vec3(c, cam, "eye", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->eye));
-  TRY(get_vec3(c, cam, "look_at", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->look_at));
-  TRY(get_vec3(c, cam, "up", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &k->up));
+  TRY(js_get_enum(c, cam, "projection", projections, RC_PROJECTION_PERSPECTIVE, &k->projection));
+  TRY(js_get_vec3(c, cam, "eye", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->eye));
+  TRY(js_get_vec3(c, cam, "look_at", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->look_at));
+  TRY(js_get_vec3(c, cam, "up", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &k->up));
   if (k->projection == RC_PROJECTION_PERSPECTIVE) {
     if (cJSON_GetObjectItemCaseSensitive(cam, "view_height")) {
-      push_key(c, "view_height");
-      return fail(c, "applies to the parallel projection only");
+      js_push_key(c, "view_height");
+      return js_fail(c, "applies to the parallel projection only");
     }
-    TRY(get_number(c, cam, "fov_y_deg", false, 45.0, -HUGE_VAL, HUGE_VAL, &k->fov_y_deg));
+    TRY(js_get_number(c, cam, "fov_y_deg", false, 45.0, -HUGE_VAL, HUGE_VAL, &k->fov_y_deg));
   } else {
     if (cJSON_GetObjectItemCaseSensitive(cam, "fov_y_deg")) {
-      push_key(c, "fov_y_deg");
-      return fail(c, "applies to the perspective projection only");
+      js_push_key(c, "fov_y_deg");
+      return js_fail(c, "applies to the perspective projection only");
     }
-    TRY(get_positive(c, cam, "view_height", true, 0, &k->view_height));
+    TRY(js_get_positive(c, cam, "view_height", true, 0, &k->view_height));
   }
   const char *field = NULL;
   const char *problem = rc_scene_camera_problem(k, &field);
   if (problem) {
-    push_key(c, field);
-    return fail(c, "%s", problem);
+    js_push_key(c, field);
+    return js_fail(c, "%s", problem);
   }
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
 static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
   if (!mats) return RC_OK;
-  push_key(c, "materials");
-  TRY(expect_object(c, mats));
+  js_push_key(c, "materials");
+  TRY(js_expect_object(c, mats));
   size_t n = (size_t)cJSON_GetArraySize(mats);
   s->materials = rc_alloc(n, sizeof *s->materials, "materials");
   if (!s->materials) return RC_ERR_OUT_OF_MEMORY;
   for (const cJSON *m = mats->child; m; m = m->next) {
-    push_key(c, m->string);
+    js_push_key(c, m->string);
     for (const cJSON *p = mats->child; p != m; p = p->next)
-      if (strcmp(p->string, m->string) == 0) return fail(c, "material defined twice");
-    TRY(expect_object(c, m));
+      if (strcmp(p->string, m->string) == 0) return js_fail(c, "material defined twice");
+    TRY(js_expect_object(c, m));
     static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", "emission", NULL};
-    TRY(check_members(c, m, allowed));
+    TRY(js_check_members(c, m, allowed));
     rc_material_def *d = &s->materials[s->material_count];
     d->name = strdup(m->string);
     if (!d->name) return RC_ERR_OUT_OF_MEMORY;
     s->material_count++;
     dvec3 zero = rcm_make_d(0, 0, 0);
-    TRY(get_vec3(c, m, "ambient", false, zero, 0.0, &d->ambient));
-    TRY(get_vec3(c, m, "diffuse", false, zero, 0.0, &d->diffuse));
-    TRY(get_vec3(c, m, "specular", false, zero, 0.0, &d->specular));
-    TRY(get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
+    TRY(js_get_vec3(c, m, "ambient", false, zero, 0.0, &d->ambient));
+    TRY(js_get_vec3(c, m, "diffuse", false, zero, 0.0, &d->diffuse));
+    TRY(js_get_vec3(c, m, "specular", false, zero, 0.0, &d->specular));
+    TRY(js_get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
     TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
-    TRY(get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
-    pop(c);
+    TRY(js_get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
+    js_pop(c);
   }
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
 static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *lights = cJSON_GetObjectItemCaseSensitive(root, "lights");
   if (!lights) return RC_OK;
-  push_key(c, "lights");
-  if (!cJSON_IsArray(lights)) return fail(c, "expected an array, got %s", type_name(lights));
+  js_push_key(c, "lights");
+  if (!cJSON_IsArray(lights)) return js_fail(c, "expected an array, got %s", js_type_name(lights));
   size_t n = (size_t)cJSON_GetArraySize(lights);
   s->lights = rc_alloc(n, sizeof *s->lights, "lights");
   if (!s->lights) return RC_ERR_OUT_OF_MEMORY;
   size_t i = 0;
   for (const cJSON *l = lights->child; l; l = l->next, i++) {
-    push_index(c, i);
-    TRY(expect_object(c, l));
+    js_push_index(c, i);
+    TRY(js_expect_object(c, l));
     rc_light_def *d = &s->lights[s->light_count++];
     static const char *const types[] = {"point", "directional", NULL};
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(l, "type");
-    if (!type) return fail(c, "missing field \"type\"");
-    TRY(get_enum(c, l, "type", types, 0, &d->type));
+    if (!type) return js_fail(c, "missing field \"type\"");
+    TRY(js_get_enum(c, l, "type", types, 0, &d->type));
     static const char *const point_fields[] = {"type", "position", "intensity", "attenuation", NULL};
     static const char *const dir_fields[] = {"type", "direction", "intensity", NULL};
     bool point = d->type == RC_LIGHT_POINT;
-    TRY(check_members(c, l, point ? point_fields : dir_fields));
+    TRY(js_check_members(c, l, point ? point_fields : dir_fields));
     dvec3 zero = rcm_make_d(0, 0, 0);
     if (point) {
-      TRY(get_vec3(c, l, "position", true, zero, -HUGE_VAL, &d->position));
-      TRY(get_vec3(c, l, "attenuation", false, rcm_make_d(0, 0, 1), 0.0, &d->attenuation));
+      TRY(js_get_vec3(c, l, "position", true, zero, -HUGE_VAL, &d->position));
+      TRY(js_get_vec3(c, l, "attenuation", false, rcm_make_d(0, 0, 1), 0.0, &d->attenuation));
       if (rcm_max_abs_comp_d(d->attenuation) == 0.0) {
-        push_key(c, "attenuation");
-        return fail(c, "must not be all zero (the light would be infinitely bright)");
+        js_push_key(c, "attenuation");
+        return js_fail(c, "must not be all zero (the light would be infinitely bright)");
       }
     } else {
-      TRY(get_vec3(c, l, "direction", true, zero, -HUGE_VAL, &d->direction));
+      TRY(js_get_vec3(c, l, "direction", true, zero, -HUGE_VAL, &d->direction));
       if (rcm_max_abs_comp_d(d->direction) == 0.0) {
-        push_key(c, "direction");
-        return fail(c, "must not be the zero vector");
+        js_push_key(c, "direction");
+        return js_fail(c, "must not be the zero vector");
       }
     }
-    TRY(get_vec3(c, l, "intensity", true, zero, 0.0, &d->intensity));
-    pop(c);
+    TRY(js_get_vec3(c, l, "intensity", true, zero, 0.0, &d->intensity));
+    js_pop(c);
   }
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
-static rc_status get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, uint32_t *out) {
+rc_status js_get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, uint32_t *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "material");
-  if (!v) return fail(c, "missing field \"material\"");
-  push_key(c, "material");
-  if (!cJSON_IsString(v)) return fail(c, "expected a material name, got %s", type_name(v));
+  if (!v) return js_fail(c, "missing field \"material\"");
+  js_push_key(c, "material");
+  if (!cJSON_IsString(v)) return js_fail(c, "expected a material name, got %s", js_type_name(v));
   for (size_t i = 0; i < s->material_count; i++) {
     if (strcmp(s->materials[i].name, v->valuestring) == 0) {
       *out = (uint32_t)i;
-      pop(c);
+      js_pop(c);
       return RC_OK;
     }
   }
-  return fail(c, "unknown material");
+  return js_fail(c, "unknown material");
 }
 
 static void affine_identity(rc_affine *a) {
@@ -404,33 +390,33 @@ static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *
   const cJSON *t = cJSON_GetObjectItemCaseSensitive(obj, "transform");
   *present = t != NULL;
   if (!t) return RC_OK;
-  push_key(c, "transform");
-  TRY(expect_object(c, t));
+  js_push_key(c, "transform");
+  TRY(js_expect_object(c, t));
   static const char *const allowed[] = {"matrix", "translate", "rotate_deg", "scale", NULL};
-  TRY(check_members(c, t, allowed));
+  TRY(js_check_members(c, t, allowed));
   const cJSON *m = cJSON_GetObjectItemCaseSensitive(t, "matrix");
   if (m) {
-    push_key(c, "matrix");
-    if (!cJSON_IsArray(m) || cJSON_GetArraySize(m) != 4) return fail(c, "expected 4 rows of 4 numbers");
+    js_push_key(c, "matrix");
+    if (!cJSON_IsArray(m) || cJSON_GetArraySize(m) != 4) return js_fail(c, "expected 4 rows of 4 numbers");
     for (int i = 0; i < 4; i++) {
-      push_index(c, (size_t)i);
+      js_push_index(c, (size_t)i);
       const cJSON *row = cJSON_GetArrayItem(m, i);
-      if (!cJSON_IsArray(row) || cJSON_GetArraySize(row) != 4) return fail(c, "expected a row of 4 numbers");
+      if (!cJSON_IsArray(row) || cJSON_GetArraySize(row) != 4) return js_fail(c, "expected a row of 4 numbers");
       for (int j = 0; j < 4; j++) {
-        push_index(c, (size_t)j);
+        js_push_index(c, (size_t)j);
         double x;
-        TRY(number_value(c, cJSON_GetArrayItem(row, j), &x));
+        TRY(js_number_value(c, cJSON_GetArrayItem(row, j), &x));
         if (i < 3) out->m[i][j] = x;
-        else if (x != (j == 3 ? 1.0 : 0.0)) return fail(c, "the last row must be [0, 0, 0, 1] (affine transforms only)");
-        pop(c);
+        else if (x != (j == 3 ? 1.0 : 0.0)) return js_fail(c, "the last row must be [0, 0, 0, 1] (affine transforms only)");
+        js_pop(c);
       }
-      pop(c);
+      js_pop(c);
     }
-    pop(c);
+    js_pop(c);
   }
   dvec3 v;
   if (cJSON_GetObjectItemCaseSensitive(t, "translate")) {
-    TRY(get_vec3(c, t, "translate", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
+    TRY(js_get_vec3(c, t, "translate", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
     rc_affine tr;
     affine_identity(&tr);
     tr.m[0][3] = v.x, tr.m[1][3] = v.y, tr.m[2][3] = v.z;
@@ -438,57 +424,57 @@ static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *
   }
   const cJSON *r = cJSON_GetObjectItemCaseSensitive(t, "rotate_deg");
   if (r) {
-    push_key(c, "rotate_deg");
+    js_push_key(c, "rotate_deg");
     if (cJSON_IsObject(r)) {
       static const char *const rfields[] = {"axis", "angle", NULL};
-      TRY(check_members(c, r, rfields));
+      TRY(js_check_members(c, r, rfields));
       double angle;
-      TRY(get_vec3(c, r, "axis", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
-      TRY(get_number(c, r, "angle", true, 0, -HUGE_VAL, HUGE_VAL, &angle));
+      TRY(js_get_vec3(c, r, "axis", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
+      TRY(js_get_number(c, r, "angle", true, 0, -HUGE_VAL, HUGE_VAL, &angle));
       if (rcm_max_abs_comp_d(v) == 0) {
-        push_key(c, "axis");
-        return fail(c, "must not be the zero vector");
+        js_push_key(c, "axis");
+        return js_fail(c, "must not be the zero vector");
       }
       rc_affine rot = rotation(rcm_normalize_d(v), angle);
       affine_multiply(out, &rot);
     } else {
-      TRY(vec3_value(c, r, -HUGE_VAL, &v));
+      TRY(js_vec3_value(c, r, -HUGE_VAL, &v));
       rc_affine rz = rotation(rcm_make_d(0, 0, 1), v.z), ry = rotation(rcm_make_d(0, 1, 0), v.y),
                 rx = rotation(rcm_make_d(1, 0, 0), v.x);
       affine_multiply(out, &rz);
       affine_multiply(out, &ry);
       affine_multiply(out, &rx);
     }
-    pop(c);
+    js_pop(c);
   }
   const cJSON *sc = cJSON_GetObjectItemCaseSensitive(t, "scale");
   if (sc) {
     if (cJSON_IsNumber(sc)) {
       double k;
-      TRY(get_number(c, t, "scale", true, 1, -HUGE_VAL, HUGE_VAL, &k));
+      TRY(js_get_number(c, t, "scale", true, 1, -HUGE_VAL, HUGE_VAL, &k));
       v = rcm_make_d(k, k, k);
     } else {
-      TRY(get_vec3(c, t, "scale", true, rcm_make_d(1, 1, 1), -HUGE_VAL, &v));
+      TRY(js_get_vec3(c, t, "scale", true, rcm_make_d(1, 1, 1), -HUGE_VAL, &v));
     }
     if (v.x == 0 || v.y == 0 || v.z == 0) {
-      push_key(c, "scale");
-      return fail(c, "a zero scale makes the object vanish");
+      js_push_key(c, "scale");
+      return js_fail(c, "a zero scale makes the object vanish");
     }
     rc_affine s3;
     affine_identity(&s3);
     s3.m[0][0] = v.x, s3.m[1][1] = v.y, s3.m[2][2] = v.z;
     affine_multiply(out, &s3);
   }
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
 /* A mesh object: the file relative to the scene file's folder. */
 static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m) {
   const cJSON *f = cJSON_GetObjectItemCaseSensitive(o, "file");
-  if (!f) return fail(c, "missing field \"file\"");
-  push_key(c, "file");
-  if (!cJSON_IsString(f) || !f->valuestring[0]) return fail(c, "expected a file name");
+  if (!f) return js_fail(c, "missing field \"file\"");
+  js_push_key(c, "file");
+  if (!cJSON_IsString(f) || !f->valuestring[0]) return js_fail(c, "expected a file name");
   char path[4096];
   const char *slash = strrchr(c->file, '/');
   if (f->valuestring[0] == '/' || !slash)
@@ -500,13 +486,13 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
   rc_json_line_col(c->text, c->len, off, &line, &col);
   char where[4400];
   char fpath[256];
-  format_path(c, fpath, sizeof fpath);
+  js_format_path(c, fpath, sizeof fpath);
   snprintf(where, sizeof where, "%s:%d:%d: error: %s", c->file, line, col, fpath);
-  pop(c);
+  js_pop(c);
   int material = -1;
   if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
     uint32_t id;
-    TRY(get_material_ref(c, o, s, &id));
+    TRY(js_get_material_ref(c, o, s, &id));
     material = (int)id;
   }
   return rc_mesh_load(path, m, material, s, where);
@@ -515,103 +501,110 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
 static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *objs = cJSON_GetObjectItemCaseSensitive(root, "objects");
   if (!objs) return RC_OK;
-  push_key(c, "objects");
-  if (!cJSON_IsArray(objs)) return fail(c, "expected an array, got %s", type_name(objs));
+  js_push_key(c, "objects");
+  if (!cJSON_IsArray(objs)) return js_fail(c, "expected an array, got %s", js_type_name(objs));
   size_t n = (size_t)cJSON_GetArraySize(objs);
   s->spheres = rc_alloc(n, sizeof *s->spheres, "spheres");
   if (!s->spheres) return RC_ERR_OUT_OF_MEMORY;
   size_t i = 0;
   for (const cJSON *o = objs->child; o; o = o->next, i++) {
-    push_index(c, i);
-    TRY(expect_object(c, o));
-    static const char *const types[] = {"sphere", "triangle", "mesh", NULL};
-    if (!cJSON_GetObjectItemCaseSensitive(o, "type")) return fail(c, "missing field \"type\"");
+    js_push_index(c, i);
+    TRY(js_expect_object(c, o));
+    static const char *const types[] = {"sphere",     "triangle",    "mesh", "quadric", "ellipsoid", "cylinder", "cone",
+                                        "paraboloid", "hyperboloid", "box",  "csg",     NULL};
+    const cJSON *tv = cJSON_GetObjectItemCaseSensitive(o, "type");
+    if (!tv) return js_fail(c, "missing field \"type\"");
+    if (cJSON_IsString(tv) && js_is_quadric_type(tv->valuestring)) {
+      TRY(js_parse_quadric_object(c, o, s));
+      js_pop(c);
+      continue;
+    }
     uint32_t type;
-    TRY(get_enum(c, o, "type", types, 0, &type));
+    TRY(js_get_enum(c, o, "type", types, 0, &type));
     dvec3 zero = rcm_make_d(0, 0, 0);
     rc_affine m;
     bool transformed;
     if (type == 0) {
       static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
-      TRY(check_members(c, o, allowed));
+      TRY(js_check_members(c, o, allowed));
       rc_sphere_def *d = &s->spheres[s->sphere_count++];
-      TRY(get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
-      TRY(get_positive(c, o, "radius", true, 0, &d->radius));
-      TRY(get_material_ref(c, o, s, &d->material));
+      TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
+      TRY(js_get_positive(c, o, "radius", true, 0, &d->radius));
+      TRY(js_get_material_ref(c, o, s, &d->material));
       TRY(get_transform(c, o, &m, &transformed));
       d->transformed = transformed;
       d->world_from_object = m;
     } else if (type == 1) {
       static const char *const allowed[] = {"type", "vertices", "material", "transform", NULL};
-      TRY(check_members(c, o, allowed));
+      TRY(js_check_members(c, o, allowed));
       rc_triangle_def d = {0};
       const cJSON *vs = cJSON_GetObjectItemCaseSensitive(o, "vertices");
-      if (!vs) return fail(c, "missing field \"vertices\"");
-      push_key(c, "vertices");
+      if (!vs) return js_fail(c, "missing field \"vertices\"");
+      js_push_key(c, "vertices");
       if (!cJSON_IsArray(vs) || cJSON_GetArraySize(vs) != 3)
-        return fail(c, "expected an array of 3 points");
+        return js_fail(c, "expected an array of 3 points");
       for (int k = 0; k < 3; k++) {
-        push_index(c, (size_t)k);
-        TRY(vec3_value(c, cJSON_GetArrayItem(vs, k), -HUGE_VAL, &d.v[k]));
-        pop(c);
+        js_push_index(c, (size_t)k);
+        TRY(js_vec3_value(c, cJSON_GetArrayItem(vs, k), -HUGE_VAL, &d.v[k]));
+        js_pop(c);
       }
-      pop(c);
-      TRY(get_material_ref(c, o, s, &d.material));
+      js_pop(c);
+      TRY(js_get_material_ref(c, o, s, &d.material));
       TRY(get_transform(c, o, &m, &transformed));
       for (int k = 0; k < 3; k++) d.v[k] = rc_affine_point(&m, d.v[k]);
       TRY(rc_scene_add_triangle(s, &d));
     } else {
       static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
-      TRY(check_members(c, o, allowed));
+      TRY(js_check_members(c, o, allowed));
       TRY(get_transform(c, o, &m, &transformed));
       TRY(parse_mesh(c, o, s, &m));
     }
-    pop(c);
+    js_pop(c);
   }
-  pop(c);
+  js_pop(c);
   return RC_OK;
 }
 
 static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
-  TRY(expect_object(c, root));
+  TRY(js_expect_object(c, root));
   static const char *const allowed[] = {"version", "image", "camera", "background", "ambient_light",
                                         "specular_model", "seed", "quality", "materials", "lights",
                                         "objects", NULL};
-  TRY(check_members(c, root, allowed));
+  TRY(js_check_members(c, root, allowed));
   uint32_t version;
-  TRY(get_uint(c, root, "version", false, 1, 1, 1, &version));
+  TRY(js_get_uint(c, root, "version", false, 1, 1, 1, &version));
   TRY(parse_image(c, root, s));
   TRY(parse_camera(c, root, s));
-  TRY(get_vec3(c, root, "background", false, rcm_make_d(0, 0, 0), 0.0, &s->background));
-  TRY(get_vec3(c, root, "ambient_light", false, rcm_make_d(1, 1, 1), 0.0, &s->ambient_light));
+  TRY(js_get_vec3(c, root, "background", false, rcm_make_d(0, 0, 0), 0.0, &s->background));
+  TRY(js_get_vec3(c, root, "ambient_light", false, rcm_make_d(1, 1, 1), 0.0, &s->ambient_light));
   static const char *const models[] = {"blinn-phong", "phong", NULL};
-  TRY(get_enum(c, root, "specular_model", models, RC_SPECULAR_BLINN_PHONG, &s->specular_model));
-  TRY(get_uint(c, root, "seed", false, 0, 0, UINT32_MAX, &s->seed));
+  TRY(js_get_enum(c, root, "specular_model", models, RC_SPECULAR_BLINN_PHONG, &s->specular_model));
+  TRY(js_get_uint(c, root, "seed", false, 0, 0, UINT32_MAX, &s->seed));
   s->reflection_depth = 5;
   s->quality = rc_quality_default();
   const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
   if (q) {
-    push_key(c, "quality");
-    TRY(expect_object(c, q));
+    js_push_key(c, "quality");
+    TRY(js_expect_object(c, q));
     static const char *const qfields[] = {"reflection_depth", "precision", "sphere_intersection",
                                           "triangle_intersection", "shadow_offset", "shadow_epsilon",
                                           "camera_relative", NULL};
-    TRY(check_members(c, q, qfields));
+    TRY(js_check_members(c, q, qfields));
     rc_quality *k = &s->quality;
-    TRY(get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
-    TRY(get_enum(c, q, "precision", rc_precision_names, k->precision, &k->precision));
-    TRY(get_enum(c, q, "sphere_intersection", rc_sphere_formula_names, k->sphere, &k->sphere));
-    TRY(get_enum(c, q, "triangle_intersection", rc_triangle_formula_names, k->triangle, &k->triangle));
-    TRY(get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
-    TRY(get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
+    TRY(js_get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
+    TRY(js_get_enum(c, q, "precision", rc_precision_names, k->precision, &k->precision));
+    TRY(js_get_enum(c, q, "sphere_intersection", rc_sphere_formula_names, k->sphere, &k->sphere));
+    TRY(js_get_enum(c, q, "triangle_intersection", rc_triangle_formula_names, k->triangle, &k->triangle));
+    TRY(js_get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
+    TRY(js_get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
     const cJSON *cr = cJSON_GetObjectItemCaseSensitive(q, "camera_relative");
     if (cr) {
-      push_key(c, "camera_relative");
-      if (!cJSON_IsBool(cr)) return fail(c, "expected true or false, got %s", type_name(cr));
+      js_push_key(c, "camera_relative");
+      if (!cJSON_IsBool(cr)) return js_fail(c, "expected true or false, got %s", js_type_name(cr));
       k->camera_relative = cJSON_IsTrue(cr);
-      pop(c);
+      js_pop(c);
     }
-    pop(c);
+    js_pop(c);
   }
   TRY(parse_materials(c, root, s));
   TRY(parse_lights(c, root, s));

@@ -49,6 +49,12 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
   for (size_t i = 0; i < s->triangle_count && !what; i++)
     if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2))
       what = "triangle", index = i;
+  for (size_t i = 0; i < s->quadric_count + s->csg_leaf_count && !what; i++) {
+    const gpu_quadric *q = &p->quadrics[i];
+    if (!finite3(q->center) || !finite3(q->diag) || !finite3(q->off) || !finite3(q->linear) || !isfinite(q->constant) ||
+        !finite3(q->lo) || !finite3(q->hi))
+      what = i < s->quadric_count ? "quadric" : "composite operand", index = i < s->quadric_count ? i : i - s->quadric_count;
+  }
   for (size_t i = 0; i < s->light_count && !what; i++)
     if (!finite3(p->lights[i].position) || !finite3(p->lights[i].intensity)) what = "light", index = i;
   for (size_t i = 0; i < s->material_count && !what; i++)
@@ -79,6 +85,23 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *
   return true;
 }
 
+/* A quadric's frame stays in f64 up to here: the centre is made camera-relative before
+ * rounding, the coefficients and the clip box are already centre-relative. */
+static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, gpu_quadric *g) {
+  *g = (gpu_quadric){.center = to_packed(p, q->center),
+                     .material = q->material,
+                     .axis_x = rcm_to_f(q->axis[0]),
+                     .axis_y = rcm_to_f(q->axis[1]),
+                     .axis_z = rcm_to_f(q->axis[2]),
+                     .constant = (float)q->constant,
+                     .flags = q->solid ? RC_QUADRIC_SOLID : 0u,
+                     .diag = rcm_to_f(q->diag),
+                     .off = rcm_to_f(q->off),
+                     .linear = rcm_to_f(q->linear),
+                     .lo = rcm_to_f(q->lo),
+                     .hi = rcm_to_f(q->hi)};
+}
+
 rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   memset(p, 0, sizeof *p);
   /* Camera-relative packing is the default; without it the packed space is world space,
@@ -104,7 +127,10 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   f->triangle_count = (uint32_t)s->triangle_count;
   f->material_count = (uint32_t)s->material_count;
   f->light_count = (uint32_t)s->light_count;
-  f->object_count = f->sphere_count + f->triangle_count;
+  f->quadric_count = (uint32_t)s->quadric_count;
+  f->csg_count = (uint32_t)s->csg_count;
+  f->object_count = f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count;
+  f->shadows = s->quality.shadows ? 1u : 0u;
 
   /* Reflection costs a bounce loop only where some material mirrors. */
   bool any_mirror = false;
@@ -121,7 +147,18 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   size_t smooth = 0;
   for (size_t i = 0; i < s->triangle_count; i++) smooth += s->triangles[i].smooth;
   p->normals = rc_alloc(smooth + 1, sizeof *p->normals, "packed normals");
-  if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals) {
+  p->quadrics = rc_alloc(s->quadric_count + s->csg_leaf_count + 1, sizeof *p->quadrics, "packed quadrics");
+  p->csg = rc_alloc(s->csg_count + 1, sizeof *p->csg, "packed composites");
+  size_t program = 0;
+  for (size_t i = 0; i < s->csg_count; i++) {
+    program += s->csgs[i].length;
+    if (s->csgs[i].length > f->csg_max_program) f->csg_max_program = s->csgs[i].length;
+  }
+  p->csg_program = rc_alloc((program + 4) / 4 * 4, sizeof *p->csg_program, "packed CSG programs");
+  p->csg_program_length = (uint32_t)program;
+  p->quadric_total = (uint32_t)(s->quadric_count + s->csg_leaf_count);
+  if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals || !p->quadrics ||
+      !p->csg || !p->csg_program) {
     rc_packed_scene_free(p);
     return RC_ERR_OUT_OF_MEMORY;
   }
@@ -173,6 +210,20 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     p->lights[i].position = l->type == RC_LIGHT_POINT ? to_packed(p, l->position)
                                                       : rcm_to_f(rcm_normalize_d(l->direction));
   }
+  for (size_t i = 0; i < s->quadric_count; i++) pack_quadric(p, &s->quadrics[i], &p->quadrics[i]);
+  for (size_t i = 0; i < s->csg_leaf_count; i++)
+    pack_quadric(p, &s->csg_leaves[i], &p->quadrics[s->quadric_count + i]);
+  uint32_t at = 0;
+  for (size_t i = 0; i < s->csg_count; i++) {
+    const rc_csg_def *c = &s->csgs[i];
+    p->csg[i] = (gpu_csg){.lo = to_packed(p, c->lo), .hi = to_packed(p, c->hi), .first = at, .count = c->length};
+    /* Leaf operands index the packed quadric array, where the leaves follow the standalone quadrics. */
+    for (uint32_t k = 0; k < c->length; k++) {
+      uint32_t ins = c->program[k];
+      bool leaf = (ins >> RC_CSG_OP_SHIFT) == RC_CSG_LEAF;
+      p->csg_program[at++] = leaf ? ins + (uint32_t)s->quadric_count : ins;
+    }
+  }
   rc_status st = check_f32_range(s, p);
   if (st != RC_OK) rc_packed_scene_free(p);
   return st;
@@ -206,6 +257,10 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
   }
   for (uint32_t i = 0; i < p->frame.light_count; i++)
     if (p->lights[i].type == RC_LIGHT_POINT) p->lights[i].position = perturb_vec3(p->lights[i].position, seed);
+  for (uint32_t i = 0; i < p->quadric_total; i++) {
+    p->quadrics[i].center = perturb_vec3(p->quadrics[i].center, seed);
+    p->quadrics[i].constant = perturb_value(p->quadrics[i].constant, seed);
+  }
 }
 
 void rc_packed_scene_free(rc_packed_scene *p) {
@@ -217,5 +272,8 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->bvh_prims);
   free(p->transforms);
   free(p->normals);
+  free(p->quadrics);
+  free(p->csg);
+  free(p->csg_program);
   memset(p, 0, sizeof *p);
 }

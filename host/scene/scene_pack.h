@@ -19,6 +19,11 @@ typedef struct rc_packed_scene {
   uint32_t transform_count;
   gpu_vertex_normals *normals; /* of the smooth-shaded triangles (at least one element) */
   uint32_t normal_count;
+  gpu_quadric *quadrics;   /* the standalone quadrics, then the composites' leaves */
+  uint32_t quadric_total;  /* both kinds (frame.quadric_count counts the standalone ones) */
+  gpu_csg *csg;
+  uint32_t *csg_program;   /* padded to a multiple of 4 */
+  uint32_t csg_program_length;
   dvec3 origin; /* world position of the packed space's origin (the eye) */
 } rc_packed_scene;
 

@@ -17,8 +17,8 @@ reflect() { "$glslang" -V --target-env vulkan1.1 -I"$shaders" -DRC_SCENE_TEXEL_B
     -e 's/^(Frame|Push|Status): offset -1, type [0-9a-f]+, size ([0-9]+),.*/\1 size \2/p'
   reflect 0 | sed -nE 's/^(Frame|Accum|Status|Aov): .* binding ([0-9]+),.*/\1 binding \2/p'
   reflect 0 | grep -v '\[0\]' | sed -nE 's/^(scene_[a-z_]+|aov)\.[a-z_0-9]+: offset 0,.*topLevelArrayStride ([0-9]+).*/\1 stride \2/p'
-  # The object-reference array is a plain uint[]: its stride is on its own line.
-  reflect 0 | sed -nE 's/^(scene_bvh_prims): offset 0,.*arrayStride ([0-9]+),.*/\1 stride \2/p'
+  # The object-reference and CSG program arrays are plain uint[]: its stride is on its own line.
+  reflect 0 | sed -nE 's/^(scene_bvh_prims|scene_csg_program): offset 0,.*arrayStride ([0-9]+),.*/\1 stride \2/p'
   # Texel variant: the scene arrays' bindings (texel buffers are not blocks there).
   reflect 1 | sed -nE 's/^(scene_[a-z_]+): offset -1, .* binding ([0-9]+),.*/\1 binding \2/p'
 } | sort -u >"$tmp/glsl.txt"

@@ -1,0 +1,250 @@
+/* ref_quadric.c: mirrors shaders/rc_quadric.glsl function by function, same order, same
+ * formulas (the shader has the references and the reasoning). The interval stack is
+ * per thread, like the shader's per-invocation arrays. */
+#include "ref/ref_shader.h"
+
+#include "ref/ref_real.h"
+
+#define QR_NONE 0u
+#define QR_ALL 1u
+#define QR_BETWEEN 2u
+#define QR_OUTSIDE 3u
+#define SLOT (2u * RC_CSG_MAX_INTERVALS)
+
+static _Thread_local real csg_t[(RC_CSG_STACK + 1u) * SLOT];
+static _Thread_local uint32_t csg_code_of[(RC_CSG_STACK + 1u) * SLOT];
+
+static real rmin(real a, real b) { return a < b ? a : b; }
+static real rmax(real a, real b) { return a > b ? a : b; }
+static rvec3 v3(vec3 a) { return rvec3_from(a); }
+
+uint32_t REF(csg_code)(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip) {
+  return (leaf << 4u) | (face << 2u) | (leaf_exit ? 2u : 0u) | (flip ? 1u : 0u);
+}
+
+rvec3 REF(quadric_local)(const gpu_quadric *q, rvec3 v) {
+  return RV(make)(RV(dot)(v3(q->axis_x), v), RV(dot)(v3(q->axis_y), v), RV(dot)(v3(q->axis_z), v));
+}
+
+rvec3 REF(quadric_apply)(const gpu_quadric *q, rvec3 v) {
+  rvec3 D = v3(q->diag), O = v3(q->off);
+  return RV(make)(D.x * v.x + O.x * v.y + O.y * v.z, O.x * v.x + D.y * v.y + O.z * v.z,
+                  O.y * v.x + O.z * v.y + D.z * v.z);
+}
+
+uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, real *t_hi) {
+  const real far = (real)RC_T_FAR;
+  *t_lo = -far;
+  *t_hi = far;
+  rvec3 D = v3(q->diag), L = v3(q->linear);
+  real J = (real)q->constant;
+  rvec3 mv = REF(quadric_apply)(q, v);
+  rvec3 mf = REF(quadric_apply)(q, f);
+  real a = RV(dot)(v, mv);
+  real m = RV(dot)(f, mv);
+  real ld = RV(dot)(L, v);
+  real lf = RV(dot)(L, f);
+  real h = m + ld;
+  real c = RV(dot)(f, mf) + 2 * lf + J;
+  if (a == 0) {
+    if (h == 0) return c <= 0 ? QR_ALL : QR_NONE;
+    real root = -c / (2 * h);
+    if (h > 0) *t_hi = root;
+    else *t_lo = root;
+    return QR_BETWEEN;
+  }
+  real disc;
+  if (q->off.x == 0 && q->off.y == 0 && q->off.z == 0) {
+    real cxy = v.x * f.y - v.y * f.x;
+    real cxz = v.x * f.z - v.z * f.x;
+    real cyz = v.y * f.z - v.z * f.y;
+    disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2 * m * ld - 2 * a * lf +
+           ld * ld - a * J;
+  } else {
+    disc = h * h - a * c;
+  }
+  if (disc < 0) return a > 0 ? QR_NONE : QR_ALL;
+  real sq = R_SQRT(disc);
+  real qq = (h >= 0) ? -(h + sq) : -(h - sq);
+  real r0 = 0, r1 = 0;
+  if (qq != 0) {
+    r0 = (R_ABS(qq) >= R_ABS(a) * far) ? ((qq > 0) == (a > 0) ? far : -far) : qq / a;
+    r1 = (R_ABS(c) >= R_ABS(qq) * far) ? ((c > 0) == (qq > 0) ? far : -far) : c / qq;
+  }
+  *t_lo = rmin(r0, r1);
+  *t_hi = rmax(r0, r1);
+  return a > 0 ? QR_BETWEEN : QR_OUTSIDE;
+}
+
+void REF(box_slab)(real lo, real hi, real o, real d, uint32_t k, real *t_in, real *t_out, uint32_t *axis_in,
+                   uint32_t *axis_out) {
+  if (d == 0) {
+    if (o < lo || o > hi) *t_in = (real)RC_T_FAR;
+    return;
+  }
+  real ta = (lo - o) / d;
+  real tb = (hi - o) / d;
+  if (rmin(ta, tb) > *t_in) {
+    *t_in = rmin(ta, tb);
+    *axis_in = k;
+  }
+  if (rmax(ta, tb) < *t_out) {
+    *t_out = rmax(ta, tb);
+    *axis_out = k;
+  }
+}
+
+void REF(box_span)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d, real *t_in, real *t_out, uint32_t *axis_in,
+                   uint32_t *axis_out) {
+  *t_in = -(real)RC_T_FAR;
+  *t_out = (real)RC_T_FAR;
+  *axis_in = 1;
+  *axis_out = 1;
+  REF(box_slab)(lo.x, hi.x, o.x, d.x, 1, t_in, t_out, axis_in, axis_out);
+  REF(box_slab)(lo.y, hi.y, o.y, d.y, 2, t_in, t_out, axis_in, axis_out);
+  REF(box_slab)(lo.z, hi.z, o.z, d.z, 3, t_in, t_out, axis_in, axis_out);
+}
+
+uint32_t REF(solid_intervals)(uint32_t leaf, const gpu_quadric *q, rvec3 o, rvec3 d, bool flip, uint32_t base) {
+  const real far = (real)RC_T_FAR;
+  rvec3 f = REF(quadric_local)(q, RV(sub)(o, v3(q->center)));
+  rvec3 v = REF(quadric_local)(q, d);
+  real b_in, b_out;
+  uint32_t a_in, a_out;
+  REF(box_span)(v3(q->lo), v3(q->hi), f, v, &b_in, &b_out, &a_in, &a_out);
+  if (b_in > b_out) return 0;
+  real t_lo, t_hi;
+  uint32_t kind = REF(quadric_roots)(q, f, v, &t_lo, &t_hi);
+  if (kind == QR_NONE) return 0;
+  uint32_t n = 0;
+  real lo0 = (kind == QR_BETWEEN) ? t_lo : -far;
+  real hi0 = (kind == QR_OUTSIDE) ? t_lo : ((kind == QR_BETWEEN) ? t_hi : far);
+  uint32_t pieces = (kind == QR_OUTSIDE) ? 2 : 1;
+  for (uint32_t k = 0; k < pieces; k++) {
+    real lo = (k == 0) ? lo0 : t_hi;
+    real hi = (k == 0) ? hi0 : far;
+    bool box_starts = b_in >= lo;
+    bool box_ends = b_out <= hi;
+    real s = box_starts ? b_in : lo;
+    real e = box_ends ? b_out : hi;
+    if (s > e) continue;
+    csg_t[base + n] = s;
+    csg_code_of[base + n] = REF(csg_code)(leaf, box_starts ? a_in : 0, false, flip);
+    csg_t[base + n + 1] = e;
+    csg_code_of[base + n + 1] = REF(csg_code)(leaf, box_ends ? a_out : 0, true, flip);
+    n += 2;
+  }
+  return n;
+}
+
+real REF(intersect_quadric_surface)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
+  const real far = (real)RC_T_FAR;
+  rvec3 f = REF(quadric_local)(q, RV(sub)(o, v3(q->center)));
+  rvec3 v = REF(quadric_local)(q, d);
+  real t_lo, t_hi;
+  uint32_t kind = REF(quadric_roots)(q, f, v, &t_lo, &t_hi);
+  if (kind == QR_NONE || kind == QR_ALL) return far;
+  real b_in, b_out;
+  uint32_t a_in, a_out;
+  REF(box_span)(v3(q->lo), v3(q->hi), f, v, &b_in, &b_out, &a_in, &a_out);
+  bool lo_ok = t_lo > 0 && t_lo <= t_max && R_ABS(t_lo) < far && t_lo >= b_in && t_lo <= b_out;
+  bool hi_ok = t_hi > 0 && t_hi <= t_max && R_ABS(t_hi) < far && t_hi >= b_in && t_hi <= b_out;
+  return lo_ok ? t_lo : (hi_ok ? t_hi : far);
+}
+
+real REF(first_interval_end)(uint32_t base, uint32_t n, real t_max, uint32_t *code) {
+  *code = 0;
+  for (uint32_t i = 0; i < n; i++) {
+    real t = csg_t[base + i];
+    if (t > 0 && t <= t_max && t < (real)RC_T_FAR) {
+      *code = csg_code_of[base + i];
+      return t;
+    }
+  }
+  return (real)RC_T_FAR;
+}
+
+real REF(intersect_quadric)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max, uint32_t *code) {
+  *code = 0;
+  const gpu_quadric *q = &sc->quadrics[index];
+  if ((q->flags & RC_QUADRIC_SOLID) == 0) {
+    *code = REF(csg_code)(index, 0, false, false);
+    return REF(intersect_quadric_surface)(q, o, d, t_max);
+  }
+  uint32_t n = REF(solid_intervals)(index, q, o, d, false, 0);
+  return REF(first_interval_end)(0, n, t_max, code);
+}
+
+uint32_t REF(combine_intervals)(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb) {
+  const uint32_t out = RC_CSG_STACK * SLOT;
+  uint32_t i = 0, j = 0, n = 0;
+  bool in_a = false, in_b = false, in_r = false;
+  while (i < na || j < nb) {
+    bool take_a = j >= nb || (i < na && csg_t[a + i] <= csg_t[b + j]);
+    real t;
+    uint32_t code;
+    if (take_a) {
+      t = csg_t[a + i];
+      code = csg_code_of[a + i];
+      in_a = !in_a;
+      i++;
+    } else {
+      t = csg_t[b + j];
+      code = csg_code_of[b + j] ^ (op == RC_CSG_DIFFERENCE ? 1u : 0u);
+      in_b = !in_b;
+      j++;
+    }
+    bool in_now = op == RC_CSG_UNION ? (in_a || in_b) : (op == RC_CSG_INTERSECTION ? (in_a && in_b) : (in_a && !in_b));
+    if (in_now == in_r) continue;
+    in_r = in_now;
+    if (n > 0 && csg_t[out + n - 1] == t) {
+      n--;
+      continue;
+    }
+    csg_t[out + n] = t;
+    csg_code_of[out + n] = code;
+    n++;
+  }
+  return n;
+}
+
+real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max, uint32_t *code) {
+  *code = 0;
+  const gpu_csg *c = &sc->csg[index];
+  uint32_t count[RC_CSG_STACK];
+  uint32_t sp = 0;
+  for (uint32_t k = 0; k < c->count; k++) {
+    uint32_t ins = sc->csg_program[c->first + k];
+    uint32_t op = ins >> RC_CSG_OP_SHIFT;
+    uint32_t operand = ins & RC_CSG_OPERAND_MASK;
+    if (op == RC_CSG_LEAF) {
+      count[sp] = REF(solid_intervals)(operand, &sc->quadrics[operand], o, d, false, sp * SLOT);
+      sp++;
+      continue;
+    }
+    uint32_t a = (sp - 2) * SLOT;
+    uint32_t n = REF(combine_intervals)(op, a, count[sp - 2], (sp - 1) * SLOT, count[sp - 1]);
+    for (uint32_t i = 0; i < n; i++) {
+      csg_t[a + i] = csg_t[RC_CSG_STACK * SLOT + i];
+      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * SLOT + i];
+    }
+    count[sp - 2] = n;
+    sp--;
+  }
+  return REF(first_interval_end)(0, count[0], t_max, code);
+}
+
+rvec3 REF(quadric_normal)(const ref_scene *sc, uint32_t code, rvec3 p, rvec3 d) {
+  const gpu_quadric *q = &sc->quadrics[code >> 4u];
+  uint32_t face = (code >> 2u) & 3u;
+  rvec3 g;
+  if (face == 0) {
+    g = RV(add)(REF(quadric_apply)(q, REF(quadric_local)(q, RV(sub)(p, v3(q->center)))), v3(q->linear));
+  } else {
+    int k = (int)face - 1;
+    real s = (((code & 2u) != 0) == (rv_get(REF(quadric_local)(q, d), k) > 0)) ? 1 : -1;
+    g = RV(make)(k == 0 ? s : 0, k == 1 ? s : 0, k == 2 ? s : 0);
+  }
+  rvec3 n = RV(add)(RV(add)(RV(scale)(v3(q->axis_x), g.x), RV(scale)(v3(q->axis_y), g.y)), RV(scale)(v3(q->axis_z), g.z));
+  return (code & 1u) ? RV(neg)(n) : n;
+}

@@ -1,0 +1,59 @@
+/* scene_json.h: the JSON reader's context and field helpers, shared by scene_json.c
+ * (the scene, camera, lights, triangles, meshes) and scene_quadric.c (quadrics and
+ * composites). Every helper prints FILE:LINE:COL: error: FIELD.PATH: what (value) and
+ * returns RC_ERR_INPUT on bad input. */
+#ifndef RC_SCENE_JSON_H
+#define RC_SCENE_JSON_H
+
+#include <cjson/cJSON.h>
+
+#include "scene/json_locate.h"
+#include "scene/scene.h"
+
+#define RC_JSON_MAX_DEPTH 24
+
+typedef struct {
+  const char *file;
+  const char *text;
+  size_t len;
+  rc_json_step path[RC_JSON_MAX_DEPTH];
+  size_t depth;
+} jctx;
+
+#define TRY(expr)                 \
+  do {                            \
+    rc_status st_ = (expr);       \
+    if (st_ != RC_OK) return st_; \
+  } while (0)
+
+void js_push_key(jctx *c, const char *key);
+void js_push_index(jctx *c, size_t index);
+void js_pop(jctx *c);
+void js_format_path(const jctx *c, char *out, size_t cap);
+rc_status js_fail(jctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+const char *js_type_name(const cJSON *v);
+/* Rejects members not in `allowed` (NULL-terminated) and repeated members. */
+rc_status js_check_members(jctx *c, const cJSON *obj, const char *const *allowed);
+rc_status js_expect_object(jctx *c, const cJSON *v);
+rc_status js_number_value(jctx *c, const cJSON *v, double *out);
+/* Member `key`: a finite number in [lo, hi]; `def` when absent unless required. */
+rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def, double lo, double hi,
+                        double *out);
+/* Like js_get_number, with an exclusive lower bound of 0. */
+rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool required, double def, double *out);
+rc_status js_get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def, uint32_t lo,
+                      uint32_t hi, uint32_t *out);
+rc_status js_vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out);
+/* Member `key`: [x, y, z]; lo = 0 for colours and coefficients, -HUGE_VAL for positions. */
+rc_status js_get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def, double lo, dvec3 *out);
+rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names, uint32_t def,
+                      uint32_t *out);
+rc_status js_get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, uint32_t *out);
+
+/* scene_quadric.c: the object types that are quadrics ("quadric", "ellipsoid", "cylinder",
+ * "cone", "paraboloid", "hyperboloid", "box") and composites ("csg"). Whether `type` is
+ * one of them; and the parser of such an object into the scene. */
+bool js_is_quadric_type(const char *type);
+rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s);
+
+#endif

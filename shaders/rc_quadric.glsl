@@ -1,0 +1,301 @@
+// rc_quadric.glsl: quadric surfaces and solids (gpu_quadric) and composite solids
+// (gpu_csg). A ray meets a solid in depth-ordered [in, out] intervals; a composite combines
+// its operands' interval lists (Roth, "Ray Casting for Modeling Solids", CGIP 18(2),
+// 1982) and its surface is the first interval end in front of the ray.
+//
+// An interval end is a t and a code naming the surface it lies on (csg_code): the leaf
+// quadric, the face (0: the quadric surface, 1..3: the leaf's box face normal to x, y, z),
+// whether it was the leaf's exit, and whether it comes from a subtracted solid (its
+// outward normal is then reversed).
+
+// The interval stack: RC_CSG_STACK lists of up to 2 RC_CSG_MAX_INTERVALS ends, then one
+// scratch list that combine_intervals writes.
+real csg_t[(RC_CSG_STACK + 1u) * 2u * RC_CSG_MAX_INTERVALS];
+uint csg_code_of[(RC_CSG_STACK + 1u) * 2u * RC_CSG_MAX_INTERVALS];
+
+// The kinds of a quadric's inside {Q < 0} along a whole ray line (quadric_roots).
+#define RC_QR_NONE 0u    // nowhere
+#define RC_QR_ALL 1u     // everywhere
+#define RC_QR_BETWEEN 2u // [t_lo, t_hi]
+#define RC_QR_OUTSIDE 3u // (-inf, t_lo] and [t_hi, inf)
+
+uint csg_code(uint leaf, uint face, bool leaf_exit, bool flip) {
+  return (leaf << 4u) | (face << 2u) | (leaf_exit ? 2u : 0u) | (flip ? 1u : 0u);
+}
+
+// A point or direction in the quadric's frame (centre-relative, rotated; for a point,
+// pass p - center). Forming a, b, c there keeps the products small (ROBUSTNESS.md §2.5).
+rvec3 quadric_local(gpu_quadric q, rvec3 v) {
+  precise rvec3 l = rvec3(dot(rvec3(q.axis_x), v), dot(rvec3(q.axis_y), v), dot(rvec3(q.axis_z), v));
+  return l;
+}
+
+// M v for the quadric's symmetric 3x3 part.
+rvec3 quadric_apply(gpu_quadric q, rvec3 v) {
+  rvec3 D = rvec3(q.diag);
+  rvec3 O = rvec3(q.off);
+  precise rvec3 r = rvec3(D.x * v.x + O.x * v.y + O.y * v.z, O.x * v.x + D.y * v.y + O.z * v.z,
+                          O.y * v.x + O.z * v.y + D.z * v.z);
+  return r;
+}
+
+// The quadratic a t^2 + 2 h t + c of Q along f + t v (the ray in the quadric's frame) and
+// its roots, classified. For a diagonal M (the named shapes) the discriminant h^2 - a c
+// is formed by Lagrange's identity, the Hearn-Baker form of the sphere test generalized
+// (D = diag, L = linear, J = constant):
+//   h^2 - a c = -sum_{i<j} D_i D_j (v_i f_j - v_j f_i)^2 + 2 (sum D_i v_i f_i)(L.v)
+//               - 2 a (L.f) + (L.v)^2 - a J,
+// with no cancellation between two large squares when the quadric is far away; a general
+// matrix uses h^2 - a c as it stands. The roots are the stable pair c/q, q/a with
+// q = -(h + sign(h) sqrt(disc)); a = 0 (a ray parallel to a cylinder's or paraboloid's
+// axis) has its own branch, and a root beyond RC_T_FAR (a tiny a) is pinned there
+// instead of dividing (ROBUSTNESS.md §2.5).
+uint quadric_roots(gpu_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi) {
+  t_lo = -real(RC_T_FAR);
+  t_hi = real(RC_T_FAR);
+  rvec3 D = rvec3(q.diag);
+  rvec3 L = rvec3(q.linear);
+  real J = real(q.constant);
+  precise rvec3 mv = quadric_apply(q, v);
+  precise rvec3 mf = quadric_apply(q, f);
+  precise real a = dot(v, mv);
+  precise real m = dot(f, mv);
+  precise real ld = dot(L, v);
+  precise real lf = dot(L, f);
+  precise real h = m + ld;
+  precise real c = dot(f, mf) + 2.0 * lf + J;
+  if (a == 0.0) {
+    if (h == 0.0) return (c <= 0.0) ? RC_QR_ALL : RC_QR_NONE;
+    precise real root = -c / (2.0 * h);
+    if (h > 0.0) t_hi = root;  // Q falls with t: inside before the root
+    else t_lo = root;
+    return RC_QR_BETWEEN;
+  }
+  precise real disc;
+  if (q.off == vec3(0.0)) {
+    precise real cxy = v.x * f.y - v.y * f.x;
+    precise real cxz = v.x * f.z - v.z * f.x;
+    precise real cyz = v.y * f.z - v.z * f.y;
+    disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2.0 * m * ld - 2.0 * a * lf +
+           ld * ld - a * J;
+  } else {
+    disc = h * h - a * c;
+  }
+  if (disc < 0.0) return (a > 0.0) ? RC_QR_NONE : RC_QR_ALL;
+  precise real sq = sqrt(disc);
+  precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);
+  real r0 = 0.0;
+  real r1 = 0.0;
+  if (qq != 0.0) {
+    r0 = (abs(qq) >= abs(a) * real(RC_T_FAR)) ? ((qq > 0.0) == (a > 0.0) ? real(RC_T_FAR) : -real(RC_T_FAR)) : qq / a;
+    r1 = (abs(c) >= abs(qq) * real(RC_T_FAR)) ? ((c > 0.0) == (qq > 0.0) ? real(RC_T_FAR) : -real(RC_T_FAR)) : c / qq;
+  }
+  t_lo = min(r0, r1);
+  t_hi = max(r0, r1);
+  return (a > 0.0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
+}
+
+// One slab of box_span: narrows [t_in, t_out] to the ray's span between the planes lo and
+// hi of axis k (1..3). A ray parallel to them (d = 0) keeps the span, or empties it when
+// its origin lies outside, without dividing by 0.
+void box_slab(real lo, real hi, real o, real d, uint k, inout real t_in, inout real t_out, inout uint axis_in,
+              inout uint axis_out) {
+  if (d == 0.0) {
+    if (o < lo || o > hi) t_in = real(RC_T_FAR);
+    return;
+  }
+  precise real ta = (lo - o) / d;
+  precise real tb = (hi - o) / d;
+  if (min(ta, tb) > t_in) {
+    t_in = min(ta, tb);
+    axis_in = k;
+  }
+  if (max(ta, tb) < t_out) {
+    t_out = max(ta, tb);
+    axis_out = k;
+  }
+}
+
+// The ray's span inside the box [lo, hi] (all in the quadric's frame): entry and exit t, and the axes (1..3) whose
+// faces they lie on; a miss gives t_in > t_out. (Three calls, not a loop: llvmpipe counts
+// every loop iteration against its cap, rc_budget.glsl.)
+void box_span(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d, out real t_in, out real t_out, out uint axis_in, out uint axis_out) {
+  t_in = -real(RC_T_FAR);
+  t_out = real(RC_T_FAR);
+  axis_in = 1u;
+  axis_out = 1u;
+  box_slab(lo.x, hi.x, o.x, d.x, 1u, t_in, t_out, axis_in, axis_out);
+  box_slab(lo.y, hi.y, o.y, d.y, 2u, t_in, t_out, axis_in, axis_out);
+  box_slab(lo.z, hi.z, o.z, d.z, 3u, t_in, t_out, axis_in, axis_out);
+}
+
+// The solid {Q <= 0} inside its box along the ray: up to two intervals, written to the
+// interval stack at `base` (csg_t, csg_code_of). Returns the number of interval ends.
+uint solid_intervals(uint leaf, gpu_quadric q, rvec3 o, rvec3 d, bool flip, uint base) {
+  rvec3 f = quadric_local(q, o - rvec3(q.center));
+  rvec3 v = quadric_local(q, d);
+  real b_in, b_out;
+  uint a_in, a_out;
+  box_span(rvec3(q.lo), rvec3(q.hi), f, v, b_in, b_out, a_in, a_out);
+  if (b_in > b_out) return 0u;
+  real t_lo, t_hi;
+  uint kind = quadric_roots(q, f, v, t_lo, t_hi);
+  if (kind == RC_QR_NONE) return 0u;
+  uint n = 0u;
+  // Inside pieces of the line before clipping to the box: [lo0, hi0] and, for OUTSIDE,
+  // [lo1, hi1]; -/+ RC_T_FAR for an open end.
+  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -real(RC_T_FAR);
+  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : real(RC_T_FAR));
+  uint pieces = (kind == RC_QR_OUTSIDE) ? 2u : 1u;
+  for (uint k = 0u; k < pieces; k++) {
+    if (!budget_step()) return n;
+    real lo = (k == 0u) ? lo0 : t_hi;
+    real hi = (k == 0u) ? hi0 : real(RC_T_FAR);
+    // The clipped piece starts on the box face where the box starts later, else on Q = 0.
+    bool box_starts = b_in >= lo;
+    bool box_ends = b_out <= hi;
+    real s = box_starts ? b_in : lo;
+    real e = box_ends ? b_out : hi;
+    if (s > e) continue;
+    csg_t[base + n] = s;
+    csg_code_of[base + n] = csg_code(leaf, box_starts ? a_in : 0u, false, flip);
+    csg_t[base + n + 1u] = e;
+    csg_code_of[base + n + 1u] = csg_code(leaf, box_ends ? a_out : 0u, true, flip);
+    n += 2u;
+  }
+  return n;
+}
+
+// An open quadric surface (no RC_QUADRIC_SOLID): the nearest root in (0, t_max] whose
+// point lies in the box, else RC_T_FAR.
+real intersect_quadric_surface(gpu_quadric q, rvec3 o, rvec3 d, real t_max) {
+  rvec3 f = quadric_local(q, o - rvec3(q.center));
+  rvec3 v = quadric_local(q, d);
+  real t_lo, t_hi;
+  uint kind = quadric_roots(q, f, v, t_lo, t_hi);
+  if (kind == RC_QR_NONE || kind == RC_QR_ALL) return real(RC_T_FAR);
+  real b_in, b_out;
+  uint a_in, a_out;
+  box_span(rvec3(q.lo), rvec3(q.hi), f, v, b_in, b_out, a_in, a_out);
+  bool lo_ok = t_lo > 0.0 && t_lo <= t_max && abs(t_lo) < real(RC_T_FAR) && t_lo >= b_in && t_lo <= b_out;
+  bool hi_ok = t_hi > 0.0 && t_hi <= t_max && abs(t_hi) < real(RC_T_FAR) && t_hi >= b_in && t_hi <= b_out;
+  return lo_ok ? t_lo : (hi_ok ? t_hi : real(RC_T_FAR));
+}
+
+// The first interval end of the list at `base` (n ends) in (0, t_max], else RC_T_FAR.
+real first_interval_end(uint base, uint n, real t_max, out uint code) {
+  code = 0u;
+  for (uint i = 0u; i < n; i++) {
+    if (!budget_step()) break;
+    real t = csg_t[base + i];
+    if (t > 0.0 && t <= t_max && t < real(RC_T_FAR)) {
+      code = csg_code_of[base + i];
+      return t;
+    }
+  }
+  return real(RC_T_FAR);
+}
+
+// A standalone quadric, open or solid: t and the code of the surface hit.
+real intersect_quadric(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
+  code = 0u;
+  gpu_quadric q = load_quadric(index);
+  if ((q.flags & RC_QUADRIC_SOLID) == 0u) {
+    code = csg_code(index, 0u, false, false);
+    return intersect_quadric_surface(q, o, d, t_max);
+  }
+  uint n = solid_intervals(index, q, o, d, false, 0u);
+  return first_interval_end(0u, n, t_max, code);
+}
+
+// Combines the lists at `a` (na ends) and `b` (nb ends) by `op` into the scratch slot:
+// one walk over both lists in t order, keeping the ends where op(in a, in b) changes.
+// Ends of the subtracted list get the flip bit. Zero-length intervals are dropped and
+// touching ones merged, so a tie never leaves a surface of no thickness.
+uint combine_intervals(uint op, uint a, uint na, uint b, uint nb) {
+  uint out_base = RC_CSG_STACK * 2u * RC_CSG_MAX_INTERVALS;
+  uint i = 0u;
+  uint j = 0u;
+  uint n = 0u;
+  bool in_a = false;
+  bool in_b = false;
+  bool in_r = false;
+  while (i < na || j < nb) {
+    if (!budget_step()) return n;
+    bool take_a = j >= nb || (i < na && csg_t[a + i] <= csg_t[b + j]);
+    real t;
+    uint code;
+    if (take_a) {
+      t = csg_t[a + i];
+      code = csg_code_of[a + i];
+      in_a = !in_a;
+      i++;
+    } else {
+      t = csg_t[b + j];
+      code = csg_code_of[b + j] ^ ((op == RC_CSG_DIFFERENCE) ? 1u : 0u);
+      in_b = !in_b;
+      j++;
+    }
+    bool in_now = (op == RC_CSG_UNION) ? (in_a || in_b) : ((op == RC_CSG_INTERSECTION) ? (in_a && in_b) : (in_a && !in_b));
+    if (in_now == in_r) continue;
+    in_r = in_now;
+    if (n > 0u && csg_t[out_base + n - 1u] == t) {
+      n--;  // an interval of no length, or two that touch: drop the shared end
+      continue;
+    }
+    csg_t[out_base + n] = t;
+    csg_code_of[out_base + n] = code;
+    n++;
+  }
+  return n;
+}
+
+// A composite: runs its postfix program over the interval stack and returns the first
+// end of the result in (0, t_max].
+real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
+  code = 0u;
+  gpu_csg c = load_csg(index);
+  uint slot_size = 2u * RC_CSG_MAX_INTERVALS;
+  uint count[RC_CSG_STACK];
+  uint sp = 0u;
+  for (uint k = 0u; k < c.count; k++) {
+    if (!budget_step()) return real(RC_T_FAR);
+    uint ins = load_csg_instruction(c.first + k);
+    uint op = ins >> RC_CSG_OP_SHIFT;
+    uint operand = ins & RC_CSG_OPERAND_MASK;
+    if (op == RC_CSG_LEAF) {
+      count[sp] = solid_intervals(operand, load_quadric(operand), o, d, false, sp * slot_size);
+      sp++;
+      continue;
+    }
+    uint a = (sp - 2u) * slot_size;
+    uint n = combine_intervals(op, a, count[sp - 2u], (sp - 1u) * slot_size, count[sp - 1u]);
+    for (uint i = 0u; i < n; i++) {
+      if (!budget_step()) return real(RC_T_FAR);
+      csg_t[a + i] = csg_t[RC_CSG_STACK * slot_size + i];
+      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * slot_size + i];
+    }
+    count[sp - 2u] = n;
+    sp--;
+  }
+  return first_interval_end(0u, count[0], t_max, code);
+}
+
+// The outward normal (not normalized) of the surface a code names, at p: grad Q / 2 =
+// M f + L in the quadric's frame, or the box face's axis, rotated back to the packed
+// space; reversed for the surface of a subtracted solid.
+rvec3 quadric_normal(uint code, rvec3 p, rvec3 d) {
+  gpu_quadric q = load_quadric(code >> 4u);
+  uint face = (code >> 2u) & 3u;
+  rvec3 g;
+  if (face == 0u) {
+    g = quadric_apply(q, quadric_local(q, p - rvec3(q.center))) + rvec3(q.linear);
+  } else {
+    int k = int(face) - 1;
+    g = rvec3(0.0);
+    // An entry face faces against the ray, an exit face along it.
+    g[k] = (((code & 2u) != 0u) == (quadric_local(q, d)[k] > 0.0)) ? 1.0 : -1.0;
+  }
+  rvec3 n = g.x * rvec3(q.axis_x) + g.y * rvec3(q.axis_y) + g.z * rvec3(q.axis_z);
+  return ((code & 1u) != 0u) ? -n : n;
+}
