@@ -75,7 +75,7 @@ done
 # error, not as a 999 dB sentinel that swamps the others.
 awk -F, 'NR > 1 { k = $2 "," $3; t[k] += $4; m[k] += $5; a[k] += $9; l[k] += $10; q[k] += $7 * $7; c[k]++ }
   END { for (k in t) printf "%s,%.2f,%.4f,%.2f,%.4f,%.4f\n", k, t[k], m[k] / c[k],
-          q[k] > 0 ? 10 * log(c[k] / q[k]) / log(10) : 999, a[k] / c[k], l[k] / c[k] }' \
+          (q[k] > 0 ? 10 * log(c[k] / q[k]) / log(10) : 999), a[k] / c[k], l[k] / c[k] }' \
   "$csv" | sort -t, -k3,3n -k1,1 >"$work/summary.csv"
 # The Pareto front: no other point is both faster and more accurate.
 awk -F, '{ t[NR] = $3; e[NR] = $4; line[NR] = $0 } END {
