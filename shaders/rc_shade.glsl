@@ -12,6 +12,34 @@ struct surface {
 };
 
 
+// The hit point o + t d moved onto the quadric surface a code names (face 0) by one Newton
+// step along the gradient, and its error bound. A root's t is ill-conditioned where the
+// ray grazes the surface (along a cone's generator, near a silhouette), and o + t d can
+// then lie further off the surface than any bound on t's own rounding would admit, so
+// shadow rays leave from below it (acne). After the step the point's distance to the
+// surface is Q's rounding error over |grad Q| (pbrt re-projects its quadrics' hit points
+// for the same reason, pbrt-v4 shapes.h); the error bound is that distance plus the
+// rounding of p - c (which Q saw) and of the step.
+rvec3 quadric_refine(uint code, rvec3 p, inout rvec3 p_error) {
+  gpu_quadric q = load_quadric(code >> 4u);
+  rvec3 L = rvec3(q.linear);
+  precise rvec3 pc = p - rvec3(q.center);
+  precise rvec3 f = quadric_local(q, pc);
+  precise rvec3 mf = quadric_apply(q, f);
+  precise rvec3 g = mf + L;
+  precise real value = dot(f, mf) + 2.0 * dot(L, f) + real(q.constant);
+  real gg = dot(g, g);
+  if (gg == 0.0) return p;  // a singular point (a cone's apex): keep o + t d and its bound
+  // Only the (small) step goes back through R^T: the f32 axes are orthonormal to about
+  // 1e-7 only, and a round trip of p itself would move it by that much of |p - c|.
+  precise rvec3 step = (value / (2.0 * gg)) * g;
+  precise rvec3 dp = step.x * rvec3(q.axis_x) + step.y * rvec3(q.axis_y) + step.z * rvec3(q.axis_z);
+  precise rvec3 pr = p - dp;
+  real value_error = gamma_bound(16.0) * (dot(abs(f), abs(mf)) + 2.0 * dot(abs(L), abs(f)) + abs(real(q.constant)));
+  p_error = gamma_bound(8.0) * (abs(pr) + abs(pc)) + rvec3(value_error / (2.0 * sqrt(gg)));
+  return pr;
+}
+
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
   rvec3 n;
@@ -63,8 +91,10 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   } else if (h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG) {
     precise rvec3 td = h.t * d;
     sf.p = o + td;
-    // As for transformed spheres: t from a quadratic's root, no tighter short bound.
+    // A box face (a plane) is hit as well as o + t d allows, as for transformed spheres;
+    // a quadric surface point is re-projected onto the surface.
     sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
+    if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(h.part, sf.p, sf.p_error);
     n = normalize(quadric_normal(h.part, sf.p, d));
     sf.material = load_quadric(h.part >> 4u).material;
   } else {

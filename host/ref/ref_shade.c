@@ -6,6 +6,27 @@
 #include "ref/ref_shader.h"
 
 
+rvec3 REF(quadric_refine)(const ref_scene *sc, uint32_t code, rvec3 p, rvec3 *p_error) {
+  const gpu_quadric *q = &sc->quadrics[code >> 4u];
+  rvec3 L = rvec3_from(q->linear);
+  rvec3 pc = RV(sub)(p, rvec3_from(q->center));
+  rvec3 f = REF(quadric_local)(q, pc);
+  rvec3 mf = REF(quadric_apply)(q, f);
+  rvec3 g = RV(add)(mf, L);
+  real value = RV(dot)(f, mf) + 2 * RV(dot)(L, f) + (real)q->constant;
+  real gg = RV(dot)(g, g);
+  if (gg == 0) return p;
+  rvec3 step = RV(scale)(g, value / (2 * gg));
+  rvec3 dp = RV(add)(RV(add)(RV(scale)(rvec3_from(q->axis_x), step.x), RV(scale)(rvec3_from(q->axis_y), step.y)),
+                     RV(scale)(rvec3_from(q->axis_z), step.z));
+  rvec3 pr = RV(sub)(p, dp);
+  real value_error = REF(gamma_bound)(16) * (RV(dot)(RV(abs)(f), RV(abs)(mf)) + 2 * RV(dot)(RV(abs)(L), RV(abs)(f)) +
+                                             R_ABS((real)q->constant));
+  real dist = value_error / (2 * R_SQRT(gg));
+  *p_error = RV(add)(RV(scale)(RV(add)(RV(abs)(pr), RV(abs)(pc)), REF(gamma_bound)(8)), RV(make)(dist, dist, dist));
+  return pr;
+}
+
 ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit *h) {
   ref_surface sf;
   rvec3 n;
@@ -50,6 +71,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     rvec3 td = RV(scale)(d, h->t);
     sf.p = RV(add)(o, td);
     sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
+    if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(sc, h->part, sf.p, &sf.p_error);
     n = RV(normalize)(REF(quadric_normal)(sc, h->part, sf.p, d));
     sf.material = sc->quadrics[h->part >> 4u].material;
   } else {

@@ -231,18 +231,31 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
 
 /* ROBUSTNESS.md §8.1: a relative change of up to 2^-22 (a few f32 ulps) in every input
  * coordinate. The amount hashes the value's bits with the seed, so a vertex shared by
- * several triangles moves the same way in all of them. */
-static float perturb_value(float x, uint32_t seed) {
+ * several triangles moves the same way in all of them. The sign: seeds 1 and 2 move every
+ * value up, then down (times `lean`), so that a decision on a knife edge (a ray exactly
+ * tangent to a quadric) flips in one of them whichever way the edge leans; with random
+ * signs all four references once shrank a tangent cylinder and the band missed it. Seeds
+ * from 3 on take the sign from the hash: the values move independently. */
+static float perturb_lean(float x, uint32_t seed, double lean) {
   uint32_t bits;
   memcpy(&bits, &x, sizeof bits);
   uint32_t h = bits ^ (seed * 0x9e3779b9u);
   h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
-  double d = ((double)h / 4294967295.0 * 2.0 - 1.0) * 0x1p-22;
-  return (float)((double)x * (1.0 + d));
+  double d = seed <= 2 ? (seed == 1 ? lean : -lean) * ((double)h / 4294967295.0)
+                       : (double)h / 4294967295.0 * 2.0 - 1.0;
+  return (float)((double)x * (1.0 + d * 0x1p-22));
 }
+
+static float perturb_value(float x, uint32_t seed) { return perturb_lean(x, seed, 1.0); }
 
 static vec3 perturb_vec3(vec3 v, uint32_t seed) {
   return (vec3){perturb_value(v.x, seed), perturb_value(v.y, seed), perturb_value(v.z, seed)};
+}
+
+/* A quadric's second-order coefficients lean the other way from its constant, so that
+ * -constant / diag (a radius squared, after normalization) moves rather than cancels. */
+static vec3 perturb_shape(vec3 v, uint32_t seed) {
+  return (vec3){perturb_lean(v.x, seed, -1.0), perturb_lean(v.y, seed, -1.0), perturb_lean(v.z, seed, -1.0)};
 }
 
 void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
@@ -257,9 +270,17 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
   }
   for (uint32_t i = 0; i < p->frame.light_count; i++)
     if (p->lights[i].type == RC_LIGHT_POINT) p->lights[i].position = perturb_vec3(p->lights[i].position, seed);
+  /* A quadric's inputs are its centre, coefficients and clip box (its radii, angles and
+   * heights live there); its frame stays orthonormal. */
   for (uint32_t i = 0; i < p->quadric_total; i++) {
-    p->quadrics[i].center = perturb_vec3(p->quadrics[i].center, seed);
-    p->quadrics[i].constant = perturb_value(p->quadrics[i].constant, seed);
+    gpu_quadric *q = &p->quadrics[i];
+    q->center = perturb_vec3(q->center, seed);
+    q->diag = perturb_shape(q->diag, seed);
+    q->off = perturb_shape(q->off, seed);
+    q->linear = perturb_vec3(q->linear, seed);
+    q->constant = perturb_value(q->constant, seed);
+    q->lo = perturb_vec3(q->lo, seed);
+    q->hi = perturb_vec3(q->hi, seed);
   }
 }
 

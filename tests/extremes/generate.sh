@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes the extreme-case scenes of ROBUSTNESS.md §8.2 (S01-S19) into tests/extremes/scenes/.
+# Writes the extreme-case scenes of ROBUSTNESS.md §8.2 (S01-S21) into tests/extremes/scenes/.
 # The files are committed; this script is how they were made (rerun it after a change).
 #   tests/extremes/generate.sh [OUTDIR]
 set -euo pipefail
@@ -250,4 +250,33 @@ for d in 2 1e3; do
   scene "S21_many_spheres_D$d" 128x128 "$(persp "$(v3 0 0 "$d")" "[0, 0, 0]" "2 * atan2(0.9, $d) * 180 / 3.14159265358979323846")" \
     "$(sun "[0.3, -0.6, -1]")" "$balls"
 done
+# S20 general quadrics: rays exactly parallel to the axes of a cylinder, paraboloid, cone
+# and hyperboloid (a = 0 for the first two: the quadratic's own branch), the same axes
+# tilted by 1e-6 rad (a ~ 1e-12), rays along a cone's generator (a = 0 up to rounding),
+# grazing views, and ellipsoids with an axis ratio of 1e4.
+ortho() { echo "\"projection\": \"parallel\", \"eye\": $1, \"look_at\": $2, \"up\": ${4:-[0, 1, 0]}, \"view_height\": $(g "$3")"; }
+quadrics_along() {  # axis
+  local a=$1
+  echo "{ \"type\": \"cylinder\", \"center\": [-1.5, 1.5, 0], \"axis\": $a, \"radius\": 0.8, \"height\": 2, \"material\": \"red\" },
+    { \"type\": \"cylinder\", \"center\": [0, 0, 0], \"axis\": $a, \"radius\": 0.5, \"height\": 2, \"capped\": false, \"material\": \"green\" },
+    { \"type\": \"cone\", \"apex\": [1.5, 1.5, -1], \"axis\": $a, \"angle_deg\": 30, \"height\": 2, \"material\": \"blue\" },
+    { \"type\": \"paraboloid\", \"vertex\": [-1.5, -1.5, -1], \"axis\": $a, \"radius\": 0.8, \"height\": 2, \"material\": \"white\" },
+    { \"type\": \"paraboloid\", \"vertex\": [0, -2.2, -1], \"axis\": $a, \"radius\": 0.5, \"height\": 2, \"capped\": false, \"material\": \"green\" },
+    { \"type\": \"hyperboloid\", \"center\": [1.5, -1.5, 0], \"axis\": $a, \"radius\": 0.4, \"end_radius\": 0.8, \"height\": 2, \"material\": \"red\" },
+    { \"type\": \"box\", \"min\": [-3, -3, -1.6], \"max\": [3, 3, -1.2], \"material\": \"white\" }"
+}
+scene S20_axis_parallel 96x96 "$(ortho "[0, 0, 10]" "[0, 0, 0]" 6.4)" "$(sun "[0.3, -0.4, -1]")" "$(quadrics_along "[0, 0, 1]")"
+scene S20_axis_tilt_1e-6 96x96 "$(ortho "[0, 0, 10]" "[0, 0, 0]" 6.4)" "$(sun "[0.3, -0.4, -1]")" "$(quadrics_along "[1e-6, 0, 1]")"
+scene S20_cone_generator 96x96 "$(ortho "[-4, -4, 0]" "[0, 0, 0]" 3 "[0, 0, 1]")" "$(sun "[0.6, 0.2, -1]")" \
+  "{ \"type\": \"cone\", \"apex\": [0, 0, 0], \"axis\": [0, 1, 0], \"angle_deg\": 45, \"height\": 1, \"material\": \"blue\" },
+    { \"type\": \"cone\", \"apex\": [0, -0.5, 0.8], \"axis\": [0, 1, 0], \"angle_deg\": 45, \"height\": 1, \"capped\": false, \"material\": \"red\" }"
+scene S20_grazing 96x96 "$(persp "[0, 0.3, 6]" "[0, 0, 0]" 30)" "$(sun "[0.2, -1, -0.3]")" \
+  "{ \"type\": \"cylinder\", \"center\": [0, 0, 0], \"axis\": [1, 0, 0], \"radius\": 1, \"height\": 3, \"material\": \"red\" },
+    { \"type\": \"hyperboloid\", \"center\": [0, 0, -3], \"axis\": [1, 0, 0], \"radius\": 0.5, \"end_radius\": 1.5, \"height\": 4, \"capped\": false, \"material\": \"blue\" }"
+scene S20_ellipsoid_1e4_disc 96x96 "$(persp "[0, 2, 3]" "[0, 0, 0]" 45)" "$(sun "[0.3, -1, -0.5]")" \
+  "{ \"type\": \"ellipsoid\", \"center\": [0, 0, 0], \"radii\": [1, 1e-4, 1], \"material\": \"red\" },
+    { \"type\": \"ellipsoid\", \"center\": [0, -0.5, 0], \"radii\": [1.5, 0.1, 1.5], \"material\": \"white\" }"
+scene S20_ellipsoid_1e4_needle 96x96 "$(persp "[0, 0.5, 3]" "[0, 0, 0]" 45)" "$(sun "[0.3, -1, -0.5]")" \
+  "{ \"type\": \"ellipsoid\", \"center\": [0, 0.2, 0], \"radii\": [1e2, 1e-2, 1e-2], \"material\": \"red\" },
+    { \"type\": \"ellipsoid\", \"center\": [0, -0.5, 0], \"radii\": [3, 0.1, 3], \"material\": \"white\" }"
 echo "wrote $(ls "$out"/*.json | wc -l) scenes to $out"
