@@ -1,5 +1,7 @@
 /* Ray/sphere and ray/triangle tests of the CPU reference (the twins of rc_intersect.glsl),
  * in f64 and f32: hit, miss, behind the origin, origin inside, grazing, degenerate. */
+#include <math.h>
+
 #include "ref/ref_intersect.h"
 #include "rc_test.h"
 
@@ -153,6 +155,93 @@ TEST(occluded_only_within_t_max) {
   CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 1, 0), 10.0));
 }
 
+/* A unit cylinder along z, |z| <= 1 (normalized as the loader builds it), solid or open. */
+static gpu_quadric cylinder_z(bool solid) {
+  gpu_quadric q = {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1},
+                   .constant = -1, .flags = solid ? RC_QUADRIC_SOLID : 0u, .diag = {1, 1, 0},
+                   .lo = {-1.001f, -1.001f, -1}, .hi = {1.001f, 1.001f, 1}};
+  return q;
+}
+
+TEST(quadric_ray_along_a_cylinders_axis_takes_the_a_zero_branch) {
+  /* a = 0 exactly: inside the radius the whole line is inside, outside none of it; the
+   * solid is then hit on its cap, the open tube not at all. */
+  gpu_quadric q = cylinder_z(true);
+  double lo, hi;
+  CHECK_EQ_INT(ref_quadric_roots_d(&q, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), &lo, &hi), 1u); /* ALL */
+  CHECK_EQ_INT(ref_quadric_roots_d(&q, rcm_make_d(1.5, 0, 5), rcm_make_d(0, 0, -1), &lo, &hi), 0u); /* NONE */
+  gpu_frame f = {0};
+  ref_scene sc = {.frame = &f, .quadrics = &q};
+  uint32_t code;
+  double t = ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code);
+  CHECK_NEAR(t, 4.0, 1e-12);
+  CHECK_EQ_INT((code >> 2) & 3u, 3u); /* the z face: the cap */
+  dvec3 n = ref_quadric_normal_d(&sc, code, rcm_make_d(0.5, 0, 1), rcm_make_d(0, 0, -1));
+  CHECK(n.x == 0 && n.y == 0 && n.z == 1);
+  q = cylinder_z(false);
+  CHECK(ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code) == FAR);
+}
+
+TEST(quadric_nearly_parallel_rays_stay_finite_and_right) {
+  /* Tilted by 1e-6 from the axis: a ~ 1e-12; the far root is pinned, never Inf or NaN.
+   * From (0.5, 0, 5) the ray meets the cap z = 1 at t = 4 / cos, and the wall only far
+   * beyond the box. */
+  gpu_quadric q = cylinder_z(true);
+  gpu_frame f = {0};
+  ref_scene sc = {.frame = &f, .quadrics = &q};
+  uint32_t code;
+  dvec3 dd = rcm_normalize_d(rcm_make_d(1e-6, 0, -1));
+  vec3 df = rcm_normalize_f(rcm_make_f(1e-6f, 0, -1));
+  double t = ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), dd, FAR, &code);
+  float tf = ref_intersect_quadric_f(&sc, 0, rcm_make_f(0.5f, 0, 5), df, (float)FAR, &code);
+  CHECK_NEAR(t, 4.0 / -dd.z, 1e-12);
+  CHECK_NEAR(tf, 4.0, 1e-5);
+  double lo, hi;
+  CHECK_EQ_INT(ref_quadric_roots_d(&q, rcm_make_d(0.5, 0, 5), dd, &lo, &hi), 2u); /* BETWEEN */
+  CHECK(isfinite(lo) && isfinite(hi) && hi > 1e5);
+}
+
+TEST(quadric_paraboloid_along_its_axis_has_one_root) {
+  /* x^2 + y^2 = z from above along -z at (0.5, 0): a = 0, h != 0, one root at z = 0.25. */
+  gpu_quadric q = {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1},
+                   .constant = 0, .flags = 0, .diag = {1, 1, 0}, .linear = {0, 0, -0.5f},
+                   .lo = {-2, -2, 0}, .hi = {2, 2, 4}};
+  gpu_frame f = {0};
+  ref_scene sc = {.frame = &f, .quadrics = &q};
+  uint32_t code;
+  CHECK_NEAR(ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.75, 1e-12);
+  CHECK_NEAR(ref_intersect_quadric_f(&sc, 0, rcm_make_f(0.5f, 0, 5), rcm_make_f(0, 0, -1), (float)FAR, &code), 4.75,
+             1e-6);
+}
+
+TEST(csg_difference_and_intersection_give_the_interval_ends) {
+  /* Unit sphere at 0 (leaf 0) and radius-0.5 sphere at (0, 0, 0.8) (leaf 1), along -z from
+   * z = 5: A is [4, 6], B is [3.7, 4.7]. A - B starts where B ends, 4.7, on B's surface,
+   * flipped; A & B starts at 4, on A. */
+  gpu_quadric leaves[2] = {
+      {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1}, .constant = -1,
+       .flags = RC_QUADRIC_SOLID, .diag = {1, 1, 1}, .lo = {-1.01f, -1.01f, -1.01f}, .hi = {1.01f, 1.01f, 1.01f}},
+      {.center = {0, 0, 0.8f}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1}, .constant = -0.25f,
+       .flags = RC_QUADRIC_SOLID, .diag = {1, 1, 1}, .lo = {-0.51f, -0.51f, -0.51f}, .hi = {0.51f, 0.51f, 0.51f}}};
+  const uint32_t program[6] = {RC_CSG_LEAF << RC_CSG_OP_SHIFT,       (RC_CSG_LEAF << RC_CSG_OP_SHIFT) | 1u,
+                               RC_CSG_DIFFERENCE << RC_CSG_OP_SHIFT, RC_CSG_LEAF << RC_CSG_OP_SHIFT,
+                               (RC_CSG_LEAF << RC_CSG_OP_SHIFT) | 1u, RC_CSG_INTERSECTION << RC_CSG_OP_SHIFT};
+  const gpu_csg csg[2] = {{.first = 0, .count = 3}, {.first = 3, .count = 3}};
+  gpu_frame f = {0};
+  ref_scene sc = {.frame = &f, .quadrics = leaves, .csg = csg, .csg_program = program};
+  uint32_t code;
+  /* (B's centre is the float nearest 0.8, 1.2e-8 above it.) */
+  CHECK_NEAR(ref_intersect_csg_d(&sc, 0, rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.7, 2e-8);
+  CHECK_EQ_INT(code >> 4, 1u);   /* on B */
+  CHECK_EQ_INT(code & 1u, 1u);   /* flipped: B was subtracted */
+  dvec3 n = ref_quadric_normal_d(&sc, code, rcm_make_d(0, 0, 0.3), rcm_make_d(0, 0, -1));
+  CHECK(n.z > 0); /* B's inner surface faces up, out of A - B */
+  CHECK_NEAR(ref_intersect_csg_d(&sc, 1, rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.0, 1e-12);
+  CHECK_EQ_INT(code >> 4, 0u);
+  /* Beside B (x = 0.6) the difference is A itself. */
+  CHECK_NEAR(ref_intersect_csg_d(&sc, 0, rcm_make_d(0.6, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.2, 1e-12);
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(sphere_hit_from_outside_takes_the_near_root);
@@ -169,5 +258,9 @@ int main(void) {
   RUN(degenerate_triangle_is_missed);
   RUN(closest_hit_takes_the_nearest_and_lowest_index_on_ties);
   RUN(occluded_only_within_t_max);
+  RUN(quadric_ray_along_a_cylinders_axis_takes_the_a_zero_branch);
+  RUN(quadric_nearly_parallel_rays_stay_finite_and_right);
+  RUN(quadric_paraboloid_along_its_axis_has_one_root);
+  RUN(csg_difference_and_intersection_give_the_interval_ends);
   TEST_MAIN_END
 }
