@@ -86,5 +86,28 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
            "triangle %zu: altitude %g at |p| %g, %.3g of it per f32 ulp", i, altitude, reach, 2 * q);
   }
+  /* Quadrics (standalone and composite leaves): their math runs on p - centre in their own
+   * frame, the sphere's geometric form generalized, so the far-sphere rule applies with
+   * the box's smallest half-extent as the radius; and the centre's f32 rounding against it. */
+  for (uint32_t i = 0; i < p->quadric_total; i++) {
+    const gpu_quadric *q = &p->quadrics[i];
+    dvec3 half = rcm_scale_d(rcm_sub_d(rcm_to_d(q->hi), rcm_to_d(q->lo)), 0.5);
+    double size = fmin(half.x, fmin(half.y, half.z));
+    double dist = rcm_length_d(rcm_sub_d(rcm_to_d(q->center), eye));
+    double reach = rcm_max_abs_comp_f(q->center) + fmax(half.x, fmax(half.y, half.z));
+    const char *what = i < p->frame.quadric_count ? "quadric" : "composite operand";
+    size_t k = i < p->frame.quadric_count ? i : i - p->frame.quadric_count;
+    if (reach > RC_BUDGET_FAR_COORDINATE || size < RC_BUDGET_TINY_RADIUS) {
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "%s %zu: size %g at |p| %g leaves the f32 range once squared",
+           what, k, size, reach);
+    } else if (dist / size > RC_BUDGET_FAR_SPHERE) {
+      note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "%s %zu: distance %g over size %g (ratio %.3g)", what, k,
+           dist, size, dist / size);
+    }
+    double qz = 0.5 * ulp_f32(rcm_max_abs_comp_f(q->center)) / size;
+    if (qz > RC_BUDGET_QUANTIZATION)
+      note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
+           "%s %zu: its centre is rounded to f32 by up to %.3g of its size", what, k, qz);
+  }
   r->ms = rc_now_ms() - t0;
 }

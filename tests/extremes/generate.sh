@@ -279,4 +279,8 @@ scene S20_ellipsoid_1e4_disc 96x96 "$(persp "[0, 2, 3]" "[0, 0, 0]" 45)" "$(sun 
 scene S20_ellipsoid_1e4_needle 96x96 "$(persp "[0, 0.5, 3]" "[0, 0, 0]" 45)" "$(sun "[0.3, -1, -0.5]")" \
   "{ \"type\": \"ellipsoid\", \"center\": [0, 0.2, 0], \"radii\": [1e2, 1e-2, 1e-2], \"material\": \"red\" },
     { \"type\": \"ellipsoid\", \"center\": [0, -0.5, 0], \"radii\": [3, 0.1, 3], \"material\": \"white\" }"
+# ... and a cylinder 1e6 sizes away: the precision budget must ask for f64 (as for spheres).
+scene S20_far_cylinder_1e6 64x64 "$(persp "[0, 0, 1e6]" "[0, 0, 0]" "2 * atan2(2, 1e6) * 180 / 3.14159265358979323846")" \
+  "$(sun "[0.3, -0.6, -1]")" \
+  "{ \"type\": \"cylinder\", \"center\": [0, 0, 0], \"axis\": [0.3, 1, 0.2], \"radius\": 1, \"height\": 2.5, \"material\": \"red\" }"
 echo "wrote $(ls "$out"/*.json | wc -l) scenes to $out"

@@ -80,9 +80,9 @@ for s in "${scenes[@]}"; do
   # Scenes that f32 arithmetic cannot render faithfully: the precision-budget pass must say
   # so, and --precision auto must pick f64 (lavapipe has shaderFloat64).
   case $name in
-    S03_distance_1e8 | S04_r1e-20* | S05_ground_h1e1 | S05_ground_h1e0 | S05_ground_h1e-1)
+    S03_distance_1e8 | S04_r1e-20* | S05_ground_h1e1 | S05_ground_h1e0 | S05_ground_h1e-1 | S20_far_*)
       [[ $f64_needed -ge 1 && $precision == f64 ]] || fail "the budget pass did not ask for f64 ($f64_needed, $precision)" ;;
-    S01_* | S02_* | S03_distance_1e[1-5] | S13_* | S16_* | S17_*_h1e-[23])
+    S01_* | S02_* | S03_distance_1e[1-5] | S13_* | S16_* | S17_*_h1e-[23] | S20_axis_* | S20_cone_* | S20_ellipsoid_*)
       [[ $f64_needed == 0 && $precision == f32 ]] || fail "an ordinary scene was not left in f32 ($f64_needed, $precision)" ;;
   esac
 done
