@@ -215,7 +215,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
   uint32_t kinds = generic ? RC_KIND_ALL
                            : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
                                  (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0);
-  const uint32_t spec_values[14] = {r->local_x,
+  const uint32_t spec_values[15] = {r->local_x,
                                     r->local_y,
                                     r->budget,
                                     r->opts.aov ? VK_TRUE : VK_FALSE,
@@ -228,14 +228,15 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                     generic ? RC_LIGHTS_FROM_FRAME : f->light_count,
                                     generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
                                     generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
-                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth};
-  const VkSpecializationMapEntry entries[14] = {
+                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth,
+                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel};
+  const VkSpecializationMapEntry entries[15] = {
       {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
       {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
       {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
       {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
-      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 14, .pMapEntries = entries, .dataSize = sizeof spec_values,
+      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 15, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,

@@ -22,6 +22,7 @@ layout(constant_id = RC_SPEC_LIGHT_COUNT) const uint spec_light_count = RC_LIGHT
 layout(constant_id = RC_SPEC_SHADOWS) const uint spec_shadows = RC_SHADOWS_FROM_FRAME;
 layout(constant_id = RC_SPEC_SPECULAR_MODEL) const uint spec_specular_model = RC_SPECULAR_FROM_FRAME;
 layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth = RC_DEPTH_FROM_FRAME;
+layout(constant_id = RC_SPEC_SAMPLES) const uint spec_samples = RC_SAMPLES_FROM_FRAME;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
@@ -45,6 +46,9 @@ uint scene_light_count() { return spec_light_count == RC_LIGHTS_FROM_FRAME ? fra
 bool scene_shadows() { return (spec_shadows == RC_SHADOWS_FROM_FRAME ? frame.shadows : spec_shadows) != 0u; }
 uint scene_specular_model() {
   return spec_specular_model == RC_SPECULAR_FROM_FRAME ? frame.specular_model : spec_specular_model;
+}
+uint scene_samples_per_pixel() {
+  return spec_samples == RC_SAMPLES_FROM_FRAME ? frame.samples_per_pixel : spec_samples;
 }
 uint scene_reflection_depth() {
   return spec_reflection_depth == RC_DEPTH_FROM_FRAME ? frame.reflection_depth : spec_reflection_depth;
@@ -83,7 +87,7 @@ void main() {
     sum = accum[slot];
     uint done = uint(sum.a);
     accum_done_before = done;
-    target = min(done + push.batch_samples, frame.samples_per_pixel);
+    target = min(done + push.batch_samples, scene_samples_per_pixel());
     for (uint s = done; s < target; s++) {
       if (!budget_step()) break;
       sum.rgb += vec3(trace_sample(pixel, s));
@@ -99,7 +103,7 @@ void main() {
   }
   accum[slot] = vec4(sum.rgb, float(target));
   if (aov_enabled && accum_done_before == 0u && target > 0u) aov[slot] = aov_record;
-  if (target < frame.samples_per_pixel) atomicAdd(status.incomplete_pixels, 1u);
+  if (target < scene_samples_per_pixel()) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);
 }

@@ -73,6 +73,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SPEC_SHADOWS 11         /* 1: trace shadow rays, 0: not, or RC_SHADOWS_FROM_FRAME */
 #define RC_SPEC_SPECULAR_MODEL 12  /* RC_SPECULAR_*, or RC_SPECULAR_FROM_FRAME */
 #define RC_SPEC_REFLECTION_DEPTH 13 /* mirror bounces, or RC_DEPTH_FROM_FRAME */
+#define RC_SPEC_SAMPLES 14         /* samples per pixel, or RC_SAMPLES_FROM_FRAME */
 #define RC_KIND_SPHERES 1u
 #define RC_KIND_TRIANGLES 2u
 #define RC_KIND_QUADRICS 4u
@@ -82,6 +83,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
 #define RC_SHADOWS_FROM_FRAME 0xffffffffu
+#define RC_SAMPLES_FROM_FRAME 0xffffffffu
 
 /* The speed/accuracy knobs (docs/accuracy.md). The first of each is the robust default;
  * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in gpu_frame. */
