@@ -198,7 +198,10 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                     .pPushConstantRanges = &pcr};
   RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
 
-  rc_spirv code = rc_shader_raycast(texel, r->opts.f64);
+  /* The module without quadric code where the scene has none (and the pipeline is not the
+   * generic one): lavapipe compiles the whole module before specializing it. */
+  bool quadrics = r->opts.generic_pipeline || r->frame.quadric_count || r->frame.csg_count;
+  rc_spirv code = rc_shader_raycast(texel, r->opts.f64, quadrics);
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                   .codeSize = code.size,
                                   .pCode = code.words};

@@ -13,7 +13,8 @@ typedef struct rc_spirv {
 } rc_spirv;
 
 /* raycast.comp reading the scene arrays as texel or storage buffers, with f32 or f64
- * (RC_F64: needs shaderFloat64 and shaderInt64) geometry and shading math. */
-rc_spirv rc_shader_raycast(bool texel_buffers, bool f64);
+ * (RC_F64: needs shaderFloat64 and shaderInt64) geometry and shading math, with or without
+ * the quadric and composite code (RC_QUADRICS). */
+rc_spirv rc_shader_raycast(bool texel_buffers, bool f64, bool quadrics);
 
 #endif

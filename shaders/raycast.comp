@@ -9,6 +9,13 @@
 
 #include "rc_shared.h"
 
+// RC_QUADRICS=0 builds the module without quadric and composite code (host/gpu_shaders.c
+// picks it for scenes that have neither): lavapipe translates and optimizes the whole
+// module before specialization removes dead code, and the quadric code tripled that time.
+#ifndef RC_QUADRICS
+#define RC_QUADRICS 1
+#endif
+
 layout(local_size_x_id = RC_SPEC_LOCAL_SIZE_X, local_size_y_id = RC_SPEC_LOCAL_SIZE_Y) in;
 layout(constant_id = RC_SPEC_LOOP_BUDGET) const uint loop_budget = RC_LOOP_BUDGET;
 layout(constant_id = RC_SPEC_AOV) const bool aov_enabled = false;
@@ -59,7 +66,9 @@ uint scene_reflection_depth() {
 #include "rc_budget.glsl"
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
+#if RC_QUADRICS
 #include "rc_quadric.glsl"
+#endif
 #include "rc_intersect.glsl"
 #include "rc_bvh.glsl"
 #include "rc_shade.glsl"

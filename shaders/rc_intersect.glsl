@@ -244,8 +244,10 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
     if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
     return intersect_triangle(o, sh, tri, t_max, bary);
   }
+#if RC_QUADRICS
   if (has_kind(RC_KIND_QUADRICS) && kind == RC_HIT_QUADRIC) return intersect_quadric(index, o, d, t_max, part);
   if (has_kind(RC_KIND_CSG) && kind == RC_HIT_CSG) return intersect_csg(index, o, d, t_max, part);
+#endif
   return real(RC_T_FAR);
 }
 

@@ -12,6 +12,7 @@ struct surface {
 };
 
 
+#if RC_QUADRICS
 // The hit point o + t d moved onto the quadric surface a code names (face 0) by one Newton
 // step along the gradient, and its error bound. A root's t is ill-conditioned where the
 // ray grazes the surface (along a cone's generator, near a silhouette), and o + t d can
@@ -39,6 +40,7 @@ rvec3 quadric_refine(uint code, rvec3 p, inout rvec3 p_error) {
   p_error = gamma_bound(8.0) * (abs(pr) + abs(pc)) + rvec3(value_error / (2.0 * sqrt(gg)));
   return pr;
 }
+#endif
 
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
@@ -88,6 +90,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
     }
     sf.material = s.material;
+#if RC_QUADRICS
   } else if (h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG) {
     precise rvec3 td = h.t * d;
     sf.p = o + td;
@@ -97,6 +100,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(h.part, sf.p, sf.p_error);
     n = normalize(quadric_normal(h.part, sf.p, d));
     sf.material = load_quadric(h.part >> 4u).material;
+#endif
   } else {
     gpu_triangle tri = load_triangle(h.index);
     precise rvec3 p0 = h.bary.x * rvec3(tri.v0);
