@@ -5,14 +5,18 @@ static uint64_t steps_per_sample(const gpu_frame *f, uint64_t prims) {
   return 1 + ((uint64_t)f->reflection_depth + 1) * bounce;
 }
 
-/* Loop steps of one ray against one object: 1 for a sphere or triangle; a quadric's two
- * clipped pieces and first-end scan; a composite's program with, per operation, a merge
- * of both operands and the copy back (at most 2 RC_CSG_MAX_INTERVALS ends each). */
+/* Loop steps of one ray against one object, at most: 1 for a sphere or triangle; a
+ * quadric's two clipped pieces and its first-end scan; a composite's count from the loader
+ * (its program, pieces, merges, copies and scan, from its tree's interval bounds). */
 static uint64_t object_steps(const gpu_frame *f) {
-  uint64_t csg = f->csg_count ? f->csg_max_program * (1 + 6ull * RC_CSG_MAX_INTERVALS) : 0;
+  uint64_t csg = f->csg_count ? f->csg_max_steps : 0;
   uint64_t quadric = f->quadric_count ? 1 + 2 + 4 : 1;
   return csg > quadric ? csg : quadric;
 }
+
+/* Objects a ray tests through the BVH, as planned: 16, or all of them in a smaller scene
+ * (each object is in one leaf, so no ray tests more). */
+static uint64_t leaf_tests(const gpu_frame *f) { return f->object_count < 16 ? f->object_count : 16; }
 
 uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
   return steps_per_sample(f, ((uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count) *
@@ -22,7 +26,7 @@ uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
 rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
   plan->budget = budget;
   plan->steps_per_sample =
-      bvh_depth ? steps_per_sample(f, 4ull * bvh_depth + 16 * object_steps(f)) : rc_gpu_plan_steps_per_sample(f);
+      bvh_depth ? steps_per_sample(f, 4ull * bvh_depth + leaf_tests(f) * object_steps(f)) : rc_gpu_plan_steps_per_sample(f);
   uint64_t batch = budget / plan->steps_per_sample;
   if (batch == 0 && bvh_depth) batch = 1;
   if (batch == 0) {

@@ -161,7 +161,7 @@ struct gpu_frame {
   uint sphere_formula;    uint triangle_formula; uint offset_strategy; float offset_epsilon;
   uint quadric_count;     uint csg_count;
   uint shadows;           /* 0: no shadow rays */
-  uint csg_max_program;   /* the longest composite program (the host's loop plan) */
+  uint csg_max_steps;     /* the most loop steps one ray can take in a composite (the host's plan) */
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -335,7 +335,7 @@ RC_ASSERT_LAYOUT(gpu_frame, inv_strata_x, 152);  RC_ASSERT_LAYOUT(gpu_frame, inv
 RC_ASSERT_LAYOUT(gpu_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(gpu_frame, triangle_formula, 164);
 RC_ASSERT_LAYOUT(gpu_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(gpu_frame, offset_epsilon, 172);
 RC_ASSERT_LAYOUT(gpu_frame, quadric_count, 176); RC_ASSERT_LAYOUT(gpu_frame, csg_count, 180);
-RC_ASSERT_LAYOUT(gpu_frame, shadows, 184); RC_ASSERT_LAYOUT(gpu_frame, csg_max_program, 188);
+RC_ASSERT_LAYOUT(gpu_frame, shadows, 184); RC_ASSERT_LAYOUT(gpu_frame, csg_max_steps, 188);
 RC_ASSERT_SIZE(gpu_frame, 192);
 RC_ASSERT_LAYOUT(gpu_quadric, center, 0);   RC_ASSERT_LAYOUT(gpu_quadric, material, 12);
 RC_ASSERT_LAYOUT(gpu_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(gpu_quadric, constant, 28);

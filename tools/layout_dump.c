@@ -43,7 +43,7 @@ int main(void) {
   OFF("frame.quadric_count", gpu_frame, quadric_count);
   OFF("frame.csg_count", gpu_frame, csg_count);
   OFF("frame.shadows", gpu_frame, shadows);
-  OFF("frame.csg_max_program", gpu_frame, csg_max_program);
+  OFF("frame.csg_max_steps", gpu_frame, csg_max_steps);
   printf("Frame size %zu\n", sizeof(gpu_frame));
 
   OFF("scene_bvh_nodes.lo0", gpu_bvh_node, lo0);

@@ -57,6 +57,7 @@ typedef struct rc_quadric_def {
 typedef struct rc_csg_def {
   uint32_t *program;
   uint32_t length;
+  uint32_t steps; /* the most shader loop steps one ray can take in it (rc_quadric.glsl) */
   dvec3 lo, hi;
 } rc_csg_def;
 

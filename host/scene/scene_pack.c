@@ -152,7 +152,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   size_t program = 0;
   for (size_t i = 0; i < s->csg_count; i++) {
     program += s->csgs[i].length;
-    if (s->csgs[i].length > f->csg_max_program) f->csg_max_program = s->csgs[i].length;
+    if (s->csgs[i].steps > f->csg_max_steps) f->csg_max_steps = s->csgs[i].steps;
   }
   p->csg_program = rc_alloc((program + 4) / 4 * 4, sizeof *p->csg_program, "packed CSG programs");
   p->csg_program_length = (uint32_t)program;

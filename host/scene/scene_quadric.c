@@ -269,9 +269,11 @@ typedef struct {
   size_t length, capacity;
 } program;
 
-/* What a subtree needs: stack lists while it runs, intervals in its result. */
+/* What a subtree needs: stack lists while it runs, intervals in its result, and shader
+ * loop steps (rc_quadric.glsl: one per instruction, per clipped piece of a leaf, per
+ * interval end merged and copied back). */
 typedef struct {
-  uint32_t stack, intervals;
+  uint32_t stack, intervals, steps;
   dvec3 lo, hi;
 } csg_need;
 
@@ -309,6 +311,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     /* Postfix: the left list waits on the stack while the right one is built. */
     need->stack = l.stack > r.stack + 1 ? l.stack : r.stack + 1;
     need->intervals = op == 1 ? l.intervals + r.intervals - 1 : l.intervals + r.intervals;
+    need->steps = l.steps + r.steps + 1 + 2 * (l.intervals + r.intervals) + 2 * need->intervals;
     if (need->stack > RC_CSG_STACK || need->intervals > RC_CSG_MAX_INTERVALS)
       return js_fail(c, "composite too deep for the GPU's fixed interval lists: it needs %u lists of up to %u "
                         "intervals, the limit is %u lists of %u (nest the deeper operand on the left)",
@@ -352,6 +355,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
   }
   need->stack = 1;
+  need->steps = 1 + need->intervals;
   rc_quadric_world_box(&q, &need->lo, &need->hi);
   GROW(s->csg_leaves, s->csg_leaf_count, s->csg_leaf_capacity);
   s->csg_leaves[s->csg_leaf_count] = q;
@@ -385,6 +389,8 @@ rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s) {
     free(p.code);
     return st;
   }
-  s->csgs[s->csg_count++] = (rc_csg_def){.program = p.code, .length = (uint32_t)p.length, .lo = need.lo, .hi = need.hi};
+  /* + the scan for the first interval end in front of the ray. */
+  s->csgs[s->csg_count++] = (rc_csg_def){
+      .program = p.code, .length = (uint32_t)p.length, .steps = need.steps + 2 * need.intervals, .lo = need.lo, .hi = need.hi};
   return RC_OK;
 }
