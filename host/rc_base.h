@@ -49,6 +49,19 @@ double rc_cpu_ms(void);
  * RC_ERR_OUT_OF_MEMORY, exit status 3). */
 void *rc_alloc(size_t count, size_t size, const char *what);
 
+/* Grows `array` (count used of cap) to room for one more: doubling, `first` elements the
+ * first time. Returns RC_ERR_OUT_OF_MEMORY from the calling function on failure. */
+#define RC_GROW(array, count, cap, first)                \
+  do {                                                   \
+    if ((count) == (cap)) {                              \
+      size_t n_ = (cap) ? 2 * (cap) : (first);           \
+      void *p_ = realloc((array), n_ * sizeof *(array)); \
+      if (!p_) return RC_ERR_OUT_OF_MEMORY;              \
+      (array) = p_;                                      \
+      (cap) = n_;                                        \
+    }                                                    \
+  } while (0)
+
 /* Fault injection for the tests of the error paths: true when VKRAYCAST_FAULT names this
  * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling
  * code then runs as if the driver or the allocator had failed. */

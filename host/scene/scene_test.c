@@ -148,16 +148,7 @@ static rc_status material_index(rc_scene *s, size_t *cap, const material_state *
   return RC_OK;
 }
 
-#define GROW(array, count, cap)                                          \
-  do {                                                                   \
-    if ((count) == (cap)) {                                              \
-      size_t n_ = (cap) ? 2 * (cap) : 64;                                \
-      void *p_ = realloc((array), n_ * sizeof *(array));                 \
-      if (!p_) return RC_ERR_OUT_OF_MEMORY;                                  \
-      (array) = p_;                                                      \
-      (cap) = n_;                                                        \
-    }                                                                    \
-  } while (0)
+#define GROW(array, count, cap) RC_GROW(array, count, cap, 64)
 
 typedef struct {
   rc_scene *s;
