@@ -14,9 +14,13 @@
 
 static const char *const quadric_types[] = {"quadric", "ellipsoid", "cylinder", "cone",
                                              "paraboloid", "hyperboloid", "box", "csg", NULL};
-enum { T_QUADRIC, T_ELLIPSOID, T_CYLINDER, T_CONE, T_PARABOLOID, T_HYPERBOLOID, T_BOX, T_CSG };
+enum { T_QUADRIC, T_ELLIPSOID, T_CYLINDER, T_CONE, T_PARABOLOID, T_HYPERBOLOID, T_BOX, T_CSG, T_SPHERE };
 
 bool js_is_quadric_type(const char *type) { return rc_name_index(quadric_types, type) >= 0; }
+
+static void identity_frame(dvec3 axis[3]) {
+  axis[0] = rcm_make_d(1, 0, 0), axis[1] = rcm_make_d(0, 1, 0), axis[2] = rcm_make_d(0, 0, 1);
+}
 
 /* Right-handed axes with `z` (unit) as the third. */
 static void frame_from_axis(dvec3 z, dvec3 axis[3]) {
@@ -115,7 +119,7 @@ static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool 
   for (int i = 0; i < 3; i++) mc[i] = Q[i][0] * cv[0] + Q[i][1] * cv[1] + Q[i][2] * cv[2];
   for (int i = 0; i < 3; i++) lin[i] = mc[i] + Q[i][3];
   q->center = ctr;
-  q->axis[0] = rcm_make_d(1, 0, 0), q->axis[1] = rcm_make_d(0, 1, 0), q->axis[2] = rcm_make_d(0, 0, 1);
+  identity_frame(q->axis);
   q->diag = rcm_make_d(Q[0][0], Q[1][1], Q[2][2]);
   q->off = rcm_make_d(Q[0][1], Q[0][2], Q[1][2]);
   q->linear = rcm_make_d(lin[0], lin[1], lin[2]);
@@ -146,10 +150,25 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
       js_push_key(c, "radii");
       return js_fail(c, "must all be greater than 0");
     }
-    q->axis[0] = rcm_make_d(1, 0, 0), q->axis[1] = rcm_make_d(0, 1, 0), q->axis[2] = rcm_make_d(0, 0, 1);
+    identity_frame(q->axis);
     q->diag = rcm_make_d(1 / (r.x * r.x), 1 / (r.y * r.y), 1 / (r.z * r.z));
     q->constant = -1;
     q->hi = rcm_scale_d(r, 1 + BOX_MARGIN);
+    q->lo = rcm_scale_d(q->hi, -1);
+    return RC_OK;
+  }
+  if (type == T_SPHERE) {
+    /* Only as a composite's operand (a standalone sphere has its own type): the solid
+     * ellipsoid with three equal radii. */
+    static const char *const allowed[] = {"type", "center", "radius", "material", NULL};
+    TRY(js_check_members(c, o, allowed));
+    double r;
+    TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
+    TRY(js_get_positive(c, o, "radius", true, 0, &r));
+    identity_frame(q->axis);
+    q->diag = rcm_make_d(1, 1, 1);
+    q->constant = -r * r;
+    q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN));
     q->lo = rcm_scale_d(q->hi, -1);
     return RC_OK;
   }
@@ -164,7 +183,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
       return js_fail(c, "must exceed min in every coordinate");
     }
     q->center = rcm_scale_d(rcm_add_d(lo, hi), 0.5);
-    q->axis[0] = rcm_make_d(1, 0, 0), q->axis[1] = rcm_make_d(0, 1, 0), q->axis[2] = rcm_make_d(0, 0, 1);
+    identity_frame(q->axis);
     q->diag = zero;
     q->constant = -1; /* inside everywhere: the solid is the box */
     q->lo = rcm_sub_d(lo, q->center);
@@ -253,16 +272,7 @@ static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, const rc_
   return RC_OK;
 }
 
-#define GROW(arr, count, cap)                                                  \
-  do {                                                                         \
-    if ((count) == (cap)) {                                                    \
-      size_t n_ = (cap) ? 2 * (cap) : 8;                                       \
-      void *p_ = realloc((arr), n_ * sizeof *(arr));                           \
-      if (!p_) return RC_ERR_OUT_OF_MEMORY;                                    \
-      (arr) = p_;                                                              \
-      (cap) = n_;                                                              \
-    }                                                                          \
-  } while (0)
+#define GROW(array, count, cap) RC_GROW(array, count, cap, 8)
 
 typedef struct {
   uint32_t *code;
@@ -330,30 +340,8 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     return RC_OK;
   }
   rc_quadric_def q;
-  if (type == 8) {
-    /* A sphere operand: the solid ellipsoid with three equal radii. */
-    static const char *const allowed[] = {"type", "center", "radius", "material", NULL};
-    TRY(js_check_members(c, o, allowed));
-    memset(&q, 0, sizeof q);
-    double r;
-    TRY(js_get_vec3(c, o, "center", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &q.center));
-    TRY(js_get_positive(c, o, "radius", true, 0, &r));
-    q.axis[0] = rcm_make_d(1, 0, 0), q.axis[1] = rcm_make_d(0, 1, 0), q.axis[2] = rcm_make_d(0, 0, 1);
-    q.diag = rcm_make_d(1, 1, 1);
-    q.constant = -r * r;
-    q.hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN));
-    q.lo = rcm_scale_d(q.hi, -1);
-    q.solid = true;
-    normalize_coefficients(&q);
-    if (cJSON_GetObjectItemCaseSensitive(o, "material") || inherited < 0)
-      TRY(js_get_material_ref(c, o, s, &q.material));
-    else
-      q.material = (uint32_t)inherited;
-    need->intervals = 1;
-  } else {
-    TRY(parse_quadric(c, o, type, s, inherited, &q, &need->intervals));
-    if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
-  }
+  TRY(parse_quadric(c, o, type, s, inherited, &q, &need->intervals));
+  if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
   need->stack = 1;
   need->steps = 1 + need->intervals;
   rc_quadric_world_box(&q, &need->lo, &need->hi);
@@ -374,17 +362,12 @@ rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s) {
     s->quadric_count++;
     return RC_OK;
   }
+  GROW(s->csgs, s->csg_count, s->csg_capacity); /* first, while there is nothing to free */
   program p = {0};
   csg_need need;
   rc_status st = parse_csg_node(c, o, s, -1, &p, &need);
   if (st == RC_OK && !(need.lo.x <= need.hi.x && need.lo.y <= need.hi.y && need.lo.z <= need.hi.z))
     st = js_fail(c, "the operands of this intersection do not overlap: the composite is empty");
-  if (st == RC_OK && s->csg_count == s->csg_capacity) {
-    size_t n = s->csg_capacity ? 2 * s->csg_capacity : 4;
-    void *q = realloc(s->csgs, n * sizeof *s->csgs);
-    if (!q) st = RC_ERR_OUT_OF_MEMORY;
-    else s->csgs = q, s->csg_capacity = n;
-  }
   if (st != RC_OK) {
     free(p.code);
     return st;
