@@ -231,19 +231,10 @@ static box padded_box(const double lo[3], const double hi[3]) {
 
 /* A quadric's proxy: its clip box (in its own frame) carried to the packed space. */
 static box quadric_box(const gpu_quadric *q) {
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  const vec3 ax[3] = {q->axis_x, q->axis_y, q->axis_z};
-  for (int k = 0; k < 8; k++) {
-    double f[3] = {k & 1 ? q->hi.x : q->lo.x, k & 2 ? q->hi.y : q->lo.y, k & 4 ? q->hi.z : q->lo.z};
-    double p[3] = {q->center.x, q->center.y, q->center.z};
-    for (int j = 0; j < 3; j++) {
-      p[0] += (double)ax[j].x * f[j];
-      p[1] += (double)ax[j].y * f[j];
-      p[2] += (double)ax[j].z * f[j];
-    }
-    for (int i = 0; i < 3; i++) lo[i] = fmin(lo[i], p[i]), hi[i] = fmax(hi[i], p[i]);
-  }
-  return padded_box(lo, hi);
+  const dvec3 axis[3] = {rcm_to_d(q->axis_x), rcm_to_d(q->axis_y), rcm_to_d(q->axis_z)};
+  dvec3 lo, hi;
+  rc_frame_box_bounds(rcm_to_d(q->center), axis, rcm_to_d(q->lo), rcm_to_d(q->hi), &lo, &hi);
+  return padded_box((const double[3]){lo.x, lo.y, lo.z}, (const double[3]){hi.x, hi.y, hi.z});
 }
 
 rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {

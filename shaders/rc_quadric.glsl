@@ -284,8 +284,7 @@ real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
 // The outward normal (not normalized) of the surface a code names, at p: grad Q / 2 =
 // M f + L in the quadric's frame, or the box face's axis, rotated back to the packed
 // space; reversed for the surface of a subtracted solid.
-rvec3 quadric_normal(uint code, rvec3 p, rvec3 d) {
-  gpu_quadric q = load_quadric(code >> 4u);
+rvec3 quadric_normal(gpu_quadric q, uint code, rvec3 p, rvec3 d) {
   uint face = (code >> 2u) & 3u;
   rvec3 g;
   if (face == 0u) {

@@ -21,8 +21,7 @@ struct surface {
 // surface is Q's rounding error over |grad Q| (pbrt re-projects its quadrics' hit points
 // for the same reason, pbrt-v4 shapes.h); the error bound is that distance plus the
 // rounding of p - c (which Q saw) and of the step.
-rvec3 quadric_refine(uint code, rvec3 p, inout rvec3 p_error) {
-  gpu_quadric q = load_quadric(code >> 4u);
+rvec3 quadric_refine(gpu_quadric q, rvec3 p, inout rvec3 p_error) {
   rvec3 L = rvec3(q.linear);
   precise rvec3 pc = p - rvec3(q.center);
   precise rvec3 f = quadric_local(q, pc);
@@ -97,9 +96,10 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     // A box face (a plane) is hit as well as o + t d allows, as for transformed spheres;
     // a quadric surface point is re-projected onto the surface.
     sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
-    if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(h.part, sf.p, sf.p_error);
-    n = normalize(quadric_normal(h.part, sf.p, d));
-    sf.material = load_quadric(h.part >> 4u).material;
+    gpu_quadric q = load_quadric(h.part >> 4u);  // the surface's leaf (rc_quadric.glsl, csg_code)
+    if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
+    n = normalize(quadric_normal(q, h.part, sf.p, d));
+    sf.material = q.material;
 #endif
   } else {
     gpu_triangle tri = load_triangle(h.index);

@@ -70,7 +70,7 @@ extern _Thread_local bool ref_spawned_ray;
   R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
   uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
   R ref_intersect_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
-  V ref_quadric_normal_##S(const ref_scene *sc, uint32_t code, V p, V d);
+  V ref_quadric_normal_##S(const gpu_quadric *q, uint32_t code, V p, V d);
 
 REF_DECLARE_QUADRIC(d, double, dvec3)
 REF_DECLARE_QUADRIC(f, float, vec3)

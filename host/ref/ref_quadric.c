@@ -234,8 +234,7 @@ real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, r
   return REF(first_interval_end)(0, count[0], t_max, code);
 }
 
-rvec3 REF(quadric_normal)(const ref_scene *sc, uint32_t code, rvec3 p, rvec3 d) {
-  const gpu_quadric *q = &sc->quadrics[code >> 4u];
+rvec3 REF(quadric_normal)(const gpu_quadric *q, uint32_t code, rvec3 p, rvec3 d) {
   uint32_t face = (code >> 2u) & 3u;
   rvec3 g;
   if (face == 0) {

@@ -6,8 +6,7 @@
 #include "ref/ref_shader.h"
 
 
-rvec3 REF(quadric_refine)(const ref_scene *sc, uint32_t code, rvec3 p, rvec3 *p_error) {
-  const gpu_quadric *q = &sc->quadrics[code >> 4u];
+rvec3 REF(quadric_refine)(const gpu_quadric *q, rvec3 p, rvec3 *p_error) {
   rvec3 L = rvec3_from(q->linear);
   rvec3 pc = RV(sub)(p, rvec3_from(q->center));
   rvec3 f = REF(quadric_local)(q, pc);
@@ -71,9 +70,10 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     rvec3 td = RV(scale)(d, h->t);
     sf.p = RV(add)(o, td);
     sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
-    if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(sc, h->part, sf.p, &sf.p_error);
-    n = RV(normalize)(REF(quadric_normal)(sc, h->part, sf.p, d));
-    sf.material = sc->quadrics[h->part >> 4u].material;
+    const gpu_quadric *q = &sc->quadrics[h->part >> 4u];
+    if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
+    n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
+    sf.material = q->material;
   } else {
     gpu_triangle tri = sc->triangles[h->index];
     rvec3 v0 = rvec3_from(tri.v0), v1 = rvec3_from(tri.v1), v2 = rvec3_from(tri.v2);

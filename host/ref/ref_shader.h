@@ -21,7 +21,7 @@ extern _Thread_local gpu_aov ref_aov_record;
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
   typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; } ref_surface_##S;  \
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
-  V ref_quadric_refine_##S(const ref_scene *sc, uint32_t code, V p, V *p_error);                \
+  V ref_quadric_refine_##S(const gpu_quadric *q, V p, V *p_error);                              \
   ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \
   R ref_offset_coordinate_##S(R p, R n);                                                        \
   V ref_offset_ray_origin_##S(V p, V n);                                                        \

@@ -139,17 +139,21 @@ rc_quality rc_quality_default(void) {
                       .shadows = true};
 }
 
-void rc_quadric_world_box(const rc_quadric_def *q, dvec3 *lo, dvec3 *hi) {
-  *lo = rcm_make_d(HUGE_VAL, HUGE_VAL, HUGE_VAL);
-  *hi = rcm_make_d(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
+void rc_frame_box_bounds(dvec3 center, const dvec3 axis[3], dvec3 lo, dvec3 hi, dvec3 *out_lo, dvec3 *out_hi) {
+  *out_lo = rcm_make_d(HUGE_VAL, HUGE_VAL, HUGE_VAL);
+  *out_hi = rcm_make_d(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
   for (int k = 0; k < 8; k++) {
-    dvec3 f = rcm_make_d(k & 1 ? q->hi.x : q->lo.x, k & 2 ? q->hi.y : q->lo.y, k & 4 ? q->hi.z : q->lo.z);
+    dvec3 f = rcm_make_d(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
     /* p = center + R^T f: the axes are R's rows. */
-    dvec3 p = rcm_add_d(q->center, rcm_add_d(rcm_add_d(rcm_scale_d(q->axis[0], f.x), rcm_scale_d(q->axis[1], f.y)),
-                                             rcm_scale_d(q->axis[2], f.z)));
-    lo->x = fmin(lo->x, p.x), lo->y = fmin(lo->y, p.y), lo->z = fmin(lo->z, p.z);
-    hi->x = fmax(hi->x, p.x), hi->y = fmax(hi->y, p.y), hi->z = fmax(hi->z, p.z);
+    dvec3 p = rcm_add_d(center, rcm_add_d(rcm_add_d(rcm_scale_d(axis[0], f.x), rcm_scale_d(axis[1], f.y)),
+                                          rcm_scale_d(axis[2], f.z)));
+    out_lo->x = fmin(out_lo->x, p.x), out_lo->y = fmin(out_lo->y, p.y), out_lo->z = fmin(out_lo->z, p.z);
+    out_hi->x = fmax(out_hi->x, p.x), out_hi->y = fmax(out_hi->y, p.y), out_hi->z = fmax(out_hi->z, p.z);
   }
+}
+
+void rc_quadric_world_box(const rc_quadric_def *q, dvec3 *lo, dvec3 *hi) {
+  rc_frame_box_bounds(q->center, q->axis, q->lo, q->hi, lo, hi);
 }
 
 int rc_name_index(const char *const *names, const char *name) {

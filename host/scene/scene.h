@@ -138,7 +138,10 @@ rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
  * in f64: degenerate but meaningful input is skipped and counted (ROBUSTNESS.md §8.3).
  * The one rule for JSON triangles, .test triangles and mesh faces. */
 rc_status rc_scene_add_triangle(rc_scene *scene, const rc_triangle_def *t);
-/* The world-space bounding box of a quadric's clip box (its 8 corners). */
+/* The axis-aligned bounds of the box [lo, hi] of a frame (centre, orthonormal axes as
+ * rows): its 8 corners carried out of the frame. */
+void rc_frame_box_bounds(dvec3 center, const dvec3 axis[3], dvec3 lo, dvec3 hi, dvec3 *out_lo, dvec3 *out_hi);
+/* The world-space bounding box of a quadric's clip box. */
 void rc_quadric_world_box(const rc_quadric_def *q, dvec3 *lo, dvec3 *hi);
 /* world_from_object applied to a point. */
 dvec3 rc_affine_point(const rc_affine *a, dvec3 p);

@@ -176,7 +176,7 @@ TEST(quadric_ray_along_a_cylinders_axis_takes_the_a_zero_branch) {
   double t = ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code);
   CHECK_NEAR(t, 4.0, 1e-12);
   CHECK_EQ_INT((code >> 2) & 3u, 3u); /* the z face: the cap */
-  dvec3 n = ref_quadric_normal_d(&sc, code, rcm_make_d(0.5, 0, 1), rcm_make_d(0, 0, -1));
+  dvec3 n = ref_quadric_normal_d(&q, code, rcm_make_d(0.5, 0, 1), rcm_make_d(0, 0, -1));
   CHECK(n.x == 0 && n.y == 0 && n.z == 1);
   q = cylinder_z(false);
   CHECK(ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code) == FAR);
@@ -234,7 +234,7 @@ TEST(csg_difference_and_intersection_give_the_interval_ends) {
   CHECK_NEAR(ref_intersect_csg_d(&sc, 0, rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.7, 2e-8);
   CHECK_EQ_INT(code >> 4, 1u);   /* on B */
   CHECK_EQ_INT(code & 1u, 1u);   /* flipped: B was subtracted */
-  dvec3 n = ref_quadric_normal_d(&sc, code, rcm_make_d(0, 0, 0.3), rcm_make_d(0, 0, -1));
+  dvec3 n = ref_quadric_normal_d(&leaves[code >> 4], code, rcm_make_d(0, 0, 0.3), rcm_make_d(0, 0, -1));
   CHECK(n.z > 0); /* B's inner surface faces up, out of A - B */
   CHECK_NEAR(ref_intersect_csg_d(&sc, 1, rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.0, 1e-12);
   CHECK_EQ_INT(code >> 4, 0u);
