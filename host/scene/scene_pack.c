@@ -248,15 +248,11 @@ static float perturb_lean(float x, uint32_t seed, double lean) {
 
 static float perturb_value(float x, uint32_t seed) { return perturb_lean(x, seed, 1.0); }
 
-static vec3 perturb_vec3(vec3 v, uint32_t seed) {
-  return (vec3){perturb_value(v.x, seed), perturb_value(v.y, seed), perturb_value(v.z, seed)};
+static vec3 perturb_vec3_lean(vec3 v, uint32_t seed, double lean) {
+  return (vec3){perturb_lean(v.x, seed, lean), perturb_lean(v.y, seed, lean), perturb_lean(v.z, seed, lean)};
 }
 
-/* A quadric's second-order coefficients lean the other way from its constant, so that
- * -constant / diag (a radius squared, after normalization) moves rather than cancels. */
-static vec3 perturb_shape(vec3 v, uint32_t seed) {
-  return (vec3){perturb_lean(v.x, seed, -1.0), perturb_lean(v.y, seed, -1.0), perturb_lean(v.z, seed, -1.0)};
-}
+static vec3 perturb_vec3(vec3 v, uint32_t seed) { return perturb_vec3_lean(v, seed, 1.0); }
 
 void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
   for (uint32_t i = 0; i < p->frame.sphere_count; i++) {
@@ -275,8 +271,10 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
   for (uint32_t i = 0; i < p->quadric_total; i++) {
     gpu_quadric *q = &p->quadrics[i];
     q->center = perturb_vec3(q->center, seed);
-    q->diag = perturb_shape(q->diag, seed);
-    q->off = perturb_shape(q->off, seed);
+    /* The second-order coefficients lean the other way from the constant, so that
+     * -constant / diag (a radius squared, after normalization) moves rather than cancels. */
+    q->diag = perturb_vec3_lean(q->diag, seed, -1.0);
+    q->off = perturb_vec3_lean(q->off, seed, -1.0);
     q->linear = perturb_vec3(q->linear, seed);
     q->constant = perturb_value(q->constant, seed);
     q->lo = perturb_vec3(q->lo, seed);

@@ -35,14 +35,40 @@ static q128 oracle_sphere(dvec3 o, dvec3 d, dvec3 c, double r, q128 *disc_rel) {
   return t0 > 0 ? t0 : (t1 > 0 ? t1 : -1);
 }
 
+/* The comparison of one batch of rays: rays in the band are counted and skipped; the
+ * others must be classified alike, and the worst relative t error of the hits is kept. */
+typedef struct {
+  int checked, band, wrong_class, hits;
+  double worst_t;
+} tally;
+
+static void tally_ray(tally *a, bool in_band, double closeness, double t, q128 tq) {
+  if (in_band) {
+    a->band++;
+    return;
+  }
+  a->checked++;
+  bool hit_q = tq > 0, hit = t < RC_T_FAR;
+  if (hit_q != hit) {
+    a->wrong_class++;
+    printf("  misclassified: oracle %s, f64 %s, closeness %.3g, t %.17g, oracle t %.17g\n", hit_q ? "hit" : "miss",
+           hit ? "hit" : "miss", closeness, t, (double)tq);
+    return;
+  }
+  if (hit) {
+    a->hits++;
+    double e = (double)(fabsq((q128)t - tq) / tq);
+    if (e > a->worst_t) a->worst_t = e;
+  }
+}
+
 TEST(f64_sphere_reference_matches_the_oracle_at_s03_distances) {
   const double distances[4] = {10, 1e3, 1e5, 1e8};
   for (int k = 0; k < 4; k++) {
     double D = distances[k];
     gpu_sphere s = {{0, 0, (float)-D}, 1, 0, RC_NO_TRANSFORM, 0, 0};
     dvec3 c = rcm_make_d(0, 0, -D);
-    int checked = 0, band = 0, wrong_class = 0;
-    double worst_t = 0;
+    tally a = {0};
     for (int i = 0; i < 20000; i++) {
       /* Aim at a point within 1.2 radii of the centre, across the sphere's rim. */
       double ang = 2 * M_PI * uniform(), rad = 1.2 * sqrt(uniform());
@@ -51,26 +77,13 @@ TEST(f64_sphere_reference_matches_the_oracle_at_s03_distances) {
       q128 tq = oracle_sphere(rcm_make_d(0, 0, 0), d, c, 1.0, &disc_rel);
       double side;
       double t = ref_intersect_sphere_geometric_d(rcm_make_d(0, 0, 0), d, s, RC_T_FAR, &side);
-      if (disc_rel < 1e-9) {
-        band++;
-        continue;
-      }
-      checked++;
-      bool hit_q = tq > 0, hit = t < RC_T_FAR;
-      if (hit_q != hit) {
-        wrong_class++;
-        continue;
-      }
-      if (hit) {
-        double e = (double)(fabsq((q128)t - tq) / tq);
-        if (e > worst_t) worst_t = e;
-      }
+      tally_ray(&a, disc_rel < 1e-9, (double)disc_rel, t, tq);
     }
-    printf("  D = %g: %d rays checked, %d in the band, %d misclassified, worst t error %.3g\n", D, checked, band,
-           wrong_class, worst_t);
-    CHECK_EQ_INT(wrong_class, 0);
-    CHECK(worst_t <= 1e-12);
-    CHECK(checked > 19000);
+    printf("  D = %g: %d rays checked, %d in the band, %d misclassified, worst t error %.3g\n", D, a.checked, a.band,
+           a.wrong_class, a.worst_t);
+    CHECK_EQ_INT(a.wrong_class, 0);
+    CHECK(a.worst_t <= 1e-12);
+    CHECK(a.checked > 19000);
   }
 }
 
@@ -105,8 +118,7 @@ static q128 oracle_triangle(dvec3 o, dvec3 d, const dvec3 v[3], q128 *edge_rel) 
 TEST(f64_watertight_reference_matches_the_oracle_at_s07_positions) {
   const double offsets[3][3] = {{0, 0, 0}, {148376, 1234, -223423}, {1e6, 1e6, 1e6}};
   for (int k = 0; k < 3; k++) {
-    int checked = 0, band = 0, wrong_class = 0, hits = 0;
-    double worst_t = 0;
+    tally a = {0};
     for (int i = 0; i < 20000; i++) {
       /* A random triangle of size ~1 about 2 units from an origin near the offset, and a
        * ray aimed at a random point of the triangle's plane near it: across its edges,
@@ -132,29 +144,13 @@ TEST(f64_watertight_reference_matches_the_oracle_at_s07_positions) {
       dvec3 bary;
       ref_spawned_ray = false;
       double t = ref_intersect_triangle_d(o, &sh, tri, RC_T_FAR, &bary);
-      if (edge_rel < 1e-12 * (1 + rcm_max_abs_comp_d(o))) {
-        band++;
-        continue;
-      }
-      checked++;
-      bool hit_q = tq > 0, hit = t < RC_T_FAR;
-      if (hit_q != hit) {
-        wrong_class++;
-        printf("  misclassified: oracle %s, f64 %s, edge %.3g, t %.17g, oracle t %.17g\n", hit_q ? "hit" : "miss",
-               hit ? "hit" : "miss", (double)edge_rel, t, (double)tq);
-        continue;
-      }
-      if (hit) {
-        hits++;
-        double e = (double)(fabsq((q128)t - tq) / tq);
-        if (e > worst_t) worst_t = e;
-      }
+      tally_ray(&a, edge_rel < 1e-12 * (1 + rcm_max_abs_comp_d(o)), (double)edge_rel, t, tq);
     }
     printf("  offset %g: %d rays checked (%d hits), %d in the band, %d misclassified, worst t error %.3g\n",
-           offsets[k][0], checked, hits, band, wrong_class, worst_t);
-    CHECK_EQ_INT(wrong_class, 0);
-    CHECK(worst_t <= 1e-12);
-    CHECK(hits > 4000 && band > 1000); /* coverage: a quarter of the rays hit, one in 8 aims at a vertex */
+           offsets[k][0], a.checked, a.hits, a.band, a.wrong_class, a.worst_t);
+    CHECK_EQ_INT(a.wrong_class, 0);
+    CHECK(a.worst_t <= 1e-12);
+    CHECK(a.hits > 4000 && a.band > 1000); /* coverage: a quarter of the rays hit, one in 8 aims at a vertex */
   }
 }
 
