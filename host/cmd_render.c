@@ -55,8 +55,9 @@ static const char render_usage[] =
     "                          for every scene; to measure what specializing buys)\n"
     "  --staging               upload and read back through staging buffers even on unified memory\n"
     "                          (also VKRAYCAST_FORCE_STAGING=1)\n"
-    "  --tile-budget-ms T      the longest one dispatch (one submit) should run: tiles adapt to it\n"
-    "                          (default 100; real GPUs reset after ~2 s)\n"
+    "  --tile-budget-ms T      the longest one dispatch (one submit) should run: tiles adapt to it;\n"
+    "                          0: no limit (default: none on a CPU device such as lavapipe, which\n"
+    "                          no watchdog resets; 100 elsewhere, as real GPUs reset after ~2 s)\n"
     "  --tile N                fixed N x N tiles instead of adaptive ones\n"
     "  --perturb SEED          scale every packed position and radius by 1 + d, |d| <= 2^-22, d a hash\n"
     "                          of SEED and the value (equal values move alike: meshes stay closed); its\n"
@@ -125,7 +126,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->truncate = -1;
   a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
   a->gpu.tile_size = 0;
-  a->gpu.tile_budget_ms = 100;
+  a->gpu.tile_budget_ms = -1; /* the device's default (gpu_render.c) */
   a->gpu.plan_budget = 0;
   const char *force = getenv("VKRAYCAST_FORCE_STAGING");
   a->gpu.force_staging = force && force[0] && strcmp(force, "0") != 0;
@@ -169,7 +170,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
       a->device = (int)n;
     } else if (strcmp(o, "--tile-budget-ms") == 0) {
       uint32_t ms;
-      st = rc_cli_uint(o, v, 1, 60000, &ms);
+      st = rc_cli_uint(o, v, 0, 60000, &ms);
       a->gpu.tile_budget_ms = ms;
     } else if (strcmp(o, "--tile") == 0) {
       st = rc_cli_uint(o, v, 8, 4096, &a->gpu.tile_size);

@@ -6,15 +6,15 @@
 #include <string.h>
 
 #include "gpu_shaders.h"
+#include "gpu_tiles.h"
 
 /* Workgroups are 8 invocations wide and hold max(64, subgroup size) invocations: whole
  * subgroups (NVIDIA 32, AMD 64, llvmpipe 8 on AVX2, Intel 8-32), so no lane idles for
  * want of a full subgroup, and 8 x 8 tiles of pixels share their rays' coherence. */
 #define LOCAL_X 8u
 #define MIN_WORKGROUP 64u
-/* The tile buffers hold this many pixels: adaptive tiles never exceed it. */
+/* The tile buffers hold this many pixels: no tile exceeds it. */
 #define MAX_TILE_PIXELS (1u << 20)
-#define MAX_BAND_ROWS 256u
 #define SCENE_ARRAYS 11 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
                            quadrics, composites, CSG programs */
 
@@ -27,6 +27,7 @@ struct rc_gpu_renderer {
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];
   uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
+  double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
@@ -75,9 +76,24 @@ static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
   return r->opts.tile_size ? r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
 }
 
+static void planner_init(const rc_gpu_renderer *r, rc_tile_planner *p) {
+  rc_tiles_init(p, r->frame.camera.width, r->frame.camera.height, r->opts.tile_size, r->tile_budget_ms,
+                max_tile_pixels(r));
+}
+
 static uint32_t max_band_rows(const rc_gpu_renderer *r) {
-  uint32_t rows = r->opts.tile_size ? r->opts.tile_size : MAX_BAND_ROWS;
-  return rows < r->frame.camera.height ? rows : r->frame.camera.height;
+  rc_tile_planner p;
+  planner_init(r, &p);
+  return rc_tiles_max_band_rows(&p);
+}
+
+/* The time limit of one dispatch: the user's --tile-budget-ms on any device; by default
+ * none on a CPU device (lavapipe: no watchdog resets it, and every dispatch has a fixed
+ * cost), RC_DEFAULT_TILE_BUDGET_MS elsewhere (Windows resets a GPU after 2 s, Linux
+ * drivers kill long dispatches). */
+static double resolve_tile_budget(const rc_vk_ctx *ctx, double wanted_ms) {
+  if (wanted_ms >= 0) return wanted_ms;
+  return ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0.0 : RC_DEFAULT_TILE_BUDGET_MS;
 }
 
 static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
@@ -331,6 +347,8 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->opts = *opts;
   r->frame = scene->frame;
   r->budget = rc_vk_loop_budget(ctx);
+  r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
+  stats->tile_budget_ms = r->tile_budget_ms;
   stats->loop_budget = r->budget;
   stats->subgroup_size = ctx->subgroup_size;
   uint32_t group = ctx->subgroup_size > MIN_WORKGROUP ? ctx->subgroup_size : MIN_WORKGROUP;
@@ -483,6 +501,12 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
   } else {
     *ms = wall;
   }
+  /* Tests of the tile model inject a dispatch's time (no test may read a clock):
+   * VKRAYCAST_FAULT=dispatch-ms:OVERHEAD:PER_PIXEL_SAMPLE, in ms. */
+  const char *fake = rc_fault_arg("dispatch-ms");
+  double overhead, slope;
+  if (fake && sscanf(fake, "%lf:%lf", &overhead, &slope) == 2)
+    *ms = overhead + slope * (double)push->tile_width * push->tile_height * push->batch_samples;
   return RC_OK;
 }
 
@@ -491,11 +515,10 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
  * with half the batch; exhaustion at one sample per batch is an error, never a silently
  * wrong pixel. *worst_ms: the GPU time of the tile's longest dispatch. */
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
-                             rc_gpu_stats *stats, double *worst_ms) {
+                             rc_tile_planner *planner, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples};
   bool first = true;
-  double worst = 0;
   for (;;) {
     gpu_status status;
     double ms = 0;
@@ -504,10 +527,9 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     first = false;
     stats->dispatches++;
     stats->gpu_ms += ms;
-    if (ms > worst) worst = ms;
-    /* The first tile measures (and on lavapipe includes the JIT): not counted. */
-    if (stats->tiles > 0 && ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
-    if (stats->tiles > 0 && ms > r->opts.tile_budget_ms) stats->over_budget++;
+    rc_tiles_observe(planner, (double)tw * th, push.batch_samples, ms);
+    if (ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
+    if (r->tile_budget_ms > 0 && ms > r->tile_budget_ms) stats->over_budget++;
     stats->shadow_rays += status.shadow_rays;
     stats->reflection_rays += status.reflection_rays;
     if (status.exhausted_pixels) {
@@ -522,7 +544,6 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     }
     if (status.incomplete_pixels == 0) break;
   }
-  *worst_ms = worst;
   double t0 = rc_now_ms();
   rc_status st = begin(r);
   if (st != RC_OK) return st;
@@ -554,72 +575,22 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   return RC_OK;
 }
 
-static uint32_t clamp_u(double v, uint32_t lo, uint32_t hi) {
-  if (!(v > lo)) return lo;
-  if (v > hi) return hi;
-  return (uint32_t)v;
-}
-
-/* Tiles of a band: fixed (--tile), or sized from a model of a dispatch's GPU time,
- * overhead + slope * pixels, so that the next dispatch takes about half the budget (the
- * margin absorbs tiles that are costlier per pixel than the one before).
- * The overhead is the fastest dispatch seen (Mesa 22 lavapipe spends ~8 ms on any
- * dispatch, so a budget below that cannot be met there: tiles then stay at twice the
- * overhead rather than shrinking to nothing). The first tile of a frame is 32 x 32. */
-typedef struct {
-  double overhead_ms, slope_ms; /* per dispatch, per pixel */
-  bool known;
-} tile_model;
-
-/* The slope rises at once and decays slowly (a quarter of the way to each new
- * measurement): a mirror sphere can cost several times the background per pixel, and
- * tiles stay sized for it a while after, without one noisy dispatch pinning them small. */
-static void model_update(tile_model *m, double ms, double pixels) {
-  if (!m->known || ms < m->overhead_ms) m->overhead_ms = ms;
-  double slope = (ms - m->overhead_ms) / pixels;
-  if (!(slope > 0)) slope = ms / pixels;
-  m->slope_ms = (!m->known || slope > m->slope_ms) ? slope : 0.75 * m->slope_ms + 0.25 * slope;
-  m->known = true;
-}
-
-static double model_area(const tile_model *m, double budget_ms) {
-  if (!m->known) return 32.0 * 32.0;
-  double room = 0.5 * budget_ms - m->overhead_ms;
-  if (room < m->overhead_ms) room = m->overhead_ms;
-  return room / (m->slope_ms > 0 ? m->slope_ms : 1e-9);
-}
-
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {
   stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
-  const uint32_t w = r->frame.camera.width, h = r->frame.camera.height, fixed = r->opts.tile_size;
+  const uint32_t w = r->frame.camera.width, h = r->frame.camera.height, batch = stats->plan.batch_samples;
   const uint64_t total = (uint64_t)w * h;
   uint64_t done = 0;
-  tile_model model = {0};
+  rc_tile_planner planner;
+  planner_init(r, &planner);
   double t0 = rc_now_ms();
   for (uint32_t y0 = 0; y0 < h;) {
-    uint32_t rows;
-    if (fixed) {
-      rows = fixed;
-    } else {
-      /* Square tiles, unless the image is narrower than one: then its full width, taller. */
-      double area = model_area(&model, r->opts.tile_budget_ms), side = sqrt(area);
-      rows = clamp_u(w < side ? area / w : side, 8, MAX_BAND_ROWS) / 8 * 8;
-    }
-    if (rows > h - y0) rows = h - y0;
+    uint32_t rows = rc_tiles_band_rows(&planner, y0, batch);
     for (uint32_t x0 = 0; x0 < w;) {
-      uint32_t cols;
-      if (fixed) {
-        cols = fixed;
-      } else {
-        cols = clamp_u(model_area(&model, r->opts.tile_budget_ms) / rows, 8, MAX_TILE_PIXELS / rows);
-      }
-      if (cols > w - x0) cols = w - x0;
-      double tile_ms = 0;
-      rc_status st = render_tile(r, x0, y0, cols, rows, stats, &tile_ms);
+      uint32_t cols = rc_tiles_cols(&planner, rows, x0, batch);
+      rc_status st = render_tile(r, x0, y0, cols, rows, &planner, stats);
       if (st != RC_OK) return st;
-      model_update(&model, tile_ms, (double)cols * rows);
       x0 += cols;
       done += (uint64_t)cols * rows;
       if (r->opts.progress) {

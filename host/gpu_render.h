@@ -16,9 +16,11 @@ typedef enum {
 typedef struct rc_gpu_options {
   rc_scene_buffers scene_buffers;
   bool force_staging;   /* upload and read back through staging buffers even if mappable */
-  uint32_t tile_size;   /* fixed tiles of this side; 0: adapt the tiles to tile_budget_ms */
+  uint32_t tile_size;   /* fixed tiles of this side; 0: tiles from tile_budget_ms (gpu_tiles.h) */
   double tile_budget_ms;  /* the longest a dispatch (one submit) should run: real GPUs reset
-                             after ~2 s (Windows TDR) or kill long dispatches */
+                             after ~2 s (Windows TDR) or kill long dispatches. Negative: the
+                             device's default (none on a CPU device, else
+                             RC_DEFAULT_TILE_BUDGET_MS); 0: no limit */
   uint32_t plan_budget; /* 0: the device's budget (rc_vk_loop_budget); larger values only in
                            tests, to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
@@ -30,6 +32,8 @@ typedef struct rc_gpu_options {
                             measure what specializing to the scene buys */
 } rc_gpu_options;
 
+#define RC_DEFAULT_TILE_BUDGET_MS 100.0
+
 typedef struct rc_gpu_stats {
   double upload_ms;    /* scene buffers, wall */
   double pipeline_ms;  /* shader module + pipeline creation, wall */
@@ -38,8 +42,9 @@ typedef struct rc_gpu_stats {
   double readback_ms;  /* accumulation buffer to the host image, wall */
   uint64_t shadow_rays, reflection_rays;
   uint32_t dispatches, tiles;
-  double max_dispatch_ms;  /* the longest dispatch after the first tile (GPU timestamps) */
-  uint32_t over_budget;    /* dispatches longer than tile_budget_ms, after the first tile */
+  double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
+  double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
+  uint32_t over_budget;    /* dispatches longer than tile_budget_ms */
   uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */

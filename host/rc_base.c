@@ -67,6 +67,12 @@ bool rc_fault(const char *name) {
   return f && strcmp(f, name) == 0;
 }
 
+const char *rc_fault_arg(const char *name) {
+  const char *f = getenv("VKRAYCAST_FAULT");
+  size_t n = strlen(name);
+  return (f && strncmp(f, name, n) == 0 && f[n] == ':') ? f + n + 1 : NULL;
+}
+
 void *rc_alloc(size_t count, size_t size, const char *what) {
   if (rc_fault("host-memory") && count * size >= (1u << 20)) {
     rc_error("out of memory: %s needs %zu bytes (injected fault)", what, count * size);

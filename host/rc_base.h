@@ -66,5 +66,7 @@ void *rc_alloc(size_t count, size_t size, const char *what);
  * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling
  * code then runs as if the driver or the allocator had failed. */
 bool rc_fault(const char *name);
+/* VKRAYCAST_FAULT=NAME:ARGS: ARGS for a fault that takes values, else NULL. */
+const char *rc_fault_arg(const char *name);
 
 #endif

@@ -84,6 +84,7 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "repeat", s->repeat);
   cJSON_AddNumberToObject(o, "tiles", s->gpu.tiles);
   cJSON_AddNumberToObject(o, "dispatches", s->gpu.dispatches);
+  cJSON_AddNumberToObject(o, "tile_budget_ms", s->gpu.tile_budget_ms);
   cJSON_AddNumberToObject(o, "max_dispatch_ms", s->gpu.max_dispatch_ms);
   cJSON_AddNumberToObject(o, "dispatches_over_budget", s->gpu.over_budget);
   cJSON_AddNumberToObject(o, "batch_samples", s->gpu.plan.batch_samples);

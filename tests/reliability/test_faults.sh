@@ -3,7 +3,7 @@
 # status, never a crash or a hang, and an existing image is never left half overwritten
 # nor a temporary file left behind. Faults the driver will not produce on demand (device
 # loss, out of device memory, a failed pipeline, host out of memory) are injected with
-# VKRAYCAST_FAULT into the real handling code. Also: tiles adapt to a tiny time budget.
+# VKRAYCAST_FAULT into the real handling code. Also: how frames are cut into dispatches.
 # Usage: test_faults.sh VKRAYCAST SCENES_DIR WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
@@ -68,19 +68,30 @@ check "killed mid-render: the temporary file existed" "$([[ -n "$seen" ]] && ech
 check "killed mid-render: died of SIGTERM" "$([[ $status == 143 ]] && echo ok || echo "status $status")"
 intact "killed mid-render"
 
-# Tiles adapt to a 40 ms budget (the showcase takes ~200 ms in one dispatch here; Mesa 22
-# lavapipe spends ~8 ms on any dispatch, so a budget must be above that): nearly every
-# dispatch after the first (measuring) tile stays within it, and the image equals one
-# rendered with fixed tiles.
-"$bin" render "$scenes/showcase.json" -o "$work/adaptive.exr" --width 640 --height 400 --tile-budget-ms 40 --quiet \
-  --stats-json "$work/adaptive.json"
-"$bin" render "$scenes/showcase.json" -o "$work/fixed.exr" --width 640 --height 400 --tile 256 --quiet
+# Tiles. No check here reads a clock (a loaded or sanitized machine makes any timing
+# assertion flaky): the adaptive model gets its dispatch times injected
+# (VKRAYCAST_FAULT=dispatch-ms:OVERHEAD:PER_PIXEL_SAMPLE), and lavapipe's default is
+# checked by counts. The planner itself is unit-tested in tests/unit/test_tiles.c.
+# 1. lavapipe (a CPU device, no watchdog) by default: one tile, the fewest dispatches.
+"$bin" render "$scenes/showcase.json" -o "$work/one.exr" --width 640 --height 400 --quiet --stats-json "$work/one.json"
+t=$(num tiles "$work/one.json") d=$(num dispatches "$work/one.json") b=$(num batch_samples "$work/one.json")
+spp=$(num samples_per_pixel "$work/one.json") budget=$(num tile_budget_ms "$work/one.json")
+check "CPU device: no time budget by default" "$( [[ $budget == 0 ]] && echo ok || echo "tile_budget_ms $budget")"
+check "CPU device: one tile" "$( ((t == 1)) && echo ok || echo "$t tiles")"
+check "CPU device: one dispatch per batch" "$( ((d == (spp + b - 1) / b)) && echo ok || echo "$d dispatches for $spp spp in batches of $b")"
+# 2. An explicit budget rules on any device: 40 ms against an injected 8 ms per dispatch
+# plus 0.5 us per pixel-sample (the whole frame: 8 + 128 ms x samples).
+VKRAYCAST_FAULT=dispatch-ms:8:0.0005 "$bin" render "$scenes/showcase.json" -o "$work/adaptive.exr" --width 640 \
+  --height 400 --tile-budget-ms 40 --quiet --stats-json "$work/adaptive.json"
 d=$(num dispatches "$work/adaptive.json") over=$(num dispatches_over_budget "$work/adaptive.json")
-check "adaptive tiles: the frame is split" "$( ((d >= 6)) && echo ok || echo "only $d dispatches")"
-check "adaptive tiles: at most 10% over the budget" "$( ((over * 10 <= d)) && echo ok || echo "$over of $d over 40 ms")"
 max=$(num max_dispatch_ms "$work/adaptive.json")
-check "adaptive tiles: none beyond 2.5 x the budget" "$(awk -v m="$max" 'BEGIN { print (m <= 100) ? "ok" : "longest " m " ms" }')"
-"$bin" compare "$work/adaptive.exr" "$work/fixed.exr" --fail 0 >/dev/null
-check "adaptive tiles: the same image as fixed tiles" "$([[ $? == 0 ]] && echo ok || echo differs)"
+check "adaptive tiles: the frame is split" "$( ((d >= 6)) && echo ok || echo "only $d dispatches")"
+check "adaptive tiles: none over the budget" "$( ((over == 0)) && echo ok || echo "$over of $d over 40 ms")"
+check "adaptive tiles: dispatches use the budget" "$(awk -v m="$max" 'BEGIN { print (m >= 15 && m <= 40) ? "ok" : "longest " m " ms" }')"
+"$bin" compare "$work/adaptive.exr" "$work/one.exr" --fail 0 >/dev/null
+check "adaptive tiles: the same image as one tile" "$([[ $? == 0 ]] && echo ok || echo differs)"
+"$bin" render "$scenes/showcase.json" -o "$work/fixed.exr" --width 640 --height 400 --tile 48 --quiet
+"$bin" compare "$work/fixed.exr" "$work/one.exr" --fail 0 >/dev/null
+check "fixed tiles: the same image as one tile" "$([[ $? == 0 ]] && echo ok || echo differs)"
 echo "$passed passed, $failed failed"
 ((failed == 0))

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Before/after benchmark: two vkraycast binaries render the same scenes, interleaved
+# (A, B, A, B, ...), ROUNDS processes each, at the scene's own settings unless ARGS says
+# otherwise. Per scene: the median over processes of the steady-state frame (wall ms per
+# frame over frames 2..FRAMES, from --repeat), the first frame, process CPU ms, and the
+# dispatch count. The machine is shared and noisy: only figures from one run of this
+# script are compared with each other.
+# Usage: tools/bench_ab.sh BIN_A BIN_B [SCENE...]   (default: scenes/*.json)
+# Env: ROUNDS (5), FRAMES (3), ARGS (extra render options, e.g. "--width 320 --height 200")
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
+export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
+a=$1 b=$2
+shift 2
+rounds=${ROUNDS:-5} frames=${FRAMES:-3}
+scenes=("$@")
+((${#scenes[@]})) || scenes=(scenes/*.json)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+echo "A: $a"
+echo "B: $b"
+echo "$(nproc) cores; $rounds processes each, --repeat $frames${ARGS:+, $ARGS}; medians"
+echo
+echo "| scene | A ms/frame | B ms/frame | B/A | A first frame | B first frame | A CPU ms | B CPU ms | A dispatches | B dispatches |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for s in "${scenes[@]}"; do
+  : >"$work/A.txt"
+  : >"$work/B.txt"
+  for ((r = 0; r < rounds; r++)); do
+    for which in A B; do
+      bin=$a
+      [[ $which == B ]] && bin=$b
+      # shellcheck disable=SC2086
+      "$bin" render "$s" -o "$work/out.exr" --repeat "$frames" --quiet ${ARGS:-} --stats-json "$work/st.json"
+      wall=$(num render_wall_ms "$work/st.json") first=$(num first_frame_ms "$work/st.json")
+      # render_wall_ms is the median of frames 2..N (stats.h); the first frame is apart.
+      echo "$wall $first $(num cpu_ms "$work/st.json") $(num dispatches "$work/st.json")" >>"$work/$which.txt"
+    done
+  done
+  col() { awk -v c="$2" '{print $c}' "$work/$1.txt" | median; }
+  printf "| %s | %.1f | %.1f | %.2f | %.1f | %.1f | %.0f | %.0f | %s | %s |\n" "$(basename "$s" .json)" \
+    "$(col A 1)" "$(col B 1)" "$(awk -v x="$(col A 1)" -v y="$(col B 1)" 'BEGIN { print y / x }')" \
+    "$(col A 2)" "$(col B 2)" "$(col A 3)" "$(col B 3)" "$(col A 4)" "$(col B 4)"
+done
