@@ -8,7 +8,6 @@
 #include <string.h>
 
 #define BINS 16
-#define LEAF_MAX 8
 
 typedef struct {
   float lo[3], hi[3];
@@ -158,7 +157,7 @@ static uint32_t build(builder *b, uint32_t first, uint32_t count, uint32_t depth
     mid = i;
     if (mid == first || mid == first + count) mid = first; /* binning rounding: give up */
   }
-  if (mid == first && (count > LEAF_MAX || must_halve) && count > 1) {
+  if (mid == first && (count > RC_BVH_LEAF_MAX || must_halve) && count > 1) {
     /* No useful SAH split but too many objects (or depth is running out): halve by count
      * along the widest centroid axis. */
     box cb = empty_box();
@@ -185,15 +184,39 @@ static uint32_t build(builder *b, uint32_t first, uint32_t count, uint32_t depth
   return id;
 }
 
-static void set_child(gpu_bvh_node *g, int which, const build_node *c, uint32_t gpu_index) {
-  vec3 lo = {c->bounds.lo[0], c->bounds.lo[1], c->bounds.lo[2]};
-  vec3 hi = {c->bounds.hi[0], c->bounds.hi[1], c->bounds.hi[2]};
-  uint32_t child = c->count ? c->first : gpu_index, count = c->count;
-  if (which == 0) {
-    g->lo0 = lo, g->hi0 = hi, g->child0 = child, g->count0 = count;
-  } else {
-    g->lo1 = lo, g->hi1 = hi, g->child1 = child, g->count1 = count;
+/* Squared distance from p to the box, 0 inside it. */
+static double box_distance2(const box *b, const float p[3]) {
+  double d2 = 0;
+  for (int k = 0; k < 3; k++) {
+    double out = p[k] < b->lo[k] ? (double)b->lo[k] - p[k] : p[k] > b->hi[k] ? (double)p[k] - b->hi[k] : 0;
+    d2 += out * out;
   }
+  return d2;
+}
+
+/* Writes the subtree of build node `id` in depth-first order from out[*next] on, the
+ * child nearer the eye first: in packed space every primary ray starts at the eye, so
+ * the stackless traversal (rc_bvh.glsl) then meets near geometry first and culls more
+ * of the far side. Shadow rays start elsewhere; the order never changes a result. */
+static void flatten(const builder *b, uint32_t id, const float eye[3], gpu_bvh_node *out, uint32_t *next) {
+  const build_node *bn = &b->nodes[id];
+  uint32_t at = (*next)++;
+  out[at].lo = (vec3){bn->bounds.lo[0], bn->bounds.lo[1], bn->bounds.lo[2]};
+  out[at].hi = (vec3){bn->bounds.hi[0], bn->bounds.hi[1], bn->bounds.hi[2]};
+  if (bn->count) {
+    RC_ASSERT(bn->count <= RC_BVH_LEAF_MAX);
+    out[at].leaf = bn->first << RC_BVH_LEAF_SHIFT | bn->count;
+  } else {
+    uint32_t near = bn->left, far = bn->right;
+    if (box_distance2(&b->nodes[far].bounds, eye) < box_distance2(&b->nodes[near].bounds, eye)) {
+      near = bn->right;
+      far = bn->left;
+    }
+    out[at].leaf = 0;
+    flatten(b, near, eye, out, next);
+    flatten(b, far, eye, out, next);
+  }
+  out[at].skip = *next;
 }
 
 /* The box of a transformed sphere (an ellipsoid): with M = packed_from_object, the
@@ -278,45 +301,30 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
     b.refs[i] = i;
   }
+  if (n >= (UINT32_MAX >> RC_BVH_LEAF_SHIFT)) {
+    rc_error("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
+    free(b.info);
+    free(b.refs);
+    return RC_ERR_TOO_LARGE;
+  }
   uint32_t root = build(&b, 0, n, 0);
   rc_status st = root == UINT32_MAX ? RC_ERR_OUT_OF_MEMORY : RC_OK;
   if (st == RC_OK) {
-    /* Flatten: every interior build node becomes one gpu node holding its children's
-     * boxes; a root that is a leaf gets a wrapper with one empty child. */
-    uint32_t interior = 0;
-    uint32_t *gpu_index = rc_alloc(b.node_count, sizeof *gpu_index, "BVH flatten");
-    if (!gpu_index) st = RC_ERR_OUT_OF_MEMORY;
-    for (uint32_t i = 0; st == RC_OK && i < b.node_count; i++) gpu_index[i] = b.nodes[i].count ? 0 : interior++;
-    uint32_t count = interior ? interior : 1;
-    if (st == RC_OK) {
-      p->bvh_nodes = rc_alloc(count, sizeof *p->bvh_nodes, "BVH nodes");
-      p->bvh_prims = rc_alloc((n + 3) / 4 * 4, sizeof *p->bvh_prims, "BVH references");
-      if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_OUT_OF_MEMORY;
-    }
-    if (st == RC_OK) {
-      memcpy(p->bvh_prims, b.refs, n * sizeof *b.refs);
-      if (interior == 0) {
-        /* The whole scene is one leaf: the wrapper holds it twice (an inverted "empty"
-         * box would still be a box to min/max slabs). Testing an object twice changes
-         * nothing under the tie rule. */
-        set_child(&p->bvh_nodes[0], 0, &b.nodes[root], 0);
-        set_child(&p->bvh_nodes[0], 1, &b.nodes[root], 0);
-      } else {
-        for (uint32_t i = 0; i < b.node_count; i++) {
-          const build_node *bn = &b.nodes[i];
-          if (bn->count) continue;
-          gpu_bvh_node *g = &p->bvh_nodes[gpu_index[i]];
-          set_child(g, 0, &b.nodes[bn->left], gpu_index[bn->left]);
-          set_child(g, 1, &b.nodes[bn->right], gpu_index[bn->right]);
-        }
-      }
-      f->bvh_node_count = count;
-      stats->nodes = count;
-      stats->leaves = b.leaves;
-      stats->depth = b.depth;
-      stats->max_leaf = b.max_leaf;
-    }
-    free(gpu_index);
+    p->bvh_nodes = rc_alloc(b.node_count, sizeof *p->bvh_nodes, "BVH nodes");
+    p->bvh_prims = rc_alloc((n + 3) / 4 * 4, sizeof *p->bvh_prims, "BVH references");
+    if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_OUT_OF_MEMORY;
+  }
+  if (st == RC_OK) {
+    memcpy(p->bvh_prims, b.refs, n * sizeof *b.refs);
+    const float eye[3] = {f->camera.eye.x, f->camera.eye.y, f->camera.eye.z};
+    uint32_t next = 0;
+    flatten(&b, root, eye, p->bvh_nodes, &next);
+    RC_ASSERT(next == b.node_count);
+    f->bvh_node_count = b.node_count;
+    stats->nodes = b.node_count;
+    stats->leaves = b.leaves;
+    stats->depth = b.depth;
+    stats->max_leaf = b.max_leaf;
   }
   free(b.info);
   free(b.refs);

@@ -1,14 +1,15 @@
-/* bvh.h: the bounding volume hierarchy over all objects (spheres and triangles together),
- * built on the host in the packed (camera-relative f32) space and flattened into
- * gpu_bvh_node[] plus the leaves' object references, which both renderers traverse
- * (rc_bvh.glsl, ref/ref_bvh.c).
+/* bvh.h: the bounding volume hierarchy over all objects (every primitive kind together),
+ * built on the host in the packed (camera-relative f32) space and flattened in
+ * depth-first order, near child first as seen from the eye, into gpu_bvh_node[] with skip
+ * links plus the leaves' object references, which both renderers traverse without a
+ * stack (rc_bvh.glsl, ref/ref_bvh.c).
  *
  * Build: top-down binned SAH (Wald, "On fast Construction of SAH-based Bounding Volume
  * Hierarchies", RT 2007): 16 centroid bins per axis, all three axes tried, cost = 1 per
  * node visit + 1 per object test weighted by the children's surface areas; a node
  * becomes a leaf when splitting costs more than testing its objects (at most 8), and
  * below RC_BVH_MAX_DEPTH - log2(n) levels the split falls back to halving by count so
- * that the tree depth, and therefore the traversal stack, stays bounded. */
+ * that the tree depth (and the build's recursion) stays bounded. */
 #ifndef RC_BVH_H
 #define RC_BVH_H
 

@@ -1,7 +1,5 @@
 // rc_bvh.glsl: BVH traversal (host/bvh.c builds the tree) and the closest-hit and
-// occlusion queries the shading code calls. Nearest child first with a short stack: each
-// node holds both children's boxes, so one node fetch orders them; a popped entry whose
-// box starts beyond the current nearest hit is skipped.
+// occlusion queries the shading code calls.
 
 // 1/d with zero components replaced by a huge finite value: Vulkan lets shaders assume no
 // Inf (ROBUSTNESS.md §1.3), and a huge finite slope gives the same slab answer.
@@ -25,10 +23,10 @@ real intersect_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   return (t_enter <= t_exit && t_enter <= t_max) ? t_enter : real(RC_T_FAR);
 }
 
-// Tests the objects of one leaf; true when `any` and one of them blocks.
+// Tests the objects of one leaf; true when `any` and one of them blocks. The caller has
+// taken the loop's steps from the budget (budget_take).
 bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
   for (uint k = first; k < first + count; k++) {
-    if (!budget_step()) return false;
     uint object = load_bvh_prim(k);
     real side;
     rvec3 bary;
@@ -41,50 +39,30 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
 }
 
 // Closest hit through the BVH (any = false), or the first hit within t_max (any = true).
-// Leaves are tested as soon as their box is entered; interior children are visited
-// nearest first. (No loop over the two children: llvmpipe does not unroll even a
-// two-iteration loop, and every loop iteration counts against its cap.)
+// Stackless: nodes are in depth-first order, so a node whose box the ray enters (before
+// the nearest hit so far) continues at the next node, its first child, and a missed box
+// or a tested leaf continues at `skip`, past its subtree. No per-lane stack in private
+// memory (llvmpipe lowers such arrays to scratch with per-lane gathers and scatters, and
+// a real GPU spills them), one box and one fetch of two texels per step. Children are
+// ordered near-to-far from the eye at build time (host/bvh.c), which is what a primary
+// ray needs; the tie rule (consider_hit) makes the result independent of the order.
 bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
-  if (frame.bvh_node_count == 0u) return false;
   ray_shear sh = ray_shear_for(d);
   rvec3 inv_d = safe_inverse(d);
-  uint stack_node[RC_BVH_STACK_SIZE];
-  real stack_t[RC_BVH_STACK_SIZE];
-  uint sp = 0u;
   uint node = 0u;
-  while (true) {
+  while (node < frame.bvh_node_count) {
     if (!budget_step()) return false;
     gpu_bvh_node n = load_bvh_node(node);
     real limit = any ? t_max : h.t;
-    real ta = intersect_box(rvec3(n.lo0), rvec3(n.hi0), o, inv_d, limit);
-    real tb = intersect_box(rvec3(n.lo1), rvec3(n.hi1), o, inv_d, limit);
-    if (n.count0 != 0u && ta < real(RC_T_FAR) && test_leaf(n.child0, n.count0, o, d, sh, any, t_max, h)) return true;
-    if (n.count1 != 0u && tb < real(RC_T_FAR) && test_leaf(n.child1, n.count1, o, d, sh, any, t_max, h)) return true;
-    if (budget_exhausted) return false;
-    // A missed box is RC_T_FAR, which the limit also is until something is hit: compare
-    // with both.
-    limit = any ? t_max : h.t;
-    bool go_a = n.count0 == 0u && ta < real(RC_T_FAR) && ta <= limit;
-    bool go_b = n.count1 == 0u && tb < real(RC_T_FAR) && tb <= limit;
-    if (go_a && go_b) {
-      bool a_first = ta <= tb;
-      stack_node[sp] = a_first ? n.child1 : n.child0;
-      stack_t[sp] = a_first ? tb : ta;
-      sp++;
-      node = a_first ? n.child0 : n.child1;
-    } else if (go_a) {
-      node = n.child0;
-    } else if (go_b) {
-      node = n.child1;
+    if (intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) >= real(RC_T_FAR)) {
+      node = n.skip;
+    } else if (n.leaf == 0u) {
+      node++;
     } else {
-      bool found = false;
-      while (sp > 0u && !found) {
-        if (!budget_step()) return false;
-        sp--;
-        found = stack_t[sp] <= (any ? t_max : h.t);
-        node = stack_node[sp];
-      }
-      if (!found) break;
+      uint count = n.leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+      if (!budget_take(count)) return false;
+      if (test_leaf(n.leaf >> RC_BVH_LEAF_SHIFT, count, o, d, sh, any, t_max, h)) return true;
+      node = n.skip;
     }
   }
   return h.kind != RC_HIT_NONE;

@@ -79,17 +79,11 @@ gpu_material load_material(uint i) {
 gpu_bvh_node load_bvh_node(uint i) {
   uvec4 a = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE);
   uvec4 b = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 1u);
-  uvec4 c = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 2u);
-  uvec4 d = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 3u);
   gpu_bvh_node n;
-  n.lo0 = uintBitsToFloat(a.xyz);
-  n.child0 = a.w;
-  n.hi0 = uintBitsToFloat(b.xyz);
-  n.count0 = b.w;
-  n.lo1 = uintBitsToFloat(c.xyz);
-  n.child1 = c.w;
-  n.hi1 = uintBitsToFloat(d.xyz);
-  n.count1 = d.w;
+  n.lo = uintBitsToFloat(a.xyz);
+  n.skip = a.w;
+  n.hi = uintBitsToFloat(b.xyz);
+  n.leaf = b.w;
   return n;
 }
 

@@ -97,10 +97,8 @@ typedef struct gpu_csg gpu_csg;
 #define RC_OFFSET_EPSILON 2u     /* a fixed distance along the normal (quality.shadow_epsilon) */
 #define RC_OFFSET_EPSILON_DEFAULT 1.0e-4
 
-/* BVH traversal stack entries per invocation; the builder caps the tree depth so the
- * stack cannot overflow (host/bvh.c). 48 x 8 bytes stays far below the scratch limits
- * real GPUs put on a thread (ECOSYSTEM.md §2.1). */
-#define RC_BVH_STACK_SIZE 48
+/* The builder caps the BVH's depth (host/bvh.c): the loop plan's traversal estimate grows
+ * with it (host/gpu_plan.c). Traversal itself is stackless (rc_bvh.glsl). */
 #define RC_BVH_MAX_DEPTH 47
 /* pbrt's conservative slab test: the far distance grows by 1 + 2 gamma(3) (f32) so that
  * rounding in the box test never culls a box the ray touches (Ize, JCGT 2(2), 2013). */
@@ -283,19 +281,19 @@ struct gpu_aov {
   vec3 normal; float pad0;
 };
 
-/* A BVH node holds the boxes of both its children, so one fetch decides which child is
- * nearer. A child with count 0 is an interior node (child = node index); otherwise it is
- * a leaf of `count` objects starting at `child` in the object-reference array, whose
- * entries are object numbers (spheres 0..S-1, then triangles S..S+T-1, standalone
- * quadrics, composites). An empty child
- * has lo > hi. */
+/* A BVH node: one box, in depth-first order (an interior node's first child is the next
+ * node), with `skip`, the node that follows its subtree (bvh_node_count after the last),
+ * so traversal needs no stack (rc_bvh.glsl). `leaf` is 0 for an interior node, else
+ * (first << RC_BVH_LEAF_SHIFT) | count: `count` objects starting at `first` in the
+ * object-reference array, whose entries are object numbers (spheres 0..S-1, then
+ * triangles S..S+T-1, standalone quadrics, composites). */
 struct gpu_bvh_node {
-  vec3 lo0; uint child0;
-  vec3 hi0; uint count0;
-  vec3 lo1; uint child1;
-  vec3 hi1; uint count1;
+  vec3 lo; uint skip;
+  vec3 hi; uint leaf;
 };
-#define RC_TEXELS_PER_BVH_NODE 4
+#define RC_TEXELS_PER_BVH_NODE 2
+#define RC_BVH_LEAF_SHIFT 4u
+#define RC_BVH_LEAF_MAX 8u /* objects per leaf: fits below 1 << RC_BVH_LEAF_SHIFT */
 
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct gpu_push {
@@ -348,10 +346,8 @@ RC_ASSERT_LAYOUT(gpu_csg, lo, 0);  RC_ASSERT_LAYOUT(gpu_csg, first, 12);
 RC_ASSERT_LAYOUT(gpu_csg, hi, 16); RC_ASSERT_LAYOUT(gpu_csg, count, 28);
 RC_ASSERT_SIZE(gpu_csg, 16 * RC_TEXELS_PER_CSG);
 
-RC_ASSERT_LAYOUT(gpu_bvh_node, lo0, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, child0, 12);
-RC_ASSERT_LAYOUT(gpu_bvh_node, hi0, 16);  RC_ASSERT_LAYOUT(gpu_bvh_node, count0, 28);
-RC_ASSERT_LAYOUT(gpu_bvh_node, lo1, 32);  RC_ASSERT_LAYOUT(gpu_bvh_node, child1, 44);
-RC_ASSERT_LAYOUT(gpu_bvh_node, hi1, 48);  RC_ASSERT_LAYOUT(gpu_bvh_node, count1, 60);
+RC_ASSERT_LAYOUT(gpu_bvh_node, lo, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, skip, 12);
+RC_ASSERT_LAYOUT(gpu_bvh_node, hi, 16);  RC_ASSERT_LAYOUT(gpu_bvh_node, leaf, 28);
 RC_ASSERT_SIZE(gpu_bvh_node, 16 * RC_TEXELS_PER_BVH_NODE);
 
 RC_ASSERT_LAYOUT(gpu_sphere, center, 0); RC_ASSERT_LAYOUT(gpu_sphere, radius, 12);

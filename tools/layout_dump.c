@@ -46,14 +46,10 @@ int main(void) {
   OFF("frame.csg_max_steps", gpu_frame, csg_max_steps);
   printf("Frame size %zu\n", sizeof(gpu_frame));
 
-  OFF("scene_bvh_nodes.lo0", gpu_bvh_node, lo0);
-  OFF("scene_bvh_nodes.child0", gpu_bvh_node, child0);
-  OFF("scene_bvh_nodes.hi0", gpu_bvh_node, hi0);
-  OFF("scene_bvh_nodes.count0", gpu_bvh_node, count0);
-  OFF("scene_bvh_nodes.lo1", gpu_bvh_node, lo1);
-  OFF("scene_bvh_nodes.child1", gpu_bvh_node, child1);
-  OFF("scene_bvh_nodes.hi1", gpu_bvh_node, hi1);
-  OFF("scene_bvh_nodes.count1", gpu_bvh_node, count1);
+  OFF("scene_bvh_nodes.lo", gpu_bvh_node, lo);
+  OFF("scene_bvh_nodes.skip", gpu_bvh_node, skip);
+  OFF("scene_bvh_nodes.hi", gpu_bvh_node, hi);
+  OFF("scene_bvh_nodes.leaf", gpu_bvh_node, leaf);
   printf("scene_bvh_nodes stride %zu\n", sizeof(gpu_bvh_node));
   printf("scene_bvh_prims stride %zu\n", sizeof(uint32_t));
   OFF("scene_transforms.row0", gpu_transform, row0);

@@ -1,4 +1,4 @@
-/* ref_bvh.c: mirrors shaders/rc_bvh.glsl: the same traversal, stack and box test. */
+/* ref_bvh.c: mirrors shaders/rc_bvh.glsl: the same stackless traversal and box test. */
 #include "ref/ref_shader.h"
 #include "ref/ref_real.h"
 
@@ -35,43 +35,20 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
 }
 
 bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
-  if (sc->frame->bvh_node_count == 0) return false;
   ref_shear sh = REF(ray_shear_for)(d);
   rvec3 inv_d = REF(safe_inverse)(d);
-  uint32_t stack_node[RC_BVH_STACK_SIZE];
-  real stack_t[RC_BVH_STACK_SIZE];
-  uint32_t sp = 0, node = 0;
-  for (;;) {
+  uint32_t node = 0;
+  while (node < sc->frame->bvh_node_count) {
     const gpu_bvh_node *n = &sc->bvh_nodes[node];
     real limit = any ? t_max : h->t;
-    real ta = REF(intersect_box)(rvec3_from(n->lo0), rvec3_from(n->hi0), o, inv_d, limit);
-    real tb = REF(intersect_box)(rvec3_from(n->lo1), rvec3_from(n->hi1), o, inv_d, limit);
-    if (n->count0 != 0 && ta < (real)RC_T_FAR && REF(test_leaf)(sc, n->child0, n->count0, o, d, &sh, any, t_max, h))
-      return true;
-    if (n->count1 != 0 && tb < (real)RC_T_FAR && REF(test_leaf)(sc, n->child1, n->count1, o, d, &sh, any, t_max, h))
-      return true;
-    limit = any ? t_max : h->t;
-    bool go_a = n->count0 == 0 && ta < (real)RC_T_FAR && ta <= limit;
-    bool go_b = n->count1 == 0 && tb < (real)RC_T_FAR && tb <= limit;
-    if (go_a && go_b) {
-      bool a_first = ta <= tb;
-      RC_ASSERT(sp < RC_BVH_STACK_SIZE);
-      stack_node[sp] = a_first ? n->child1 : n->child0;
-      stack_t[sp] = a_first ? tb : ta;
-      sp++;
-      node = a_first ? n->child0 : n->child1;
-    } else if (go_a) {
-      node = n->child0;
-    } else if (go_b) {
-      node = n->child1;
+    if (REF(intersect_box)(rvec3_from(n->lo), rvec3_from(n->hi), o, inv_d, limit) >= (real)RC_T_FAR) {
+      node = n->skip;
+    } else if (n->leaf == 0) {
+      node++;
     } else {
-      bool found = false;
-      while (sp > 0 && !found) {
-        sp--;
-        found = stack_t[sp] <= (any ? t_max : h->t);
-        node = stack_node[sp];
-      }
-      if (!found) break;
+      uint32_t count = n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+      if (REF(test_leaf)(sc, n->leaf >> RC_BVH_LEAF_SHIFT, count, o, d, &sh, any, t_max, h)) return true;
+      node = n->skip;
     }
   }
   return h->kind != RC_HIT_NONE;
