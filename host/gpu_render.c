@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gpu_pipeline_cache.h"
 #include "gpu_shaders.h"
 #include "gpu_tiles.h"
 
@@ -28,6 +29,7 @@ struct rc_gpu_renderer {
   VkBufferView views[SCENE_ARRAYS];
   uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
   double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
+  bool pipeline_cache_hit;   /* the pipeline cache file was found and valid */
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
@@ -264,7 +266,12 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                               .pName = "main",
                                               .pSpecializationInfo = &spec},
                                     .layout = r->pipeline_layout};
-  VkResult res = vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &ci, NULL, &r->pipeline);
+  rc_pipeline_cache cache;
+  rc_pipeline_cache_open(ctx, code, &cache);
+  r->pipeline_cache_hit = cache.loaded;
+  VkResult res = vkCreateComputePipelines(ctx->device, cache.cache, 1, &ci, NULL, &r->pipeline);
+  if (res == VK_SUCCESS) rc_pipeline_cache_close(ctx, &cache);
+  else if (cache.cache) vkDestroyPipelineCache(ctx->device, cache.cache, NULL);
   vkDestroyShaderModule(ctx->device, module, NULL);
   if (res == VK_SUCCESS && rc_fault("pipeline")) {
     vkDestroyPipeline(ctx->device, r->pipeline, NULL);
@@ -374,6 +381,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   if (st == RC_OK) st = create_descriptors(r);
   stats->upload_ms = t1 - t0;
   stats->pipeline_ms = t2 - t1;
+  stats->pipeline_cache_hit = r->pipeline_cache_hit;
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
   if (st != RC_OK) {

@@ -37,6 +37,7 @@ typedef struct rc_gpu_options {
 typedef struct rc_gpu_stats {
   double upload_ms;    /* scene buffers, wall */
   double pipeline_ms;  /* shader module + pipeline creation, wall */
+  bool pipeline_cache_hit; /* a valid pipeline cache file was loaded (gpu_pipeline_cache.h) */
   double gpu_ms;       /* sum of dispatch times from timestamp queries (wall if none) */
   double render_ms;    /* the whole frame, wall: dispatches, waits, readback */
   double readback_ms;  /* accumulation buffer to the host image, wall */

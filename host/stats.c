@@ -72,6 +72,7 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "parse_ms", s->parse_ms);
   cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
   cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);
+  cJSON_AddBoolToObject(o, "pipeline_cache_hit", s->gpu.pipeline_cache_hit);
   cJSON_AddNumberToObject(o, "first_frame_ms", s->first_frame_ms);
   cJSON_AddNumberToObject(o, "render_ms", s->render_ms);
   cJSON_AddNumberToObject(o, "render_wall_ms", s->render_wall_ms);

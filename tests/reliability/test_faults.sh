@@ -93,5 +93,33 @@ check "adaptive tiles: the same image as one tile" "$([[ $? == 0 ]] && echo ok |
 "$bin" render "$scenes/showcase.json" -o "$work/fixed.exr" --width 640 --height 400 --tile 48 --quiet
 "$bin" compare "$work/fixed.exr" "$work/one.exr" --fail 0 >/dev/null
 check "fixed tiles: the same image as one tile" "$([[ $? == 0 ]] && echo ok || echo differs)"
+
+# The pipeline cache on disk (host/gpu_pipeline_cache.c): written on the first run, read
+# on the second; a corrupt, truncated or foreign file, or an unwritable folder, costs a
+# warning and never the render.
+cache=$work/cache
+small=("$bin" render "$scenes/shadows.json" -o "$work/cached.png" --width 32 --height 24 --quiet)
+rm -rf "$cache"
+XDG_CACHE_HOME=$cache "${small[@]}" --stats-json "$work/c1.json" 2>"$work/err"
+file=$(find "$cache/vkraycast" -name '*.bin' 2>/dev/null | head -1)
+check "pipeline cache: written" "$([[ -s "$file" ]] && echo ok || echo "no file under $cache/vkraycast")"
+XDG_CACHE_HOME=$cache "${small[@]}" --stats-json "$work/c2.json" 2>"$work/err"
+check "pipeline cache: read back" "$(grep -q '"pipeline_cache_hit":[[:space:]]*true' "$work/c2.json" && echo ok || echo "no hit")"
+check "pipeline cache: no warning when valid" "$([[ ! -s "$work/err" ]] && echo ok || head -c 300 "$work/err")"
+cp "$file" "$work/good.bin"
+for damage in garbage truncated foreign; do
+  case $damage in
+    garbage) head -c 4096 /dev/urandom >"$file" ;;
+    truncated) head -c 40 "$work/good.bin" >"$file" ;;
+    # The right header with another key: a file from another device or driver.
+    foreign) { printf 'VKRCPC01'; head -c 8 /dev/urandom; tail -c +17 "$work/good.bin"; } >"$file" ;;
+  esac
+  expect "pipeline cache, $damage file: renders with a warning" 0 "pipeline cache ignored" -- \
+    env XDG_CACHE_HOME="$cache" "${small[@]}"
+  check "pipeline cache, $damage file: rewritten" "$(cmp -s "$file" "$work/good.bin" && echo ok || echo 'not rewritten')"
+done
+mkdir -p "$work/ro" && touch "$work/ro/vkraycast" # a file where the folder should be
+expect "pipeline cache, no folder: renders with a warning" 0 "cannot create the pipeline cache folder" -- \
+  env XDG_CACHE_HOME="$work/ro" "${small[@]}"
 echo "$passed passed, $failed failed"
 ((failed == 0))
