@@ -19,11 +19,19 @@ static void on_fatal_signal(int sig) {
   raise(sig);
 }
 
+/* Every asynchronous signal whose default action ends the process (signal(7)). Faults
+ * (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGSYS, SIGTRAP) are left to their default
+ * and to the sanitizers' reports: where the temporary is unnamed (O_TMPFILE, image_io.cpp)
+ * even they, and SIGKILL, leave nothing behind. */
+static const int fatal_signals[] = {SIGHUP,  SIGINT,    SIGQUIT, SIGPIPE, SIGALRM, SIGTERM, SIGUSR1,
+                                    SIGUSR2, SIGVTALRM, SIGPROF, SIGXCPU, SIGIO,   SIGPWR,  SIGSTKFLT};
+
 void rc_output_install_signal_handlers(void) {
-  signal(SIGINT, on_fatal_signal);
-  signal(SIGTERM, on_fatal_signal);
-  signal(SIGHUP, on_fatal_signal);
-  signal(SIGXFSZ, SIG_IGN);
+  struct sigaction sa = {.sa_handler = on_fatal_signal};
+  sigfillset(&sa.sa_mask); /* one handler at a time */
+  for (size_t i = 0; i < sizeof fatal_signals / sizeof *fatal_signals; i++) sigaction(fatal_signals[i], &sa, NULL);
+  for (int s = SIGRTMIN; s <= SIGRTMAX; s++) sigaction(s, &sa, NULL);
+  signal(SIGXFSZ, SIG_IGN); /* a file size limit becomes a write error (EFBIG) */
 }
 
 struct rc_output {
@@ -103,6 +111,19 @@ rc_status rc_output_close(rc_output *o, bool commit) {
   rc_status st = RC_OK;
   char err[512];
   double t0 = rc_now_ms();
+  /* One transaction: both files are written and fsynced before either is renamed, and a
+   * failure of either discards both, so an AOV that cannot be written leaves the old
+   * image in place too. */
+  if (commit && o->image && rc_image_writer_finish(o->image, err, sizeof err) != 0) {
+    rc_error("%s: cannot write image: %s", o->image_path, err);
+    st = RC_ERR_IO;
+    commit = false;
+  }
+  if (commit && o->aov && rc_image_writer_finish(o->aov, err, sizeof err) != 0) {
+    rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
+    st = RC_ERR_IO;
+    commit = false;
+  }
   if (o->image && rc_image_writer_close(o->image, commit, err, sizeof err) != 0) {
     rc_error("%s: cannot write image: %s", o->image_path, err);
     st = RC_ERR_IO;

@@ -1,9 +1,11 @@
 /* output.h: where a render's bands of rows go: the image file (and the AOV file) through
  * OpenImageIO's scanline writers, into temporary files renamed into place only when the
- * whole frame is written. If the process is interrupted or killed (SIGINT, SIGTERM,
- * SIGHUP), the handler unlinks the temporary files before dying; SIGXFSZ (a file size
- * limit) is ignored so that a full disk or a size limit becomes a write error. Either
- * way an existing image is never left half overwritten. */
+ * whole frame is written, every write checked and the file fsynced first (image_io.h).
+ * The temporaries are unnamed where Linux allows it (O_TMPFILE), so nothing can leave
+ * them behind; where they have names, a handler for every asynchronous terminating
+ * signal unlinks them before dying. SIGXFSZ (a file size limit) is ignored so that a
+ * full disk or a size limit becomes a write error. Either way an existing image is never
+ * left half overwritten. */
 #ifndef RC_OUTPUT_H
 #define RC_OUTPUT_H
 

@@ -2,8 +2,14 @@
 // error stops at this boundary and comes back as text.
 #include "image/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <cmath>
 #include <cstdio>
@@ -34,23 +40,168 @@ float srgb_encode(float x) {
   return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
-std::string temp_name(const std::string &path) {
+// The folder a path names its file in ("." for a bare name).
+std::string dir_of(const std::string &path) {
   size_t slash = path.find_last_of('/');
-  std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-  std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
-  return dir + "." + base + ".tmp" + std::to_string(static_cast<long>(getpid()));
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
 }
+
+// A short temporary name beside the target: its length does not grow with the target's
+// (a valid 250-character name must still work under a 255-byte NAME_MAX).
+std::string temp_name(const std::string &dir) {
+  static unsigned counter;
+  return dir + "/.vkraycast-" + std::to_string(static_cast<long>(getpid())) + "-" + std::to_string(counter++) + ".tmp";
+}
+
+std::string errno_text(const std::string &what, int e) { return what + ": " + std::strerror(e); }
+
+// Writes through a FILE* this module owns, so every failed write is seen here even where
+// a format plugin ignores it: OpenImageIO 2.4's PNG and BMP writers reported success on a
+// full disk and left a truncated file. A failed write is reported to the plugin as done:
+// the file is discarded anyway, and libjpeg answers a short write with exit(1) from
+// inside the library, where no error path of ours could run.
+class checked_file : public OIIO::Filesystem::IOProxy {
+ public:
+  explicit checked_file(FILE *f) : IOProxy("", OIIO::Filesystem::IOProxy::Write), file_(f) {}
+  // Not "file": OpenImageIO hands a file proxy's FILE* straight to libjpeg.
+  const char *proxytype() const override { return "checked"; }
+  bool seek(int64_t offset) override {
+    if (fseeko(file_, offset, SEEK_SET) != 0) note_error();
+    m_pos = offset;
+    return true;
+  }
+  size_t write(const void *buf, size_t size) override {
+    if (size && fwrite(buf, 1, size, file_) != size) note_error();
+    m_pos += static_cast<int64_t>(size);
+    return size;
+  }
+  size_t pwrite(const void *buf, size_t size, int64_t offset) override {
+    int64_t at = m_pos;
+    seek(offset);
+    write(buf, size);
+    seek(at);
+    return size;
+  }
+  size_t size() const override {
+    struct stat st;
+    fflush(file_);
+    return fstat(fileno(file_), &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
+  }
+  void flush() const override { fflush(file_); }
+  int error = 0;
+
+ private:
+  void note_error() {
+    if (!error) error = errno ? errno : EIO;
+  }
+  FILE *file_;
+};
 
 }  // namespace
 
 struct rc_image_writer {
   std::unique_ptr<ImageOutput> out;
-  std::string path, tmp;
+  std::unique_ptr<checked_file> proxy;
+  FILE *file = nullptr;
+  std::string path, dir, tmp; // tmp: the named temporary; empty while the file has no name
   int width = 0, height = 0, channels = 0, next_row = 0;
   bool fp = false, truncate = false;
   rc_encoding enc = RC_ENCODING_LINEAR;
   std::vector<float> encoded;
 };
+
+namespace {
+
+// The temporary: unnamed (O_TMPFILE) where the filesystem allows it, so no signal, not
+// even SIGKILL, can leave it behind; else a short name beside the target.
+bool open_temp(rc_image_writer *w, std::string &err) {
+  int fd = open(w->dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
+    w->tmp = temp_name(w->dir);
+    fd = open(w->tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  }
+  if (fd < 0) {
+    int e = errno;
+    w->tmp.clear();
+    err = e == ENOENT || e == ENOTDIR ? errno_text("no such directory " + w->dir, e) : errno_text(w->dir, e);
+    return false;
+  }
+  w->file = fdopen(fd, "wb");
+  if (!w->file) {
+    err = errno_text("fdopen", errno);
+    close(fd);
+    if (!w->tmp.empty()) std::remove(w->tmp.c_str());
+    return false;
+  }
+  return true;
+}
+
+// Gives up the temporary: closes it, and removes it if it has a name.
+void discard_temp(rc_image_writer *w) {
+  w->out.reset();
+  w->proxy.reset();
+  if (w->file) fclose(w->file);
+  w->file = nullptr;
+  if (!w->tmp.empty()) std::remove(w->tmp.c_str());
+}
+
+// Every byte on disk before the file gets its final name: the plugin's close, the
+// proxy's writes, stdio's buffer, fsync.
+bool finish_temp(rc_image_writer *w, std::string &err) {
+  if (!w->out) return true; // finished before
+  bool closed = w->out->close();
+  std::string plugin_error = closed ? "" : w->out->geterror();
+  w->out.reset();
+  if (w->proxy->error) err = errno_text("write failed", w->proxy->error);
+  else if (!closed) err = plugin_error.empty() ? "the image writer failed" : plugin_error;
+  else if (fflush(w->file) != 0) err = errno_text("write failed", errno);
+  else if (fsync(fileno(w->file)) != 0) err = errno_text("fsync failed", errno);
+  return err.empty();
+}
+
+// The finished file's name (linkat for an unnamed one), the rename over the target, and
+// fsync of the folder so that the rename survives a crash. Signals wait meanwhile, so no
+// handler runs between linkat and rename.
+bool name_temp(rc_image_writer *w, std::string &err) {
+  sigset_t all, old;
+  sigfillset(&all);
+  sigprocmask(SIG_BLOCK, &all, &old);
+  bool ok = true;
+  if (w->tmp.empty()) {
+    w->tmp = temp_name(w->dir);
+    std::string self = "/proc/self/fd/" + std::to_string(fileno(w->file));
+    if (linkat(AT_FDCWD, self.c_str(), AT_FDCWD, w->tmp.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+      err = errno_text("cannot give the finished image a name in " + w->dir, errno);
+      w->tmp.clear();
+      ok = false;
+    }
+  }
+  w->proxy.reset();
+  if (fclose(w->file) != 0 && ok) {
+    err = errno_text("write failed", errno);
+    ok = false;
+  }
+  w->file = nullptr;
+  if (ok && std::rename(w->tmp.c_str(), w->path.c_str()) != 0) {
+    err = errno_text("cannot rename the finished image into place", errno);
+    ok = false;
+  }
+  if (ok) {
+    w->tmp.clear();
+    int dfd = open(w->dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+      fsync(dfd);
+      close(dfd);
+    }
+  } else if (!w->tmp.empty()) {
+    std::remove(w->tmp.c_str());
+  }
+  sigprocmask(SIG_SETMASK, &old, nullptr);
+  return ok;
+}
+
+}  // namespace
 
 extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels,
                                                  const char *const *names, rc_encoding enc, bool truncate, char *err,
@@ -63,6 +214,10 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
       return nullptr;
     }
     std::string format = w->out->format_name();
+    if (!w->out->supports("ioproxy")) {
+      set_error(err, err_len, "the " + format + " writer cannot report write errors; use .png, .exr, .tif, .bmp, .ppm, .hdr or .jpg");
+      return nullptr;
+    }
     w->fp = is_float_format(format);
     if (names && !w->fp) {
       set_error(err, err_len, "named channels need a float format such as .exr");
@@ -76,12 +231,19 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     spec.attribute("oiio:ColorSpace", w->fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
     spec.attribute("Software", "vkraycast");
     w->path = path;
-    w->tmp = temp_name(path);
+    w->dir = dir_of(path);
     w->width = width, w->height = height, w->channels = channels;
     w->enc = enc, w->truncate = truncate;
-    if (!w->out->open(w->tmp, spec)) {
-      set_error(err, err_len, w->out->geterror());
-      std::remove(w->tmp.c_str());
+    std::string e;
+    if (!open_temp(w.get(), e)) {
+      set_error(err, err_len, e);
+      return nullptr;
+    }
+    w->proxy = std::make_unique<checked_file>(w->file);
+    w->out->set_ioproxy(w->proxy.get());
+    if (!w->out->open(path, spec)) {
+      set_error(err, err_len, w->proxy->error ? errno_text("write failed", w->proxy->error) : w->out->geterror());
+      discard_temp(w.get());
       return nullptr;
     }
     return w.release();
@@ -113,8 +275,8 @@ extern "C" int rc_image_writer_rows(rc_image_writer *w, int rows, const float *p
       }
       data = w->encoded.data();
     }
-    if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, TypeDesc::FLOAT, data)) {
-      set_error(err, err_len, w->out->geterror());
+    if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, TypeDesc::FLOAT, data) || w->proxy->error) {
+      set_error(err, err_len, w->proxy->error ? errno_text("write failed", w->proxy->error) : w->out->geterror());
       return -1;
     }
     w->next_row += rows;
@@ -125,24 +287,42 @@ extern "C" int rc_image_writer_rows(rc_image_writer *w, int rows, const float *p
   }
 }
 
+extern "C" int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len) {
+  try {
+    if (w->next_row != w->height) {
+      set_error(err, err_len, "the image is incomplete");
+      return -1;
+    }
+    std::string e;
+    if (finish_temp(w, e)) return 0;
+    set_error(err, err_len, e);
+    return -1;
+  } catch (const std::exception &e) {
+    set_error(err, err_len, e.what());
+    return -1;
+  }
+}
+
 extern "C" int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len) {
   std::unique_ptr<rc_image_writer> owned(w);
+  if (!commit) {
+    discard_temp(w);
+    return 0;
+  }
   try {
-    bool ok = commit && w->next_row == w->height;
-    if (commit && !ok) set_error(err, err_len, "the image is incomplete");
-    bool closed = w->out->close();
-    if (ok && !closed) {
-      set_error(err, err_len, w->out->geterror());
-      ok = false;
+    std::string e;
+    if (rc_image_writer_finish(w, err, err_len) != 0) {
+      discard_temp(w);
+      return -1;
     }
-    if (ok && std::rename(w->tmp.c_str(), w->path.c_str()) != 0) {
-      set_error(err, err_len, std::string("cannot rename the finished image into place: ") + std::strerror(errno));
-      ok = false;
+    if (!name_temp(w, e)) {
+      discard_temp(w);
+      set_error(err, err_len, e);
+      return -1;
     }
-    if (!ok) std::remove(w->tmp.c_str());
-    return (ok || !commit) ? 0 : -1;
+    return 0;
   } catch (const std::exception &e) {
-    std::remove(w->tmp.c_str());
+    discard_temp(w);
     set_error(err, err_len, e.what());
     return -1;
   }

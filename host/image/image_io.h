@@ -24,15 +24,23 @@ int rc_image_write(const char *path, int width, int height, int channels, const 
                    bool truncate, char *err, size_t err_len);
 
 /* A writer that takes the image in bands of rows, top to bottom, so that no whole frame
- * need ever be in memory (16384 x 16384 renders). The file is written to a temporary
- * name beside `path`; close(commit = 1) renames it into place, close(commit = 0) removes
- * it. names: NULL, or one name per channel (float formats only). */
+ * need ever be in memory (16384 x 16384 renders). The file is written to a temporary in
+ * the folder of `path`: unnamed (O_TMPFILE) where the filesystem allows, else a short
+ * hidden name. Every byte goes through a proxy that checks each write, whatever the
+ * format plugin does with errors; close(commit = 1) flushes, fsyncs, names the file and
+ * renames it into place, then fsyncs the folder, and fails (-1, with the reason) if any
+ * write failed; close(commit = 0) discards it. names: NULL, or one name per channel
+ * (float formats only). */
 typedef struct rc_image_writer rc_image_writer;
 rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels, const char *const *names,
                                       rc_encoding enc, bool truncate, char *err, size_t err_len);
 int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len);
+/* Everything written and fsynced, not yet named: after this succeeds for every file of a
+ * run, their closes with commit = 1 only rename (one transaction over several files). */
+int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len);
 int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len);
-/* The temporary file's name while the writer is open (for a signal handler to unlink). */
+/* The temporary file's name while the writer is open, for a signal handler to unlink;
+ * empty while the temporary has no name. */
 const char *rc_image_writer_temp_path(const rc_image_writer *w);
 
 /* Like rc_image_read, also returning up to max_names channel names (31 chars each). */

@@ -19,7 +19,7 @@ sum=$(md5sum <"$work/keep.png")
 intact() { # name
   local why=ok
   [[ "$(md5sum <"$work/keep.png")" == "$sum" ]] || why="the existing image changed"
-  [[ -z "$(find "$work" -name '.keep.png.tmp*')" ]] || why="a temporary file was left: $(find "$work" -name '.keep.png.tmp*')"
+  [[ -z "$(find "$work" -name '.keep.png.tmp*' -o -name '.vkraycast-*')" ]] || why="a temporary file was left"
   check "$1 (old image intact, no temporary)" "$why"
 }
 expect() { # name status message -- command...
@@ -49,24 +49,35 @@ intact "host out of memory"
 # A full disk: a 64 KiB file size limit, and an EXR of about 800 KB.
 expect "disk full" 2 "cannot write image" -- bash -c "ulimit -f 64; exec \"\$@\"" _ "$bin" render \
   "$scenes/shadows.json" -o "$work/keep.exr" --width 256 --height 256 --quiet
-[[ -z "$(find "$work" -name '.keep.exr.tmp*')" ]] && check "disk full: no temporary left" ok ||
-  check "disk full: no temporary left" "$(find "$work" -name '.keep.exr.tmp*')"
+[[ -z "$(find "$work" -name '.vkraycast-*')" ]] && check "disk full: no temporary left" ok ||
+  check "disk full: no temporary left" "$(find "$work" -name '.vkraycast-*')"
 cp "$work/keep.png" "$work/keep_copy.png"
 
-# Killed while writing: wait for the temporary image to appear, then SIGTERM.
-"$bin" render "$scenes/showcase.json" -o "$work/keep.png" --width 1024 --height 1024 --spp 4 --quiet 2>/dev/null &
-pid=$!
-for _ in $(seq 1 600); do
-  [[ -n "$(find "$work" -name '.keep.png.tmp*')" ]] && break
-  sleep 0.05
+# Killed while writing, by every asynchronous signal whose default action terminates (and
+# SIGKILL): wait until the process holds its temporary image open (unnamed, O_TMPFILE:
+# /proc shows it as deleted), send the signal, and check it died of it, leaving the old
+# image as it was and no temporary.
+writing() { # pid: true once the process has a file open in $work that has no name
+  find "/proc/$1/fd" -lname "$work/*(deleted)" 2>/dev/null | grep -q .
+}
+for sig in TERM INT HUP QUIT USR1 USR2 PIPE ALRM XCPU VTALRM PROF KILL; do
+  "$bin" render "$scenes/showcase.json" -o "$work/keep.png" --width 1024 --height 1024 --spp 4 --quiet 2>/dev/null &
+  pid=$!
+  seen=no
+  for _ in $(seq 1 1200); do
+    writing $pid && { seen=yes; break; }
+    sleep 0.05
+  done
+  kill -"$sig" $pid
+  wait $pid
+  status=$?
+  want=$((128 + $(kill -l "$sig")))
+  check "SIG$sig mid-render: the temporary image was open" "$([[ $seen == yes ]] && echo ok || echo 'never saw it')"
+  check "SIG$sig mid-render: died of it" "$([[ $status == "$want" ]] && echo ok || echo "status $status, expected $want")"
+  intact "SIG$sig mid-render"
+  [[ -z "$(find "$work" -maxdepth 1 -name '.vkraycast-*')" ]] && check "SIG$sig: no temporary" ok ||
+    check "SIG$sig: no temporary" "$(find "$work" -maxdepth 1 -name '.vkraycast-*')"
 done
-seen=$(find "$work" -name '.keep.png.tmp*')
-kill -TERM $pid
-wait $pid
-status=$?
-check "killed mid-render: the temporary file existed" "$([[ -n "$seen" ]] && echo ok || echo 'never saw it')"
-check "killed mid-render: died of SIGTERM" "$([[ $status == 143 ]] && echo ok || echo "status $status")"
-intact "killed mid-render"
 
 # Tiles. No check here reads a clock (a loaded or sanitized machine makes any timing
 # assertion flaky): the adaptive model gets its dispatch times injected
