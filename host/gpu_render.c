@@ -553,11 +553,17 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     if (status.incomplete_pixels == 0) break;
   }
   double t0 = rc_now_ms();
-  rc_status st = begin(r);
-  if (st != RC_OK) return st;
-  record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
-  if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
-  st = submit(r);
+  rc_status st = RC_OK;
+  /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
+   * the status) already made accum and AOVs visible: no second submit, which costs a
+   * whole queue round trip on lavapipe. Staging copies them first. */
+  if (r->staging) {
+    st = begin(r);
+    if (st != RC_OK) return st;
+    record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
+    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
+    st = submit(r);
+  }
   const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
   const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);

@@ -51,19 +51,30 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   rvec3 inv_d = safe_inverse(d);
   uint node = 0u;
   while (node < frame.bvh_node_count) {
-    if (!budget_step()) return false;
-    gpu_bvh_node n = load_bvh_node(node);
-    real limit = any ? t_max : h.t;
-    if (intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) >= real(RC_T_FAR)) {
-      node = n.skip;
-    } else if (n.leaf == 0u) {
-      node++;
-    } else {
-      uint count = n.leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
-      if (!budget_take(count)) return false;
-      if (test_leaf(n.leaf >> RC_BVH_LEAF_SHIFT, count, o, d, sh, any, t_max, h)) return true;
-      node = n.skip;
+    // "While-while" (Aila & Laine, "Understanding the Efficiency of Ray Traversal on
+    // GPUs", HPG 2009): walk boxes until this ray holds a leaf, then test it. A SIMD
+    // vector runs the union of its lanes' work, and alternating one box and one leaf per
+    // iteration made nearly every iteration pay for a leaf test some lane needed.
+    gpu_bvh_node n;
+    uint leaf = 0u;
+    while (node < frame.bvh_node_count) {
+      if (!budget_step()) return false;
+      n = load_bvh_node(node);
+      real limit = any ? t_max : h.t;
+      if (intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) >= real(RC_T_FAR)) {
+        node = n.skip;
+      } else if (n.leaf == 0u) {
+        node++;
+      } else {
+        leaf = n.leaf;
+        break;
+      }
     }
+    if (leaf == 0u) break;
+    uint count = leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+    if (!budget_take(count)) return false;
+    if (test_leaf(leaf >> RC_BVH_LEAF_SHIFT, count, o, d, sh, any, t_max, h)) return true;
+    node = n.skip;
   }
   return h.kind != RC_HIT_NONE;
 }

@@ -39,17 +39,24 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
   rvec3 inv_d = REF(safe_inverse)(d);
   uint32_t node = 0;
   while (node < sc->frame->bvh_node_count) {
-    const gpu_bvh_node *n = &sc->bvh_nodes[node];
-    real limit = any ? t_max : h->t;
-    if (REF(intersect_box)(rvec3_from(n->lo), rvec3_from(n->hi), o, inv_d, limit) >= (real)RC_T_FAR) {
-      node = n->skip;
-    } else if (n->leaf == 0) {
-      node++;
-    } else {
-      uint32_t count = n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
-      if (REF(test_leaf)(sc, n->leaf >> RC_BVH_LEAF_SHIFT, count, o, d, &sh, any, t_max, h)) return true;
-      node = n->skip;
+    const gpu_bvh_node *n = NULL;
+    uint32_t leaf = 0;
+    while (node < sc->frame->bvh_node_count) {
+      n = &sc->bvh_nodes[node];
+      real limit = any ? t_max : h->t;
+      if (REF(intersect_box)(rvec3_from(n->lo), rvec3_from(n->hi), o, inv_d, limit) >= (real)RC_T_FAR) {
+        node = n->skip;
+      } else if (n->leaf == 0) {
+        node++;
+      } else {
+        leaf = n->leaf;
+        break;
+      }
     }
+    if (leaf == 0) break;
+    uint32_t count = leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+    if (REF(test_leaf)(sc, leaf >> RC_BVH_LEAF_SHIFT, count, o, d, &sh, any, t_max, h)) return true;
+    node = n->skip;
   }
   return h->kind != RC_HIT_NONE;
 }
