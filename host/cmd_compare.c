@@ -50,6 +50,7 @@ static rc_status load(const char *path, loaded *im) {
   char err[512];
   char names[RC_AOV_MAX_CHANNELS][32];
   int n = 0;
+  if (rc_check_input(path, "image", NULL) != RC_OK) return RC_ERR_IO;
   if (rc_image_read_named(path, &im->w, &im->h, &im->c, &im->px, names, RC_AOV_MAX_CHANNELS, &n, err, sizeof err) != 0) {
     rc_error("%s: cannot read image: %s", path, err);
     return RC_ERR_IO;

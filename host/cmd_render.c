@@ -254,6 +254,11 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     fputs(render_usage, stderr);
     return RC_ERR_USAGE;
   }
+  /* Every output is checked before anything renders: an existing special file or folder,
+   * or a missing folder, is refused now rather than after the render. */
+  if (rc_check_output(a->output, "the image") != RC_OK) return RC_ERR_IO;
+  if (a->aov && rc_check_output(a->aov, "the AOV file") != RC_OK) return RC_ERR_IO;
+  if (a->stats_json && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
   a->gpu.aov = a->aov != NULL;
   if (a->aov) {
     size_t n = strlen(a->aov);

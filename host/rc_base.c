@@ -1,10 +1,14 @@
 #include "rc_base.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 const char *rc_status_str(rc_status s) {
   switch (s) {
@@ -85,4 +89,83 @@ void *rc_alloc(size_t count, size_t size, const char *what) {
   void *p = calloc(count ? count : 1, size ? size : 1);
   if (!p) rc_error("out of memory: %s needs %zu bytes", what, count * size);
   return p;
+}
+
+static const char *file_kind(mode_t m) {
+  if (S_ISDIR(m)) return "is a directory";
+  if (S_ISFIFO(m)) return "is a FIFO (named pipe)";
+  if (S_ISCHR(m)) return "is a character device";
+  if (S_ISBLK(m)) return "is a block device";
+  if (S_ISSOCK(m)) return "is a socket";
+  return "is not a regular file";
+}
+
+/* Opens without blocking (a FIFO with no writer would block open() itself) and checks the
+ * kind on the descriptor, so nothing can be swapped in between the check and the read.
+ * Returns the descriptor, or -1 with *why set. */
+static int open_regular(const char *path, size_t *bytes, const char **why) {
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  struct stat st;
+  if (fd < 0) {
+    int e = errno;
+    /* A socket cannot be opened: say what it is rather than ENXIO. */
+    *why = (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) ? file_kind(st.st_mode) : strerror(e);
+    return -1;
+  }
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    *why = fstat(fd, &st) == 0 ? file_kind(st.st_mode) : strerror(errno);
+    close(fd);
+    return -1;
+  }
+  int flags = fcntl(fd, F_GETFL);
+  if (flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  if (bytes) *bytes = (size_t)st.st_size;
+  return fd;
+}
+
+FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
+  const char *why = NULL;
+  int fd = open_regular(path, bytes, &why);
+  FILE *f = fd < 0 ? NULL : fdopen(fd, "rb");
+  if (fd >= 0 && !f) {
+    why = strerror(errno);
+    close(fd);
+  }
+  if (!f) fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
+  return f;
+}
+
+const char *rc_input_problem(const char *path, size_t *bytes) {
+  const char *why = NULL;
+  int fd = open_regular(path, bytes, &why);
+  if (fd >= 0) close(fd);
+  return fd >= 0 ? NULL : why;
+}
+
+rc_status rc_check_input(const char *path, const char *what, size_t *bytes) {
+  const char *why = rc_input_problem(path, bytes);
+  if (!why) return RC_OK;
+  fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
+  return RC_ERR_IO;
+}
+
+rc_status rc_check_output(const char *path, const char *what) {
+  struct stat st;
+  if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+    fprintf(stderr, "%s: error: cannot write %s there: it %s\n", path, what, file_kind(st.st_mode));
+    return RC_ERR_IO;
+  }
+  const char *slash = strrchr(path, '/');
+  if (slash && slash != path) {
+    char dir[4096];
+    size_t n = (size_t)(slash - path);
+    if (n >= sizeof dir) n = sizeof dir - 1;
+    memcpy(dir, path, n);
+    dir[n] = '\0';
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+      fprintf(stderr, "%s: error: cannot write %s: no such directory %s\n", path, what, dir);
+      return RC_ERR_IO;
+    }
+  }
+  return RC_OK;
 }

@@ -6,6 +6,7 @@
 #define RC_BASE_H
 
 #include <stdbool.h>
+#include <stdio.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -61,6 +62,21 @@ void *rc_alloc(size_t count, size_t size, const char *what);
       (cap) = n_;                                        \
     }                                                    \
   } while (0)
+
+/* Files given on the command line or named by a scene. Neither blocks nor spins on a
+ * special file: an input is opened with O_NONBLOCK and fstat()ed before anything reads
+ * it, so a FIFO, a device, a socket or a folder is refused with what it is ("is a
+ * FIFO"). rc_open_input returns a FILE* for reading, or NULL after printing
+ * "PATH: error: cannot open WHAT: REASON"; rc_check_input only checks (for files other
+ * libraries open by name, such as images), rc_input_problem returns the reason (NULL
+ * when fine) for callers with their own message; each fills *bytes if not NULL.
+ * rc_check_output refuses, before any rendering, an output that exists and is not a
+ * regular file (writing renames over it: -o /dev/null must not replace the device), and
+ * one whose folder does not exist. */
+FILE *rc_open_input(const char *path, const char *what, size_t *bytes);
+rc_status rc_check_input(const char *path, const char *what, size_t *bytes);
+const char *rc_input_problem(const char *path, size_t *bytes);
+rc_status rc_check_output(const char *path, const char *what);
 
 /* Fault injection for the tests of the error paths: true when VKRAYCAST_FAULT names this
  * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling

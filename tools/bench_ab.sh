@@ -6,7 +6,9 @@
 # dispatch count. The machine is shared and noisy: only figures from one run of this
 # script are compared with each other.
 # Usage: tools/bench_ab.sh BIN_A BIN_B [SCENE...]   (default: scenes/*.json)
-# Env: ROUNDS (5), FRAMES (3), ARGS (extra render options, e.g. "--width 320 --height 200")
+# Env: ROUNDS (5), FRAMES (3), ARGS (extra render options for both, e.g. "--width 320
+# --height 200"), ARGS_A and ARGS_B (for one side only: one binary against itself with
+# other options, e.g. ARGS_B="--tile 4096")
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
@@ -20,8 +22,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
-echo "A: $a"
-echo "B: $b"
+echo "A: $a ${ARGS_A:-}"
+echo "B: $b ${ARGS_B:-}"
 echo "$(nproc) cores; $rounds processes each, --repeat $frames${ARGS:+, $ARGS}; medians"
 echo
 echo "| scene | A ms/frame | B ms/frame | B/A | A first frame | B first frame | A CPU ms | B CPU ms | A dispatches | B dispatches |"
@@ -31,10 +33,10 @@ for s in "${scenes[@]}"; do
   : >"$work/B.txt"
   for ((r = 0; r < rounds; r++)); do
     for which in A B; do
-      bin=$a
-      [[ $which == B ]] && bin=$b
+      bin=$a extra=${ARGS_A:-}
+      [[ $which == B ]] && bin=$b extra=${ARGS_B:-}
       # shellcheck disable=SC2086
-      "$bin" render "$s" -o "$work/out.exr" --repeat "$frames" --quiet ${ARGS:-} --stats-json "$work/st.json"
+      "$bin" render "$s" -o "$work/out.exr" --repeat "$frames" --quiet ${ARGS:-} $extra --stats-json "$work/st.json"
       wall=$(num render_wall_ms "$work/st.json") first=$(num first_frame_ms "$work/st.json")
       # render_wall_ms is the median of frames 2..N (stats.h); the first frame is apart.
       echo "$wall $first $(num cpu_ms "$work/st.json") $(num dispatches "$work/st.json")" >>"$work/$which.txt"

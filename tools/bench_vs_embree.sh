@@ -2,8 +2,10 @@
 # Benchmark against Intel Embree 3 (issue 4): procedural meshes of about 1k, 100k and 1M
 # triangles, 4096 spheres, and real meshes from Debian's assimp-testmodels, at 1024x768,
 # 1 spp, 2 point lights with shadows, on each vkraycast backend and with Embree (single
-# rays and 8-wide packets) from the same packed scene, in one run. Prints one markdown
-# table. Mrays/s counts primary + shadow rays; steady state = median of frames 2..N.
+# rays and 8-wide packets) from the same packed scene, in one run. GPU and CPU reference
+# side by side in f32 (the same arithmetic), the CPU reference in f64 (its default) and
+# the GPU at its default precision (auto) beside them. Prints one markdown table.
+# Mrays/s counts primary + shadow rays; steady state = median of frames 2..N.
 # Usage: tools/bench_vs_embree.sh   (FRAMES=6, THREADS=nproc)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -57,24 +59,31 @@ cpu_model=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
 echo "Machine: $cpu_model, $(nproc) cores; $(build/vkraycast devices | sed -n 2p | cut -c7-46 | sed 's/ *$//'); Embree $(pkg-config --modversion embree3 2>/dev/null || echo 3); $threads threads for the CPU renderers."
 echo "Command: tools/bench_vs_embree.sh (FRAMES=$frames). 1024x768, 1 spp, primary + shadow rays."
 echo
-echo "| scene | objects | BVH build ms | GPU first frame ms, cold / warm cache | GPU Mrays/s | CPU f64 Mrays/s | Embree 1-ray | Embree 8-packet | GPU / Embree-8 | CPU / Embree-8 | peak RSS MiB (GPU) |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| scene | objects | BVH build ms | GPU first frame ms, cold / warm cache | GPU f32 Mrays/s | CPU f32 Mrays/s | GPU / CPU | CPU f64 Mrays/s | Embree 1-ray | Embree 8-packet | GPU / Embree-8 | GPU Mrays/s at defaults (precision) | peak RSS MiB (GPU) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 size="--width 1024 --height 768 --spp 1"
 for name in mesh1000 mesh100000 mesh1000000 spheres4096 wuson spider engine; do
   s=$work/$name.json
-  MESA_SHADER_CACHE_DISABLE=true build/vkraycast render "$s" -o "$work/o.png" $size --quiet --stats-json "$work/cold.json"
-  export MESA_SHADER_CACHE_DIR=$work/cache
-  build/vkraycast render "$s" -o "$work/o.png" $size --quiet >/dev/null # fills the cache
-  build/vkraycast render "$s" -o "$work/$name.png" $size --repeat "$frames" --quiet --stats-json "$work/gpu.json"
+  # Cold: an empty cache folder (Mesa's shader cache and vkraycast's pipeline cache both
+  # live under XDG_CACHE_HOME); warm: the same folder after one run.
+  export XDG_CACHE_HOME=$work/cache-$name
+  build/vkraycast render "$s" -o "$work/o.png" $size --precision f32 --quiet --stats-json "$work/cold.json" 2>/dev/null
+  build/vkraycast render "$s" -o "$work/o.png" $size --precision f32 --quiet --stats-json "$work/warm.json" 2>/dev/null
+  build/vkraycast render "$s" -o "$work/$name.png" $size --precision f32 --repeat "$frames" --quiet \
+    --stats-json "$work/gpu.json" 2>/dev/null
+  build/vkraycast render "$s" -o "$work/o.png" $size --repeat "$frames" --quiet --stats-json "$work/gpu_auto.json" 2>/dev/null
+  build/vkraycast render "$s" -o "$work/o.png" $size --precision f32 --repeat "$frames" --backend cpu \
+    --threads "$threads" --quiet --stats-json "$work/cpu.json" 2>/dev/null
   build/vkraycast render "$s" -o "$work/o.png" $size --repeat "$frames" --backend cpu --threads "$threads" --quiet \
-    --stats-json "$work/cpu.json"
+    --stats-json "$work/cpu64.json" 2>/dev/null
+  unset XDG_CACHE_HOME
   build/bench_embree "$s" --width 1024 --height 768 --repeat "$frames" --threads "$threads" >"$work/embree.json"
   objects=$(( $(num spheres "$work/gpu.json") + $(num triangles "$work/gpu.json") ))
-  g=$(num mrays_per_s "$work/gpu.json") c=$(num mrays_per_s "$work/cpu.json")
+  g=$(num mrays_per_s "$work/gpu.json") c=$(num mrays_per_s "$work/cpu.json") c64=$(num mrays_per_s "$work/cpu64.json")
+  ga=$(num mrays_per_s "$work/gpu_auto.json") pa=$(sed -n 's/.*"precision":[[:space:]]*"\([a-z0-9]*\)".*/\1/p' "$work/gpu_auto.json")
   e1=$(num embree_single_mrays_per_s "$work/embree.json") e8=$(num embree_packet8_mrays_per_s "$work/embree.json")
-  printf "| %s | %s | %.0f | %.0f / %.0f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f |\n" "$name" "$objects" \
-    "$(num bvh_build_ms "$work/gpu.json")" "$(num first_frame_ms "$work/cold.json")" "$(num first_frame_ms "$work/gpu.json")" \
-    "$g" "$c" "$e1" "$e8" "$(awk -v a="$g" -v b="$e8" 'BEGIN{print a/b}')" "$(awk -v a="$c" -v b="$e8" 'BEGIN{print a/b}')" \
-    "$(num peak_rss_mib "$work/gpu.json")"
-  unset MESA_SHADER_CACHE_DIR
+  printf "| %s | %s | %.0f | %.0f / %.0f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f (%s) | %.0f |\n" "$name" "$objects" \
+    "$(num bvh_build_ms "$work/gpu.json")" "$(num first_frame_ms "$work/cold.json")" "$(num first_frame_ms "$work/warm.json")" \
+    "$g" "$c" "$(awk -v a="$g" -v b="$c" 'BEGIN{print a/b}')" "$c64" "$e1" "$e8" \
+    "$(awk -v a="$g" -v b="$e8" 'BEGIN{print a/b}')" "$ga" "$pa" "$(num peak_rss_mib "$work/gpu.json")"
 done

@@ -120,13 +120,13 @@ rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int
                        const char *where) {
   /* Triangulate n-gons; flatten the node hierarchy into the vertices; drop points and
    * lines. No normal generation: files without normals are flat shaded. */
-  struct stat sb;
-  if (stat(file, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file,
-            stat(file, &sb) != 0 ? strerror(errno) : "not a regular file");
+  size_t bytes = 0;
+  const char *why = rc_input_problem(file, &bytes);
+  if (why) {
+    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, why);
     return RC_ERR_IO;
   }
-  const struct aiScene *ai = import_with_watchdog(file, sb.st_size, where);
+  const struct aiScene *ai = import_with_watchdog(file, (off_t)bytes, where);
   if (!ai) {
     fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, aiGetErrorString());
     return RC_ERR_IO;

@@ -11,24 +11,15 @@
 
 rc_status rc_scene_load(const char *path, rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    fprintf(stderr, "%s: error: cannot open scene file: %s\n", path, strerror(errno));
-    return RC_ERR_IO;
-  }
-  char *text = NULL;
   size_t len = 0;
+  FILE *f = rc_open_input(path, "scene file", &len);
+  if (!f) return RC_ERR_IO;
+  char *text = NULL;
   rc_status st = RC_OK;
-  if (fseek(f, 0, SEEK_END) != 0 || ftell(f) < 0) {
-    fprintf(stderr, "%s: error: cannot read scene file: not a regular file\n", path);
-    st = RC_ERR_IO;
-  } else if ((unsigned long)ftell(f) > RC_MAX_SCENE_FILE_BYTES) {
-    fprintf(stderr, "%s: error: scene file is %ld bytes, more than the %u allowed\n", path, ftell(f),
-            RC_MAX_SCENE_FILE_BYTES);
+  if (len > RC_MAX_SCENE_FILE_BYTES) {
+    fprintf(stderr, "%s: error: scene file is %zu bytes, more than the %u allowed\n", path, len, RC_MAX_SCENE_FILE_BYTES);
     st = RC_ERR_TOO_LARGE;
   } else {
-    len = (size_t)ftell(f);
-    rewind(f);
     text = malloc(len + 1);
     if (!text || fread(text, 1, len, f) != len) {
       fprintf(stderr, "%s: error: cannot read scene file: %s\n", path, strerror(errno));

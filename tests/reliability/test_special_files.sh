@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Nothing blocks or spins on special files (issue 13, class 3). Generated: every kind of
+# non-regular file (a FIFO with no writer, /dev/zero, /dev/full, a socket, a directory) in
+# every role a path plays (scene, mesh named by a scene, both inputs of compare, image,
+# AOV and statistics outputs). Each case must end within 10 s with exit status 2, a
+# message naming the path and what it is, and no output file; and /dev/null must still
+# be the device afterwards (an output renames over its path).
+# Usage: test_special_files.sh VKRAYCAST SCENES_DIR WORKDIR
+set -uo pipefail
+bin=$1 scenes=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+failed=0 passed=0
+check() { if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi; }
+mkfifo "$work/fifo"
+mkdir "$work/dir"
+# A listening Unix socket for the length of the test (python3 ships with Debian 12).
+python3 -c 'import socket, sys, time
+s = socket.socket(socket.AF_UNIX); s.bind(sys.argv[1]); s.listen(1); time.sleep(120)' "$work/sock" &
+sock_pid=$!
+trap 'kill $sock_pid 2>/dev/null' EXIT
+for _ in $(seq 1 50); do [[ -S $work/sock ]] && break; sleep 0.1; done
+"$bin" render "$scenes/shadows.json" -o "$work/good.png" --width 16 --height 12 --quiet
+
+declare -A kinds=([fifo]="$work/fifo" [zero]=/dev/zero [full]=/dev/full [socket]="$work/sock" [dir]="$work/dir")
+declare -A words=([fifo]="FIFO" [zero]="character device" [full]="character device" [socket]="socket" [dir]="directory")
+run_case() { # name path kind -- command...
+  local name=$1 path=$2 kind=$3
+  shift 4
+  timeout 10 "$@" >"$work/out" 2>"$work/err"
+  local got=$? why=ok
+  [[ $got == 124 ]] && why="hung (killed after 10 s)"
+  [[ $got == 2 || $got == 124 ]] || why="exit status $got, expected 2"
+  grep -qF "$path" "$work/err" && grep -q "${words[$kind]}" "$work/err" || why="$why; stderr: $(head -c 200 "$work/err")"
+  [[ -z "$(find "$work" -maxdepth 1 -name 'o.*' -o -maxdepth 1 -name 'stats.json')" ]] || why="$why; an output was written"
+  rm -f "$work"/o.* "$work/stats.json"
+  check "$name" "$why"
+}
+for kind in "${!kinds[@]}"; do
+  p=${kinds[$kind]}
+  run_case "scene is $kind" "$p" "$kind" -- "$bin" render "$p" -o "$work/o.png" --quiet
+  printf '{ "image": { "width": 8, "height": 6 }, "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0] },
+  "materials": { "m": { "diffuse": [0.5, 0.5, 0.5] } },
+  "objects": [ { "type": "mesh", "file": "%s", "material": "m" } ] }\n' "$p" >"$work/mesh_$kind.json"
+  run_case "mesh is $kind" "$p" "$kind" -- "$bin" render "$work/mesh_$kind.json" -o "$work/o.png" --quiet
+  run_case "compare A is $kind" "$p" "$kind" -- "$bin" compare "$p" "$work/good.png"
+  run_case "compare B is $kind" "$p" "$kind" -- "$bin" compare "$work/good.png" "$p"
+  run_case "image output is $kind" "$p" "$kind" -- "$bin" render "$scenes/shadows.json" -o "$p" --quiet
+  run_case "AOV output is $kind" "$p" "$kind" -- "$bin" render "$scenes/shadows.json" -o "$work/o.png" --aov "$p" --quiet
+  run_case "statistics output is $kind" "$p" "$kind" -- "$bin" render "$scenes/shadows.json" -o "$work/o.png" \
+    --stats-json "$p" --quiet
+done
+check "/dev/null is still a character device" "$([[ -c /dev/null ]] && echo ok || echo 'it was replaced')"
+echo "$passed passed, $failed failed"
+((failed == 0))
