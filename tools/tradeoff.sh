@@ -30,6 +30,8 @@ variants=(
   "V6-f64|--precision f64")
 num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 csv=$out/accuracy.csv
+# PLOT_ONLY=1: the table and plot again from an existing accuracy.csv, rendering nothing.
+if [[ ${PLOT_ONLY:-0} != 1 ]]; then
 echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,rms_error,max_error,acne_pct,leak_pct" >"$csv"
 # One tile per frame (lavapipe's default, made explicit for other devices): every
 # variant pays the same one dispatch per batch. 160x160 so that the shading, not
@@ -68,6 +70,7 @@ for s in "${scenes[@]}"; do
   done
   echo "  $n done" >&2
 done
+fi
 
 # Per variant and spp: total GPU time over the scenes against the mean decision mismatch.
 # PSNR over the scenes is that of their mean MSE (the mean of rms^2), not the mean of the
@@ -88,25 +91,28 @@ awk -F, '{ t[NR] = $3; e[NR] = $4; line[NR] = $0 } END {
   sort -t, -k2,2n -k1,1 "$work/pareto.csv" | awk -F, -v n="${#scenes[@]}" '{ printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6 * n, $7 * n / 2, ($8 ? "yes" : "") }'
 } >"$work/table.md"
 awk -F, '$8 == 1' "$work/pareto.csv" | sort -t, -k3,3n >"$work/front.csv"
-# One line per variant through its spp points (labelled with the spp), both axes log.
-# A mean of 0 mismatches (f64) sits on the floor line, as log axes have no 0.
+# One line per variant through its spp points (1, 4, 16, 64 from left to right), both axes
+# log, a colour each; the Pareto front as rings. A mean of 0 mismatches (f64) sits on the
+# floor line, as log axes have no 0.
 floor=0.001
+colors=("#d62728" "#ff7f0e" "#bcbd22" "#8c564b" "#9467bd" "#1f77b4" "#2ca02c")
 plots=()
+i=0
 for v in "${variants[@]}"; do
   vn=${v%%|*}
   awk -F, -v v="$vn" -v f="$floor" '$1 == v { print $2 "," $3 "," ($4 > f ? $4 : f) }' "$work/pareto.csv" |
     sort -t, -k1,1n >"$work/line.$vn.csv"
-  plots+=("\"$work/line.$vn.csv\" using 2:3 with linespoints lw 2 pt 7 ps 0.9 title \"$vn\"")
-  plots+=("\"$work/line.$vn.csv\" using 2:3:(sprintf(\"%s\", strcol(1))) with labels offset char 0.9,0.55 font \",8\" notitle")
+  plots+=("\"$work/line.$vn.csv\" using 2:3 with linespoints lw 2 pt 7 ps 1 lc rgb \"${colors[$i]}\" title \"$vn\"")
+  i=$((i + 1))
 done
-plots+=("\"$work/front.csv\" using 3:(\$4 > $floor ? \$4 : $floor) with lines lw 6 lc rgb \"#40a0a0a0\" title \"Pareto front\"")
+plots+=("\"$work/front.csv\" using 3:(\$4 > $floor ? \$4 : $floor) with points pt 6 ps 3 lw 2 lc rgb \"black\" title \"Pareto front\"")
 gnuplot <<GP
 set terminal pngcairo size 960,600 font "sans,11"
 set output "$out/images/tradeoff.png"
 set datafile separator ","
 set logscale xy
 set format y "%g"
-set xlabel "GPU time, ms (sum over the ${#scenes[@]} scenes, lavapipe, ${size}x${size}; points labelled with spp)"
+set xlabel "GPU time, ms (sum over the ${#scenes[@]} scenes, lavapipe, ${size}x${size}); each line: 1, 4, 16, 64 spp"
 set ylabel "decision mismatches vs CPU f64, % of pixels (mean; 0 drawn at $floor)"
 set key outside right top
 set grid
