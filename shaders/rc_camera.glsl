@@ -6,11 +6,13 @@ void camera_ray(vec2 raster, out rvec3 origin, out rvec3 dir) {
   gpu_camera c = frame.camera;
   real us = real(c.left) + (real(c.right) - real(c.left)) * real(raster.x) / real(c.width);
   real vs = real(c.bottom) + (real(c.top) - real(c.bottom)) * real(raster.y) / real(c.height);
-  if (c.projection == RC_PROJECTION_PERSPECTIVE) {
-    origin = rvec3(c.eye);
-    dir = normalize(-real(c.focal) * rvec3(c.w) + us * rvec3(c.u) + vs * rvec3(c.v));
-  } else {
-    origin = rvec3(c.eye) + us * rvec3(c.u) + vs * rvec3(c.v);
-    dir = -rvec3(c.w);
-  }
+  // Selects, not a branch: a branch whose condition depends on uniform values alone made
+  // Mesa 22.3's lavapipe inline them and recompile the whole shader on every dispatch
+  // (lvp_inline_uniforms.c; 5-9 ms a dispatch, docs/performance.md). The expressions keep
+  // the CPU twin's order of operations.
+  bool perspective = c.projection == RC_PROJECTION_PERSPECTIVE;
+  rvec3 perspective_dir = normalize(-real(c.focal) * rvec3(c.w) + us * rvec3(c.u) + vs * rvec3(c.v));
+  rvec3 parallel_origin = rvec3(c.eye) + us * rvec3(c.u) + vs * rvec3(c.v);
+  origin = perspective ? rvec3(c.eye) : parallel_origin;
+  dir = perspective ? perspective_dir : -rvec3(c.w);
 }
