@@ -76,5 +76,9 @@ fi
 cp "$work/keep.png" "$work/out.png" && cp "$work/keep_aov.exr" "$work/out.exr"
 expect_failure "AOV file fails after its image: image kept" "$work" png "ulimit -f 200" --aov "$work/out.exr"
 check "AOV file fails after its image: AOV kept" "$(cmp -s "$work/out.exr" "$work/keep_aov.exr" && echo ok || echo changed)"
+# A valid name of 250 bytes (NAME_MAX is 255): the temporary's name must not grow with it.
+long=$(printf 'a%.0s' $(seq 1 246)).png
+"$bin" render "$scenes/shadows.json" -o "$work/$long" --width 16 --height 12 --quiet 2>"$work/err"
+check "a 250-character output name" "$([[ $? == 0 && -s "$work/$long" ]] && echo ok || head -c 300 "$work/err")"
 echo "$passed passed, $failed failed"
 ((failed == 0))
