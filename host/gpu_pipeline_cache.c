@@ -21,15 +21,19 @@ typedef struct {
 
 #define MAX_CACHE_BYTES (256u << 20)
 
+#define FNV_OFFSET 0xcbf29ce484222325ull
+
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n) {
   const unsigned char *p = data;
   for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 0x100000001b3ull;
   return h;
 }
 
+static uint64_t checksum(const void *data, size_t n) { return fnv1a(FNV_OFFSET, data, n); }
+
 static uint64_t cache_key(const rc_vk_ctx *ctx, rc_spirv module) {
   const VkPhysicalDeviceProperties *p = &ctx->props;
-  uint64_t h = 0xcbf29ce484222325ull;
+  uint64_t h = FNV_OFFSET;
   h = fnv1a(h, p->pipelineCacheUUID, VK_UUID_SIZE);
   h = fnv1a(h, &p->vendorID, sizeof p->vendorID);
   h = fnv1a(h, &p->deviceID, sizeof p->deviceID);
@@ -77,7 +81,7 @@ static void *read_cache(const char *path, uint64_t key, size_t *size, const char
   else if (h.key != key) *why = "made for another device, driver or shader";
   else if (h.size == 0 || h.size > MAX_CACHE_BYTES || (uint64_t)st.st_size != sizeof h + h.size) *why = "truncated";
   else if (!(data = malloc(h.size))) *why = "out of memory";
-  else if (read(fd, data, h.size) != (ssize_t)h.size || fnv1a(0xcbf29ce484222325ull, data, h.size) != h.checksum) {
+  else if (read(fd, data, h.size) != (ssize_t)h.size || checksum(data, h.size) != h.checksum) {
     *why = "checksum mismatch";
     free(data);
     data = NULL;
@@ -103,14 +107,14 @@ void rc_pipeline_cache_open(const rc_vk_ctx *ctx, rc_spirv module, rc_pipeline_c
   memset(pc, 0, sizeof *pc);
   const char *off = getenv("VKRAYCAST_PIPELINE_CACHE");
   if (off && strcmp(off, "0") == 0) return;
-  uint64_t key = cache_key(ctx, module);
+  pc->key = cache_key(ctx, module);
   char dir[PATH_MAX - 64];
   void *data = NULL;
   size_t size = 0;
   if (cache_dir(dir, sizeof dir)) {
-    snprintf(pc->path, sizeof pc->path, "%s/%016llx.bin", dir, (unsigned long long)key);
+    snprintf(pc->path, sizeof pc->path, "%s/%016llx.bin", dir, (unsigned long long)pc->key);
     const char *why;
-    data = read_cache(pc->path, key, &size, &why);
+    data = read_cache(pc->path, pc->key, &size, &why);
     if (data && !driver_header_matches(ctx, data, size)) why = "made for another device or driver";
     if (why) {
       rc_warning("%s: pipeline cache ignored (%s); it will be rewritten", pc->path, why);
@@ -127,7 +131,7 @@ void rc_pipeline_cache_open(const rc_vk_ctx *ctx, rc_spirv module, rc_pipeline_c
     if (data) rc_warning("%s: the driver refused the pipeline cache; compiling without it", pc->path);
   } else {
     pc->loaded = data != NULL;
-    pc->loaded_checksum = data ? fnv1a(0xcbf29ce484222325ull, data, size) : 0;
+    pc->loaded_checksum = data ? checksum(data, size) : 0;
   }
   free(data);
 }
@@ -161,7 +165,7 @@ static void write_cache(const char *path, uint64_t key, const void *data, size_t
     rc_warning("%s: cannot write the pipeline cache: %s", path, strerror(errno));
     return;
   }
-  file_header h = {.key = key, .size = size, .checksum = fnv1a(0xcbf29ce484222325ull, data, size)};
+  file_header h = {.key = key, .size = size, .checksum = checksum(data, size)};
   memcpy(h.magic, MAGIC, 8);
   bool ok = write_all(fd, &h, sizeof h) && write_all(fd, data, size) && fsync(fd) == 0;
   int err = errno;
@@ -178,11 +182,8 @@ void rc_pipeline_cache_close(const rc_vk_ctx *ctx, rc_pipeline_cache *pc) {
   if (pc->path[0] && vkGetPipelineCacheData(ctx->device, pc->cache, &size, NULL) == VK_SUCCESS && size > 0 &&
       size <= MAX_CACHE_BYTES && (data = malloc(size)) &&
       vkGetPipelineCacheData(ctx->device, pc->cache, &size, data) == VK_SUCCESS &&
-      !(pc->loaded && fnv1a(0xcbf29ce484222325ull, data, size) == pc->loaded_checksum)) {
-    /* The file name holds the key; read it back rather than keep the module here. */
-    const char *base = strrchr(pc->path, '/');
-    unsigned long long key = strtoull(base ? base + 1 : pc->path, NULL, 16);
-    write_cache(pc->path, key, data, size);
+      !(pc->loaded && checksum(data, size) == pc->loaded_checksum)) {
+    write_cache(pc->path, pc->key, data, size);
   }
   free(data);
   vkDestroyPipelineCache(ctx->device, pc->cache, NULL);

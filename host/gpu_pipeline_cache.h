@@ -19,6 +19,7 @@
 typedef struct rc_pipeline_cache {
   VkPipelineCache cache; /* VK_NULL_HANDLE when off */
   char path[PATH_MAX];   /* empty when there is nowhere to keep it */
+  uint64_t key;          /* of the device and module: in the file's header and its name */
   uint64_t loaded_checksum; /* of the driver data read from the file */
   bool loaded;              /* a valid file was found and taken by the driver */
 } rc_pipeline_cache;

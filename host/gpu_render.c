@@ -1,6 +1,5 @@
 #include "gpu_render.h"
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,7 +28,6 @@ struct rc_gpu_renderer {
   VkBufferView views[SCENE_ARRAYS];
   uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
   double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
-  bool pipeline_cache_hit;   /* the pipeline cache file was found and valid */
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
@@ -190,7 +188,7 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   return st;
 }
 
-static rc_status create_pipeline(rc_gpu_renderer *r) {
+static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   rc_vk_ctx *ctx = r->ctx;
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   VkDescriptorType array_type = texel ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -268,7 +266,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r) {
                                     .layout = r->pipeline_layout};
   rc_pipeline_cache cache;
   rc_pipeline_cache_open(ctx, code, &cache);
-  r->pipeline_cache_hit = cache.loaded;
+  *cache_hit = cache.loaded;
   VkResult res = vkCreateComputePipelines(ctx->device, cache.cache, 1, &ci, NULL, &r->pipeline);
   if (res == VK_SUCCESS) rc_pipeline_cache_close(ctx, &cache);
   else if (cache.cache) vkDestroyPipelineCache(ctx->device, cache.cache, NULL);
@@ -376,12 +374,11 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   if (st == RC_OK) st = upload_scene(r, scene);
   double t1 = rc_now_ms();
   if (st == RC_OK) st = create_outputs(r);
-  if (st == RC_OK) st = create_pipeline(r);
+  if (st == RC_OK) st = create_pipeline(r, &stats->pipeline_cache_hit);
   double t2 = rc_now_ms();
   if (st == RC_OK) st = create_descriptors(r);
   stats->upload_ms = t1 - t0;
   stats->pipeline_ms = t2 - t1;
-  stats->pipeline_cache_hit = r->pipeline_cache_hit;
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
   if (st != RC_OK) {
@@ -523,7 +520,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
 /* Renders one tile (a piece of the current band): batches until every pixel has all its
  * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
  * with half the batch; exhaustion at one sample per batch is an error, never a silently
- * wrong pixel. *worst_ms: the GPU time of the tile's longest dispatch. */
+ * wrong pixel. Every dispatch's time goes to the planner. */
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,

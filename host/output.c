@@ -114,24 +114,23 @@ rc_status rc_output_close(rc_output *o, bool commit) {
   /* One transaction: both files are written and fsynced before either is renamed, and a
    * failure of either discards both, so an AOV that cannot be written leaves the old
    * image in place too. */
-  if (commit && o->image && rc_image_writer_finish(o->image, err, sizeof err) != 0) {
-    rc_error("%s: cannot write image: %s", o->image_path, err);
-    st = RC_ERR_IO;
-    commit = false;
+  struct {
+    rc_image_writer *w;
+    const char *path, *what;
+  } files[2] = {{o->image, o->image_path, "image"}, {o->aov, o->aov_path, "the AOV file"}};
+  for (int i = 0; commit && i < 2; i++) {
+    if (files[i].w && rc_image_writer_finish(files[i].w, err, sizeof err) != 0) {
+      rc_error("%s: cannot write %s: %s", files[i].path, files[i].what, err);
+      st = RC_ERR_IO;
+      commit = false;
+    }
   }
-  if (commit && o->aov && rc_image_writer_finish(o->aov, err, sizeof err) != 0) {
-    rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
-    st = RC_ERR_IO;
-    commit = false;
-  }
-  if (o->image && rc_image_writer_close(o->image, commit, err, sizeof err) != 0) {
-    rc_error("%s: cannot write image: %s", o->image_path, err);
-    st = RC_ERR_IO;
-    commit = false;
-  }
-  if (o->aov && rc_image_writer_close(o->aov, commit, err, sizeof err) != 0) {
-    rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
-    st = RC_ERR_IO;
+  for (int i = 0; i < 2; i++) {
+    if (files[i].w && rc_image_writer_close(files[i].w, commit, err, sizeof err) != 0) {
+      rc_error("%s: cannot write %s: %s", files[i].path, files[i].what, err);
+      st = RC_ERR_IO;
+      commit = false;
+    }
   }
   o->write_ms += rc_now_ms() - t0;
   pending[0][0] = pending[1][0] = '\0';

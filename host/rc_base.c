@@ -112,8 +112,9 @@ static int open_regular(const char *path, size_t *bytes, const char **why) {
     *why = (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) ? file_kind(st.st_mode) : strerror(e);
     return -1;
   }
-  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    *why = fstat(fd, &st) == 0 ? file_kind(st.st_mode) : strerror(errno);
+  bool stated = fstat(fd, &st) == 0;
+  if (!stated || !S_ISREG(st.st_mode)) {
+    *why = stated ? file_kind(st.st_mode) : strerror(errno);
     close(fd);
     return -1;
   }
@@ -121,6 +122,10 @@ static int open_regular(const char *path, size_t *bytes, const char **why) {
   if (flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   if (bytes) *bytes = (size_t)st.st_size;
   return fd;
+}
+
+static void report_input(const char *path, const char *what, const char *why) {
+  fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
 }
 
 FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
@@ -131,7 +136,7 @@ FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
     why = strerror(errno);
     close(fd);
   }
-  if (!f) fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
+  if (!f) report_input(path, what, why);
   return f;
 }
 
@@ -145,7 +150,7 @@ const char *rc_input_problem(const char *path, size_t *bytes) {
 rc_status rc_check_input(const char *path, const char *what, size_t *bytes) {
   const char *why = rc_input_problem(path, bytes);
   if (!why) return RC_OK;
-  fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
+  report_input(path, what, why);
   return RC_ERR_IO;
 }
 

@@ -1,4 +1,4 @@
-// rc_budget.glsl: the per-invocation loop budget (DESIGN.md §2). llvmpipe ends every loop
+// rc_budget.glsl: the per-invocation loop budget (host/gpu_plan.h). llvmpipe ends every loop
 // after 65,535 iterations summed over the whole invocation, silently; so every loop here
 // calls budget_step() once per iteration and breaks when it returns false. Every loop
 // means every loop: llvmpipe does not unroll even a two-iteration loop, and an uncounted
@@ -9,12 +9,6 @@
 uint budget_steps = 0u;
 bool budget_exhausted = false;
 
-bool budget_step() {
-  budget_steps++;
-  if (budget_steps > loop_budget) budget_exhausted = true;
-  return !budget_exhausted;
-}
-
 // The steps of a whole loop of n iterations, taken before it starts (a BVH leaf's
 // objects): one check instead of n, the same guarantee, since the loop runs only when all
 // n fit.
@@ -23,3 +17,5 @@ bool budget_take(uint n) {
   if (budget_steps > loop_budget) budget_exhausted = true;
   return !budget_exhausted;
 }
+
+bool budget_step() { return budget_take(1u); }

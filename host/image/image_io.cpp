@@ -113,6 +113,13 @@ struct rc_image_writer {
 
 namespace {
 
+// Why a write failed: the proxy's errno when a write or seek failed (whatever the plugin
+// made of it), else the plugin's own error, else `fallback`.
+std::string write_error(rc_image_writer *w, const std::string &plugin_error, const char *fallback) {
+  if (w->proxy && w->proxy->error) return errno_text("write failed", w->proxy->error);
+  return plugin_error.empty() ? fallback : plugin_error;
+}
+
 // The temporary: unnamed (O_TMPFILE) where the filesystem allows it, so no signal, not
 // even SIGKILL, can leave it behind; else a short name beside the target.
 bool open_temp(rc_image_writer *w, std::string &err) {
@@ -153,8 +160,7 @@ bool finish_temp(rc_image_writer *w, std::string &err) {
   bool closed = w->out->close();
   std::string plugin_error = closed ? "" : w->out->geterror();
   w->out.reset();
-  if (w->proxy->error) err = errno_text("write failed", w->proxy->error);
-  else if (!closed) err = plugin_error.empty() ? "the image writer failed" : plugin_error;
+  if (!closed || w->proxy->error) err = write_error(w, plugin_error, "the image writer failed");
   else if (fflush(w->file) != 0) err = errno_text("write failed", errno);
   else if (fsync(fileno(w->file)) != 0) err = errno_text("fsync failed", errno);
   return err.empty();
@@ -162,7 +168,7 @@ bool finish_temp(rc_image_writer *w, std::string &err) {
 
 // The finished file's name (linkat for an unnamed one), the rename over the target, and
 // fsync of the folder so that the rename survives a crash. Signals wait meanwhile, so no
-// handler runs between linkat and rename.
+// handler runs between linkat and rename, nor before a failed name is removed.
 bool name_temp(rc_image_writer *w, std::string &err) {
   sigset_t all, old;
   sigfillset(&all);
@@ -196,6 +202,7 @@ bool name_temp(rc_image_writer *w, std::string &err) {
     }
   } else if (!w->tmp.empty()) {
     std::remove(w->tmp.c_str());
+    w->tmp.clear();
   }
   sigprocmask(SIG_SETMASK, &old, nullptr);
   return ok;
@@ -242,7 +249,7 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     w->proxy = std::make_unique<checked_file>(w->file);
     w->out->set_ioproxy(w->proxy.get());
     if (!w->out->open(path, spec)) {
-      set_error(err, err_len, w->proxy->error ? errno_text("write failed", w->proxy->error) : w->out->geterror());
+      set_error(err, err_len, write_error(w.get(), w->out->geterror(), "cannot start the image"));
       discard_temp(w.get());
       return nullptr;
     }
@@ -276,7 +283,7 @@ extern "C" int rc_image_writer_rows(rc_image_writer *w, int rows, const float *p
       data = w->encoded.data();
     }
     if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, TypeDesc::FLOAT, data) || w->proxy->error) {
-      set_error(err, err_len, w->proxy->error ? errno_text("write failed", w->proxy->error) : w->out->geterror());
+      set_error(err, err_len, write_error(w, w->out->geterror(), "the image writer failed"));
       return -1;
     }
     w->next_row += rows;

@@ -8,11 +8,8 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-failed=0 passed=0
+source "$(dirname "$0")/check.sh"
 num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
-check() { # name condition-result
-  if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi
-}
 # A previous image that must survive every failure below.
 "$bin" render "$scenes/shadows.json" -o "$work/keep.png" --width 64 --height 48 --quiet || exit 1
 sum=$(md5sum <"$work/keep.png")
@@ -132,5 +129,4 @@ done
 mkdir -p "$work/ro" && touch "$work/ro/vkraycast" # a file where the folder should be
 expect "pipeline cache, no folder: renders with a warning" 0 "cannot create the pipeline cache folder" -- \
   env XDG_CACHE_HOME="$work/ro" "${small[@]}"
-echo "$passed passed, $failed failed"
-((failed == 0))
+finish

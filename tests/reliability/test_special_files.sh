@@ -9,8 +9,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-failed=0 passed=0
-check() { if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi; }
+source "$(dirname "$0")/check.sh"
 mkfifo "$work/fifo"
 mkdir "$work/dir"
 # A listening Unix socket for the length of the test (python3 ships with Debian 12).
@@ -50,5 +49,4 @@ for kind in "${!kinds[@]}"; do
     --stats-json "$p" --quiet
 done
 check "/dev/null is still a character device" "$([[ -c /dev/null ]] && echo ok || echo 'it was replaced')"
-echo "$passed passed, $failed failed"
-((failed == 0))
+finish

@@ -10,10 +10,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-failed=0 passed=0
-check() { # name result
-  if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi
-}
+source "$(dirname "$0")/check.sh"
 temps() { find "$1" -maxdepth 1 \( -name '.vkraycast-*' -o -name '*.tmp*' \) | head -3; }
 render=(render "$scenes/showcase.json" --width 256 --height 192 --quiet)
 # Runs the render with `limit` (a shell prefix) into DIR/out.EXT over a kept file.
@@ -80,5 +77,4 @@ check "AOV file fails after its image: AOV kept" "$(cmp -s "$work/out.exr" "$wor
 long=$(printf 'a%.0s' $(seq 1 246)).png
 "$bin" render "$scenes/shadows.json" -o "$work/$long" --width 16 --height 12 --quiet 2>"$work/err"
 check "a 250-character output name" "$([[ $? == 0 && -s "$work/$long" ]] && echo ok || head -c 300 "$work/err")"
-echo "$passed passed, $failed failed"
-((failed == 0))
+finish
