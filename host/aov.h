@@ -18,7 +18,7 @@ typedef struct rc_aov_layout { int r, g, b, hit, object, t, nx, ny, nz, shadow; 
 /* True when the file has every AOV channel; fills the layout. */
 bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout);
 /* Counts pixels whose hit flag, object index or shadow bits differ (sets r->decisions),
- * leaving out the pixels where band[i] is set (the conditioning band, ROBUSTNESS.md §8.1;
+ * leaving out the pixels where band[i] is set (the conditioning band, docs/accuracy.md;
  * band may be NULL), and measures depth and normal error where both hit the same object. */
 void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb,
                               int width, int height, int channels, const unsigned char *band, rc_compare_result *r);

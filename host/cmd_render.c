@@ -370,7 +370,7 @@ static void apply_quality_overrides(const render_args *a, rc_scene *s) {
   if (a->shadows >= 0) q->shadows = a->shadows == 1;
 }
 
-/* The precision-budget findings, once, before rendering (ROBUSTNESS.md §7). */
+/* The precision-budget findings, once, before rendering (precision_budget.h). */
 static void report_budget(const rc_scene *s, const rc_precision_report *b) {
   if (b->needs_f64)
     fprintf(stderr, "%s: warning: precision: %u object(s) need more than f32 arithmetic, first %s\n", s->path,

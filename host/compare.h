@@ -1,4 +1,4 @@
-/* compare.h: how far apart two images are, in idiff's vocabulary (ECOSYSTEM.md §3.4):
+/* compare.h: how far apart two images are, in the vocabulary of OpenImageIO's idiff:
  * mean, RMS and max absolute error (with where the max is), PSNR against a peak of 1,
  * and how many pixels have a channel over the threshold. For AOV files (aov.h) it also
  * counts the pixels whose decisions differ: hit flag, object, and shadow bits. */

@@ -1,4 +1,4 @@
-/* precision_budget.h: "model only what a scene requires" (ROBUSTNESS.md §7). Before
+/* precision_budget.h: "model only what a scene requires" (docs/accuracy.md). Before
  * rendering, an f64 pass over the packed scene measures each object's scale ratios and says
  * whether f32 arithmetic can render it faithfully, naming the object and the ratio. */
 #ifndef RC_PRECISION_BUDGET_H
@@ -6,7 +6,8 @@
 
 #include "scene/scene_pack.h"
 
-/* The thresholds, from ROBUSTNESS.md §2.3, §5.1 and the extremes suite (docs/accuracy.md). */
+/* The thresholds, each with its reason beside it, gated by the extremes suite
+ * (docs/accuracy.md, tests/extremes/). */
 #define RC_BUDGET_HUGE_SPHERE 1.0e4      /* r / (eye's height over the sphere): f32 depth error > 0.1 % */
 /* |C| / r, geometric form: beyond it the f32 error-bound offset (gamma(10) |p| ~ 6e-7 |p|)
  * passes 6 % of r, and contact shadows between such spheres are lost (S21 at D = 1e3). */

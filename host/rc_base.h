@@ -1,7 +1,7 @@
 /* rc_base.h: status codes, diagnostics and timing shared by every host module.
  * Functions return rc_status; the place that detects an error prints it once, with the
  * context it has (file, line, field, value); only main() turns a status into an exit code
- * (DESIGN.md §5: 0 ok, 1 compare beyond thresholds, 2 bad input or usage, 3 device). */
+ * (README, "Exit status": 0 ok, 1 compare beyond thresholds, 2 bad input or usage, 3 device). */
 #ifndef RC_BASE_H
 #define RC_BASE_H
 

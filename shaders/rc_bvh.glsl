@@ -2,7 +2,8 @@
 // occlusion queries the shading code calls.
 
 // 1/d with zero components replaced by a huge finite value: Vulkan lets shaders assume no
-// Inf (ROBUSTNESS.md §1.3), and a huge finite slope gives the same slab answer.
+// Inf (the SPIR-V environment of the Vulkan specification), and a huge finite slope gives
+// the same slab answer.
 rvec3 safe_inverse(rvec3 d) {
   const real tiny = real(1e-30);
   return rvec3(1.0) / rvec3(d.x >= 0.0 ? max(d.x, tiny) : min(d.x, -tiny),

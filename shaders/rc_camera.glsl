@@ -1,4 +1,4 @@
-// rc_camera.glsl: primary rays, DESIGN.md §1. `raster` is the position in the image in
+// rc_camera.glsl: primary rays (docs/scene-format.md, `camera`). `raster` is the position in the image in
 // pixels, x to the right and y up from the bottom edge (the pixel centre of column i, row
 // j from the bottom is (i + 0.5, j + 0.5)). The basis u, v, w and the window l, r, b, t
 // come from the host, computed in f64 (GPU trig carries 2^-11 absolute error).

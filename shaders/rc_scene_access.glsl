@@ -1,7 +1,7 @@
 // rc_scene_access.glsl: how the shader reads the scene arrays. Two kinds, one interface:
 // RGBA32UI uniform texel buffers (RC_SCENE_TEXEL_BUFFERS=1) or std430 storage buffers.
 // On Mesa 22 llvmpipe a storage-buffer load inside a loop becomes a per-lane scalar loop
-// while a texel fetch stays vectorised (ECOSYSTEM.md §8; docs/performance.md has our own
+// while a texel fetch stays vectorised (docs/performance.md has our own
 // measurement); on discrete GPUs both are fast. Texels hold raw bits, so integers and
 // floats travel unchanged (a float view could flush the denormal bit patterns of small
 // integers).

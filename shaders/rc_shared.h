@@ -105,8 +105,8 @@ typedef struct gpu_csg gpu_csg;
 #define RC_BOX_FAR_SCALE 1.0000003576278687
 
 /* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
- * in total (ECOSYSTEM.md §8), where an "invocation" is a SIMD vector of lanes. Every
- * shader loop counts into one per-lane budget (a specialization constant: this, a quarter
+ * in total (tests/gpu/test_gpu_render.c renders a scene past it), where an "invocation"
+ * is a SIMD vector of lanes. Every shader loop counts into one per-lane budget (a specialization constant: this, a quarter
  * below the cap, divided by the subgroup size on llvmpipe, rc_vk_loop_budget), and the
  * host plans each dispatch's work so that its worst case fits (host/gpu_plan.c). */
 #define RC_LOOP_BUDGET 49152u
@@ -123,7 +123,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_HIT_QUADRIC 3u
 #define RC_HIT_CSG 4u
 
-/* "No hit" is a large finite t: Vulkan lets shaders assume no Inf (ROBUSTNESS.md §1.3). */
+/* "No hit" is a large finite t: Vulkan lets shaders assume no Inf (the SPIR-V environment). */
 #define RC_T_FAR 3.0e38
 /* A shadow ray towards a point light stops this fraction short of the light, so that a
  * light lying on a surface is not occluded by that surface (pbrt's ShadowEpsilon). */
@@ -135,7 +135,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_OFFSET_FLOAT_SCALE (1.0 / 65536.0)
 #define RC_OFFSET_INT_SCALE 256.0
 
-/* Camera, in the packed (camera-relative) space. DESIGN.md §1: the image plane spans
+/* Camera, in the packed (camera-relative) space (docs/scene-format.md): the image plane spans
  * [left, right] x [bottom, top] at distance `focal` along -w from the eye. */
 struct gpu_camera {
   vec3 eye;   float left;
@@ -204,7 +204,7 @@ struct gpu_vertex_normals {
  *   M = [[diag.x, off.x, off.y], [off.x, diag.y, off.z], [off.y, off.z, diag.z]],
  * the box lo <= f <= hi. The named shapes (ellipsoid, cylinder, cone, ...) are built in
  * their principal frame (off = 0, centred), where the shader forms a, b, c from small,
- * axis-aligned products (ROBUSTNESS.md §2.5) and a cylinder's caps are box faces; a
+ * axis-aligned products (little cancellation in f32) and a cylinder's caps are box faces; a
  * general matrix keeps R = I (its bounds are world-aligned) and its off-diagonal terms.
  * Q < 0 is the inside and grad Q the outward normal. With RC_QUADRIC_SOLID the object is
  * the solid {Q <= 0} inside the box, whose boundary includes the box faces where they cut
@@ -272,7 +272,7 @@ struct gpu_status {
 };
 
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
- * comparisons check before colour (ROBUSTNESS.md §6). object: spheres 0..S-1, then
+ * comparisons check before colour (docs/gpu-vs-cpu.md). object: spheres 0..S-1, then
  * triangles S..S+T-1, quadrics, composites; shadow_bits: bit i set when light i faces the surface but its shadow
  * ray is blocked (lights 0..23: the bits stay exact in a float). */
 #define RC_AOV_SHADOW_LIGHTS 24u

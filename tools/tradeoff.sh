@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The speed/accuracy trade-off report (docs/accuracy.md): renders a fixed set of scenes
-# under each variant of ROBUSTNESS.md §8.5 and each spp in {1, 4, 16, 64} on the GPU,
+# under each variant of docs/accuracy.md (V0-V6) and each spp in {1, 4, 16, 64} on the GPU,
 # measures the steady-state GPU time (median of --repeat frames) and the error against the
 # CPU f64 reference (decision mismatches at the first sample, outside nothing; PSNR and max
 # error against a 256-spp f64 render; acne and leaks where the scene defines them), and

@@ -86,7 +86,7 @@ void rc_scene_free(rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
 }
 
-/* |up x forward| <= 1e-6 |up| |forward| counts as parallel (ROBUSTNESS.md §8.3). */
+/* |up x forward| <= 1e-6 |up| |forward| counts as parallel (tests/bad_input/cases.txt). */
 #define RC_UP_PARALLEL_SINE 1e-6
 
 const char *rc_scene_camera_problem(const rc_camera_def *c, const char **field) {
