@@ -437,6 +437,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rs.lights = scene.light_count;
   rs.quadrics = scene.quadric_count;
   rs.composites = scene.csg_count;
+  rs.materials = scene.material_count;
   rs.shadows = scene.quality.shadows;
   rs.generic_pipeline = a.gpu.generic_pipeline;
   rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;

@@ -58,6 +58,7 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "lights", (double)s->lights);
   cJSON_AddNumberToObject(o, "quadrics", (double)s->quadrics);
   cJSON_AddNumberToObject(o, "composites", (double)s->composites);
+  cJSON_AddNumberToObject(o, "materials", (double)s->materials);
   cJSON_AddBoolToObject(o, "shadows", s->shadows);
   cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
   cJSON_AddStringToObject(o, "scene_buffers", s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage");

@@ -87,6 +87,7 @@ size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, si
       if (text[c.pos] != '{') return here;
       c.pos++;
       bool found = false;
+      size_t seen = 0;
       for (;;) {
         size_t a, b;
         skip_ws(&c);
@@ -95,7 +96,7 @@ size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, si
         if (c.pos >= len || text[c.pos] != ':') return here;
         c.pos++;
         skip_ws(&c);
-        if (key_equals(&c, a, b, path[d].key)) {
+        if (key_equals(&c, a, b, path[d].key) && seen++ == path[d].index) {
           found = true;
           break;
         }

@@ -9,7 +9,7 @@
 
 typedef struct rc_json_step {
   const char *key; /* object member, or NULL for an array element */
-  size_t index;
+  size_t index;    /* array element; for a member, which occurrence of a repeated key */
 } rc_json_step;
 
 /* Offset of the value at `path` (or of the deepest prefix that exists). */

@@ -22,6 +22,9 @@ void js_push_key(jctx *c, const char *key) {
   c->depth++;
 }
 
+/* The key on top of the path is a repeat: errors point at its second occurrence. */
+static void js_mark_repeat(jctx *c) { c->path[c->depth - 1].index = 1; }
+
 void js_push_index(jctx *c, size_t index) {
   RC_ASSERT(c->depth < RC_JSON_MAX_DEPTH);
   c->path[c->depth].key = NULL;
@@ -83,7 +86,10 @@ rc_status js_check_members(jctx *c, const cJSON *obj, const char *const *allowed
     js_push_key(c, m->string);
     if (!known) return js_fail(c, "unknown field");
     for (const cJSON *p = obj->child; p != m; p = p->next)
-      if (strcmp(p->string, m->string) == 0) return js_fail(c, "field given twice");
+      if (strcmp(p->string, m->string) == 0) {
+        js_mark_repeat(c);
+        return js_fail(c, "field given twice");
+      }
     js_pop(c);
   }
   return RC_OK;
@@ -278,8 +284,15 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
   if (!s->materials) return RC_ERR_OUT_OF_MEMORY;
   for (const cJSON *m = mats->child; m; m = m->next) {
     js_push_key(c, m->string);
-    for (const cJSON *p = mats->child; p != m; p = p->next)
-      if (strcmp(p->string, m->string) == 0) return js_fail(c, "material defined twice");
+    uint32_t index;
+    bool twice;
+    if (!rc_name_table_insert(&c->materials, m->string, strlen(m->string), (uint32_t)s->material_count, &index,
+                              &twice))
+      return RC_ERR_OUT_OF_MEMORY;
+    if (twice) {
+      js_mark_repeat(c);
+      return js_fail(c, "material defined twice");
+    }
     TRY(js_expect_object(c, m));
     static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", "emission", NULL};
     TRY(js_check_members(c, m, allowed));
@@ -343,19 +356,15 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
   return RC_OK;
 }
 
-rc_status js_get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, uint32_t *out) {
+rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "material");
   if (!v) return js_fail(c, "missing field \"material\"");
   js_push_key(c, "material");
   if (!cJSON_IsString(v)) return js_fail(c, "expected a material name, got %s", js_type_name(v));
-  for (size_t i = 0; i < s->material_count; i++) {
-    if (strcmp(s->materials[i].name, v->valuestring) == 0) {
-      *out = (uint32_t)i;
-      js_pop(c);
-      return RC_OK;
-    }
-  }
-  return js_fail(c, "unknown material");
+  if (!rc_name_table_find(&c->materials, v->valuestring, strlen(v->valuestring), out))
+    return js_fail(c, "unknown material");
+  js_pop(c);
+  return RC_OK;
 }
 
 static void affine_identity(rc_affine *a) {
@@ -492,7 +501,7 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
   int material = -1;
   if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
     uint32_t id;
-    TRY(js_get_material_ref(c, o, s, &id));
+    TRY(js_get_material_ref(c, o, &id));
     material = (int)id;
   }
   return rc_mesh_load(path, m, material, s, where);
@@ -530,7 +539,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       rc_sphere_def *d = &s->spheres[s->sphere_count++];
       TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
       TRY(js_get_positive(c, o, "radius", true, 0, &d->radius));
-      TRY(js_get_material_ref(c, o, s, &d->material));
+      TRY(js_get_material_ref(c, o, &d->material));
       TRY(get_transform(c, o, &m, &transformed));
       d->transformed = transformed;
       d->world_from_object = m;
@@ -549,7 +558,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
         js_pop(c);
       }
       js_pop(c);
-      TRY(js_get_material_ref(c, o, s, &d.material));
+      TRY(js_get_material_ref(c, o, &d.material));
       TRY(get_transform(c, o, &m, &transformed));
       for (int k = 0; k < 3; k++) d.v[k] = rc_affine_point(&m, d.v[k]);
       TRY(rc_scene_add_triangle(s, &d));
@@ -642,5 +651,6 @@ rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc
     st = parse_root(&c, root, scene);
   }
   cJSON_Delete(root);
+  rc_name_table_free(&c.materials);
   return st;
 }

@@ -8,6 +8,7 @@
 #include <cjson/cJSON.h>
 
 #include "scene/json_locate.h"
+#include "scene/name_table.h"
 #include "scene/scene.h"
 
 #define RC_JSON_MAX_DEPTH 24
@@ -18,6 +19,7 @@ typedef struct {
   size_t len;
   rc_json_step path[RC_JSON_MAX_DEPTH];
   size_t depth;
+  rc_name_table materials; /* material name -> index into rc_scene.materials */
 } jctx;
 
 #define TRY(expr)                 \
@@ -48,7 +50,7 @@ rc_status js_vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out);
 rc_status js_get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def, double lo, dvec3 *out);
 rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names, uint32_t def,
                       uint32_t *out);
-rc_status js_get_material_ref(jctx *c, const cJSON *obj, const rc_scene *s, uint32_t *out);
+rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out);
 
 /* scene_quadric.c: the object types that are quadrics ("quadric", "ellipsoid", "cylinder",
  * "cone", "paraboloid", "hyperboloid", "box") and composites ("csg"). Whether `type` is

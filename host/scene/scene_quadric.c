@@ -253,7 +253,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
 }
 
 /* One quadric object (any type but csg) into *q; *intervals as for parse_named. */
-static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, const rc_scene *s, int inherited,
+static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, int inherited,
                                rc_quadric_def *q, uint32_t *intervals) {
   memset(q, 0, sizeof *q);
   bool solid = true;
@@ -265,7 +265,7 @@ static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, const rc_
   q->solid = solid;
   normalize_coefficients(q);
   if (cJSON_GetObjectItemCaseSensitive(o, "material") || inherited < 0) {
-    TRY(js_get_material_ref(c, o, s, &q->material));
+    TRY(js_get_material_ref(c, o, &q->material));
   } else {
     q->material = (uint32_t)inherited;
   }
@@ -306,7 +306,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     int material = inherited;
     if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
       uint32_t id;
-      TRY(js_get_material_ref(c, o, s, &id));
+      TRY(js_get_material_ref(c, o, &id));
       material = (int)id;
     }
     csg_need l, r;
@@ -340,7 +340,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     return RC_OK;
   }
   rc_quadric_def q;
-  TRY(parse_quadric(c, o, type, s, inherited, &q, &need->intervals));
+  TRY(parse_quadric(c, o, type, inherited, &q, &need->intervals));
   if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
   need->stack = 1;
   need->steps = 1 + need->intervals;
@@ -358,7 +358,7 @@ rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s) {
   if (type != T_CSG) {
     GROW(s->quadrics, s->quadric_count, s->quadric_capacity);
     uint32_t intervals;
-    TRY(parse_quadric(c, o, type, s, -1, &s->quadrics[s->quadric_count], &intervals));
+    TRY(parse_quadric(c, o, type, -1, &s->quadrics[s->quadric_count], &intervals));
     s->quadric_count++;
     return RC_OK;
   }

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "math/rcm_mat3.h"
+#include "scene/name_table.h"
 #include "scene/scene.h"
 
 #define MAX_ARGS 10
@@ -119,20 +120,18 @@ static void mat_rotation(mat4 r, dvec3 axis, double deg) {
 
 typedef struct {
   dvec3 ambient, diffuse, specular, emission;
-  double shininess;
+  double shininess; /* +0.0 for -0.0: equal states must have equal bytes */
 } material_state;
+_Static_assert(sizeof(material_state) == 13 * sizeof(double), "material states are hashed as bytes: no padding");
 
-/* Materials are deduplicated: objects with equal state share one. */
-static rc_status material_index(rc_scene *s, size_t *cap, const material_state *m, uint32_t *out) {
-  for (size_t i = 0; i < s->material_count; i++) {
-    const rc_material_def *d = &s->materials[i];
-    if (!memcmp(&d->ambient, &m->ambient, sizeof(dvec3)) && !memcmp(&d->diffuse, &m->diffuse, sizeof(dvec3)) &&
-        !memcmp(&d->specular, &m->specular, sizeof(dvec3)) && !memcmp(&d->emission, &m->emission, sizeof(dvec3)) &&
-        d->shininess == m->shininess) {
-      *out = (uint32_t)i;
-      return RC_OK;
-    }
-  }
+/* Materials are deduplicated: objects with equal state share one. `seen` maps a state's
+ * bytes to its material, so that a file of n objects parses in O(n). */
+static rc_status material_index(rc_scene *s, size_t *cap, rc_name_table *seen, const material_state *m,
+                                uint32_t *out) {
+  bool present;
+  if (!rc_name_table_insert(seen, m, sizeof *m, (uint32_t)s->material_count, out, &present))
+    return RC_ERR_OUT_OF_MEMORY;
+  if (present) return RC_OK;
   if (s->material_count == *cap) {
     size_t n = *cap ? 2 * *cap : 16;
     rc_material_def *p = realloc(s->materials, n * sizeof *p);
@@ -159,6 +158,7 @@ typedef struct {
   dvec3 *verts;
   size_t nverts, verts_cap;
   size_t mat_cap, light_cap, sphere_cap;
+  rc_name_table seen_materials;
   bool have_size, have_camera;
   int normal_warnings;
 } state;
@@ -216,7 +216,7 @@ static rc_status command(state *g, ctx *c) {
       for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++) d->world_from_object.m[i][j] = m[i][j];
     }
-    TRY(material_index(s, &g->mat_cap, &g->mat, &d->material));
+    TRY(material_index(s, &g->mat_cap, &g->seen_materials, &g->mat, &d->material));
     s->sphere_count++;
   } else if (!strcmp(cmd, "maxverts") || !strcmp(cmd, "maxvertnorms")) {
     ARGS(1); /* only a size hint */
@@ -242,7 +242,7 @@ static rc_status command(state *g, ctx *c) {
     }
     rc_triangle_def t = {0};
     for (int k = 0; k < 3; k++) t.v[k] = mat_point(g->stack[g->top], g->verts[idx[k]]);
-    TRY(material_index(s, &g->mat_cap, &g->mat, &t.material));
+    TRY(material_index(s, &g->mat_cap, &g->seen_materials, &g->mat, &t.material));
     TRY(rc_scene_add_triangle(s, &t));
   } else if (!strcmp(cmd, "translate") || !strcmp(cmd, "scale")) {
     ARGS(3);
@@ -314,7 +314,7 @@ static rc_status command(state *g, ctx *c) {
     ARGS(1);
     TRY(number(c, 1, &v[0]));
     if (v[0] < 0) return fail(c, 1, "must not be negative");
-    g->mat.shininess = v[0];
+    g->mat.shininess = v[0] + 0.0;
   } else {
     return fail(c, 0, "unknown command");
   }
@@ -370,5 +370,6 @@ rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc
     st = RC_ERR_INPUT;
   }
   free(g.verts);
+  rc_name_table_free(&g.seen_materials);
   return st;
 }

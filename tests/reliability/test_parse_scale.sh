@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Parsing is linear (issue 13, class 4). Generated scenes of 200,000 named things (JSON
+# materials referenced by as many spheres, .test material states and vertices) must load
+# and resolve every reference; a repeated or unknown name at the far end of such a file is
+# reported with its own line. No clock is read: a quadratic parser (minutes at this size)
+# fails through the test's ctest timeout; tools/bench_parse.sh measures the scaling.
+# Usage: test_parse_scale.sh VKRAYCAST WORKDIR
+set -uo pipefail
+bin=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+source "$(dirname "$0")/check.sh"
+gen="$(dirname "$0")/gen_scale.sh"
+n=200000
+stat() { sed -n "s/.*\"$1\":[[:space:]]*\([0-9]*\).*/\1/p" "$work/stats.json"; }
+expect_counts() { # name scene materials spheres triangles
+  local why=ok
+  "$bin" render "$2" -o "$work/o.png" --backend cpu --quiet --stats-json "$work/stats.json" 2>"$work/err" ||
+    why="exit status $?: $(head -c 300 "$work/err")"
+  if [[ $why == ok ]]; then
+    local got="$(stat materials) $(stat spheres) $(stat triangles)"
+    [[ $got == "$3 $4 $5" ]] || why="materials spheres triangles: $got, expected $3 $4 $5"
+  fi
+  check "$1" "$why"
+}
+expect_error() { # name scene message
+  local why=ok
+  rm -f "$work/o.png"
+  "$bin" render "$2" -o "$work/o.png" --backend cpu --quiet 2>"$work/err"
+  local got=$?
+  [[ $got == 2 ]] || why="exit status $got, expected 2"
+  grep -qF -- "$3" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"), expected: $3"
+  [[ ! -e $work/o.png ]] || why="$why; an image was written"
+  check "$1" "$why"
+}
+
+"$gen" json-materials $n "$work/materials.json"
+expect_counts "$n JSON materials, each used once" "$work/materials.json" $n $n 0
+"$gen" json-dup $n "$work/dup.json"
+expect_error "a repeated material at line $((n + 2))" "$work/dup.json" "dup.json:$((n + 2)):11: error: materials.m0: material defined twice"
+"$gen" json-unknown $n "$work/unknown.json"
+expect_error "an unknown material after $n" "$work/unknown.json" "unknown.json:$((n + 5)):71: error: objects[0].material: unknown material (\"m$n\")"
+"$gen" test-materials $n "$work/materials.test"
+expect_counts "$n .test material states" "$work/materials.test" $n $n 0
+"$gen" test-shared $n "$work/shared.test"
+expect_counts "$n .test spheres sharing 2 materials" "$work/shared.test" 2 $n 0
+"$gen" test-vertices $n "$work/vertices.test"
+expect_counts "$n .test vertices" "$work/vertices.test" 1 0 $((n / 3))
+finish
