@@ -260,6 +260,75 @@ static box quadric_box(const gpu_quadric *q) {
   return padded_box((const double[3]){lo.x, lo.y, lo.z}, (const double[3]){hi.x, hi.y, hi.z});
 }
 
+/* The geometry of object i as words, without its material; 0 words for a composite (not
+ * compared). Two objects with the same words are the same surface. */
+static uint32_t geometry_words(const rc_packed_scene *p, uint32_t i, uint32_t *w) {
+  const gpu_frame *f = &p->frame;
+  uint32_t n = 0;
+  if (i < f->sphere_count) {
+    gpu_sphere s = p->spheres[i];
+    uint32_t t = s.transform;
+    s.material = 0;
+    s.transform = t == RC_NO_TRANSFORM ? t : 0; /* a transform is compared by value */
+    memcpy(w, &s, sizeof s), n = sizeof s / 4;
+    if (t != RC_NO_TRANSFORM) {
+      memcpy(w + n, &p->transforms[t], sizeof(gpu_transform));
+      n += sizeof(gpu_transform) / 4;
+    }
+  } else if ((i -= f->sphere_count) < f->triangle_count) {
+    memcpy(w, &p->triangles[i].v0, sizeof(vec3));
+    memcpy(w + 3, &p->triangles[i].v1, sizeof(vec3));
+    memcpy(w + 6, &p->triangles[i].v2, sizeof(vec3));
+    n = 9;
+  } else if ((i -= f->triangle_count) < f->quadric_count) {
+    gpu_quadric q = p->quadrics[i];
+    q.material = 0;
+    memcpy(w, &q, sizeof q), n = sizeof q / 4;
+  }
+  return n;
+}
+
+#define GEOMETRY_WORDS_MAX ((sizeof(gpu_sphere) + sizeof(gpu_transform) + sizeof(gpu_quadric)) / 4)
+
+/* Marks in dup[] every object whose geometry repeats an earlier object's, bit for bit (in
+ * expected linear time: a table of object indices keyed by a hash of the words).
+ * A repeat can never be hit first: on equal t the lower object number wins (rc_intersect.glsl),
+ * and a shadow ray is blocked by the first copy as surely as by the repeat. So the BVH leaves
+ * repeats out, and a pile of coincident copies costs one test instead of exhausting the GPU's
+ * loop budget. Brute force (--accel none) still tests them all, with the same result. */
+static uint32_t mark_repeats(const rc_packed_scene *p, uint32_t n, bool *dup) {
+  size_t cap = 64;
+  while (cap < 2 * (size_t)n) cap *= 2;
+  uint32_t *slot = malloc(cap * sizeof *slot);
+  if (!slot) return 0; /* no deduplication: correct, only slower */
+  memset(slot, 0xff, cap * sizeof *slot);
+  uint32_t a[GEOMETRY_WORDS_MAX], b[GEOMETRY_WORDS_MAX], repeats = 0;
+  for (uint32_t i = 0; i < n; i++) {
+    uint32_t words = geometry_words(p, i, a);
+    if (!words) continue;
+    uint64_t h = 0xcbf29ce484222325u;
+    for (uint32_t k = 0; k < words; k++) h = (h ^ a[k]) * 0x100000001b3u;
+    /* Word-wise FNV leaves the low bits to the words' low bits (all zero for round
+     * coordinates): mix the high bits down (splitmix64's finalizer) before masking. */
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9u;
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebu;
+    h ^= h >> 31;
+    for (size_t at = (size_t)h & (cap - 1);; at = (at + 1) & (cap - 1)) {
+      if (slot[at] == UINT32_MAX) {
+        slot[at] = i;
+        break;
+      }
+      if (geometry_words(p, slot[at], b) == words && memcmp(a, b, words * 4) == 0) {
+        dup[i] = true;
+        repeats++;
+        break;
+      }
+    }
+  }
+  free(slot);
+  return repeats;
+}
+
 rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   memset(stats, 0, sizeof *stats);
   double t0 = rc_now_ms();
@@ -270,11 +339,15 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   builder b = {0};
   b.info = rc_alloc(n, sizeof *b.info, "BVH build");
   b.refs = rc_alloc(n, sizeof *b.refs, "BVH build");
-  if (!b.info || !b.refs) {
+  bool *dup = rc_alloc(n, sizeof *dup, "BVH build");
+  if (!b.info || !b.refs || !dup) {
     free(b.info);
     free(b.refs);
+    free(dup);
     return RC_ERR_OUT_OF_MEMORY;
   }
+  stats->repeats = mark_repeats(p, n, dup);
+  uint32_t m = 0; /* objects in the tree */
   for (uint32_t i = 0; i < n; i++) {
     prim_info *q = &b.info[i];
     q->bounds = empty_box();
@@ -299,15 +372,16 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
       q->bounds = padded_box((const double[3]){c->lo.x, c->lo.y, c->lo.z}, (const double[3]){c->hi.x, c->hi.y, c->hi.z});
     }
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
-    b.refs[i] = i;
+    if (!dup[i]) b.refs[m++] = i;
   }
+  free(dup);
   if (n >= (UINT32_MAX >> RC_BVH_LEAF_SHIFT)) {
     rc_error("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
     free(b.info);
     free(b.refs);
     return RC_ERR_TOO_LARGE;
   }
-  uint32_t root = build(&b, 0, n, 0);
+  uint32_t root = build(&b, 0, m, 0);
   rc_status st = root == UINT32_MAX ? RC_ERR_OUT_OF_MEMORY : RC_OK;
   if (st == RC_OK) {
     p->bvh_nodes = rc_alloc(b.node_count, sizeof *p->bvh_nodes, "BVH nodes");
@@ -315,7 +389,7 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
     if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_OUT_OF_MEMORY;
   }
   if (st == RC_OK) {
-    memcpy(p->bvh_prims, b.refs, n * sizeof *b.refs);
+    memcpy(p->bvh_prims, b.refs, m * sizeof *b.refs);
     const float eye[3] = {f->camera.eye.x, f->camera.eye.y, f->camera.eye.z};
     uint32_t next = 0;
     flatten(&b, root, eye, p->bvh_nodes, &next);

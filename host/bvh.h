@@ -18,6 +18,7 @@
 typedef struct rc_bvh_stats {
   double build_ms;
   uint32_t nodes, leaves, depth, max_leaf;
+  uint32_t repeats; /* objects left out: bit-for-bit repeats of an earlier one's geometry */
 } rc_bvh_stats;
 
 /* Builds into packed->bvh_nodes / bvh_prims and sets frame.bvh_node_count. */

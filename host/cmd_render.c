@@ -38,6 +38,9 @@ static const char render_usage[] =
     "  --aov FILE.exr          also write the decision outputs of each pixel's first sample: colour,\n"
     "                          hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)\n"
     "  --quiet                 no progress or summary on stderr\n"
+    "  --allow-outside-paths   let meshes (and the files a mesh names) lie outside the scene\n"
+    "                          file's folder; off by default, so an untrusted scene cannot read\n"
+    "                          other files into the image\n"
     "\n"
     "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):\n"
     "  --sphere F              geometric (default) or algebraic ray/sphere formula\n"
@@ -80,6 +83,7 @@ typedef struct {
   uint32_t perturb;      /* 0: none, else the seed */
   uint32_t threads;
   rc_gpu_options gpu;
+  rc_load_options load;
 } render_args;
 
 rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t hi, uint32_t *out) {
@@ -145,6 +149,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
       a->srgb = true, takes_value = false;
     } else if (strcmp(o, "--staging") == 0) {
       a->gpu.force_staging = true, takes_value = false;
+    } else if (strcmp(o, "--allow-outside-paths") == 0) {
+      a->load.allow_outside_paths = true, takes_value = false;
     } else if (o[0] == '-' && o[1] && !option_takes_value(o)) {
       rc_error("render: unknown option %s (see vkraycast render --help)", o);
       return RC_ERR_USAGE;
@@ -408,7 +414,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_render_stats rs = {.backend = "gpu", .repeat = a.repeat};
   rc_scene scene;
   double t0 = rc_now_ms();
-  st = rc_scene_load(a.scene, &scene);
+  st = rc_scene_load(a.scene, &a.load, &scene);
   rs.parse_ms = rc_now_ms() - t0;
   if (st != RC_OK) {
     rc_scene_free(&scene);
@@ -477,14 +483,22 @@ rc_status rc_cmd_render(int argc, char **argv) {
       a.gpu.f64 = gpu_precision(&scene, &budget, &ctx);
       rs.precision = a.gpu.f64 ? "f64" : "f32";
       st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
+      if (rs.gpu.budget_refused)
+        fprintf(stderr, "%s: error: rays through this scene test more overlapping objects than the GPU's loop "
+                "budget allows on %s; --backend cpu renders it\n", scene.path, ctx.props.deviceName);
     }
   }
   rs.write_ms = rc_output_write_ms(out);
+  rs.cpu_ms = rc_cpu_ms();
+  if (st == RC_OK && a.stats_json) {
+    /* The statistics join the image's transaction: all of them land, or none. */
+    char *text = rc_stats_json(&rs);
+    st = text ? rc_output_attach(out, a.stats_json, text) : RC_ERR_OUT_OF_MEMORY;
+    free(text);
+  }
   rc_status cst = rc_output_close(out, st == RC_OK);
   if (st == RC_OK) st = cst;
-  rs.cpu_ms = rc_cpu_ms();
   if (st == RC_OK && !a.quiet) rc_stats_print(&rs);
-  if (st == RC_OK && a.stats_json) st = rc_stats_write_json(&rs, a.stats_json);
   rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
   rc_packed_scene_free(&packed);
   rc_scene_free(&scene);

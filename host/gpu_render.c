@@ -544,6 +544,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
         rc_error("%u pixel%s of tile (%u, %u) ran out of the shader loop budget (%u iterations) within a "
                  "single sample; refusing to write a wrong image",
                  status.exhausted_pixels, status.exhausted_pixels == 1 ? "" : "s", x0, y0, r->budget);
+        stats->budget_refused = true;
         return RC_ERR_TOO_LARGE;
       }
       push.batch_samples /= 2;

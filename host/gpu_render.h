@@ -47,6 +47,7 @@ typedef struct rc_gpu_stats {
   double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
   uint32_t over_budget;    /* dispatches longer than tile_budget_ms */
   uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
+  bool budget_refused;     /* a single sample ran out of the loop budget: nothing written */
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
   uint32_t subgroup_size;

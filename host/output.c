@@ -10,10 +10,10 @@
 
 /* Temporary files the signal handler must unlink; written before any signal can need
  * them, read only by the handler (unlink() is async-signal-safe). */
-static char pending[2][4096];
+static char pending[3][4096];
 
 static void on_fatal_signal(int sig) {
-  for (int i = 0; i < 2; i++)
+  for (int i = 0; i < 3; i++)
     if (pending[i][0]) unlink(pending[i]);
   signal(sig, SIG_DFL);
   raise(sig);
@@ -35,8 +35,8 @@ void rc_output_install_signal_handlers(void) {
 }
 
 struct rc_output {
-  rc_image_writer *image, *aov;
-  const char *image_path, *aov_path;
+  rc_image_writer *image, *aov, *stats;
+  const char *image_path, *aov_path, *stats_path;
   uint32_t width;
   float *aov_band; /* rows * width * RC_AOV_CHANNELS */
   uint32_t aov_band_rows;
@@ -72,6 +72,18 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
     remember(1, o->aov);
   }
   *out = o;
+  return RC_OK;
+}
+
+rc_status rc_output_attach(rc_output *o, const char *path, const char *text) {
+  char err[512];
+  o->stats = rc_file_writer_open(path, text, strlen(text), err, sizeof err);
+  if (!o->stats) {
+    rc_error("%s: cannot write statistics: %s", path, err);
+    return RC_ERR_IO;
+  }
+  o->stats_path = path;
+  remember(2, o->stats);
   return RC_OK;
 }
 
@@ -111,21 +123,23 @@ rc_status rc_output_close(rc_output *o, bool commit) {
   rc_status st = RC_OK;
   char err[512];
   double t0 = rc_now_ms();
-  /* One transaction: both files are written and fsynced before either is renamed, and a
-   * failure of either discards both, so an AOV that cannot be written leaves the old
-   * image in place too. */
+  /* One transaction: every file is written and fsynced before any is renamed, and a
+   * failure of any discards all, so an AOV or statistics file that cannot be written
+   * leaves the old image in place too. */
   struct {
     rc_image_writer *w;
     const char *path, *what;
-  } files[2] = {{o->image, o->image_path, "image"}, {o->aov, o->aov_path, "the AOV file"}};
-  for (int i = 0; commit && i < 2; i++) {
+  } files[3] = {{o->image, o->image_path, "image"},
+                {o->aov, o->aov_path, "the AOV file"},
+                {o->stats, o->stats_path, "statistics"}};
+  for (int i = 0; commit && i < 3; i++) {
     if (files[i].w && rc_image_writer_finish(files[i].w, err, sizeof err) != 0) {
       rc_error("%s: cannot write %s: %s", files[i].path, files[i].what, err);
       st = RC_ERR_IO;
       commit = false;
     }
   }
-  for (int i = 0; i < 2; i++) {
+  for (int i = 0; i < 3; i++) {
     if (files[i].w && rc_image_writer_close(files[i].w, commit, err, sizeof err) != 0) {
       rc_error("%s: cannot write %s: %s", files[i].path, files[i].what, err);
       st = RC_ERR_IO;
@@ -133,7 +147,7 @@ rc_status rc_output_close(rc_output *o, bool commit) {
     }
   }
   o->write_ms += rc_now_ms() - t0;
-  pending[0][0] = pending[1][0] = '\0';
+  pending[0][0] = pending[1][0] = pending[2][0] = '\0';
   free(o->aov_band);
   free(o);
   return st;

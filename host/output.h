@@ -21,6 +21,9 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
 rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output);
 /* A band function for frames that are not written (--repeat). */
 rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *unused);
+/* Adds the statistics file (its whole text) to the transaction: written now, renamed
+ * with the image. */
+rc_status rc_output_attach(rc_output *o, const char *path, const char *text);
 /* Renames the files into place (commit) or removes them; frees the output. */
 rc_status rc_output_close(rc_output *o, bool commit);
 double rc_output_write_ms(const rc_output *o);

@@ -128,16 +128,31 @@ static void report_input(const char *path, const char *what, const char *why) {
   fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
 }
 
-FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
-  const char *why = NULL;
-  int fd = open_regular(path, bytes, &why);
+FILE *rc_fopen_regular(const char *path, size_t *bytes, const char **why) {
+  int fd = open_regular(path, bytes, why);
   FILE *f = fd < 0 ? NULL : fdopen(fd, "rb");
   if (fd >= 0 && !f) {
-    why = strerror(errno);
+    *why = strerror(errno);
     close(fd);
   }
+  return f;
+}
+
+FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
+  const char *why = NULL;
+  FILE *f = rc_fopen_regular(path, bytes, &why);
   if (!f) report_input(path, what, why);
   return f;
+}
+
+bool rc_path_within(const char *dir, const char *path) {
+  char *d = realpath(dir, NULL), *p = realpath(path, NULL);
+  size_t n = d ? strlen(d) : 0;
+  bool inside = d && p && strncmp(d, p, n) == 0 && (p[n] == '/' || p[n] == '\0' || (n == 1 && d[0] == '/'));
+  bool missing = d && !p;
+  free(d);
+  free(p);
+  return inside || missing;
 }
 
 const char *rc_input_problem(const char *path, size_t *bytes) {

@@ -74,9 +74,15 @@ void *rc_alloc(size_t count, size_t size, const char *what);
  * regular file (writing renames over it: -o /dev/null must not replace the device), and
  * one whose folder does not exist. */
 FILE *rc_open_input(const char *path, const char *what, size_t *bytes);
+/* rc_open_input without the message: NULL with *why set. */
+FILE *rc_fopen_regular(const char *path, size_t *bytes, const char **why);
 rc_status rc_check_input(const char *path, const char *what, size_t *bytes);
 const char *rc_input_problem(const char *path, size_t *bytes);
 rc_status rc_check_output(const char *path, const char *what);
+/* Whether `path`, symbolic links resolved, lies inside the folder `dir`: the check that
+ * keeps a scene from reading files outside its own folder (--allow-outside-paths). A path
+ * that does not exist counts as inside; opening it then fails with its own message. */
+bool rc_path_within(const char *dir, const char *path);
 
 /* Fault injection for the tests of the error paths: true when VKRAYCAST_FAULT names this
  * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling

@@ -23,8 +23,9 @@ void rc_stats_print(const rc_render_stats *s) {
   else
     fprintf(stderr, "vkraycast: %u threads\n", s->threads);
   if (s->bvh.nodes)
-    fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms\n",
-            s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth, s->bvh.build_ms);
+    fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms; %u exact "
+            "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
+            s->bvh.build_ms, s->bvh.repeats);
   fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
           "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
           s->parse_ms, s->gpu.upload_ms, s->gpu.pipeline_ms, s->first_frame_ms, s->render_ms, s->render_wall_ms,
@@ -34,7 +35,7 @@ void rc_stats_print(const rc_render_stats *s) {
           (unsigned long long)s->rays_reflection, rc_stats_mrays_per_s(s));
 }
 
-rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
+char *rc_stats_json(const rc_render_stats *s) {
   cJSON *o = cJSON_CreateObject();
   cJSON_AddStringToObject(o, "device", s->device);
   cJSON_AddStringToObject(o, "device_type", s->device_type);
@@ -70,6 +71,7 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "bvh_build_ms", s->bvh.build_ms);
   cJSON_AddNumberToObject(o, "bvh_nodes", s->bvh.nodes);
   cJSON_AddNumberToObject(o, "bvh_depth", s->bvh.depth);
+  cJSON_AddNumberToObject(o, "bvh_repeats_left_out", s->bvh.repeats);
   cJSON_AddNumberToObject(o, "parse_ms", s->parse_ms);
   cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
   cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);
@@ -98,14 +100,8 @@ rc_status rc_stats_write_json(const rc_render_stats *s, const char *path) {
   cJSON_AddNumberToObject(o, "workgroup_y", s->gpu.workgroup_y);
   char *text = cJSON_Print(o);
   cJSON_Delete(o);
-  rc_status st = RC_OK;
-  FILE *f = text ? fopen(path, "w") : NULL;
-  bool ok = f != NULL && fprintf(f, "%s\n", text) >= 0;
-  if (f && fclose(f) != 0) ok = false;
-  if (!ok) {
-    rc_error("%s: cannot write statistics: %s", path, strerror(errno));
-    st = RC_ERR_IO;
-  }
+  char *line = text ? malloc(strlen(text) + 2) : NULL;
+  if (line) sprintf(line, "%s\n", text);
   free(text);
-  return st;
+  return line;
 }

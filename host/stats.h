@@ -33,6 +33,7 @@ typedef struct rc_render_stats {
 double rc_stats_mrays_per_s(const rc_render_stats *s);
 void rc_stats_print(const rc_render_stats *s);
 /* Writes one JSON object; returns RC_ERR_IO with a message on failure. */
-rc_status rc_stats_write_json(const rc_render_stats *s, const char *path);
+/* The statistics as one JSON object and a newline (malloc'd; NULL when out of memory). */
+char *rc_stats_json(const rc_render_stats *s);
 
 #endif

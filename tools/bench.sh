@@ -29,7 +29,7 @@ for s in "${scenes[@]}"; do
   for kind in texel storage; do : >"$work/$kind.txt"; done
   for ((r = 0; r < rounds; r++)); do
     for kind in texel storage; do
-      build/vkraycast render "$s" -o "$work/out.exr" $size --repeat "$frames" --quiet ${spp:+--spp "$spp"} \
+      build/vkraycast render "$s" -o "$work/out.exr" $size --repeat "$frames" --quiet --allow-outside-paths ${spp:+--spp "$spp"} \
         --scene-buffers "$kind" --stats-json "$work/st.json"
       echo "$(num render_ms "$work/st.json") $(num render_wall_ms "$work/st.json") $(num cpu_ms "$work/st.json") \
 $(num mrays_per_s "$work/st.json") $(( $(num spheres "$work/st.json") + $(num triangles "$work/st.json") + $(num quadrics "$work/st.json") + $(num composites "$work/st.json") ))" >>"$work/$kind.txt"

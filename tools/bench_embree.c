@@ -178,7 +178,7 @@ static double median_of_rest(double *v, int n) {
 static int print_bbox(const char *file) {
   rc_scene s = {0};
   rc_affine id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
-  if (rc_mesh_load(file, &id, -1, &s, file) != RC_OK) return 2;
+  if (rc_mesh_load(file, NULL, &id, -1, &s, file) != RC_OK) return 2;
   double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
   for (size_t i = 0; i < s.triangle_count; i++)
     for (int k = 0; k < 3; k++) {
@@ -207,7 +207,7 @@ int main(int argc, char **argv) {
   }
   if (threads < 1 || threads > 64 || repeat < 1) return 2;
   rc_scene s;
-  if (rc_scene_load(argv[1], &s) != RC_OK) return 2;
+  if (rc_scene_load(argv[1], NULL, &s) != RC_OK) return 2;
   if (width) s.width = width;
   if (height) s.height = height;
   s.samples_per_pixel = 1;

@@ -30,7 +30,7 @@ for entry in "${scenes[@]}"; do
     [[ $tiles == one ]] && tile_opt=(--tile 1024)
     for r in $(seq "$rounds"); do
       for p in specialized generic; do
-        "$bin" render "$scene" -o "$work/x.exr" --pipeline "$p" "${common[@]}" "${tile_opt[@]}" \
+        "$bin" render "$scene" -o "$work/x.exr" --pipeline "$p" --allow-outside-paths "${common[@]}" "${tile_opt[@]}" \
           --stats-json "$work/$name.$tiles.$p.$r.json"
       done
     done

@@ -67,14 +67,14 @@ for name in mesh1000 mesh100000 mesh1000000 spheres4096 wuson spider engine; do
   # Cold: an empty cache folder (Mesa's shader cache and vkraycast's pipeline cache both
   # live under XDG_CACHE_HOME); warm: the same folder after one run.
   export XDG_CACHE_HOME=$work/cache-$name
-  build/vkraycast render "$s" -o "$work/o.png" $size --precision f32 --quiet --stats-json "$work/cold.json" 2>/dev/null
-  build/vkraycast render "$s" -o "$work/o.png" $size --precision f32 --quiet --stats-json "$work/warm.json" 2>/dev/null
-  build/vkraycast render "$s" -o "$work/$name.png" $size --precision f32 --repeat "$frames" --quiet \
+  build/vkraycast render "$s" --allow-outside-paths -o "$work/o.png" $size --precision f32 --quiet --stats-json "$work/cold.json" 2>/dev/null
+  build/vkraycast render "$s" --allow-outside-paths -o "$work/o.png" $size --precision f32 --quiet --stats-json "$work/warm.json" 2>/dev/null
+  build/vkraycast render "$s" --allow-outside-paths -o "$work/$name.png" $size --precision f32 --repeat "$frames" --quiet \
     --stats-json "$work/gpu.json" 2>/dev/null
-  build/vkraycast render "$s" -o "$work/o.png" $size --repeat "$frames" --quiet --stats-json "$work/gpu_auto.json" 2>/dev/null
-  build/vkraycast render "$s" -o "$work/o.png" $size --precision f32 --repeat "$frames" --backend cpu \
+  build/vkraycast render "$s" --allow-outside-paths -o "$work/o.png" $size --repeat "$frames" --quiet --stats-json "$work/gpu_auto.json" 2>/dev/null
+  build/vkraycast render "$s" --allow-outside-paths -o "$work/o.png" $size --precision f32 --repeat "$frames" --backend cpu \
     --threads "$threads" --quiet --stats-json "$work/cpu.json" 2>/dev/null
-  build/vkraycast render "$s" -o "$work/o.png" $size --repeat "$frames" --backend cpu --threads "$threads" --quiet \
+  build/vkraycast render "$s" --allow-outside-paths -o "$work/o.png" $size --repeat "$frames" --backend cpu --threads "$threads" --quiet \
     --stats-json "$work/cpu64.json" 2>/dev/null
   unset XDG_CACHE_HOME
   build/bench_embree "$s" --width 1024 --height 768 --repeat "$frames" --threads "$threads" >"$work/embree.json"

@@ -40,7 +40,7 @@ for scene in "$@"; do
   for backend in gpu cpu; do
     for p in f32 f64; do
       "$bin" render "$scene" -o "$out/$name-$backend-$p.exr" --aov "$out/$name-$backend-$p.aov.exr" \
-        --backend $backend --precision $p --quiet --stats-json "$out/$name-$backend-$p.json" ${RENDER_ARGS:-}
+        --backend $backend --precision $p --quiet --allow-outside-paths --stats-json "$out/$name-$backend-$p.json" ${RENDER_ARGS:-}
     done
   done
   for pair in f32-f64 f32-f32 f64-f64; do

@@ -36,7 +36,7 @@ echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,rms_error,max_error
 # One tile per frame (lavapipe's default, made explicit for other devices): every
 # variant pays the same one dispatch per batch. 160x160 so that the shading, not
 # lavapipe's ~8 ms fixed cost per dispatch, decides the times.
-common=(--width "$size" --height "$size" --tile "$size" --quiet)
+common=(--width "$size" --height "$size" --tile "$size" --quiet --allow-outside-paths)
 for s in "${scenes[@]}"; do
   n=$(basename "$s" .json)
   "$bin" render "$s" -o "$work/$n.ref256.exr" --backend cpu --precision f64 --spp 256 "${common[@]}" 2>/dev/null

@@ -144,9 +144,19 @@ bool open_temp(rc_image_writer *w, std::string &err) {
   return true;
 }
 
-// Gives up the temporary: closes it, and removes it if it has a name.
+// Gives up the temporary: closes it, and removes it if it has a name. A plugin closed on
+// an unfinished image complains on stderr (libpng: "No IDATs written into file") after the
+// run has already said what failed: stderr is pointed at /dev/null meanwhile.
 void discard_temp(rc_image_writer *w) {
-  w->out.reset();
+  if (w->out) {
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+    w->out.reset();
+    if (saved >= 0 && null >= 0) dup2(saved, STDERR_FILENO);
+    if (saved >= 0) close(saved);
+    if (null >= 0) close(null);
+  }
   w->proxy.reset();
   if (w->file) fclose(w->file);
   w->file = nullptr;
@@ -307,6 +317,31 @@ extern "C" int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_
   } catch (const std::exception &e) {
     set_error(err, err_len, e.what());
     return -1;
+  }
+}
+
+extern "C" rc_image_writer *rc_file_writer_open(const char *path, const void *bytes, size_t len, char *err,
+                                                size_t err_len) {
+  try {
+    auto w = std::make_unique<rc_image_writer>();
+    w->path = path;
+    w->dir = dir_of(path);
+    std::string e;
+    if (!open_temp(w.get(), e)) {
+      set_error(err, err_len, e);
+      return nullptr;
+    }
+    if (fwrite(bytes, 1, len, w->file) != len || fflush(w->file) != 0) e = errno_text("write failed", errno);
+    else if (fsync(fileno(w->file)) != 0) e = errno_text("fsync failed", errno);
+    if (!e.empty()) {
+      discard_temp(w.get());
+      set_error(err, err_len, e);
+      return nullptr;
+    }
+    return w.release(); // no rows: finish has nothing left to do, close names it
+  } catch (const std::exception &e) {
+    set_error(err, err_len, e.what());
+    return nullptr;
   }
 }
 

@@ -39,6 +39,10 @@ int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char
  * run, their closes with commit = 1 only rename (one transaction over several files). */
 int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len);
 int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len);
+/* A writer of a whole file given in memory (the statistics JSON), through the same
+ * temporary as an image: written and fsynced here, named by close(commit = 1), so that it
+ * joins the image's transaction. */
+rc_image_writer *rc_file_writer_open(const char *path, const void *bytes, size_t len, char *err, size_t err_len);
 /* The temporary file's name while the writer is open, for a signal handler to unlink;
  * empty while the temporary has no name. */
 const char *rc_image_writer_temp_path(const rc_image_writer *w);

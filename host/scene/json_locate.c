@@ -141,3 +141,36 @@ size_t rc_json_token_length(const char *text, size_t len, size_t offset) {
   if (!skip_value(&c, 0)) return 0;
   return c.pos - offset;
 }
+
+size_t rc_json_find_nul_escape(const char *text, size_t len) {
+  bool in_string = false;
+  for (size_t i = 0; i < len; i++) {
+    if (!in_string) {
+      in_string = text[i] == '"';
+    } else if (text[i] == '"') {
+      in_string = false;
+    } else if (text[i] == '\\') {
+      if (i + 5 < len && memcmp(text + i + 1, "u0000", 5) == 0) return i;
+      i++; /* the escaped character, which may be a quote */
+    }
+  }
+  return len;
+}
+
+size_t rc_json_next_value(const char *text, size_t len, size_t offset, bool member) {
+  cursor c = {text, len, offset};
+  if (!skip_value(&c, 0)) return len;
+  skip_ws(&c);
+  if (c.pos >= len || text[c.pos] != ',') return len;
+  c.pos++;
+  skip_ws(&c);
+  if (member) {
+    size_t a, b;
+    if (!skip_string(&c, &a, &b)) return len;
+    skip_ws(&c);
+    if (c.pos >= len || text[c.pos] != ':') return len;
+    c.pos++;
+    skip_ws(&c);
+  }
+  return c.pos;
+}

@@ -14,8 +14,15 @@ typedef struct rc_json_step {
 
 /* Offset of the value at `path` (or of the deepest prefix that exists). */
 size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, size_t depth);
+/* Offset of the element or member value after the one at `offset` in the same array or
+ * object (member: skip its key), or len when it was the last: walking a long array costs
+ * its length once, where rc_json_locate per element would cost its square. */
+size_t rc_json_next_value(const char *text, size_t len, size_t offset, bool member);
 /* 1-based line and column (in bytes) of an offset. */
 void rc_json_line_col(const char *text, size_t len, size_t offset, int *line, int *col);
+/* Offset of the first "\u0000" escape inside a string (a NUL that would end the decoded
+ * name early), or len when there is none. */
+size_t rc_json_find_nul_escape(const char *text, size_t len);
 /* Length of the scalar token at offset (number, string, literal); 0 for objects/arrays. */
 size_t rc_json_token_length(const char *text, size_t len, size_t offset);
 

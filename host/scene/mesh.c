@@ -1,11 +1,14 @@
 #include "scene/mesh.h"
 
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <math.h>
+#include <errno.h>
 #include <pthread.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 #include <stdio.h>
@@ -61,12 +64,71 @@ static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char
   return RC_OK;
 }
 
+/* Every file assimp opens (the mesh, and what it names: an OBJ's MTL, a glTF's buffers)
+ * goes through these callbacks, so that each is checked as the scene file is: a regular
+ * file opened without blocking (rc_fopen_regular), inside the scene's folder unless the
+ * user allowed otherwise (docs/scene-format.md, "Files a scene may read"). The first
+ * refusal is kept for the error message; assimp only sees a file that will not open. */
+typedef struct {
+  const char *root; /* the folder files must lie in; NULL: anywhere */
+  char refused[4200];
+} file_policy;
+
+static size_t file_read(struct aiFile *f, char *buf, size_t size, size_t count) {
+  return fread(buf, size, count, (FILE *)f->UserData);
+}
+static size_t file_write(struct aiFile *f, const char *buf, size_t size, size_t count) {
+  (void)f, (void)buf, (void)size, (void)count;
+  return 0;
+}
+static size_t file_tell(struct aiFile *f) {
+  long at = ftell((FILE *)f->UserData);
+  return at < 0 ? 0 : (size_t)at;
+}
+static size_t file_size(struct aiFile *f) {
+  struct stat st;
+  return fstat(fileno((FILE *)f->UserData), &st) == 0 ? (size_t)st.st_size : 0;
+}
+static enum aiReturn file_seek(struct aiFile *f, size_t offset, enum aiOrigin origin) {
+  int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
+  return fseek((FILE *)f->UserData, (long)offset, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
+}
+static void file_flush(struct aiFile *f) { (void)f; }
+
+static struct aiFile *file_open(struct aiFileIO *io, const char *path, const char *mode) {
+  file_policy *policy = (file_policy *)io->UserData;
+  const char *why = NULL;
+  if (strpbrk(mode, "wa+"))
+    why = "assimp asked to write it";
+  else if (policy->root && !rc_path_within(policy->root, path))
+    why = "it lies outside the scene's folder (--allow-outside-paths allows it)";
+  FILE *fp = why ? NULL : rc_fopen_regular(path, NULL, &why);
+  struct aiFile *f = fp ? malloc(sizeof *f) : NULL;
+  if (!f) {
+    if (fp) fclose(fp);
+    /* Importers probe for optional files that do not exist (an OBJ's MTL): not a refusal. */
+    bool absent = why && strcmp(why, strerror(ENOENT)) == 0;
+    if (!policy->refused[0] && !absent) snprintf(policy->refused, sizeof policy->refused, "%s: %s", path, why);
+    return NULL;
+  }
+  *f = (struct aiFile){file_read, file_write, file_tell, file_size, file_seek, file_flush, (aiUserData)fp};
+  return f;
+}
+
+static void file_close(struct aiFileIO *io, struct aiFile *f) {
+  (void)io;
+  if (!f) return;
+  fclose((FILE *)f->UserData);
+  free(f);
+}
+
 /* assimp 5.2.4 can loop forever on a malformed file (fuzz_mesh found a 171-byte ASCII PLY
  * that spins in fread at end of file). The import runs on a helper thread; if it has not
  * finished after 20 s + 1 s per MiB, the process reports the file and exits with status 2
  * (no output file exists yet at load time), rather than hang. */
 typedef struct {
   const char *file;
+  struct aiFileIO io;
   const struct aiScene *scene;
   bool done;
   pthread_mutex_t lock;
@@ -75,8 +137,9 @@ typedef struct {
 
 static void *import_thread(void *arg) {
   import_job *j = arg;
-  const struct aiScene *s = aiImportFile(j->file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                                      aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+  const struct aiScene *s = aiImportFileEx(j->file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                        aiProcess_SortByPType | aiProcess_JoinIdenticalVertices,
+                                           &j->io);
   pthread_mutex_lock(&j->lock);
   j->scene = s;
   j->done = true;
@@ -85,9 +148,10 @@ static void *import_thread(void *arg) {
   return NULL;
 }
 
-static const struct aiScene *import_with_watchdog(const char *file, off_t bytes, const char *where) {
+static const struct aiScene *import_with_watchdog(const char *file, off_t bytes, file_policy *policy,
+                                                  const char *where) {
   static import_job job; /* static: a timed-out import thread may still touch it */
-  job = (import_job){.file = file};
+  job = (import_job){.file = file, .io = {file_open, file_close, (aiUserData)policy}};
   pthread_mutex_init(&job.lock, NULL);
   pthread_cond_init(&job.cond, NULL);
   pthread_t t;
@@ -114,8 +178,8 @@ static const struct aiScene *import_with_watchdog(const char *file, off_t bytes,
   return job.scene;
 }
 
-rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int material, rc_scene *s,
-                       const char *where) {
+rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *world_from_object, int material,
+                       rc_scene *s, const char *where) {
   /* Triangulate n-gons; flatten the node hierarchy into the vertices; drop points and
    * lines. No normal generation: files without normals are flat shaded. */
   size_t bytes = 0;
@@ -124,7 +188,13 @@ rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int
     fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, why);
     return RC_ERR_IO;
   }
-  const struct aiScene *ai = import_with_watchdog(file, (off_t)bytes, where);
+  file_policy policy = {.root = root};
+  const struct aiScene *ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
+  if (policy.refused[0]) {
+    fprintf(stderr, "%s: cannot load mesh %s: refused to open %s\n", where, file, policy.refused);
+    if (ai) aiReleaseImport(ai);
+    return RC_ERR_IO;
+  }
   if (!ai) {
     fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, aiGetErrorString());
     return RC_ERR_IO;

@@ -10,8 +10,9 @@
  * Ns) becomes one of ours; else every triangle gets that material. Vertex normals, where
  * the file has them, make the triangles smooth shaded. `where` prefixes error messages
  * (FILE:LINE:COL: error: objects[i].file:). Zero-area triangles are counted in
- * scene->degenerate_triangles. */
-rc_status rc_mesh_load(const char *file, const rc_affine *world_from_object, int material, rc_scene *scene,
-                       const char *where);
+ * scene->degenerate_triangles. Every file the importer opens (the mesh and those it names)
+ * must be a regular file inside the folder `root`; NULL allows any folder. */
+rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *world_from_object, int material,
+                       rc_scene *scene, const char *where);
 
 #endif

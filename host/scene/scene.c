@@ -2,14 +2,16 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "scene/json_locate.h"
 
 /* Scene files larger than this are refused before reading (a mesh belongs in a mesh file). */
 #define RC_MAX_SCENE_FILE_BYTES (256u << 20)
 
-rc_status rc_scene_load(const char *path, rc_scene *scene) {
+rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
   size_t len = 0;
   FILE *f = rc_open_input(path, "scene file", &len);
@@ -31,8 +33,17 @@ rc_status rc_scene_load(const char *path, rc_scene *scene) {
   fclose(f);
   size_t n = strlen(path);
   bool test_format = n >= 5 && strcmp(path + n - 5, ".test") == 0;
+  /* Neither format allows a NUL byte, and one would silently end the C string of a name
+   * or a token that holds it. */
+  const char *nul = st == RC_OK ? memchr(text, '\0', len) : NULL;
+  if (nul) {
+    int line, col;
+    rc_json_line_col(text, len, (size_t)(nul - text), &line, &col);
+    fprintf(stderr, "%s:%d:%d: error: a NUL byte (byte %zu of the file)\n", path, line, col, (size_t)(nul - text));
+    st = RC_ERR_INPUT;
+  }
   if (st == RC_OK)
-    st = test_format ? rc_scene_parse_test(path, text, len, scene) : rc_scene_parse_json(path, text, len, scene);
+    st = test_format ? rc_scene_parse_test(path, text, len, scene) : rc_scene_parse_json(path, text, len, options, scene);
   free(text);
   if (st == RC_OK && scene->degenerate_triangles)
     rc_warning("%s: skipped %zu degenerate (zero-area) triangle%s", path, scene->degenerate_triangles,
@@ -82,6 +93,7 @@ void rc_scene_free(rc_scene *scene) {
   free(scene->csg_leaves);
   for (size_t i = 0; i < scene->csg_count; i++) free(scene->csgs[i].program);
   free(scene->csgs);
+  free(scene->origins);
   free(scene->path);
   memset(scene, 0, sizeof *scene);
 }
@@ -151,4 +163,57 @@ int rc_name_index(const char *const *names, const char *name) {
   for (int i = 0; names[i]; i++)
     if (strcmp(names[i], name) == 0) return i;
   return -1;
+}
+
+void rc_scene_counts(const rc_scene *s, size_t counts[RC_ORIGIN_KINDS]) {
+  counts[RC_ORIGIN_SPHERE] = s->sphere_count;
+  counts[RC_ORIGIN_TRIANGLE] = s->triangle_count;
+  counts[RC_ORIGIN_QUADRIC] = s->quadric_count;
+  counts[RC_ORIGIN_CSG] = s->csg_count;
+  counts[RC_ORIGIN_LIGHT] = s->light_count;
+  counts[RC_ORIGIN_MATERIAL] = s->material_count;
+}
+
+rc_status rc_scene_note_origin(rc_scene *s, const size_t before[RC_ORIGIN_KINDS], int line, int col,
+                               const char *what, uint32_t item) {
+  size_t now[RC_ORIGIN_KINDS];
+  rc_scene_counts(s, now);
+  for (uint32_t k = 0; k < RC_ORIGIN_KINDS; k++) {
+    if (now[k] == before[k]) continue;
+    RC_GROW(s->origins, s->origin_count, s->origin_capacity, 64);
+    s->origins[s->origin_count++] =
+        (rc_origin){k, (uint32_t)line, (uint32_t)col, item, what, before[k], now[k] - before[k]};
+  }
+  return RC_OK;
+}
+
+void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
+  static const char *const kinds[] = {"sphere", "triangle", "quadric", "composite", "light", "material"};
+  char message[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(message, sizeof message, fmt, ap);
+  va_end(ap);
+  /* A scan: this runs once, for an error message. */
+  const rc_origin *found = NULL;
+  for (size_t i = 0; i < s->origin_count && !found; i++) {
+    const rc_origin *o = &s->origins[i];
+    if (o->kind == kind && index >= o->first && index - o->first < o->count) found = o;
+  }
+  const char *name = kind < RC_ORIGIN_KINDS ? kinds[kind] : "object";
+  if (!found) {
+    fprintf(stderr, "%s: error: %s %zu: %s\n", s->path, name, index, message);
+    return;
+  }
+  char field[200];
+  if (found->item != UINT32_MAX)
+    snprintf(field, sizeof field, "%s[%u]", found->what, found->item);
+  else if (kind == RC_ORIGIN_MATERIAL && !strcmp(found->what, "materials"))
+    snprintf(field, sizeof field, "materials.%.160s", s->materials[index].name);
+  else
+    snprintf(field, sizeof field, "%s", found->what);
+  if (found->count > 1)
+    snprintf(field + strlen(field), sizeof field - strlen(field), " (%s %zu of %zu)", name, index - found->first,
+             found->count);
+  fprintf(stderr, "%s:%u:%u: error: %s: %s\n", s->path, found->line, found->col, field, message);
 }

@@ -54,6 +54,18 @@ typedef struct rc_quadric_def {
 
 /* A composite solid: a postfix program (RC_CSG_* << RC_CSG_OP_SHIFT | operand) whose leaf
  * operands index rc_scene.csg_leaves; its world-space bounding box. */
+/* Where primitives came from in the scene file, for errors found after parsing (values
+ * beyond f32 once packed, the GPU's loop budget): primitives [first, first + count) of
+ * `kind` come from the value at line:col, field `what`[item] (JSON: "objects", "lights",
+ * or "materials" with the material's name; .test: the command, item UINT32_MAX). */
+enum { RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_CSG, RC_ORIGIN_LIGHT, RC_ORIGIN_MATERIAL,
+       RC_ORIGIN_KINDS };
+typedef struct rc_origin {
+  uint32_t kind, line, col, item;
+  const char *what; /* a static string */
+  size_t first, count;
+} rc_origin;
+
 typedef struct rc_csg_def {
   uint32_t *program;
   uint32_t length;
@@ -122,15 +134,37 @@ typedef struct rc_scene {
   rc_csg_def *csgs;
   size_t csg_count, csg_capacity;
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
+  rc_origin *origins;          /* in file order */
+  size_t origin_count, origin_capacity;
 } rc_scene;
+
+/* The number of primitives of each RC_ORIGIN_* kind so far. */
+void rc_scene_counts(const rc_scene *scene, size_t counts[RC_ORIGIN_KINDS]);
+/* Records that the primitives added since `before` (rc_scene_counts) come from line:col. */
+rc_status rc_scene_note_origin(rc_scene *scene, const size_t before[RC_ORIGIN_KINDS], int line, int col,
+                               const char *what, uint32_t item);
+/* Prints "FILE:LINE:COL: error: FIELD: message" for primitive `index` of `kind` (FIELD
+ * says "triangle K of N" for one of many from the same object, a mesh), or "FILE: error:
+ * KIND INDEX: message" when no origin was recorded. */
+void rc_scene_error(const rc_scene *scene, uint32_t kind, size_t index, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* How a scene may be read; NULL means all false. */
+typedef struct rc_load_options {
+  /* Meshes, and the files a mesh names, may lie outside the scene file's folder. Off by
+   * default, so that rendering an untrusted scene cannot read arbitrary files into the
+   * image (docs/scene-format.md, "Files a scene may read"). */
+  bool allow_outside_paths;
+} rc_load_options;
 
 /* Reads and validates a scene file, JSON or (by the extension .test) the CSE167 format;
  * errors are printed as FILE:LINE:COL: error: ... */
-rc_status rc_scene_load(const char *path, rc_scene *scene);
-/* The CSE167x ray-tracer format (scene_test.c). */
+rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_scene *scene);
+/* The CSE167x ray-tracer format (scene_test.c); it names no other files. */
 rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc_scene *scene);
-/* The same from text in memory; `path` names it in messages. */
-rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc_scene *scene);
+/* The JSON format from text in memory; `path` names it in messages and locates meshes. */
+rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, const rc_load_options *options,
+                              rc_scene *scene);
 void rc_scene_free(rc_scene *scene);
 /* Room for `extra` more triangles (meshes and JSON triangles both append). */
 rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);

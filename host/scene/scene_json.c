@@ -282,8 +282,12 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
   size_t n = (size_t)cJSON_GetArraySize(mats);
   s->materials = rc_alloc(n, sizeof *s->materials, "materials");
   if (!s->materials) return RC_ERR_OUT_OF_MEMORY;
+  size_t off = 0;
   for (const cJSON *m = mats->child; m; m = m->next) {
     js_push_key(c, m->string);
+    off = m == mats->child ? js_offset(c) : rc_json_next_value(c->text, c->len, off, true);
+    size_t before[RC_ORIGIN_KINDS];
+    rc_scene_counts(s, before);
     uint32_t index;
     bool twice;
     if (!rc_name_table_insert(&c->materials, m->string, strlen(m->string), (uint32_t)s->material_count, &index,
@@ -307,6 +311,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(js_get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
     TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
     TRY(js_get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
+    TRY(js_note_origin(c, s, before, off, "materials", UINT32_MAX));
     js_pop(c);
   }
   js_pop(c);
@@ -321,9 +326,12 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
   size_t n = (size_t)cJSON_GetArraySize(lights);
   s->lights = rc_alloc(n, sizeof *s->lights, "lights");
   if (!s->lights) return RC_ERR_OUT_OF_MEMORY;
-  size_t i = 0;
+  size_t i = 0, off = 0;
   for (const cJSON *l = lights->child; l; l = l->next, i++) {
     js_push_index(c, i);
+    off = i == 0 ? js_offset(c) : rc_json_next_value(c->text, c->len, off, false);
+    size_t before[RC_ORIGIN_KINDS];
+    rc_scene_counts(s, before);
     TRY(js_expect_object(c, l));
     rc_light_def *d = &s->lights[s->light_count++];
     static const char *const types[] = {"point", "directional", NULL};
@@ -350,10 +358,24 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
       }
     }
     TRY(js_get_vec3(c, l, "intensity", true, zero, 0.0, &d->intensity));
+    TRY(js_note_origin(c, s, before, off, "lights", (uint32_t)i));
     js_pop(c);
   }
   js_pop(c);
   return RC_OK;
+}
+
+size_t js_offset(const jctx *c) { return rc_json_locate(c->text, c->len, c->path, c->depth); }
+
+rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KINDS], size_t off, const char *what,
+                         uint32_t item) {
+  if (off < c->lc_off || c->lc_line == 0) c->lc_off = 0, c->lc_line = 1, c->lc_col = 1;
+  for (size_t i = c->lc_off; i < off && i < c->len; i++) {
+    if (c->text[i] == '\n') c->lc_line++, c->lc_col = 1;
+    else c->lc_col++;
+  }
+  c->lc_off = off;
+  return rc_scene_note_origin(s, before, c->lc_line, c->lc_col, what, item);
 }
 
 rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out) {
@@ -484,12 +506,16 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
   if (!f) return js_fail(c, "missing field \"file\"");
   js_push_key(c, "file");
   if (!cJSON_IsString(f) || !f->valuestring[0]) return js_fail(c, "expected a file name");
-  char path[4096];
+  char path[4096], folder[4096];
   const char *slash = strrchr(c->file, '/');
+  int n = snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - c->file) : 1, slash ? c->file : ".");
   if (f->valuestring[0] == '/' || !slash)
-    snprintf(path, sizeof path, "%s", f->valuestring);
+    n |= snprintf(path, sizeof path, "%s", f->valuestring);
   else
-    snprintf(path, sizeof path, "%.*s/%s", (int)(slash - c->file), c->file, f->valuestring);
+    n |= snprintf(path, sizeof path, "%s/%s", folder, f->valuestring);
+  if (n < 0 || strlen(f->valuestring) + strlen(folder) + 2 > sizeof path) return js_fail(c, "path too long");
+  if (!c->allow_outside_paths && !rc_path_within(folder, path))
+    return js_fail(c, "lies outside the scene's folder %s (--allow-outside-paths allows it)", folder);
   size_t off = rc_json_locate(c->text, c->len, c->path, c->depth);
   int line, col;
   rc_json_line_col(c->text, c->len, off, &line, &col);
@@ -504,7 +530,7 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
     TRY(js_get_material_ref(c, o, &id));
     material = (int)id;
   }
-  return rc_mesh_load(path, m, material, s, where);
+  return rc_mesh_load(path, c->allow_outside_paths ? NULL : folder, m, material, s, where);
 }
 
 static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
@@ -515,9 +541,12 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   size_t n = (size_t)cJSON_GetArraySize(objs);
   s->spheres = rc_alloc(n, sizeof *s->spheres, "spheres");
   if (!s->spheres) return RC_ERR_OUT_OF_MEMORY;
-  size_t i = 0;
+  size_t i = 0, off = 0;
   for (const cJSON *o = objs->child; o; o = o->next, i++) {
     js_push_index(c, i);
+    off = i == 0 ? js_offset(c) : rc_json_next_value(c->text, c->len, off, false);
+    size_t before[RC_ORIGIN_KINDS];
+    rc_scene_counts(s, before);
     TRY(js_expect_object(c, o));
     static const char *const types[] = {"sphere",     "triangle",    "mesh", "quadric", "ellipsoid", "cylinder", "cone",
                                         "paraboloid", "hyperboloid", "box",  "csg",     NULL};
@@ -525,6 +554,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
     if (!tv) return js_fail(c, "missing field \"type\"");
     if (cJSON_IsString(tv) && js_is_quadric_type(tv->valuestring)) {
       TRY(js_parse_quadric_object(c, o, s));
+      TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
       js_pop(c);
       continue;
     }
@@ -568,6 +598,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       TRY(get_transform(c, o, &m, &transformed));
       TRY(parse_mesh(c, o, s, &m));
     }
+    TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
     js_pop(c);
   }
   js_pop(c);
@@ -621,10 +652,19 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
   return RC_OK;
 }
 
-rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, rc_scene *scene) {
+rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, const rc_load_options *options,
+                              rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
   scene->path = strdup(path);
-  jctx c = {.file = path, .text = text, .len = len};
+  jctx c = {.file = path, .text = text, .len = len, .allow_outside_paths = options && options->allow_outside_paths};
+  size_t nul = rc_json_find_nul_escape(text, len);
+  if (nul < len) {
+    int line, col;
+    rc_json_line_col(text, len, nul, &line, &col);
+    fprintf(stderr, "%s:%d:%d: error: a \\u0000 escape: names and strings may not hold a NUL character\n", path,
+            line, col);
+    return RC_ERR_INPUT;
+  }
   const char *end = NULL;
   cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, false);
   if (!root) {

@@ -20,6 +20,9 @@ typedef struct {
   rc_json_step path[RC_JSON_MAX_DEPTH];
   size_t depth;
   rc_name_table materials; /* material name -> index into rc_scene.materials */
+  bool allow_outside_paths; /* rc_load_options */
+  size_t lc_off;            /* js_note_origin's line counter: where it stopped */
+  int lc_line, lc_col;
 } jctx;
 
 #define TRY(expr)                 \
@@ -51,6 +54,13 @@ rc_status js_get_vec3(jctx *c, const cJSON *obj, const char *key, bool required,
 rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names, uint32_t def,
                       uint32_t *out);
 rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out);
+/* Offset in the text of the value at the current path (rc_json_locate). */
+size_t js_offset(const jctx *c);
+/* Records that what was added to the scene since `before` comes from the value at `off`
+ * (an element of array `what`, or with item UINT32_MAX a member of object `what`). Lines
+ * are counted on from the previous call, so values noted in file order cost the file once. */
+rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KINDS], size_t off, const char *what,
+                         uint32_t item);
 
 /* scene_quadric.c: the object types that are quadrics ("quadric", "ellipsoid", "cylinder",
  * "cone", "paraboloid", "hyperboloid", "box") and composites ("csg"). Whether `type` is

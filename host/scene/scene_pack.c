@@ -38,38 +38,59 @@ static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
 
 static bool finite3(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
+/* The composite whose program uses leaf `leaf` (rc_scene.csg_leaves). */
+static size_t csg_of_leaf(const rc_scene *s, size_t leaf) {
+  for (size_t i = 0; i < s->csg_count; i++)
+    for (uint32_t k = 0; k < s->csgs[i].length; k++) {
+      uint32_t ins = s->csgs[i].program[k];
+      if (ins >> RC_CSG_OP_SHIFT == RC_CSG_LEAF && (ins & RC_CSG_OPERAND_MASK) == leaf) return i;
+    }
+  return 0;
+}
+
 /* Values that are finite in f64 but leave the f32 range once packed would reach the
- * shader as Inf, which Vulkan lets shaders assume away (ROBUSTNESS.md §1.3). */
+ * shader as Inf, which Vulkan lets shaders assume away (docs/accuracy.md). The error names
+ * the object in the scene file and the value. */
 static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
-  const char *what = NULL;
+  const char *field = NULL;
+  uint32_t kind = 0;
   size_t index = 0;
-  for (size_t i = 0; i < s->sphere_count && !what; i++)
-    if (!finite3(p->spheres[i].center) || !isfinite(p->spheres[i].radius * p->spheres[i].radius))
-      what = "sphere", index = i;
-  for (size_t i = 0; i < s->triangle_count && !what; i++)
-    if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2))
-      what = "triangle", index = i;
-  for (size_t i = 0; i < s->quadric_count + s->csg_leaf_count && !what; i++) {
-    const gpu_quadric *q = &p->quadrics[i];
-    if (!finite3(q->center) || !finite3(q->diag) || !finite3(q->off) || !finite3(q->linear) || !isfinite(q->constant) ||
-        !finite3(q->lo) || !finite3(q->hi))
-      what = i < s->quadric_count ? "quadric" : "composite operand", index = i < s->quadric_count ? i : i - s->quadric_count;
+#define BAD(k, i, f) (kind = (k), index = (i), field = (f))
+  for (size_t i = 0; i < s->sphere_count && !field; i++) {
+    const rc_sphere_def *d = &s->spheres[i];
+    dvec3 world = d->transformed ? rc_affine_point(&d->world_from_object, d->center) : d->center;
+    if (!finite3(p->spheres[i].center) || !finite3(to_packed(p, world)))
+      BAD(RC_ORIGIN_SPHERE, i, "its centre (relative to the eye, transformed)");
+    else if (!isfinite(p->spheres[i].radius * p->spheres[i].radius)) BAD(RC_ORIGIN_SPHERE, i, "its radius squared");
   }
-  for (size_t i = 0; i < s->light_count && !what; i++)
-    if (!finite3(p->lights[i].position) || !finite3(p->lights[i].intensity)) what = "light", index = i;
-  for (size_t i = 0; i < s->material_count && !what; i++)
+  for (size_t i = 0; i < s->triangle_count && !field; i++)
+    if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2))
+      BAD(RC_ORIGIN_TRIANGLE, i, "a vertex (relative to the eye, transformed)");
+  for (size_t i = 0; i < s->quadric_count + s->csg_leaf_count && !field; i++) {
+    const gpu_quadric *q = &p->quadrics[i];
+    bool bad = !finite3(q->center) || !finite3(q->diag) || !finite3(q->off) || !finite3(q->linear) ||
+               !isfinite(q->constant) || !finite3(q->lo) || !finite3(q->hi);
+    if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size or coefficients");
+    else if (bad) BAD(RC_ORIGIN_CSG, csg_of_leaf(s, i - s->quadric_count), "an operand's centre (relative to the eye), size or coefficients");
+  }
+  for (size_t i = 0; i < s->light_count && !field; i++) {
+    if (!finite3(p->lights[i].position)) BAD(RC_ORIGIN_LIGHT, i, "its position (relative to the eye)");
+    else if (!finite3(p->lights[i].intensity)) BAD(RC_ORIGIN_LIGHT, i, "its intensity");
+  }
+  for (size_t i = 0; i < s->material_count && !field; i++)
     if (!finite3(p->materials[i].ambient) || !finite3(p->materials[i].diffuse) ||
         !finite3(p->materials[i].specular) || !finite3(p->materials[i].mirror) || !finite3(p->materials[i].emission) ||
         !isfinite(p->materials[i].shininess))
-      what = "material", index = i;
-  if (!what) return RC_OK;
-  fprintf(stderr, "%s: error: %s %zu: a value (relative to the eye) is beyond the f32 range (|x| > 3.4e38, "
-          "or a radius whose square is) that the GPU renders in\n", s->path, what, index);
+      BAD(RC_ORIGIN_MATERIAL, i, "a colour or the shininess");
+#undef BAD
+  if (!field) return RC_OK;
+  rc_scene_error(s, kind, index, "%s is beyond the f32 range (3.4e38) the GPU renders in", field);
   return RC_ERR_INPUT;
 }
 
 /* object_from_packed = inverse(world_from_object) composed with packed -> world (+origin),
- * in f64. Returns false for a singular transform. */
+ * in f64, rounded to f32. Returns false for a transform that is singular, or becomes so
+ * or infinite in f32 (a scale beyond 1e38 or below 1e-38). */
 static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *out) {
   const double(*a)[4] = w->m;
   double lin[3][3] = {{a[0][0], a[0][1], a[0][2]}, {a[1][0], a[1][1], a[1][2]}, {a[2][0], a[2][1], a[2][2]}};
@@ -82,7 +103,13 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *
     double tr = inv[i][0] * shift[0] + inv[i][1] * shift[1] + inv[i][2] * shift[2];
     *rows[i] = (vec4){(float)inv[i][0], (float)inv[i][1], (float)inv[i][2], (float)tr};
   }
-  return true;
+  const vec4 *r = &out->row0, *q = &out->row1, *t = &out->row2;
+  double det = (double)r->x * ((double)q->y * t->z - (double)q->z * t->y) -
+               (double)r->y * ((double)q->x * t->z - (double)q->z * t->x) +
+               (double)r->z * ((double)q->x * t->y - (double)q->y * t->x);
+  for (int i = 0; i < 3; i++)
+    if (!isfinite(rows[i]->x) || !isfinite(rows[i]->y) || !isfinite(rows[i]->z) || !isfinite(rows[i]->w)) return false;
+  return det != 0 && isfinite(det);
 }
 
 /* A quadric's frame stays in f64 up to here: the centre is made camera-relative before
@@ -172,7 +199,8 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     } else {
       p->spheres[i].center = rcm_to_f(d->center); /* object space */
       if (!object_from_packed(&d->world_from_object, p->origin, &p->transforms[p->transform_count])) {
-        fprintf(stderr, "%s: error: sphere %zu: its transform is singular (a zero scale?)\n", s->path, i);
+        rc_scene_error(s, RC_ORIGIN_SPHERE, i, "its transform is singular, or is once inverted in f32 (a scale of "
+                       "0, or beyond 1e38 or below 1e-38)");
         rc_packed_scene_free(p);
         return RC_ERR_INPUT;
       }

@@ -323,6 +323,13 @@ static rc_status command(state *g, ctx *c) {
 #undef TRY
 }
 
+/* The commands that add to the scene, as static strings for rc_origin. */
+static const char *origin_name(const char *cmd) {
+  static const char *const names[] = {"sphere", "tri", "trinormal", "point", "directional", NULL};
+  int i = rc_name_index(names, cmd);
+  return i >= 0 ? names[i] : "command";
+}
+
 rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc_scene *s) {
   memset(s, 0, sizeof *s);
   s->path = strdup(path);
@@ -361,7 +368,10 @@ rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc
       char name[32];
       snprintf(name, sizeof name, "%.*s", (int)strcspn(c.tok[0], " \t\r\n"), c.tok[0]);
       c.cmd = name;
+      size_t before[RC_ORIGIN_KINDS];
+      rc_scene_counts(s, before);
       st = too_many ? fail(&c, 0, "too many arguments") : command(&g, &c);
+      if (st == RC_OK) st = rc_scene_note_origin(s, before, c.line, (int)(c.tok[0] - p) + 1, origin_name(name), UINT32_MAX);
     }
     p = eol + 1;
   }

@@ -31,7 +31,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   fclose(f);
   memset(&s, 0, sizeof s);
   rc_affine id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
-  rc_mesh_load(path, &id, 0, &s, "fuzz");
+  rc_mesh_load(path, NULL, &id, 0, &s, "fuzz");
   unlink(path);
 #else
   /* The parsers take NUL-terminated text of a given length, as rc_scene_load reads it. */
@@ -40,7 +40,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   memcpy(text, data, size);
   text[size] = '\0';
 #if FUZZ_TARGET == 1
-  rc_scene_parse_json("fuzz.json", text, size, &s);
+  rc_scene_parse_json("fuzz.json", text, size, NULL, &s);
 #else
   rc_scene_parse_test("fuzz.test", text, size, &s);
 #endif

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Nothing blocks or spins on special files (issue 13, class 3). Generated: every kind of
 # non-regular file (a FIFO with no writer, /dev/zero, /dev/full, a socket, a directory) in
-# every role a path plays (scene, mesh named by a scene, both inputs of compare, image,
+# every role a path plays (scene, mesh named by a scene, a file a mesh names, both inputs
+# of compare, image,
 # AOV and statistics outputs). Each case must end within 10 s with exit status 2, a
 # message naming the path and what it is, and no output file; and /dev/null must still
 # be the device afterwards (an output renames over its path).
@@ -40,7 +41,16 @@ for kind in "${!kinds[@]}"; do
   printf '{ "image": { "width": 8, "height": 6 }, "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0] },
   "materials": { "m": { "diffuse": [0.5, 0.5, 0.5] } },
   "objects": [ { "type": "mesh", "file": "%s", "material": "m" } ] }\n' "$p" >"$work/mesh_$kind.json"
-  run_case "mesh is $kind" "$p" "$kind" -- "$bin" render "$work/mesh_$kind.json" -o "$work/o.png" --quiet
+  run_case "mesh is $kind" "$p" "$kind" -- "$bin" render "$work/mesh_$kind.json" -o "$work/o.png" --quiet \
+    --allow-outside-paths
+  # A file the mesh names (an OBJ's material library, which assimp looks for in the OBJ's
+  # folder: devices through a link there) goes through the same check.
+  lib=$(basename "$p")
+  [[ $p == /dev/* ]] && lib=link_$kind && ln -sf "$p" "$work/$lib"
+  printf 'mtllib %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' "$lib" >"$work/mtl_$kind.obj"
+  sed "s|\"file\": \"[^\"]*\"|\"file\": \"mtl_$kind.obj\"|" "$work/mesh_$kind.json" >"$work/mtl_$kind.json"
+  run_case "material library is $kind" "$lib" "$kind" -- "$bin" render "$work/mtl_$kind.json" -o "$work/o.png" \
+    --quiet --allow-outside-paths
   run_case "compare A is $kind" "$p" "$kind" -- "$bin" compare "$p" "$work/good.png"
   run_case "compare B is $kind" "$p" "$kind" -- "$bin" compare "$work/good.png" "$p"
   run_case "image output is $kind" "$p" "$kind" -- "$bin" render "$scenes/shadows.json" -o "$p" --quiet

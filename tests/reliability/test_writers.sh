@@ -3,7 +3,7 @@
 # classes 1 and 2). Cases are generated, not listed: every image format the README names,
 # each under file-size limits (ulimit -f) at one block, half and just under the size the
 # file needs, on a full filesystem (a small tmpfs, where this user may mount one), and an
-# AOV file that fails while its image would fit. Each case: exit status 2, a message
+# AOV or statistics file that fails while its image would fit. Each case: exit status 2, a message
 # naming the file, the previous image (and AOV file) byte for byte as they were, and no
 # temporary left behind.
 # Usage: test_writers.sh VKRAYCAST SCENES_DIR WORKDIR
@@ -62,6 +62,20 @@ if [[ $(id -u) == 0 ]] && mount -t tmpfs -o size=64k tmpfs "$fs" 2>/dev/null; th
     expect_failure "$ext on a full filesystem" "$fs" "$ext" "true"
     rm -f "$fs/fill" "$fs/out.$ext"
   done
+  # The statistics fail (on the full filesystem) where the image fits: both old files stay.
+  echo '{ "old": true }' >"$fs/stats.json" && cp "$fs/stats.json" "$work/keep_stats.json"
+  cp "$work/keep.png" "$work/out.png"
+  free=$(( $(stat -f -c '%a * %S' "$fs") ))
+  fallocate -l "$free" "$fs/fill" 2>/dev/null
+  "$bin" "${render[@]}" -o "$work/out.png" --stats-json "$fs/stats.json" 2>"$work/err"
+  got=$? why=ok
+  [[ $got == 2 ]] || why="exit status $got, expected 2"
+  grep -q "stats.json: cannot write statistics" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err")"
+  cmp -s "$work/out.png" "$work/keep.png" || why="$why; the image changed"
+  cmp -s "$fs/stats.json" "$work/keep_stats.json" || why="$why; the statistics changed"
+  [[ -z "$(temps "$fs")$(temps "$work")" ]] || why="$why; temporaries left"
+  check "statistics fail after their image: both kept" "$why"
+  rm -f "$fs/fill"
   umount "$fs"
 else
   echo "note: no tmpfs could be mounted (not root): the full-filesystem cases ran as ulimit cases only"

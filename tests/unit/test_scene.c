@@ -4,7 +4,7 @@
 #include "rc_test.h"
 #include "scene/scene_pack.h"
 
-static rc_status parse(const char *text, rc_scene *s) { return rc_scene_parse_json("test.json", text, strlen(text), s); }
+static rc_status parse(const char *text, rc_scene *s) { return rc_scene_parse_json("test.json", text, strlen(text), NULL, s); }
 
 TEST(defaults_are_the_documented_ones) {
   rc_scene s;
@@ -100,13 +100,15 @@ TEST(transforms_compose_scale_rotate_translate) {
 
 /* A mesh through assimp: assimp-testmodels' OBJ cube (6 quads -> 12 triangles), its MTL
  * material, and the transform applied to every vertex. */
+static const char box_scene[] =
+    "{\"image\":{\"width\":4,\"height\":4},\"camera\":{\"eye\":[0,0,5],\"look_at\":[0,0,0]},"
+    "\"objects\":[{\"type\":\"mesh\",\"file\":\"/usr/share/assimp/models/OBJ/box.obj\","
+    "\"transform\":{\"translate\":[100,0,0]}}]}";
+
 TEST(obj_mesh_is_triangulated_and_transformed) {
   rc_scene s;
-  CHECK_EQ_INT(parse("{\"image\":{\"width\":4,\"height\":4},\"camera\":{\"eye\":[0,0,5],\"look_at\":[0,0,0]},"
-                     "\"objects\":[{\"type\":\"mesh\",\"file\":\"/usr/share/assimp/models/OBJ/box.obj\","
-                     "\"transform\":{\"translate\":[100,0,0]}}]}",
-                     &s),
-               RC_OK);
+  rc_load_options outside = {.allow_outside_paths = true};
+  CHECK_EQ_INT(rc_scene_parse_json("test.json", box_scene, strlen(box_scene), &outside, &s), RC_OK);
   CHECK_EQ_INT(s.triangle_count, 12);
   CHECK(s.material_count >= 1);
   double min_x = 1e30, max_x = -1e30;
@@ -119,6 +121,14 @@ TEST(obj_mesh_is_triangulated_and_transformed) {
   rc_scene_free(&s);
 }
 
+/* By default a mesh outside the scene's folder (here ".") is refused before it is read. */
+TEST(mesh_outside_the_scene_folder_needs_the_option) {
+  rc_scene s;
+  CHECK_EQ_INT(parse(box_scene, &s), RC_ERR_INPUT);
+  CHECK_EQ_INT(s.triangle_count, 0);
+  rc_scene_free(&s);
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(defaults_are_the_documented_ones);
@@ -127,5 +137,6 @@ int main(void) {
   RUN(camera_problems_are_named);
   RUN(transforms_compose_scale_rotate_translate);
   RUN(obj_mesh_is_triangulated_and_transformed);
+  RUN(mesh_outside_the_scene_folder_needs_the_option);
   TEST_MAIN_END
 }
