@@ -33,15 +33,6 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
   fclose(f);
   size_t n = strlen(path);
   bool test_format = n >= 5 && strcmp(path + n - 5, ".test") == 0;
-  /* Neither format allows a NUL byte, and one would silently end the C string of a name
-   * or a token that holds it. */
-  const char *nul = st == RC_OK ? memchr(text, '\0', len) : NULL;
-  if (nul) {
-    int line, col;
-    rc_json_line_col(text, len, (size_t)(nul - text), &line, &col);
-    fprintf(stderr, "%s:%d:%d: error: a NUL byte (byte %zu of the file)\n", path, line, col, (size_t)(nul - text));
-    st = RC_ERR_INPUT;
-  }
   if (st == RC_OK)
     st = test_format ? rc_scene_parse_test(path, text, len, scene) : rc_scene_parse_json(path, text, len, options, scene);
   free(text);
@@ -49,6 +40,15 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
     rc_warning("%s: skipped %zu degenerate (zero-area) triangle%s", path, scene->degenerate_triangles,
                scene->degenerate_triangles == 1 ? "" : "s");
   return st;
+}
+
+rc_status rc_scene_check_text(const char *path, const char *text, size_t len) {
+  const char *nul = memchr(text, '\0', len);
+  if (!nul) return RC_OK;
+  int line, col;
+  rc_json_line_col(text, len, (size_t)(nul - text), &line, &col);
+  fprintf(stderr, "%s:%d:%d: error: a NUL byte (byte %zu of the file)\n", path, line, col, (size_t)(nul - text));
+  return RC_ERR_INPUT;
 }
 
 rc_status rc_scene_reserve_triangles(rc_scene *s, size_t extra) {

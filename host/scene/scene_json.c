@@ -657,6 +657,7 @@ rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, co
   memset(scene, 0, sizeof *scene);
   scene->path = strdup(path);
   jctx c = {.file = path, .text = text, .len = len, .allow_outside_paths = options && options->allow_outside_paths};
+  if (rc_scene_check_text(path, text, len) != RC_OK) return RC_ERR_INPUT;
   size_t nul = rc_json_find_nul_escape(text, len);
   if (nul < len) {
     int line, col;

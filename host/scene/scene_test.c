@@ -339,6 +339,7 @@ rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc
   s->specular_model = RC_SPECULAR_BLINN_PHONG;
   s->truncate_8bit = true;
   s->quality = rc_quality_default();
+  if (rc_scene_check_text(path, text, len) != RC_OK) return RC_ERR_INPUT;
   state g = {.s = s};
   mat_identity(g.stack[0]);
   g.mat.ambient = rcm_make_d(0.2, 0.2, 0.2);
