@@ -376,7 +376,7 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   }
   free(dup);
   if (n >= (UINT32_MAX >> RC_BVH_LEAF_SHIFT)) {
-    rc_error("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
+    rc_refuse_scene("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
     free(b.info);
     free(b.refs);
     return RC_ERR_TOO_LARGE;

@@ -406,6 +406,29 @@ static bool gpu_precision(const rc_scene *s, const rc_precision_report *b, const
   return false;
 }
 
+/* A sample that ran out of the GPU's loop budget on its own (a ray through a pile of
+ * overlapping objects): the object the shader was testing, with its place in the scene
+ * file, and the way out. Nothing has been written. */
+static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const char *device) {
+  char what[600];
+  snprintf(what, sizeof what,
+           "a ray through pixel (%u, %u) was testing this object when its sample ran out of the shader loop budget "
+           "on %s (%u pixels did: objects piled up along a ray, or --accel none); refusing to write a wrong "
+           "image: --backend cpu renders it",
+           g->budget_x, g->budget_y, device, g->budget_pixels);
+  size_t o = g->budget_object;
+  size_t counts[] = {s->sphere_count, s->triangle_count, s->quadric_count, s->csg_count};
+  uint32_t kinds[] = {RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_CSG};
+  for (int k = 0; k < 4 && g->budget_object != UINT32_MAX; k++) {
+    if (o < counts[k]) {
+      rc_scene_error(s, kinds[k], o, "%s", what);
+      return;
+    }
+    o -= counts[k];
+  }
+  fprintf(stderr, "%s: error: %s\n", s->path, what);
+}
+
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
@@ -414,6 +437,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_render_stats rs = {.backend = "gpu", .repeat = a.repeat};
   rc_scene scene;
   double t0 = rc_now_ms();
+  rc_set_scene_path(a.scene);
   st = rc_scene_load(a.scene, &a.load, &scene);
   rs.parse_ms = rc_now_ms() - t0;
   if (st != RC_OK) {
@@ -483,9 +507,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
       a.gpu.f64 = gpu_precision(&scene, &budget, &ctx);
       rs.precision = a.gpu.f64 ? "f64" : "f32";
       st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
-      if (rs.gpu.budget_refused)
-        fprintf(stderr, "%s: error: rays through this scene test more overlapping objects than the GPU's loop "
-                "budget allows on %s; --backend cpu renders it\n", scene.path, ctx.props.deviceName);
+      if (rs.gpu.budget_refused) report_loop_budget(&scene, &rs.gpu, ctx.props.deviceName);
     }
   }
   rs.write_ms = rc_output_write_ms(out);

@@ -30,7 +30,7 @@ rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budg
   uint64_t batch = budget / plan->steps_per_sample;
   if (batch == 0 && bvh_depth) batch = 1;
   if (batch == 0) {
-    rc_error("scene too large for brute-force GPU rendering: one sample needs up to %llu loop "
+    rc_refuse_scene("scene too large for brute-force GPU rendering: one sample needs up to %llu loop "
              "iterations (%u spheres + %u triangles, %u lights, reflection depth %u), more than the "
              "per-invocation budget of %u that keeps llvmpipe under its 65,535-iteration cap; use "
              "the BVH (--accel bvh), or fewer objects, lights or reflection bounces",

@@ -126,7 +126,7 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
     if ((ctx->memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) && ctx->memory.memoryHeaps[i].size > heap)
       heap = ctx->memory.memoryHeaps[i].size;
   if (heap && need > heap) {
-    rc_error("scene too large for the device: it needs %.1f MiB of device memory, the largest device-local heap "
+    rc_refuse_scene("scene too large for the device: it needs %.1f MiB of device memory, the largest device-local heap "
              "has %.1f MiB",
              (double)need / (1 << 20), (double)heap / (1 << 20));
     return RC_ERR_TOO_LARGE;
@@ -134,7 +134,7 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   for (int i = 0; i < SCENE_ARRAYS; i++) {
     if (!texel && sizes[i] > ctx->props.limits.maxStorageBufferRange) {
-      rc_error("scene too large: the %s array is %llu bytes, more than the device's maxStorageBufferRange "
+      rc_refuse_scene("scene too large: the %s array is %llu bytes, more than the device's maxStorageBufferRange "
                "(%u bytes)",
                array_names[i], (unsigned long long)sizes[i], ctx->props.limits.maxStorageBufferRange);
       return RC_ERR_TOO_LARGE;
@@ -541,10 +541,12 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     stats->reflection_rays += status.reflection_rays;
     if (status.exhausted_pixels) {
       if (push.batch_samples == 1) {
-        rc_error("%u pixel%s of tile (%u, %u) ran out of the shader loop budget (%u iterations) within a "
-                 "single sample; refusing to write a wrong image",
-                 status.exhausted_pixels, status.exhausted_pixels == 1 ? "" : "s", x0, y0, r->budget);
+        /* Reported by the caller, which knows where the object came from. */
         stats->budget_refused = true;
+        stats->budget_pixels = status.exhausted_pixels;
+        stats->budget_object = status.exhausted_object ? status.exhausted_object - 1 : UINT32_MAX;
+        uint32_t at = status.exhausted_pixel ? status.exhausted_pixel - 1 : 0;
+        stats->budget_x = at % r->frame.camera.width, stats->budget_y = at / r->frame.camera.width;
         return RC_ERR_TOO_LARGE;
       }
       push.batch_samples /= 2;

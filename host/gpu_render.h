@@ -48,6 +48,9 @@ typedef struct rc_gpu_stats {
   uint32_t over_budget;    /* dispatches longer than tile_budget_ms */
   uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
   bool budget_refused;     /* a single sample ran out of the loop budget: nothing written */
+  uint32_t budget_pixels;  /* then: the pixels of the dispatch that ran out */
+  uint32_t budget_object;  /* an object a ray was testing then (UINT32_MAX: unknown) */
+  uint32_t budget_x, budget_y; /* and that ray's pixel */
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
   uint32_t subgroup_size;

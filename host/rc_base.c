@@ -45,6 +45,23 @@ void rc_error(const char *fmt, ...) {
   va_end(ap);
 }
 
+static const char *scene_path;
+
+void rc_set_scene_path(const char *path) { scene_path = path; }
+
+void rc_refuse_scene(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  if (scene_path) {
+    fprintf(stderr, "%s: error: ", scene_path);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+  } else {
+    report("error", fmt, ap);
+  }
+  va_end(ap);
+}
+
 void rc_warning(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);

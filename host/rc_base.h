@@ -34,6 +34,11 @@ int rc_status_exit_code(rc_status s);
 /* "vkraycast: error: ..." on stderr. */
 void rc_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void rc_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* A refusal of the scene being rendered as a whole (too large for the device, for brute
+ * force, for the BVH): "SCENE: error: ...", naming the file set by rc_set_scene_path, or
+ * "vkraycast: error: ..." before one is set. */
+void rc_set_scene_path(const char *path);
+void rc_refuse_scene(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* Programmer errors: always checked, release builds included. */
 #define RC_ASSERT(cond)                                                            \

@@ -101,7 +101,12 @@ void main() {
       if (!budget_step()) break;
       sum.rgb += vec3(trace_sample(pixel, s));
     }
-    if (budget_exhausted) group_exhausted = true;
+    if (budget_exhausted) {
+      group_exhausted = true;
+      // The first lane to report names its object and pixel (both, or neither).
+      if (budget_blame != 0u && atomicCompSwap(status.exhausted_object, 0u, budget_blame) == 0u)
+        status.exhausted_pixel = 1u + pixel.y * frame.camera.width + pixel.x;
+    }
   }
   barrier();
   if (!inside) return;

@@ -8,6 +8,9 @@
 // pixels are counted in gpu_status.exhausted_pixels.
 uint budget_steps = 0u;
 bool budget_exhausted = false;
+// 1 + the object whose test the budget could not pay for (0: it ran out elsewhere): the
+// host names it, with its line in the scene file, when it refuses the scene.
+uint budget_blame = 0u;
 
 // The steps of a whole loop of n iterations, taken before it starts (a BVH leaf's
 // objects): one check instead of n, the same guarantee, since the loop runs only when all

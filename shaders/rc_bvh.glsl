@@ -73,7 +73,10 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
     }
     if (leaf == 0u) break;
     uint count = leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
-    if (!budget_take(count)) return false;
+    if (!budget_take(count)) {
+      budget_blame = 1u + load_bvh_prim(leaf >> RC_BVH_LEAF_SHIFT);
+      return false;
+    }
     if (test_leaf(leaf >> RC_BVH_LEAF_SHIFT, count, o, d, sh, any, t_max, h)) return true;
     node = n.skip;
   }

@@ -281,7 +281,10 @@ hit_record no_hit() {
 void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
   ray_shear sh = ray_shear_for(d);
   for (uint i = 0u; i < frame.object_count; i++) {
-    if (!budget_step()) break;
+    if (!budget_step()) {
+      budget_blame = 1u + i;
+      break;
+    }
     real side;
     rvec3 bary;
     uint part;
@@ -295,7 +298,10 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
 bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
   ray_shear sh = ray_shear_for(d);
   for (uint i = 0u; i < frame.object_count; i++) {
-    if (!budget_step()) return false;
+    if (!budget_step()) {
+      budget_blame = 1u + i;
+      return false;
+    }
     real side;
     rvec3 bary;
     uint part;

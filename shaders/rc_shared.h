@@ -269,6 +269,8 @@ struct gpu_status {
   uint incomplete_pixels; /* pixels that still have samples to take */
   uint shadow_rays;
   uint reflection_rays;
+  uint exhausted_object;  /* 1 + an object some ray was testing when its invocation ran out of budget; 0: none */
+  uint exhausted_pixel;   /* 1 + y * width + x of that ray's pixel in the frame */
 };
 
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
@@ -376,7 +378,8 @@ RC_ASSERT_SIZE(gpu_light, 16 * RC_TEXELS_PER_LIGHT);
 
 RC_ASSERT_LAYOUT(gpu_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(gpu_status, incomplete_pixels, 4);
 RC_ASSERT_LAYOUT(gpu_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(gpu_status, reflection_rays, 12);
-RC_ASSERT_SIZE(gpu_status, 16);
+RC_ASSERT_LAYOUT(gpu_status, exhausted_object, 16); RC_ASSERT_LAYOUT(gpu_status, exhausted_pixel, 20);
+RC_ASSERT_SIZE(gpu_status, 24);
 
 RC_ASSERT_LAYOUT(gpu_aov, hit, 0);    RC_ASSERT_LAYOUT(gpu_aov, object, 4);
 RC_ASSERT_LAYOUT(gpu_aov, t, 8);      RC_ASSERT_LAYOUT(gpu_aov, shadow_bits, 12);

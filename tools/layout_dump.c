@@ -136,6 +136,8 @@ int main(void) {
   OFF("status.incomplete_pixels", gpu_status, incomplete_pixels);
   OFF("status.shadow_rays", gpu_status, shadow_rays);
   OFF("status.reflection_rays", gpu_status, reflection_rays);
+  OFF("status.exhausted_object", gpu_status, exhausted_object);
+  OFF("status.exhausted_pixel", gpu_status, exhausted_pixel);
   printf("Status size %zu\n", sizeof(gpu_status));
 
   OFF("aov.hit", gpu_aov, hit);

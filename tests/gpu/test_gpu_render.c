@@ -377,10 +377,12 @@ TEST(one_sample_beyond_the_budget_fails_loudly) {
    * beyond any lane's budget. */
   write_heavy_scene("huge.json", 300, 200, 1);
   CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --accel none --quiet", tmp, tmp), 2);
-  CHECK(stderr_contains("scene too large for brute-force GPU rendering: one sample needs up to 60703 loop"));
+  CHECK(stderr_contains("huge.json: error: scene too large for brute-force GPU rendering: one sample needs up to 60703 loop"));
   /* Planned past the budget, the shader's flag stops it instead of a wrong image. */
   CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --accel none --quiet --plan-budget 4000000000", tmp, tmp), 2);
   CHECK(stderr_contains("ran out of the shader loop budget"));
+  CHECK(stderr_contains("huge.json:")); /* the scene file, and the object being tested */
+  CHECK(stderr_contains("error: objects["));
   char path[300];
   snprintf(path, sizeof path, "%s/huge.exr", tmp);
   CHECK(access(path, F_OK) != 0); /* no output file */
