@@ -140,6 +140,8 @@ rc_status rc_cmd_compare(int argc, char **argv) {
     fputs(compare_usage, stderr);
     return RC_ERR_USAGE;
   }
+  const rc_file_role roles[] = {{files[0], "image A", false}, {files[1], "image B", false}, {diff, "the heat map", true}};
+  if (rc_check_distinct(roles, 3) != RC_OK) return RC_ERR_USAGE;
   if (diff && !rc_image_can_write(diff)) {
     rc_error("%s: no image format for this file name", diff);
     return RC_ERR_USAGE;

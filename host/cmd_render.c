@@ -265,6 +265,11 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   if (rc_check_output(a->output, "the image") != RC_OK) return RC_ERR_IO;
   if (a->aov && rc_check_output(a->aov, "the AOV file") != RC_OK) return RC_ERR_IO;
   if (a->stats_json && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
+  const rc_file_role files[] = {{a->scene, "the scene file", false},
+                                {a->output, "the image", true},
+                                {a->aov, "the AOV file", true},
+                                {a->stats_json, "the statistics", true}};
+  if (rc_check_distinct(files, sizeof files / sizeof *files) != RC_OK) return RC_ERR_USAGE;
   a->gpu.aov = a->aov != NULL;
   if (a->aov) {
     size_t n = strlen(a->aov);

@@ -162,6 +162,37 @@ FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
   return f;
 }
 
+/* The path with its folder resolved (realpath) and its last component kept: the same for
+ * every spelling of a file that may not exist yet. */
+static bool canonical(const char *path, char *out, size_t cap) {
+  const char *slash = strrchr(path, '/');
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? (slash == path ? "/" : path) : ".");
+  char *real = realpath(dir, NULL);
+  if (!real) return false;
+  int n = snprintf(out, cap, "%s/%s", real, slash ? slash + 1 : path);
+  free(real);
+  return n > 0 && (size_t)n < cap;
+}
+
+static bool same_file(const char *a, const char *b) {
+  struct stat sa, sb;
+  if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  char ca[4200], cb[4200];
+  return canonical(a, ca, sizeof ca) && canonical(b, cb, sizeof cb) && strcmp(ca, cb) == 0;
+}
+
+rc_status rc_check_distinct(const rc_file_role *f, size_t count) {
+  for (size_t i = 0; i < count; i++)
+    for (size_t j = 0; j < i; j++) {
+      if (!f[i].path || !f[j].path || (!f[i].output && !f[j].output)) continue;
+      if (!same_file(f[i].path, f[j].path)) continue;
+      fprintf(stderr, "%s: error: %s and %s name the same file\n", f[i].path, f[j].role, f[i].role);
+      return RC_ERR_USAGE;
+    }
+  return RC_OK;
+}
+
 bool rc_path_within(const char *dir, const char *path) {
   char *d = realpath(dir, NULL), *p = realpath(path, NULL);
   size_t n = d ? strlen(d) : 0;

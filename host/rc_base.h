@@ -84,6 +84,16 @@ FILE *rc_fopen_regular(const char *path, size_t *bytes, const char **why);
 rc_status rc_check_input(const char *path, const char *what, size_t *bytes);
 const char *rc_input_problem(const char *path, size_t *bytes);
 rc_status rc_check_output(const char *path, const char *what);
+/* A run's files, checked before anything is read or written: each output must name a
+ * file of its own, neither another output nor an input (symbolic links, "./" and ".."
+ * resolved; an existing file by its device and inode). `roles` name them in the message
+ * "PATH: error: ROLE and ROLE name the same file". */
+typedef struct rc_file_role {
+  const char *path; /* NULL: not used this run */
+  const char *role; /* "the image", "the scene file", ... */
+  bool output;
+} rc_file_role;
+rc_status rc_check_distinct(const rc_file_role *files, size_t count);
 /* Whether `path`, symbolic links resolved, lies inside the folder `dir`: the check that
  * keeps a scene from reading files outside its own folder (--allow-outside-paths). A path
  * that does not exist counts as inside; opening it then fails with its own message. */

@@ -3,7 +3,8 @@
 # classes 1 and 2). Cases are generated, not listed: every image format the README names,
 # each under file-size limits (ulimit -f) at one block, half and just under the size the
 # file needs, on a full filesystem (a small tmpfs, where this user may mount one), and an
-# AOV or statistics file that fails while its image would fit. Each case: exit status 2, a message
+# AOV or statistics file that fails while its image would fit; two outputs, or an output
+# and an input, naming one file by any spelling. Each case: exit status 2, a message
 # naming the file, the previous image (and AOV file) byte for byte as they were, and no
 # temporary left behind.
 # Usage: test_writers.sh VKRAYCAST SCENES_DIR WORKDIR
@@ -87,6 +88,35 @@ fi
 cp "$work/keep.png" "$work/out.png" && cp "$work/keep_aov.exr" "$work/out.exr"
 expect_failure "AOV file fails after its image: image kept" "$work" png "ulimit -f 200" --aov "$work/out.exr"
 check "AOV file fails after its image: AOV kept" "$(cmp -s "$work/out.exr" "$work/keep_aov.exr" && echo ok || echo changed)"
+# Two roles naming one file, by every spelling (the same name, ./, the folder by .., a
+# link): refused before rendering, every file as it was.
+cp "$scenes/shadows.json" "$work/scene.json" && cp "$work/keep_aov.exr" "$work/same.exr"
+ln -sf same.exr "$work/link.exr"
+spellings=("$work/same.exr" "$work/./same.exr" "$work/../$(basename "$work")/same.exr" "$work/link.exr")
+same_case() { # name expected-path-in-message args...
+  local name=$1
+  shift
+  cp "$work/same.exr" "$work/before.exr" && cp "$work/scene.json" "$work/before.json"
+  "$bin" "$@" >/dev/null 2>"$work/err"
+  local got=$? why=ok
+  [[ $got == 2 ]] || why="exit status $got, expected 2"
+  grep -q "name the same file" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err")"
+  cmp -s "$work/same.exr" "$work/before.exr" && cmp -s "$work/scene.json" "$work/before.json" || why="$why; a file changed"
+  [[ -z "$(temps "$work")" ]] || why="$why; temporaries left"
+  check "$name" "$why"
+}
+small=(--width 16 --height 12 --quiet)
+for s in "${spellings[@]}"; do
+  same_case "-o and --aov: $s" render "$work/scene.json" -o "$work/same.exr" --aov "$s" "${small[@]}"
+  same_case "-o and --stats-json: $s" render "$work/scene.json" -o "$work/same.exr" --stats-json "$s" "${small[@]}"
+  same_case "--aov and --stats-json: $s" render "$work/scene.json" -o "$work/o.png" --aov "$work/same.exr" \
+    --stats-json "$s" "${small[@]}"
+  same_case "compare --diff naming A: $s" compare "$work/same.exr" "$work/keep_aov.exr" --diff "$s"
+  same_case "compare --diff naming B: $s" compare "$work/keep_aov.exr" "$work/same.exr" --diff "$s"
+done
+for role in -o --stats-json; do
+  same_case "$role naming the scene" render "$work/scene.json" -o "$work/o.png" "$role" "$work/./scene.json" "${small[@]}"
+done
 # A valid name of 250 bytes (NAME_MAX is 255): the temporary's name must not grow with it.
 long=$(printf 'a%.0s' $(seq 1 246)).png
 "$bin" render "$scenes/shadows.json" -o "$work/$long" --width 16 --height 12 --quiet 2>"$work/err"
