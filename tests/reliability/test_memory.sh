@@ -10,7 +10,10 @@ bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 source "$(dirname "$0")/check.sh"
 # AddressSanitizer keeps freed memory in quarantine, which would look like growth.
-ldd "$bin" 2>/dev/null | grep -q libasan && export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=0"
+# (grep without -q: with pipefail, an early exit would SIGPIPE ldd and fail the test.)
+if ldd "$bin" 2>/dev/null | grep libasan >/dev/null; then
+  export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=0"
+fi
 rss() { # args... -> peak RSS in KiB
   "$bin" render "$scenes/showcase.json" -o "$work/o.png" --width 8 --height 8 --quiet --stats-json "$work/s.json" "$@" ||
     { echo -1; return; }
