@@ -1,7 +1,7 @@
 #version 450
 // raycast.comp: one invocation per pixel of a tile. Each dispatch adds up to
 // push.batch_samples more samples to every pixel's running sum in `accum`; the host
-// repeats dispatches until every pixel has frame.samples_per_pixel (DESIGN.md §2).
+// repeats dispatches until every pixel has frame.samples_per_pixel (docs/design.md §2).
 #extension GL_GOOGLE_include_directive : require
 #if RC_F64
 #extension GL_ARB_gpu_shader_int64 : require

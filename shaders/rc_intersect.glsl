@@ -1,7 +1,7 @@
 // rc_intersect.glsl: ray/primitive tests, closest hit and shadow-ray occlusion, in pbrt's
 // layers: the tests return t (and what shading needs to rebuild the hit exactly), shading
 // happens once for the winner (rc_shade.glsl). Directions are unit length. Every result is
-// `precise` so no driver contracts or reorders the arithmetic (ROBUSTNESS.md §1.3, §3).
+// `precise` so no driver contracts or reorders the arithmetic (docs/numerics.md §1, §4).
 
 struct hit_record {
   real t;
@@ -55,7 +55,7 @@ real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
 
 // The textbook quadratic a t^2 + b t + c = 0, a = d.d, b = 2 f.d, c = f.f - r^2: the fast
 // variant, kept to measure what the geometric form buys (docs/accuracy.md). b^2 and 4ac
-// cancel once the sphere is far compared to its radius (ROBUSTNESS.md §2.1). Not `precise`:
+// cancel once the sphere is far compared to its radius (docs/numerics.md §2). Not `precise`:
 // as shipped in textbooks, the driver may contract it.
 real intersect_sphere_algebraic(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
   side = 0.0;
@@ -167,7 +167,7 @@ real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out
 
 // Moller & Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection", JGT 2(1), 1997,
 // with the paper's |det| < 1e-6 test: a fast variant. Each triangle is solved from its own
-// v0 and edges, so rays can slip between neighbours (ROBUSTNESS.md §3.1), and the fixed
+// v0 and edges, so rays can slip between neighbours (docs/numerics.md §4), and the fixed
 // epsilon drops small triangles whatever the scene's scale.
 real intersect_triangle_moller_trumbore(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, out rvec3 bary) {
   bary = rvec3(0.0);

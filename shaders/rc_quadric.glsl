@@ -24,7 +24,7 @@ uint csg_code(uint leaf, uint face, bool leaf_exit, bool flip) {
 }
 
 // A point or direction in the quadric's frame (centre-relative, rotated; for a point,
-// pass p - center). Forming a, b, c there keeps the products small (ROBUSTNESS.md §2.5).
+// pass p - center). Forming a, b, c there keeps the products small (docs/numerics.md §3).
 rvec3 quadric_local(gpu_quadric q, rvec3 v) {
   precise rvec3 l = rvec3(dot(rvec3(q.axis_x), v), dot(rvec3(q.axis_y), v), dot(rvec3(q.axis_z), v));
   return l;
@@ -49,7 +49,7 @@ rvec3 quadric_apply(gpu_quadric q, rvec3 v) {
 // matrix uses h^2 - a c as it stands. The roots are the stable pair c/q, q/a with
 // q = -(h + sign(h) sqrt(disc)); a = 0 (a ray parallel to a cylinder's or paraboloid's
 // axis) has its own branch, and a root beyond RC_T_FAR (a tiny a) is pinned there
-// instead of dividing (ROBUSTNESS.md §2.5).
+// instead of dividing (docs/numerics.md §3).
 uint quadric_roots(gpu_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi) {
   t_lo = -real(RC_T_FAR);
   t_hi = real(RC_T_FAR);

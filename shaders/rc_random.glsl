@@ -12,7 +12,7 @@ uint hash_pcg(uint v) {
 float hash_to_unit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }
 
 // Stratified jitter on a strata_x x strata_y grid (host picks it); one sample takes the
-// pixel centre, as in DESIGN.md §1.
+// pixel centre, as in docs/design.md §1.
 vec2 sample_offset(uvec2 pixel, uint s) {
   if (scene_samples_per_pixel() == 1u) return vec2(0.5);
   uint h = hash_pcg(pixel.x ^ hash_pcg(pixel.y ^ hash_pcg(s ^ hash_pcg(frame.seed))));

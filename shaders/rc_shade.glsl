@@ -1,4 +1,4 @@
-// rc_shade.glsl: the hit point, its normal, shadow rays and Phong shading (DESIGN.md §1):
+// rc_shade.glsl: the hit point, its normal, shadow rays and Phong shading (docs/design.md §1):
 //   L = ka Ia + ke + sum_i visible_i [kd E_i max(0, n.l_i) + ks E_i spec_i^p],
 //   E_i = I_i / (c0 + c1 r_i + c2 r_i^2) for point lights ((0, 0, 1) by default: 1/r^2),
 //   I_i for directional lights.
@@ -59,7 +59,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       dd = normalize(d_obj);
     }
     if (sphere_formula == RC_SPHERE_ALGEBRAIC) {
-      // The textbook normal from the hit point; its error grows with |o - C| (ROBUSTNESS.md §2.3).
+      // The textbook normal from the hit point; its error grows with |o - C| (docs/numerics.md §2).
       n = normalize(oo + t_obj * dd - rvec3(s.center));
     } else {
       // Centre-relative hit: l -/+ sqrt(D) d is exact to a few ulps of r at any distance,
@@ -75,7 +75,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       sf.p = rvec3(s.center) + rn;
       // pbrt bounds its re-projected sphere point by gamma(5)|p| in object space; here p is
       // assembled in packed space from C and r n, and n went through a GPU sqrt and
-      // normalize (not correctly rounded, ROBUSTNESS.md §1.3): both terms, with headroom.
+      // normalize (not correctly rounded, docs/numerics.md §1): both terms, with headroom.
       sf.p_error = gamma_bound(10.0) * (abs(rvec3(s.center)) + abs(rn));
     } else {
       if (s.transform != RC_NO_TRANSFORM) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The CPU reference mirrors the shader file by file and function by function (DESIGN.md
-# §2): for each shaders/rc_X.glsl, host/ref/ref_X.c defines the same functions, in the
+# The CPU reference mirrors the shader file by file and function by function
+# (docs/design.md §3): for each shaders/rc_X.glsl, host/ref/ref_X.c defines the same functions, in the
 # same order, named ref_NAME or REF(NAME). GPU-only includes (the loop budget, scene
 # buffer access, precision macros) have no twin. Usage: check_mirror.sh REPO_ROOT
 set -euo pipefail

@@ -16,7 +16,7 @@ num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2"; }
 
 # Thresholds (shares of the image's pixels in percent; colour in linear units):
 # - gpu-f32/cpu-f32 and gpu-f64/cpu-f64 do the same arithmetic in the same order; they
-#   differ only where the driver's builtins are a few ulps off libm's (ECOSYSTEM.md §1.4:
+#   differ only where the driver's builtins are a few ulps off libm's (docs/numerics.md §1:
 #   inversesqrt 2 ulps, pow up to 17). Such ulps can still flip a grazing decision in a
 #   later sample or a secondary ray, which the first-sample AOVs do not record and which
 #   moves that pixel by a sample's share of a light (measured: 2 of 172,800 pixels by
@@ -24,7 +24,7 @@ num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2"; }
 #   measured 98-160 dB), at most 0.01% of pixels over 1e-3, first-sample decisions on at
 #   most 0.05% of pixels.
 # - gpu-f32/cpu-f64 adds f32 rounding of every intersection: decisions flip in the
-#   conditioning band (grazing rays, shadow terminators), which ROBUSTNESS.md §8.4 expects
+#   conditioning band (grazing rays, shadow terminators), which docs/numerics.md §7 leaves out
 #   below 0.5% of pixels; we hold 0.2%. Colour: at most 0.5% of pixels over 1e-3 (idiff's
 #   documented GPU-vs-CPU policy is 0.1% for direct lighting; mirror bounces multiply the
 #   band). A flipped decision may move one pixel by up to the full value: no hard cap.

@@ -172,7 +172,7 @@ void rc_scene_free(rc_scene *scene);
 /* Room for `extra` more triangles (meshes and JSON triangles both append). */
 rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
 /* Appends a triangle, or counts it in degenerate_triangles when its area is exactly zero
- * in f64: degenerate but meaningful input is skipped and counted (ROBUSTNESS.md §8.3).
+ * in f64: degenerate but meaningful input is skipped and counted (docs/numerics.md §7).
  * The one rule for JSON triangles, .test triangles and mesh faces. */
 rc_status rc_scene_add_triangle(rc_scene *scene, const rc_triangle_def *t);
 /* The axis-aligned bounds of the box [lo, hi] of a frame (centre, orthonormal axes as

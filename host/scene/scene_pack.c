@@ -11,7 +11,7 @@ static vec3 to_packed(const rc_packed_scene *p, dvec3 world) {
   return rcm_to_f(rcm_sub_d(world, p->origin));
 }
 
-/* DESIGN.md §1: w points from the scene back to the eye, u to the right, v up; the image
+/* docs/design.md §1: w points from the scene back to the eye, u to the right, v up; the image
  * plane sits at distance 1 (perspective) and the window keeps the image's aspect ratio. */
 static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
   const rc_camera_def *c = &s->camera;
@@ -257,7 +257,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   return st;
 }
 
-/* ROBUSTNESS.md §8.1: a relative change of up to 2^-22 (a few f32 ulps) in every input
+/* docs/numerics.md §7: a relative change of up to 2^-22 (a few f32 ulps) in every input
  * coordinate. The amount hashes the value's bits with the seed, so a vertex shared by
  * several triangles moves the same way in all of them. The sign: seeds 1 and 2 move every
  * value up, then down (times `lean`), so that a decision on a knife edge (a ray exactly

@@ -1,6 +1,6 @@
 /* scene_pack.h: the scene model (f64, world space) packed into the gpu_* arrays that both
  * renderers read. Packing is where precision is spent: every position is made relative to
- * the eye in f64 before rounding to f32 ("floating origin", ROBUSTNESS.md §5), and the
+ * the eye in f64 before rounding to f32 ("floating origin", docs/numerics.md §5), and the
  * camera basis and window come from f64 trigonometry. */
 #ifndef RC_SCENE_PACK_H
 #define RC_SCENE_PACK_H

@@ -1,7 +1,7 @@
 /* scene_quadric.c: the quadric object types and composites (CSG) of the scene format
  * (docs/scene-format.md). Each shape is built in f64 in its own frame (rc_quadric_def):
  * the named shapes in their principal frame, centred, so that the shader's products stay
- * small (ROBUSTNESS.md §2.5); a general matrix recentred on its bounds. */
+ * small (docs/numerics.md §3); a general matrix recentred on its bounds. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* vk_buffer.h: buffers and their memory. Three uses, each with its memory-type
- * preference (ECOSYSTEM.md §2.3):
+ * preference (docs/design.md §4):
  *   RC_MEM_DEVICE    what the shader reads and writes: DEVICE_LOCAL, preferably not host
  *                    visible (discrete GPUs); lavapipe's single type is all of these;
  *   RC_MEM_UPLOAD    staging for uploads: HOST_VISIBLE, coherent preferred;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes the extreme-case scenes of ROBUSTNESS.md §8.2 (S01-S21) into tests/extremes/scenes/.
+# Writes the extreme-case scenes of docs/numerics.md §7 (S01-S21) into tests/extremes/scenes/.
 # The files are committed; this script is how they were made (rerun it after a change).
 #   tests/extremes/generate.sh [OUTDIR]
 set -euo pipefail
@@ -242,7 +242,7 @@ scene S19_light_1e-6_above 96x72 "$(persp "[0, 3, 6]" "[0, 0.5, 0]" 45)" "$(poin
 scene S19_light_1e8_away 96x72 "$(persp "[0, 3, 6]" "[0, 0.5, 0]" 45)" "$(point "[-1e8, 1e8, 0]" 2e16)" "$floor"
 # S21 many small spheres (sphereflake-like): 2,000 spheres, r in [1e-3, 1e-1], in a unit
 # cube seen from D = 2 and D = 1e3 (the field of view keeps the cube's size in the image).
-# (ROBUSTNESS.md asks 1e4 spheres; 2,000 keep the committed file at 0.2 MB.)
+# (the plan was 1e4 spheres; 2,000 keep the committed file at 0.2 MB.)
 balls=$(awk 'BEGIN { srand(21); for (i = 0; i < 2000; i++) {
   r = exp(log(1e-3) + rand() * (log(1e-1) - log(1e-3)))
   printf "%s{ \"type\": \"sphere\", \"center\": [%.6f, %.6f, %.6f], \"radius\": %.6g, \"material\": \"%s\" }", (i ? ",\n    " : ""), rand() - 0.5, rand() - 0.5, rand() - 0.5, r, (i % 3 ? "white" : "red") } }')

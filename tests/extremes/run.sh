@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The extremes suite (ROBUSTNESS.md §8.2): renders each scene of a case with the default
+# The extremes suite (docs/numerics.md §7): renders each scene of a case with the default
 # (robust) settings on the GPU and with the CPU f64 reference, plus four reference renders
 # with inputs perturbed by a few f32 ulps (the conditioning band, §8.1), and gates the
 # default's figures. Prints one markdown row per scene.
@@ -61,7 +61,7 @@ for s in "${scenes[@]}"; do
     "$f64_needed" "$([[ $quantized != 0 ]] && echo ", quantized $quantized")"
   [[ ${#variant[@]} -eq 0 ]] || continue
 
-  # Gates of the default settings (ROBUSTNESS.md §8.2's "fp32 GPU acceptance").
+  # Gates of the default settings (docs/accuracy.md, "The extremes suite").
   [[ $nonfinite == 0 ]] || fail "$nonfinite non-finite values in the output"
   # Edge-on ties between coplanar neighbours (S08 at 0 degrees and S17's parallel views put
   # pixel centres on shared edges) may go either way: both triangles are right, and the

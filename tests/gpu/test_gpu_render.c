@@ -240,7 +240,7 @@ TEST(transformed_sphere_is_the_analytic_ellipsoid) {
   }
 }
 
-/* Both specular models at one pixel, against the formulas of DESIGN.md §1 evaluated here:
+/* Both specular models at one pixel, against the formulas of docs/design.md §1 evaluated here:
  * Blinn-Phong (n.h)^p and Phong (v.r)^p, r = 2 (n.l) n - l. */
 TEST(blinn_phong_and_phong_highlights_follow_their_formulas) {
   CHECK_EQ_INT(run("render %s/specular.json -o %s/blinn.exr --quiet", gpu_dir, tmp), 0);
@@ -483,7 +483,7 @@ TEST(every_example_scene_renders) {
 }
 
 /* The CPU reference's pixels are independent of the thread that renders them; the GPU's
- * of the run. Both give bit-identical images (DESIGN.md §5). */
+ * of the run. Both give bit-identical images (docs/design.md §5). */
 TEST(cpu_threads_and_gpu_reruns_are_bit_identical) {
   const char *common = "--width 96 --height 60 --spp 3 --quiet";
   CHECK_EQ_INT(run("render %s/showcase.json -o %s/t1.exr --backend cpu --threads 1 %s", scenes_dir, tmp, common), 0);

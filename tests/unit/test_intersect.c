@@ -60,7 +60,7 @@ TEST(sphere_grazing_rays_just_inside_hit_and_just_outside_miss) {
 }
 
 TEST(sphere_far_away_and_small_stays_visible_in_f32) {
-  /* D/r = 1e5: the textbook b^2 - 4ac loses the sphere in f32 (ROBUSTNESS.md §2.3); the
+  /* D/r = 1e5: the textbook b^2 - 4ac loses the sphere in f32 (docs/numerics.md §2); the
    * Hearn-Baker discriminant keeps it. */
   float side;
   float t = ref_intersect_sphere_geometric_f(rcm_make_f(0, 0, 0), rcm_make_f(0, 0, -1), sphere(0, 0, -1e5f, 1), (float)FAR, &side);

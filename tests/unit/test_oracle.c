@@ -1,4 +1,4 @@
-/* ROBUSTNESS.md §8.2 S22: the f64 reference checked against a __float128 oracle. Rays of
+/* docs/numerics.md §7 (extremes suite, S22): the f64 reference checked against a __float128 oracle. Rays of
  * the S03 (sphere distance) and S07 (triangles far from the origin) configurations; the
  * oracle solves the same problem (the same f64 ray, the same f32 scene values) in 113-bit
  * arithmetic, where the f64 products are exact. Outside the f64 conditioning band (rays
