@@ -14,9 +14,11 @@ typedef struct rc_gpu_plan {
   uint32_t budget;           /* the budget the plan was made for */
 } rc_gpu_plan;
 
-/* Worst-case loop steps of one sample:
- *   1 (sample loop) + (depth + 1) * [1 (bounce loop) + (S + T) (closest hit)
- *                                   + L * (1 (light loop) + S + T (shadow ray))]. */
+/* Worst-case loop steps of one sample by brute force, with N the objects' steps (1 per
+ * sphere or triangle; a quadric's clipped pieces and scan; a composite's count from the
+ * loader: gpu_plan.c, object_steps):
+ *   1 (sample loop) + (depth + 1) * [1 (bounce loop) + N (closest hit)
+ *                                   + L * (1 (light loop) + N (shadow ray))]. */
 uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
 
 /* Brute force (bvh_depth 0): the exact worst case; fails with RC_ERR_TOO_LARGE (message

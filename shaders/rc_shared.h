@@ -35,9 +35,10 @@ typedef struct gpu_quadric gpu_quadric;
 typedef struct gpu_csg gpu_csg;
 #endif
 
-/* Descriptor bindings (set 0). The four scene arrays are read either as storage buffers
- * or as RGBA32UI uniform texel buffers (rc_scene_access.glsl); the binding numbers are
- * the same for both kinds. */
+/* Descriptor bindings (set 0). The scene arrays (spheres, triangles, materials, lights,
+ * the BVH's nodes and references, transforms, normals, quadrics, composites and their
+ * programs: 11 in all) are read either as storage buffers or as RGBA32UI uniform texel
+ * buffers (rc_scene_access.glsl); the binding numbers are the same for both kinds. */
 #define RC_BINDING_FRAME 0     /* uniform gpu_frame */
 #define RC_BINDING_SPHERES 1   /* gpu_sphere[] */
 #define RC_BINDING_TRIANGLES 2 /* gpu_triangle[] */
@@ -65,7 +66,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SPEC_TRIANGLE_FORMULA 6 /* RC_TRIANGLE_* */
 #define RC_SPEC_OFFSET_STRATEGY 7  /* RC_OFFSET_* */
 #define RC_SPEC_OFFSET_EPSILON 8   /* float: the epsilon strategy's distance */
-/* The scene's features (rc_pipeline_features, host/gpu_render.c): code for a kind the scene
+/* The scene's features (create_pipeline, host/gpu_render.c): code for a kind the scene
  * lacks is compiled out, and the light loop and bounce count become constants. A generic
  * pipeline (render --pipeline generic) sets every kind and RC_LIGHTS_FROM_FRAME. */
 #define RC_SPEC_KINDS 9            /* bit mask of RC_KIND_* present */
