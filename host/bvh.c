@@ -1,6 +1,7 @@
 #include "bvh.h"
 
 #include "math/rcm_mat3.h"
+#include "scene/name_table.h"
 
 #include <float.h>
 #include <math.h>
@@ -290,43 +291,39 @@ static uint32_t geometry_words(const rc_packed_scene *p, uint32_t i, uint32_t *w
 
 #define GEOMETRY_WORDS_MAX ((sizeof(gpu_sphere) + sizeof(gpu_transform) + sizeof(gpu_quadric)) / 4)
 
-/* Marks in dup[] every object whose geometry repeats an earlier object's, bit for bit (in
- * expected linear time: a table of object indices keyed by a hash of the words).
- * A repeat can never be hit first: on equal t the lower object number wins (rc_intersect.glsl),
- * and a shadow ray is blocked by the first copy as surely as by the repeat. So the BVH leaves
- * repeats out, and a pile of coincident copies costs one test instead of exhausting the GPU's
- * loop budget. Brute force (--accel none) still tests them all, with the same result. */
-static uint32_t mark_repeats(const rc_packed_scene *p, uint32_t n, bool *dup) {
+/* Whether object i's geometry words `a` equal those of an object already in the table
+ * (open addressing over object indices); if not, i goes in. */
+static bool seen_before(const rc_packed_scene *p, uint32_t *slot, size_t cap, uint32_t i, const uint32_t *a,
+                        uint32_t words) {
+  uint32_t b[GEOMETRY_WORDS_MAX];
+  for (size_t at = (size_t)rc_hash_bytes(a, words * 4) & (cap - 1);; at = (at + 1) & (cap - 1)) {
+    if (slot[at] == UINT32_MAX) {
+      slot[at] = i;
+      return false;
+    }
+    if (geometry_words(p, slot[at], b) == words && memcmp(a, b, words * 4) == 0) return true;
+  }
+}
+
+/* Fills refs[] with every object whose geometry does not repeat an earlier object's bit
+ * for bit, in order, and returns their count (in expected linear time). A repeat can never
+ * be hit first: on equal t the lower object number wins (rc_intersect.glsl), and a shadow
+ * ray is blocked by the first copy as surely as by the repeat. So the BVH leaves repeats
+ * out, and a pile of coincident copies costs one test instead of exhausting the GPU's loop
+ * budget. Brute force (--accel none) still tests them all, with the same result. */
+static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t *refs) {
   size_t cap = 64;
   while (cap < 2 * (size_t)n) cap *= 2;
-  uint32_t *slot = malloc(cap * sizeof *slot);
-  if (!slot) return 0; /* no deduplication: correct, only slower */
-  memset(slot, 0xff, cap * sizeof *slot);
-  uint32_t a[GEOMETRY_WORDS_MAX], b[GEOMETRY_WORDS_MAX], repeats = 0;
+  uint32_t *slot = malloc(cap * sizeof *slot); /* without it: every object, only slower */
+  if (slot) memset(slot, 0xff, cap * sizeof *slot);
+  uint32_t a[GEOMETRY_WORDS_MAX], m = 0;
   for (uint32_t i = 0; i < n; i++) {
-    uint32_t words = geometry_words(p, i, a);
-    if (!words) continue;
-    uint64_t h = 0xcbf29ce484222325u;
-    for (uint32_t k = 0; k < words; k++) h = (h ^ a[k]) * 0x100000001b3u;
-    /* Word-wise FNV leaves the low bits to the words' low bits (all zero for round
-     * coordinates): mix the high bits down (splitmix64's finalizer) before masking. */
-    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9u;
-    h = (h ^ (h >> 27)) * 0x94d049bb133111ebu;
-    h ^= h >> 31;
-    for (size_t at = (size_t)h & (cap - 1);; at = (at + 1) & (cap - 1)) {
-      if (slot[at] == UINT32_MAX) {
-        slot[at] = i;
-        break;
-      }
-      if (geometry_words(p, slot[at], b) == words && memcmp(a, b, words * 4) == 0) {
-        dup[i] = true;
-        repeats++;
-        break;
-      }
-    }
+    uint32_t words = slot ? geometry_words(p, i, a) : 0; /* 0: a composite, never compared */
+    if (words && seen_before(p, slot, cap, i, a, words)) continue;
+    refs[m++] = i;
   }
   free(slot);
-  return repeats;
+  return m;
 }
 
 rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
@@ -339,15 +336,13 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
   builder b = {0};
   b.info = rc_alloc(n, sizeof *b.info, "BVH build");
   b.refs = rc_alloc(n, sizeof *b.refs, "BVH build");
-  bool *dup = rc_alloc(n, sizeof *dup, "BVH build");
-  if (!b.info || !b.refs || !dup) {
+  if (!b.info || !b.refs) {
     free(b.info);
     free(b.refs);
-    free(dup);
     return RC_ERR_OUT_OF_MEMORY;
   }
-  stats->repeats = mark_repeats(p, n, dup);
-  uint32_t m = 0; /* objects in the tree */
+  uint32_t m = distinct_objects(p, n, b.refs); /* objects in the tree */
+  stats->repeats = n - m;
   for (uint32_t i = 0; i < n; i++) {
     prim_info *q = &b.info[i];
     q->bounds = empty_box();
@@ -372,9 +367,7 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
       q->bounds = padded_box((const double[3]){c->lo.x, c->lo.y, c->lo.z}, (const double[3]){c->hi.x, c->hi.y, c->hi.z});
     }
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
-    if (!dup[i]) b.refs[m++] = i;
   }
-  free(dup);
   if (n >= (UINT32_MAX >> RC_BVH_LEAF_SHIFT)) {
     rc_refuse_scene("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
     free(b.info);

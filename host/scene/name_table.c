@@ -10,12 +10,13 @@ struct rc_name_slot {
   uint32_t value;
 };
 
-/* FNV-1a, 64-bit (Fowler, Noll, Vo). */
-static uint64_t hash_bytes(const void *key, size_t len) {
+uint64_t rc_hash_bytes(const void *key, size_t len) {
   const unsigned char *p = key;
   uint64_t h = 0xcbf29ce484222325u;
   for (size_t i = 0; i < len; i++) h = (h ^ p[i]) * 0x100000001b3u;
-  return h;
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9u;
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebu;
+  return h ^ (h >> 31);
 }
 
 static rc_name_slot *probe(rc_name_slot *slots, size_t cap, uint64_t h, const void *key, size_t len) {
@@ -42,7 +43,7 @@ static bool grow(rc_name_table *t) {
 bool rc_name_table_insert(rc_name_table *t, const void *key, size_t len, uint32_t value, uint32_t *out,
                           bool *was_present) {
   if (2 * (t->count + 1) > t->cap && !grow(t)) return false;
-  uint64_t h = hash_bytes(key, len);
+  uint64_t h = rc_hash_bytes(key, len);
   rc_name_slot *s = probe(t->slots, t->cap, h, key, len);
   *was_present = s->key != NULL;
   if (!s->key) {
@@ -58,7 +59,7 @@ bool rc_name_table_insert(rc_name_table *t, const void *key, size_t len, uint32_
 
 bool rc_name_table_find(const rc_name_table *t, const void *key, size_t len, uint32_t *out) {
   if (!t->cap) return false;
-  const rc_name_slot *s = probe(t->slots, t->cap, hash_bytes(key, len), key, len);
+  const rc_name_slot *s = probe(t->slots, t->cap, rc_hash_bytes(key, len), key, len);
   if (!s->key) return false;
   *out = s->value;
   return true;

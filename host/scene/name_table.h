@@ -17,6 +17,11 @@ typedef struct rc_name_table {
   size_t cap, count; /* cap: a power of two, or 0 before the first insert */
 } rc_name_table;
 
+/* The hash both this table and the BVH's repeat detection (bvh.c) use: FNV-1a over the
+ * bytes (Fowler, Noll, Vo), then splitmix64's finalizer so that the low bits, which a
+ * power-of-two table keeps, depend on every byte. */
+uint64_t rc_hash_bytes(const void *key, size_t len);
+
 /* Finds `key`; when absent, adds it with `value`. *out is the value stored for the key
  * (the earlier one when it was present). False only when memory runs out. */
 bool rc_name_table_insert(rc_name_table *t, const void *key, size_t len, uint32_t value, uint32_t *out,
