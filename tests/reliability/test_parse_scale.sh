@@ -22,23 +22,12 @@ expect_counts() { # name scene materials spheres triangles
   fi
   check "$1" "$why"
 }
-expect_error() { # name scene message
-  local why=ok
-  rm -f "$work/o.png"
-  "$bin" render "$2" -o "$work/o.png" --backend cpu --quiet 2>"$work/err"
-  local got=$?
-  [[ $got == 2 ]] || why="exit status $got, expected 2"
-  grep -qF -- "$3" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"), expected: $3"
-  [[ ! -e $work/o.png ]] || why="$why; an image was written"
-  check "$1" "$why"
-}
-
 "$gen" json-materials $n "$work/materials.json"
 expect_counts "$n JSON materials, each used once" "$work/materials.json" $n $n 0
 "$gen" json-dup $n "$work/dup.json"
-expect_error "a repeated material at line $((n + 2))" "$work/dup.json" "dup.json:$((n + 2)):11: error: materials.m0: material defined twice"
+expect_refusal "a repeated material at line $((n + 2))" "$work/dup.json" "dup.json:$((n + 2)):11: error: materials.m0: material defined twice" --backend cpu
 "$gen" json-unknown $n "$work/unknown.json"
-expect_error "an unknown material after $n" "$work/unknown.json" "unknown.json:$((n + 5)):71: error: objects[0].material: unknown material (\"m$n\")"
+expect_refusal "an unknown material after $n" "$work/unknown.json" "unknown.json:$((n + 5)):71: error: objects[0].material: unknown material (\"m$n\")" --backend cpu
 "$gen" test-materials $n "$work/materials.test"
 expect_counts "$n .test material states" "$work/materials.test" $n $n 0
 "$gen" test-shared $n "$work/shared.test"

@@ -22,17 +22,6 @@ line_col() { # file offset -> "LINE:COL" of that byte (the bytes before it hold 
   local newlines=${pre//[!$'\n']/} last=${pre##*$'\n'}
   echo "$((${#newlines} + 1)):$((${#last} + 1))"
 }
-expect_error() { # name scene expected-stderr-substring [render args...]
-  local name=$1 scene=$2 want=$3
-  shift 3
-  rm -f "$work/o.png"
-  timeout 60 "$bin" render "$scene" -o "$work/o.png" --quiet "$@" 2>"$work/err"
-  local got=$? why=ok
-  [[ $got == 2 ]] || why="exit status $got, expected 2"
-  grep -qF -- "$want" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"); expected: $want"
-  [[ ! -e $work/o.png ]] || why="$why; an image was written"
-  check "$name" "$why"
-}
 expect_render() { # name scene [render args...]
   local name=$1 scene=$2
   shift 2
@@ -52,7 +41,7 @@ for scene in "$scenes"/*.json "$work/base.test"; do
     while [[ $(tail -c +$((off + 1)) "$scene" | head -c 1 | od -An -c | tr -d ' ') == '\n' ]]; do off=$((off + 1)); done
     out=$work/nul_${k}_$name
     { head -c "$off" "$scene"; printf '\0'; tail -c +$((off + 2)) "$scene"; } >"$out"
-    expect_error "NUL byte at $off of $name" "$out" "$(basename "$out"):$(line_col "$out" "$off"): error: a NUL byte"
+    expect_refusal "NUL byte at $off of $name" "$out" "$(basename "$out"):$(line_col "$out" "$off"): error: a NUL byte"
   done
 done
 # \u0000 escapes: just after the opening quote of the 2nd, 5th and 9th string of each scene.
@@ -63,7 +52,7 @@ for scene in "$scenes"/*.json; do
     [[ -n $off ]] || continue
     out=$work/esc_${n}_$name
     { head -c $((off + 1)) "$scene"; printf '\\u0000'; tail -c +$((off + 2)) "$scene"; } >"$out"
-    expect_error "\\u0000 in string $n of $name" "$out" \
+    expect_refusal "\\u0000 in string $n of $name" "$out" \
       "$(basename "$out"):$(line_col "$out" $((off + 1))): error: a \\u0000 escape"
   done
 done
@@ -93,13 +82,13 @@ i=0
 for route in "$work/outside/box.obj" "../outside/box.obj" "links/out.obj" "outdir/box.obj" "sub/../../outside/box.obj"; do
   i=$((i + 1))
   mesh_scene "$route" >"$work/inside/out$i.json"
-  expect_error "mesh $route: refused" "$work/inside/out$i.json" \
+  expect_refusal "mesh $route: refused" "$work/inside/out$i.json" \
     "out$i.json:3:42: error: objects[0].file: lies outside the scene's folder"
   expect_render "mesh $route: --allow-outside-paths" "$work/inside/out$i.json" --allow-outside-paths
 done
 # (assimp joins a buffer's URI to the glTF's folder, so ".." is the way out.)
 mesh_scene "up_buffer.gltf" >"$work/inside/up_buffer.json"
-expect_error "glTF buffer ../outside: refused" "$work/inside/up_buffer.json" \
+expect_refusal "glTF buffer ../outside: refused" "$work/inside/up_buffer.json" \
   "refused to open $work/inside/../outside/BoxTextured0.bin: it lies outside the scene's folder"
 expect_render "glTF buffer ../outside: --allow-outside-paths" "$work/inside/up_buffer.json" --allow-outside-paths
 for route in "sub/box.obj" "links/in.obj" "$work/inside/sub/box.obj"; do
@@ -113,7 +102,7 @@ head='{ "image": { "width": 16, "height": 12 }, "camera": { "eye": [0, 0, 5], "l
 late() { # name object-json expected
   printf '%s\n  "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m" },\n    %s ] }\n' \
     "$head" "$2" >"$work/late.json"
-  expect_error "$1" "$work/late.json" "late.json:4:5: error: objects[1]$3"
+  expect_refusal "$1" "$work/late.json" "late.json:4:5: error: objects[1]$3"
 }
 late "sphere centre beyond f32" '{ "type": "sphere", "center": [1e39, 0, 0], "radius": 1, "material": "m" }' ": its centre"
 late "sphere radius squared beyond f32" '{ "type": "sphere", "center": [0, 0, 0], "radius": 1e20, "material": "m" }' ": its radius squared"
@@ -129,7 +118,7 @@ late "mesh scaled beyond f32" \
   " (triangle 0 of 12): a vertex"
 printf '%s\n  "lights": [ { "type": "point", "position": [0, 0, 0], "intensity": [1, 1, 1] },\n    { "type": "point", "position": [0, 0, 0], "intensity": [1e39, 1, 1] } ] }\n' \
   "$head" >"$work/late.json"
-expect_error "light intensity beyond f32" "$work/late.json" "late.json:4:5: error: lights[1]: its intensity"
+expect_refusal "light intensity beyond f32" "$work/late.json" "late.json:4:5: error: lights[1]: its intensity"
 printf 'size 8 8\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0 1\n  scale 1e300 1 1\n  sphere 1 0 0 1\n' >"$work/late.test"
-expect_error ".test sphere transform vanishing in f32" "$work/late.test" "late.test:5:3: error: sphere: its transform"
+expect_refusal ".test sphere transform vanishing in f32" "$work/late.test" "late.test:5:3: error: sphere: its transform"
 finish
