@@ -32,7 +32,6 @@ typedef struct rc_render_stats {
 
 double rc_stats_mrays_per_s(const rc_render_stats *s);
 void rc_stats_print(const rc_render_stats *s);
-/* Writes one JSON object; returns RC_ERR_IO with a message on failure. */
 /* The statistics as one JSON object and a newline (malloc'd; NULL when out of memory). */
 char *rc_stats_json(const rc_render_stats *s);
 

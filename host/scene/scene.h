@@ -52,8 +52,6 @@ typedef struct rc_quadric_def {
   bool solid;
 } rc_quadric_def;
 
-/* A composite solid: a postfix program (RC_CSG_* << RC_CSG_OP_SHIFT | operand) whose leaf
- * operands index rc_scene.csg_leaves; its world-space bounding box. */
 /* Where primitives came from in the scene file, for errors found after parsing (values
  * beyond f32 once packed, the GPU's loop budget): primitives [first, first + count) of
  * `kind` come from the value at line:col, field `what`[item] (JSON: "objects", "lights",
@@ -66,6 +64,8 @@ typedef struct rc_origin {
   size_t first, count;
 } rc_origin;
 
+/* A composite solid: a postfix program (RC_CSG_* << RC_CSG_OP_SHIFT | operand) whose leaf
+ * operands index rc_scene.csg_leaves; its world-space bounding box. */
 typedef struct rc_csg_def {
   uint32_t *program;
   uint32_t length;

@@ -508,12 +508,10 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
   if (!cJSON_IsString(f) || !f->valuestring[0]) return js_fail(c, "expected a file name");
   char path[4096], folder[4096];
   const char *slash = strrchr(c->file, '/');
-  int n = snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - c->file) : 1, slash ? c->file : ".");
-  if (f->valuestring[0] == '/' || !slash)
-    n |= snprintf(path, sizeof path, "%s", f->valuestring);
-  else
-    n |= snprintf(path, sizeof path, "%s/%s", folder, f->valuestring);
-  if (n < 0 || strlen(f->valuestring) + strlen(folder) + 2 > sizeof path) return js_fail(c, "path too long");
+  int nf = snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - c->file) : 1, slash ? c->file : ".");
+  int np = f->valuestring[0] == '/' || !slash ? snprintf(path, sizeof path, "%s", f->valuestring)
+                                              : snprintf(path, sizeof path, "%s/%s", folder, f->valuestring);
+  if (nf < 0 || np < 0 || (size_t)nf >= sizeof folder || (size_t)np >= sizeof path) return js_fail(c, "path too long");
   if (!c->allow_outside_paths && !rc_path_within(folder, path))
     return js_fail(c, "lies outside the scene's folder %s (--allow-outside-paths allows it)", folder);
   size_t off = rc_json_locate(c->text, c->len, c->path, c->depth);

@@ -49,7 +49,7 @@ static size_t csg_of_leaf(const rc_scene *s, size_t leaf) {
 }
 
 /* Values that are finite in f64 but leave the f32 range once packed would reach the
- * shader as Inf, which Vulkan lets shaders assume away (docs/accuracy.md). The error names
+ * shader as Inf, which Vulkan lets shaders assume away (docs/numerics.md §1). The error names
  * the object in the scene file and the value. */
 static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
   const char *field = NULL;
