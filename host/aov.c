@@ -59,11 +59,11 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
     /* Depth relative to the reference's; the normal as the angle between the two. */
     double tb = y[lb->t], dt = fabs((double)x[la->t] - tb) / (tb != 0 ? fabs(tb) : 1);
     if (!(dt <= r->max_depth_rel)) r->max_depth_rel = isnan(dt) ? INFINITY : dt;
-    double dot = (double)x[la->nx] * y[lb->nx] + (double)x[la->ny] * y[lb->ny] + (double)x[la->nz] * y[lb->nz];
-    double la_ = sqrt((double)x[la->nx] * x[la->nx] + (double)x[la->ny] * x[la->ny] + (double)x[la->nz] * x[la->nz]);
-    double lb_ = sqrt((double)y[lb->nx] * y[lb->nx] + (double)y[lb->ny] * y[lb->ny] + (double)y[lb->nz] * y[lb->nz]);
-    double cosine = dot / (la_ * lb_);
-    double angle = acos(cosine > 1 ? 1 : (cosine < -1 ? -1 : cosine));
+    /* The angle as atan2(|a x b|, a . b): exact 0 for equal vectors (acos of a rounded
+     * cosine is not) and well conditioned near 0 and pi. */
+    double ax = x[la->nx], ay = x[la->ny], az = x[la->nz], bx = y[lb->nx], by = y[lb->ny], bz = y[lb->nz];
+    double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    double angle = atan2(sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz);
     if (!(angle <= r->max_normal_angle)) r->max_normal_angle = isnan(angle) ? INFINITY : angle;
   }
 }

@@ -1,13 +1,13 @@
 /* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
  * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
-#include <errno.h>
-#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli/options.h"
 #include "gpu_render.h"
 #include "bvh.h"
 #include "output.h"
@@ -16,261 +16,141 @@
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
 #include "stats.h"
-
-static const char render_usage[] =
-    "usage: vkraycast render SCENE -o OUT [options]\n"
-    "\n"
-    "  -o, --output OUT        image to write; the extension picks the format (png, exr, tif, jpg, ...)\n"
-    "  --width W, --height H   override the scene's image size\n"
-    "  --spp N                 override samples per pixel (1..1024)\n"
-    "  --backend B             gpu (default: the Vulkan compute shader) or cpu (the reference renderer)\n"
-    "  --precision P           auto (default), f32 or f64 geometry and shading math. auto: f64 on cpu;\n"
-    "                          on gpu f32 unless the precision-budget pass finds the scene needs f64\n"
-    "                          and the device has shaderFloat64 (docs/accuracy.md)\n"
-    "  --accel A               bvh (default) or none: brute force over every object, for comparison\n"
-    "  --threads N             cpu backend: threads (default: all cores); the image does not depend on it\n"
-    "  --device N              Vulkan device index (see `vkraycast devices`); default: discrete >\n"
-    "                          integrated > virtual > CPU\n"
-    "  --srgb                  8-bit outputs get the sRGB transfer curve (default: linear, clamped)\n"
-    "  --quantize Q            8-bit outputs: round (JSON scenes' default) or truncate (.test scenes')\n"
-    "  --repeat N              render N frames; statistics report the first and the median of the rest\n"
-    "  --stats-json FILE       write the statistics as one JSON object\n"
-    "  --aov FILE.exr          also write the decision outputs of each pixel's first sample: colour,\n"
-    "                          hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)\n"
-    "  --quiet                 no progress or summary on stderr\n"
-    "  --allow-outside-paths   let meshes (and the files a mesh names) lie outside the scene\n"
-    "                          file's folder; off by default, so an untrusted scene cannot read\n"
-    "                          other files into the image\n"
-    "\n"
-    "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):\n"
-    "  --sphere F              geometric (default) or algebraic ray/sphere formula\n"
-    "  --triangle F            watertight (default), moller-trumbore or cramer ray/triangle test\n"
-    "  --shadow-offset S       error-bound (default), ulp or epsilon: where shadow/reflection rays start\n"
-    "  --shadow-epsilon E      the epsilon strategy's offset in scene units (default 1e-4)\n"
-    "  --camera-relative B     on (default) or off: positions relative to the eye before f32 rounding\n"
-    "  --reflection-depth N    mirror bounces (0..16)\n"
-    "  --shadows B             on (default) or off: trace shadow rays\n"
-    "\n"
-    "tuning and testing:\n"
-    "  --scene-buffers K       texel (default) or storage: how the shader reads the scene arrays\n"
-    "  --pipeline P            specialized (default: compiled for this scene's primitive kinds, light\n"
-    "                          count, shadows, specular model and bounces) or generic (one pipeline\n"
-    "                          for every scene; to measure what specializing buys)\n"
-    "  --staging               upload and read back through staging buffers even on unified memory\n"
-    "                          (also VKRAYCAST_FORCE_STAGING=1)\n"
-    "  --tile-budget-ms T      the longest one dispatch (one submit) should run: tiles adapt to it;\n"
-    "                          0: no limit (default: none on a CPU device such as lavapipe, which\n"
-    "                          no watchdog resets; 100 elsewhere, as real GPUs reset after ~2 s)\n"
-    "  --tile N                fixed N x N tiles instead of adaptive ones\n"
-    "  --perturb SEED          scale every packed position and radius by 1 + d, |d| <= 2^-22, d a hash\n"
-    "                          of SEED and the value (equal values move alike: meshes stay closed); its\n"
-    "                          renders give `compare --band` the conditioning band\n"
-    "  --plan-budget N         loop budget the host plans batches with (default: the shader's, 49152\n"
-    "                          divided by the subgroup size on llvmpipe); larger values test the\n"
-    "                          shader's exhaustion flag\n";
+#include "vkraycast_build.h"
+#include "vkraycast_revision.h"
 
 typedef struct {
-  const char *scene, *output, *stats_json, *aov;
-  uint32_t width, height, spp, repeat;
-  int device;
-  bool quiet, srgb;
-  bool cpu;
-  bool no_bvh;
-  int truncate; /* -1: the scene format's rule */
-  int precision; /* -1: the scene's (RC_PRECISION_*) */
-  int sphere, triangle, offset, camera_relative, reflection_depth, shadows; /* -1: the scene's */
+  const char *scene; /* the positional argument; "-": standard input */
+  const char *output, *stats_json, *aov;
+  uint32_t width, height, spp, repeat, threads, perturb, tile, plan_budget;
+  int device, tile_budget_ms; /* -1: the default */
+  bool quiet, srgb, staging, allow_outside_paths;
+  /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
+  int backend, accel, quantize, precision, sphere, triangle, offset, camera_relative, reflection_depth, shadows,
+      scene_buffers, pipeline;
   double offset_epsilon; /* 0: the scene's */
-  uint32_t perturb;      /* 0: none, else the seed */
-  uint32_t threads;
+  /* derived once parsed */
+  bool cpu, no_bvh, stats_stdout;
   rc_gpu_options gpu;
   rc_load_options load;
 } render_args;
 
-rc_status rc_cli_uint(const char *name, const char *text, uint32_t lo, uint32_t hi, uint32_t *out) {
-  char *end = NULL;
-  errno = 0;
-  unsigned long long v = strtoull(text, &end, 10);
-  if (!text[0] || *end || errno || text[0] == '-' || v < lo || v > hi) {
-    rc_error("%s: expected a whole number in [%u, %u], got '%s'", name, lo, hi, text);
+static const char *const off_on[] = {"off", "on", NULL};
+static const char *const backends[] = {"gpu", "cpu", NULL};
+static const char *const accels[] = {"bvh", "none", NULL};
+static const char *const quantizers[] = {"round", "truncate", NULL};
+static const char *const buffer_kinds[] = {"texel", "storage", NULL};
+static const char *const pipelines[] = {"specialized", "generic", NULL};
+
+#define ARG(field) offsetof(render_args, field)
+static const rc_option render_options[] = {
+    {"--output", "-o", RC_OPT_STRING, ARG(output), "OUT", .flags = RC_OPT_REQUIRED, .what = "output file",
+     .help = "image to write; the extension picks the format (png, exr, tif, jpg, ...)"},
+    {"--width", NULL, RC_OPT_UINT, ARG(width), "W", 1, RC_MAX_IMAGE_SIDE, .help = "override the scene's image width"},
+    {"--height", NULL, RC_OPT_UINT, ARG(height), "H", 1, RC_MAX_IMAGE_SIDE, .help = "override the scene's image height"},
+    {"--spp", NULL, RC_OPT_UINT, ARG(spp), "N", 1, RC_MAX_SAMPLES_PER_PIXEL, .help = "override samples per pixel"},
+    {"--backend", NULL, RC_OPT_CHOICE, ARG(backend), "B", .choices = backends,
+     .help = "gpu (default: the Vulkan compute shader) or cpu (the reference renderer)"},
+    {"--precision", NULL, RC_OPT_CHOICE, ARG(precision), "P", .choices = rc_precision_names,
+     .help = "auto (default), f32 or f64 geometry and shading math. auto: f64 on cpu;\n"
+             "on gpu f32 unless the precision-budget pass finds the scene needs f64\n"
+             "and the device has shaderFloat64 (docs/accuracy.md)"},
+    {"--accel", NULL, RC_OPT_CHOICE, ARG(accel), "A", .choices = accels,
+     .help = "bvh (default) or none: brute force over every object, for comparison"},
+    {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
+     .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
+    {"--device", NULL, RC_OPT_INT, ARG(device), "N", 0, 1000,
+     .help = "Vulkan device index (see `vkraycast devices`); default: discrete >\n"
+             "integrated > virtual > CPU"},
+    {"--srgb", NULL, RC_OPT_FLAG, ARG(srgb), .help = "8-bit outputs get the sRGB transfer curve (default: linear, clamped)"},
+    {"--quantize", NULL, RC_OPT_CHOICE, ARG(quantize), "Q", .choices = quantizers,
+     .help = "8-bit outputs: round (JSON scenes' default) or truncate (.test scenes')"},
+    {"--repeat", NULL, RC_OPT_UINT, ARG(repeat), "N", 1, 1000,
+     .help = "render N frames; statistics report the first and the median of the rest"},
+    {"--stats-json", NULL, RC_OPT_STRING, ARG(stats_json), "FILE",
+     .help = "write the statistics as one JSON object (- : standard output)"},
+    {"--aov", NULL, RC_OPT_STRING, ARG(aov), "FILE.exr",
+     .help = "also write the decision outputs of each pixel's first sample: colour,\n"
+             "hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)"},
+    {"--quiet", "-q", RC_OPT_FLAG, ARG(quiet), .help = "no progress or summary on stderr"},
+    {"--allow-outside-paths", NULL, RC_OPT_FLAG, ARG(allow_outside_paths),
+     .help = "let meshes (and the files a mesh names) lie outside the scene\n"
+             "file's folder; off by default, so an untrusted scene cannot read\n"
+             "other files into the image"},
+    {"--sphere", NULL, RC_OPT_CHOICE, ARG(sphere), "F", .choices = rc_sphere_formula_names,
+     .heading = "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):",
+     .help = "geometric (default) or algebraic ray/sphere formula"},
+    {"--triangle", NULL, RC_OPT_CHOICE, ARG(triangle), "F", .choices = rc_triangle_formula_names,
+     .help = "watertight (default), moller-trumbore or cramer ray/triangle test"},
+    {"--shadow-offset", NULL, RC_OPT_CHOICE, ARG(offset), "S", .choices = rc_offset_names,
+     .help = "error-bound (default), ulp or epsilon: where shadow/reflection rays start"},
+    {"--shadow-epsilon", NULL, RC_OPT_REAL, ARG(offset_epsilon), "E", 0, 3.4e38, .flags = RC_OPT_LO_OPEN | RC_OPT_F32,
+     .help = "the epsilon strategy's offset in scene units (default 1e-4)"},
+    {"--camera-relative", NULL, RC_OPT_CHOICE, ARG(camera_relative), "B", .choices = off_on,
+     .help = "on (default) or off: positions relative to the eye before f32 rounding"},
+    {"--reflection-depth", NULL, RC_OPT_INT, ARG(reflection_depth), "N", 0, RC_MAX_REFLECTION_DEPTH,
+     .help = "mirror bounces"},
+    {"--shadows", NULL, RC_OPT_CHOICE, ARG(shadows), "B", .choices = off_on,
+     .help = "on (default) or off: trace shadow rays"},
+    {"--scene-buffers", NULL, RC_OPT_CHOICE, ARG(scene_buffers), "K", .choices = buffer_kinds,
+     .heading = "tuning and testing:", .help = "texel (default) or storage: how the shader reads the scene arrays"},
+    {"--pipeline", NULL, RC_OPT_CHOICE, ARG(pipeline), "P", .choices = pipelines,
+     .help = "specialized (default: compiled for this scene's primitive kinds, light\n"
+             "count, shadows, specular model and bounces) or generic (one pipeline\n"
+             "for every scene; to measure what specializing buys)"},
+    {"--staging", NULL, RC_OPT_FLAG, ARG(staging),
+     .help = "upload and read back through staging buffers even on unified memory\n"
+             "(also VKRAYCAST_FORCE_STAGING=1)"},
+    {"--tile-budget-ms", NULL, RC_OPT_INT, ARG(tile_budget_ms), "T", 0, 60000,
+     .help = "the longest one dispatch (one submit) should run: tiles adapt to it;\n"
+             "0: no limit (default: none on a CPU device such as lavapipe, which\n"
+             "no watchdog resets; 100 elsewhere, as real GPUs reset after ~2 s)"},
+    {"--tile", NULL, RC_OPT_UINT, ARG(tile), "N", 8, 4096, .help = "fixed N x N tiles instead of adaptive ones"},
+    {"--perturb", NULL, RC_OPT_UINT, ARG(perturb), "SEED", 1, UINT32_MAX,
+     .help = "scale every packed position and radius by 1 + d, |d| <= 2^-22, d a hash\n"
+             "of SEED and the value (equal values move alike: meshes stay closed); its\n"
+             "renders give `compare --band` the conditioning band"},
+    {"--plan-budget", NULL, RC_OPT_UINT, ARG(plan_budget), "N", 1, UINT32_MAX,
+     .help = "loop budget the host plans batches with (default: the shader's, 49152\n"
+             "divided by the subgroup size on llvmpipe); larger values test the\n"
+             "shader's exhaustion flag"},
+};
+#undef ARG
+
+static const char *const render_positional[] = {"scene file (SCENE, or - for standard input)"};
+const rc_command_spec rc_render_spec = {
+    .name = "render",
+    .synopsis = "SCENE -o OUT [options]",
+    .summary = "Renders SCENE (.json, or .test; - reads it from standard input) to the image OUT.",
+    .epilogue = "Exit status: 0 written; 2 bad input or usage (nothing written); 3 device or memory failure.\n",
+    .min_positional = 1,
+    .max_positional = 1,
+    .positional_offset = offsetof(render_args, scene),
+    .positional_names = render_positional,
+    .options = render_options,
+    .option_count = sizeof render_options / sizeof *render_options,
+};
+
+/* Every output is checked before anything renders: an existing special file or folder,
+ * a missing folder, a format the name does not give, or two roles naming one file. */
+static rc_status check_outputs(const render_args *a) {
+  if (strcmp(a->output, "-") == 0) {
+    rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
+                                    "keeps a failed run from leaving half an image); name a file");
     return RC_ERR_USAGE;
   }
-  *out = (uint32_t)v;
-  return RC_OK;
-}
-
-static rc_status cli_enum(const char *name, const char *v, const char *const *names, int *out) {
-  int i = rc_name_index(names, v);
-  if (i < 0) {
-    char list[160] = "";
-    for (int k = 0; names[k]; k++) snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", names[k]);
-    rc_error("%s: expected one of %s, got '%s'", name, list, v);
+  if (a->aov && strcmp(a->aov, "-") == 0) {
+    rc_usage_error(&rc_render_spec, "--aov -: the AOV file is not written to standard output; name a .exr file");
     return RC_ERR_USAGE;
   }
-  *out = i;
-  return RC_OK;
-}
-
-static bool option_takes_value(const char *o) {
-  static const char *const with_value[] = {"-o", "--output", "--stats-json", "--width", "--height", "--spp",
-                                           "--repeat", "--device", "--tile", "--plan-budget", "--scene-buffers",
-                                           "--backend", "--precision", "--threads", "--aov", "--accel", "--quantize",
-                                           "--tile-budget-ms", "--sphere", "--triangle", "--shadow-offset",
-                                           "--shadow-epsilon", "--camera-relative", "--reflection-depth", "--perturb",
-                                           "--shadows", "--pipeline"};
-  for (size_t i = 0; i < sizeof with_value / sizeof *with_value; i++)
-    if (strcmp(o, with_value[i]) == 0) return true;
-  return false;
-}
-
-static rc_status parse_args(int argc, char **argv, render_args *a) {
-  memset(a, 0, sizeof *a);
-  a->device = -1;
-  a->repeat = 1;
-  a->precision = a->sphere = a->triangle = a->offset = a->camera_relative = a->reflection_depth = a->shadows = -1;
-  a->truncate = -1;
-  a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
-  a->gpu.tile_size = 0;
-  a->gpu.tile_budget_ms = -1; /* the device's default (gpu_render.c) */
-  a->gpu.plan_budget = 0;
-  const char *force = getenv("VKRAYCAST_FORCE_STAGING");
-  a->gpu.force_staging = force && force[0] && strcmp(force, "0") != 0;
-  for (int i = 0; i < argc; i++) {
-    const char *o = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    bool takes_value = true;
-    rc_status st = RC_OK;
-    uint32_t n;
-    if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
-      fputs(render_usage, stdout);
-      exit(0);
-    } else if (strcmp(o, "--quiet") == 0) {
-      a->quiet = true, takes_value = false;
-    } else if (strcmp(o, "--srgb") == 0) {
-      a->srgb = true, takes_value = false;
-    } else if (strcmp(o, "--staging") == 0) {
-      a->gpu.force_staging = true, takes_value = false;
-    } else if (strcmp(o, "--allow-outside-paths") == 0) {
-      a->load.allow_outside_paths = true, takes_value = false;
-    } else if (o[0] == '-' && o[1] && !option_takes_value(o)) {
-      rc_error("render: unknown option %s (see vkraycast render --help)", o);
-      return RC_ERR_USAGE;
-    } else if (o[0] == '-' && o[1] && !v) {
-      rc_error("render: option %s needs a value", o);
-      return RC_ERR_USAGE;
-    } else if (strcmp(o, "-o") == 0 || strcmp(o, "--output") == 0) {
-      a->output = v;
-    } else if (strcmp(o, "--stats-json") == 0) {
-      a->stats_json = v;
-    } else if (strcmp(o, "--aov") == 0) {
-      a->aov = v;
-    } else if (strcmp(o, "--width") == 0) {
-      st = rc_cli_uint(o, v, 1, RC_MAX_IMAGE_SIDE, &a->width);
-    } else if (strcmp(o, "--height") == 0) {
-      st = rc_cli_uint(o, v, 1, RC_MAX_IMAGE_SIDE, &a->height);
-    } else if (strcmp(o, "--spp") == 0) {
-      st = rc_cli_uint(o, v, 1, RC_MAX_SAMPLES_PER_PIXEL, &a->spp);
-    } else if (strcmp(o, "--repeat") == 0) {
-      st = rc_cli_uint(o, v, 1, 1000, &a->repeat);
-    } else if (strcmp(o, "--device") == 0) {
-      st = rc_cli_uint(o, v, 0, 1000, &n);
-      a->device = (int)n;
-    } else if (strcmp(o, "--tile-budget-ms") == 0) {
-      uint32_t ms;
-      st = rc_cli_uint(o, v, 0, 60000, &ms);
-      a->gpu.tile_budget_ms = ms;
-    } else if (strcmp(o, "--tile") == 0) {
-      st = rc_cli_uint(o, v, 8, 4096, &a->gpu.tile_size);
-    } else if (strcmp(o, "--plan-budget") == 0) {
-      st = rc_cli_uint(o, v, 1, UINT32_MAX, &a->gpu.plan_budget);
-    } else if (strcmp(o, "--threads") == 0) {
-      st = rc_cli_uint(o, v, 1, 1024, &a->threads);
-    } else if (strcmp(o, "--backend") == 0) {
-      if (strcmp(v, "gpu") == 0 || strcmp(v, "cpu") == 0) {
-        a->cpu = strcmp(v, "cpu") == 0;
-      } else {
-        rc_error("--backend: expected gpu or cpu, got '%s'", v);
-        st = RC_ERR_USAGE;
-      }
-    } else if (strcmp(o, "--quantize") == 0) {
-      if (strcmp(v, "round") == 0 || strcmp(v, "truncate") == 0) {
-        a->truncate = strcmp(v, "truncate") == 0;
-      } else {
-        rc_error("--quantize: expected round or truncate, got '%s'", v);
-        st = RC_ERR_USAGE;
-      }
-    } else if (strcmp(o, "--accel") == 0) {
-      if (strcmp(v, "bvh") == 0 || strcmp(v, "none") == 0) {
-        a->no_bvh = strcmp(v, "none") == 0;
-      } else {
-        rc_error("--accel: expected bvh or none, got '%s'", v);
-        st = RC_ERR_USAGE;
-      }
-    } else if (strcmp(o, "--precision") == 0) {
-      st = cli_enum(o, v, rc_precision_names, &a->precision);
-    } else if (strcmp(o, "--sphere") == 0) {
-      st = cli_enum(o, v, rc_sphere_formula_names, &a->sphere);
-    } else if (strcmp(o, "--triangle") == 0) {
-      st = cli_enum(o, v, rc_triangle_formula_names, &a->triangle);
-    } else if (strcmp(o, "--shadow-offset") == 0) {
-      st = cli_enum(o, v, rc_offset_names, &a->offset);
-    } else if (strcmp(o, "--camera-relative") == 0) {
-      static const char *const off_on[] = {"off", "on", NULL};
-      st = cli_enum(o, v, off_on, &a->camera_relative);
-    } else if (strcmp(o, "--shadows") == 0) {
-      static const char *const off_on[] = {"off", "on", NULL};
-      st = cli_enum(o, v, off_on, &a->shadows);
-    } else if (strcmp(o, "--pipeline") == 0) {
-      static const char *const kinds[] = {"specialized", "generic", NULL};
-      int k = 0;
-      st = cli_enum(o, v, kinds, &k);
-      a->gpu.generic_pipeline = k == 1;
-    } else if (strcmp(o, "--reflection-depth") == 0) {
-      st = rc_cli_uint(o, v, 0, RC_MAX_REFLECTION_DEPTH, &n);
-      a->reflection_depth = (int)n;
-    } else if (strcmp(o, "--perturb") == 0) {
-      st = rc_cli_uint(o, v, 1, UINT32_MAX, &a->perturb);
-    } else if (strcmp(o, "--shadow-epsilon") == 0) {
-      char *end = NULL;
-      a->offset_epsilon = strtod(v, &end);
-      if (!v[0] || *end || !(a->offset_epsilon > 0) || !((float)a->offset_epsilon > 0) ||
-          !isfinite((float)a->offset_epsilon)) {
-        rc_error("--shadow-epsilon: expected a positive number within f32 range, got '%s'", v);
-        st = RC_ERR_USAGE;
-      }
-    } else if (strcmp(o, "--scene-buffers") == 0) {
-      if (strcmp(v, "texel") == 0) {
-        a->gpu.scene_buffers = RC_SCENE_BUFFERS_TEXEL;
-      } else if (strcmp(v, "storage") == 0) {
-        a->gpu.scene_buffers = RC_SCENE_BUFFERS_STORAGE;
-      } else {
-        rc_error("--scene-buffers: expected texel or storage, got '%s'", v);
-        st = RC_ERR_USAGE;
-      }
-    } else if (!a->scene) {
-      a->scene = o, takes_value = false;
-    } else {
-      rc_error("render: unexpected argument '%s' (one scene per command)", o);
-      return RC_ERR_USAGE;
-    }
-    if (st != RC_OK) return st;
-    if (takes_value) i++;
-  }
-  if (!a->scene || !a->output) {
-    rc_error("render: %s", !a->scene ? "no scene file given" : "no output file given (-o OUT)");
-    fputs(render_usage, stderr);
-    return RC_ERR_USAGE;
-  }
-  /* Every output is checked before anything renders: an existing special file or folder,
-   * or a missing folder, is refused now rather than after the render. */
   if (rc_check_output(a->output, "the image") != RC_OK) return RC_ERR_IO;
   if (a->aov && rc_check_output(a->aov, "the AOV file") != RC_OK) return RC_ERR_IO;
-  if (a->stats_json && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
-  const rc_file_role files[] = {{a->scene, "the scene file", false},
+  if (a->stats_json && !a->stats_stdout && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
+  const rc_file_role files[] = {{strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false},
                                 {a->output, "the image", true},
                                 {a->aov, "the AOV file", true},
-                                {a->stats_json, "the statistics", true}};
+                                {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
   if (rc_check_distinct(files, sizeof files / sizeof *files) != RC_OK) return RC_ERR_USAGE;
-  a->gpu.aov = a->aov != NULL;
   if (a->aov) {
     size_t n = strlen(a->aov);
     if (n < 4 || strcmp(a->aov + n - 4, ".exr") != 0) {
@@ -283,6 +163,29 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     return RC_ERR_USAGE;
   }
   return RC_OK;
+}
+
+static rc_status parse_args(int argc, char **argv, render_args *a) {
+  memset(a, 0, sizeof *a);
+  a->device = a->tile_budget_ms = -1;
+  a->repeat = 1;
+  a->backend = a->accel = a->quantize = a->precision = a->sphere = a->triangle = a->offset = a->camera_relative =
+      a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
+  rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
+  if (st != RC_OK) return st;
+  a->cpu = a->backend == 1;
+  a->no_bvh = a->accel == 1;
+  a->stats_stdout = a->stats_json && strcmp(a->stats_json, "-") == 0;
+  a->gpu.scene_buffers = a->scene_buffers == 1 ? RC_SCENE_BUFFERS_STORAGE : RC_SCENE_BUFFERS_TEXEL;
+  a->gpu.tile_size = a->tile;
+  a->gpu.tile_budget_ms = a->tile_budget_ms; /* -1: the device's default (gpu_render.c) */
+  a->gpu.plan_budget = a->plan_budget;
+  a->gpu.generic_pipeline = a->pipeline == 1;
+  const char *force = getenv("VKRAYCAST_FORCE_STAGING");
+  a->gpu.force_staging = a->staging || (force && force[0] && strcmp(force, "0") != 0);
+  a->gpu.aov = a->aov != NULL;
+  a->load.allow_outside_paths = a->allow_outside_paths;
+  return check_outputs(a);
 }
 
 static int cmp_double(const void *a, const void *b) {
@@ -300,7 +203,7 @@ static double steady(double *v, uint32_t n) {
 /* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
 static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
   return rc_output_open(a->output, a->aov, scene->width, scene->height, a->srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
-                        a->truncate < 0 ? scene->truncate_8bit : a->truncate == 1, out);
+                        a->quantize < 0 ? scene->truncate_8bit : a->quantize == 1, out);
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -437,9 +340,13 @@ static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const c
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
-  if (st != RC_OK) return st;
+  if (st != RC_OK) return st == RC_DONE ? RC_OK : st;
 
-  rc_render_stats rs = {.backend = "gpu", .repeat = a.repeat};
+  static char version[96];
+  snprintf(version, sizeof version, "%s%s%s%s", VKRAYCAST_VERSION, VKRAYCAST_GIT_REVISION[0] ? " (git " : "",
+           VKRAYCAST_GIT_REVISION, VKRAYCAST_GIT_REVISION[0] ? ")" : "");
+  rc_render_stats rs = {.version = version, .scene = strcmp(a.scene, "-") ? a.scene : RC_STDIN_NAME,
+                        .backend = "gpu", .repeat = a.repeat};
   rc_scene scene;
   double t0 = rc_now_ms();
   rc_set_scene_path(a.scene);
@@ -517,7 +424,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   }
   rs.write_ms = rc_output_write_ms(out);
   rs.cpu_ms = rc_cpu_ms();
-  if (st == RC_OK && a.stats_json) {
+  if (st == RC_OK && a.stats_json && !a.stats_stdout) {
     /* The statistics join the image's transaction: all of them land, or none. */
     char *text = rc_stats_json(&rs);
     st = text ? rc_output_attach(out, a.stats_json, text) : RC_ERR_OUT_OF_MEMORY;
@@ -525,6 +432,14 @@ rc_status rc_cmd_render(int argc, char **argv) {
   }
   rc_status cst = rc_output_close(out, st == RC_OK);
   if (st == RC_OK) st = cst;
+  if (st == RC_OK && a.stats_stdout) {
+    /* Standard output is not part of the files' transaction: it gets the statistics of a
+     * run whose files have landed. */
+    char *text = rc_stats_json(&rs);
+    st = text && fputs(text, stdout) >= 0 && fflush(stdout) == 0 ? RC_OK : RC_ERR_IO;
+    if (st != RC_OK) rc_error("cannot write the statistics to standard output");
+    free(text);
+  }
   if (st == RC_OK && !a.quiet) rc_stats_print(&rs);
   rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
   rc_packed_scene_free(&packed);

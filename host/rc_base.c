@@ -117,10 +117,14 @@ static const char *file_kind(mode_t m) {
   return "is not a regular file";
 }
 
+static void report_input(const char *path, const char *what, const char *why) {
+  fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
+}
+
 /* Opens without blocking (a FIFO with no writer would block open() itself) and checks the
  * kind on the descriptor, so nothing can be swapped in between the check and the read.
  * Returns the descriptor, or -1 with *why set. */
-static int open_regular(const char *path, size_t *bytes, const char **why) {
+static int open_checked(const char *path, bool allow_fifo, size_t *bytes, bool *fifo, const char **why) {
   int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   struct stat st;
   if (fd < 0) {
@@ -130,7 +134,8 @@ static int open_regular(const char *path, size_t *bytes, const char **why) {
     return -1;
   }
   bool stated = fstat(fd, &st) == 0;
-  if (!stated || !S_ISREG(st.st_mode)) {
+  if (fifo) *fifo = stated && S_ISFIFO(st.st_mode) && allow_fifo;
+  if (!stated || !(S_ISREG(st.st_mode) || (allow_fifo && S_ISFIFO(st.st_mode)))) {
     *why = stated ? file_kind(st.st_mode) : strerror(errno);
     close(fd);
     return -1;
@@ -141,9 +146,83 @@ static int open_regular(const char *path, size_t *bytes, const char **why) {
   return fd;
 }
 
-static void report_input(const char *path, const char *what, const char *why) {
-  fprintf(stderr, "%s: error: cannot open %s: %s\n", path, what, why);
+static int open_regular(const char *path, size_t *bytes, const char **why) {
+  return open_checked(path, false, bytes, NULL, why);
 }
+
+/* Reads fd to its end into a malloc'ed, NUL-terminated buffer of at most max bytes. */
+static rc_status read_all(int fd, const char *path, const char *what, size_t max, char **text, size_t *len) {
+  size_t cap = 1 << 16, n = 0;
+  char *buf = malloc(cap + 1);
+  if (!buf) return RC_ERR_OUT_OF_MEMORY;
+  for (;;) {
+    if (n == cap) {
+      if (cap > max) break;
+      char *grown = realloc(buf, 2 * cap + 1);
+      if (!grown) {
+        free(buf);
+        return RC_ERR_OUT_OF_MEMORY;
+      }
+      buf = grown, cap *= 2;
+    }
+    ssize_t got = read(fd, buf + n, cap - n);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      fprintf(stderr, "%s: error: cannot read %s: %s\n", path, what, strerror(errno));
+      free(buf);
+      return RC_ERR_IO;
+    }
+    if (got == 0) break;
+    n += (size_t)got;
+  }
+  if (n > max) {
+    fprintf(stderr, "%s: error: %s is more than the %zu bytes allowed\n", path, what, max);
+    free(buf);
+    return RC_ERR_TOO_LARGE;
+  }
+  buf[n] = '\0';
+  *text = buf;
+  *len = n;
+  return RC_OK;
+}
+
+rc_status rc_read_input(const char *path, const char *what, size_t max, char **text, size_t *len) {
+  *text = NULL;
+  *len = 0;
+  if (strcmp(path, "-") == 0) {
+    if (isatty(STDIN_FILENO)) {
+      fprintf(stderr, "%s: error: cannot read %s from standard input: it is a terminal (pipe or redirect a file "
+              "into it)\n", RC_STDIN_NAME, what);
+      return RC_ERR_IO;
+    }
+    return read_all(STDIN_FILENO, RC_STDIN_NAME, what, max, text, len);
+  }
+  const char *why = NULL;
+  size_t bytes = 0;
+  bool fifo = false;
+  int fd = open_checked(path, true, &bytes, &fifo, &why);
+  if (fd < 0) {
+    report_input(path, what, why);
+    return RC_ERR_IO;
+  }
+  if (!fifo && bytes > max) {
+    fprintf(stderr, "%s: error: %s is %zu bytes, more than the %zu allowed\n", path, what, bytes, max);
+    close(fd);
+    return RC_ERR_TOO_LARGE;
+  }
+  rc_status st = read_all(fd, path, what, max, text, len);
+  close(fd);
+  if (st == RC_OK && fifo && *len == 0) {
+    /* A FIFO nobody writes to reads as empty at once (no writer: end of file). */
+    fprintf(stderr, "%s: error: cannot read %s: it is a FIFO (named pipe) and nothing was written to it\n", path,
+            what);
+    free(*text);
+    *text = NULL;
+    st = RC_ERR_INPUT;
+  }
+  return st;
+}
+
 
 FILE *rc_fopen_regular(const char *path, size_t *bytes, const char **why) {
   int fd = open_regular(path, bytes, why);
@@ -164,7 +243,7 @@ FILE *rc_open_input(const char *path, const char *what, size_t *bytes) {
 
 /* The path with its folder resolved (realpath) and its last component kept: the same for
  * every spelling of a file that may not exist yet. */
-static bool canonical(const char *path, char *out, size_t cap) {
+bool rc_resolve_path(const char *path, char *out, size_t cap) {
   const char *slash = strrchr(path, '/');
   char dir[4096];
   snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? (slash == path ? "/" : path) : ".");
@@ -179,7 +258,7 @@ static bool same_file(const char *a, const char *b) {
   struct stat sa, sb;
   if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   char ca[4200], cb[4200];
-  return canonical(a, ca, sizeof ca) && canonical(b, cb, sizeof cb) && strcmp(ca, cb) == 0;
+  return rc_resolve_path(a, ca, sizeof ca) && rc_resolve_path(b, cb, sizeof cb) && strcmp(ca, cb) == 0;
 }
 
 rc_status rc_check_distinct(const rc_file_role *f, size_t count) {
@@ -236,4 +315,44 @@ rc_status rc_check_output(const char *path, const char *what) {
     }
   }
   return RC_OK;
+}
+
+size_t rc_edit_distance(const char *a, const char *b) {
+  size_t n = strlen(b);
+  size_t row[64];
+  if (n >= sizeof row / sizeof *row) return (size_t)-1;
+  for (size_t j = 0; j <= n; j++) row[j] = j;
+  for (size_t i = 1; a[i - 1]; i++) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= n; j++) {
+      size_t up = row[j];
+      size_t best = diag + (a[i - 1] != b[j - 1]);
+      if (up + 1 < best) best = up + 1;
+      if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+      row[j] = best;
+      diag = up;
+    }
+  }
+  return row[n];
+}
+
+const char *rc_nearest(const char *word, const char *const *candidates, size_t count) {
+  size_t limit = strlen(word) / 3;
+  if (limit < 1) limit = 1;
+  if (limit > 3) limit = 3;
+  const char *best = NULL;
+  size_t best_d = limit + 1;
+  for (size_t i = 0; i < count; i++) {
+    if (!candidates[i]) continue;
+    size_t d = rc_edit_distance(word, candidates[i]);
+    if (d < best_d) best = candidates[i], best_d = d;
+  }
+  if (best) return best;
+  /* A shortened name ("fov" for "fov_y_deg", "--shadow" for "--shadow-offset"): the one
+   * candidate that starts with the word. */
+  size_t n = strlen(word), found = 0;
+  for (size_t i = 0; i < count && n >= 2; i++)
+    if (candidates[i] && strncmp(candidates[i], word, n) == 0) best = candidates[i], found++;
+  return found == 1 ? best : NULL;
 }

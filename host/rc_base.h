@@ -12,6 +12,7 @@
 
 #define RC_STATUS_LIST(X)                                           \
   X(OK, 0, "ok")                                                    \
+  X(DONE, 0, "nothing more to do (--help shown)")                   \
   X(MISMATCH, 1, "images differ beyond the thresholds")             \
   X(ERR_USAGE, 2, "bad usage")                                      \
   X(ERR_INPUT, 2, "bad input")                                      \
@@ -82,6 +83,15 @@ FILE *rc_open_input(const char *path, const char *what, size_t *bytes);
 /* rc_open_input without the message: NULL with *why set. */
 FILE *rc_fopen_regular(const char *path, size_t *bytes, const char **why);
 rc_status rc_check_input(const char *path, const char *what, size_t *bytes);
+/* The whole of an input that may be a stream: "-" (standard input, named RC_STDIN_NAME in
+ * messages; refused when it is a terminal), a pipe or FIFO (/dev/stdin, a shell's
+ * <(...)), read to its end, or a regular file; at most max bytes, else RC_ERR_TOO_LARGE.
+ * *text is malloc'ed and NUL-terminated. Messages are printed here. */
+#define RC_STDIN_NAME "<stdin>"
+/* The absolute path with its folder resolved (realpath: links, "..") and its last
+ * component kept, for a file that may not exist; false when the folder does not. */
+bool rc_resolve_path(const char *path, char *out, size_t cap);
+rc_status rc_read_input(const char *path, const char *what, size_t max, char **text, size_t *len);
 const char *rc_input_problem(const char *path, size_t *bytes);
 rc_status rc_check_output(const char *path, const char *what);
 /* A run's files, checked before anything is read or written: each output must name a
@@ -105,5 +115,12 @@ bool rc_path_within(const char *dir, const char *path);
 bool rc_fault(const char *name);
 /* VKRAYCAST_FAULT=NAME:ARGS: ARGS for a fault that takes values, else NULL. */
 const char *rc_fault_arg(const char *name);
+
+/* Levenshtein distance (bytes), for did-you-mean: options (cli/options.c), commands,
+ * scene fields (scene_json.c). */
+size_t rc_edit_distance(const char *a, const char *b);
+/* The candidate nearest to word when it is near enough to be a likely typo (distance at
+ * most a third of the word's length, at least 1, at most 3), else NULL. */
+const char *rc_nearest(const char *word, const char *const *candidates, size_t count);
 
 #endif

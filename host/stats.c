@@ -14,8 +14,9 @@ double rc_stats_mrays_per_s(const rc_render_stats *s) {
 
 void rc_stats_print(const rc_render_stats *s) {
   fprintf(stderr, "vkraycast: device %s (%s, %s)\n", s->device, s->device_type, s->driver);
-  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles, %zu lights; %s backend, %s\n", s->width,
-          s->height, s->samples_per_pixel, s->spheres, s->triangles, s->lights, s->backend, s->precision);
+  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles + %zu quadrics + %zu composites, %zu lights; "
+          "%s backend, %s\n", s->width, s->height, s->samples_per_pixel, s->spheres, s->triangles, s->quadrics,
+          s->composites, s->lights, s->backend, s->precision);
   if (strcmp(s->backend, "gpu") == 0)
     fprintf(stderr, "vkraycast: %s buffers%s; %u tiles, %u dispatches, %u samples per batch\n",
             s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage", s->gpu.staging ? ", staging" : "",
@@ -26,17 +27,26 @@ void rc_stats_print(const rc_render_stats *s) {
     fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms; %u exact "
             "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
             s->bvh.build_ms, s->bvh.repeats);
-  fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
-          "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
-          s->parse_ms, s->gpu.upload_ms, s->gpu.pipeline_ms, s->first_frame_ms, s->render_ms, s->render_wall_ms,
-          s->gpu.readback_ms, s->write_ms);
+  if (strcmp(s->backend, "gpu") == 0)
+    fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
+            "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
+            s->parse_ms, s->gpu.upload_ms, s->gpu.pipeline_ms, s->first_frame_ms, s->render_ms, s->render_wall_ms,
+            s->gpu.readback_ms, s->write_ms);
+  else
+    fprintf(stderr, "vkraycast: parse %.1f ms, first frame %.1f ms, render %.1f ms (wall), write %.1f ms\n",
+            s->parse_ms, s->first_frame_ms, s->render_ms, s->write_ms);
   fprintf(stderr, "vkraycast: rays %llu primary + %llu shadow + %llu reflection, %.2f Mrays/s\n",
           (unsigned long long)s->rays_primary, (unsigned long long)s->rays_shadow,
           (unsigned long long)s->rays_reflection, rc_stats_mrays_per_s(s));
 }
 
+static void add_gpu_fields(cJSON *o, const rc_render_stats *s);
+
 char *rc_stats_json(const rc_render_stats *s) {
   cJSON *o = cJSON_CreateObject();
+  bool gpu = strcmp(s->backend, "gpu") == 0;
+  cJSON_AddStringToObject(o, "vkraycast", s->version);
+  cJSON_AddStringToObject(o, "scene", s->scene);
   cJSON_AddStringToObject(o, "device", s->device);
   cJSON_AddStringToObject(o, "device_type", s->device_type);
   cJSON_AddStringToObject(o, "driver", s->driver);
@@ -61,9 +71,6 @@ char *rc_stats_json(const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "composites", (double)s->composites);
   cJSON_AddNumberToObject(o, "materials", (double)s->materials);
   cJSON_AddBoolToObject(o, "shadows", s->shadows);
-  cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
-  cJSON_AddStringToObject(o, "scene_buffers", s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage");
-  cJSON_AddBoolToObject(o, "staging", s->gpu.staging);
   cJSON_AddNumberToObject(o, "rays_primary", (double)s->rays_primary);
   cJSON_AddNumberToObject(o, "rays_shadow", (double)s->rays_shadow);
   cJSON_AddNumberToObject(o, "rays_reflection", (double)s->rays_reflection);
@@ -73,19 +80,33 @@ char *rc_stats_json(const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "bvh_depth", s->bvh.depth);
   cJSON_AddNumberToObject(o, "bvh_repeats_left_out", s->bvh.repeats);
   cJSON_AddNumberToObject(o, "parse_ms", s->parse_ms);
-  cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
-  cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);
-  cJSON_AddBoolToObject(o, "pipeline_cache_hit", s->gpu.pipeline_cache_hit);
   cJSON_AddNumberToObject(o, "first_frame_ms", s->first_frame_ms);
   cJSON_AddNumberToObject(o, "render_ms", s->render_ms);
   cJSON_AddNumberToObject(o, "render_wall_ms", s->render_wall_ms);
-  cJSON_AddNumberToObject(o, "readback_ms", s->gpu.readback_ms);
   cJSON_AddNumberToObject(o, "write_ms", s->write_ms);
   cJSON_AddNumberToObject(o, "cpu_ms", s->cpu_ms);
   struct rusage ru;
   if (getrusage(RUSAGE_SELF, &ru) == 0) cJSON_AddNumberToObject(o, "peak_rss_mib", (double)ru.ru_maxrss / 1024.0);
   cJSON_AddNumberToObject(o, "mrays_per_s", rc_stats_mrays_per_s(s));
   cJSON_AddNumberToObject(o, "repeat", s->repeat);
+  /* What only the GPU backend has: absent on the CPU backend rather than zero. */
+  if (gpu) add_gpu_fields(o, s);
+  char *text = cJSON_Print(o);
+  cJSON_Delete(o);
+  char *line = text ? malloc(strlen(text) + 2) : NULL;
+  if (line) sprintf(line, "%s\n", text);
+  free(text);
+  return line;
+}
+
+static void add_gpu_fields(cJSON *o, const rc_render_stats *s) {
+  cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
+  cJSON_AddStringToObject(o, "scene_buffers", s->gpu.scene_buffers == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage");
+  cJSON_AddBoolToObject(o, "staging", s->gpu.staging);
+  cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
+  cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);
+  cJSON_AddBoolToObject(o, "pipeline_cache_hit", s->gpu.pipeline_cache_hit);
+  cJSON_AddNumberToObject(o, "readback_ms", s->gpu.readback_ms);
   cJSON_AddNumberToObject(o, "tiles", s->gpu.tiles);
   cJSON_AddNumberToObject(o, "dispatches", s->gpu.dispatches);
   cJSON_AddNumberToObject(o, "tile_budget_ms", s->gpu.tile_budget_ms);
@@ -98,10 +119,4 @@ char *rc_stats_json(const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "subgroup_size", s->gpu.subgroup_size);
   cJSON_AddNumberToObject(o, "workgroup_x", s->gpu.workgroup_x);
   cJSON_AddNumberToObject(o, "workgroup_y", s->gpu.workgroup_y);
-  char *text = cJSON_Print(o);
-  cJSON_Delete(o);
-  char *line = text ? malloc(strlen(text) + 2) : NULL;
-  if (line) sprintf(line, "%s\n", text);
-  free(text);
-  return line;
 }

@@ -6,6 +6,8 @@
 #include "gpu_render.h"
 
 typedef struct rc_render_stats {
+  const char *version;   /* "0.1.0 (git abc123)" */
+  const char *scene;     /* the scene file as given ("<stdin>" for -) */
   const char *device, *device_type, *driver;
   const char *backend;   /* "gpu" or "cpu" */
   const char *precision; /* "f32" or "f64": what ran */

@@ -1,5 +1,6 @@
 #include "scene/json_locate.h"
 
+#include <stdio.h>
 #include <string.h>
 
 typedef struct {
@@ -173,4 +174,50 @@ size_t rc_json_next_value(const char *text, size_t len, size_t offset, bool memb
     skip_ws(&c);
   }
   return c.pos;
+}
+
+bool rc_json_truncated(const char *text, size_t len, size_t offset, size_t *opened) {
+  /* A stack of the offsets of open brackets, bounded: deeper nesting than this is
+   * reported as whatever cJSON said. */
+  size_t stack[256], depth = 0, string_at = len;
+  bool in_string = false, overflow = false;
+  for (size_t i = 0; i < len; i++) {
+    char ch = text[i];
+    if (in_string) {
+      if (ch == '\\') i++;
+      else if (ch == '"') in_string = false;
+    } else if (ch == '"') {
+      in_string = true, string_at = i;
+    } else if (ch == '{' || ch == '[') {
+      if (depth < sizeof stack / sizeof *stack) stack[depth] = i;
+      else overflow = true;
+      depth++;
+    } else if ((ch == '}' || ch == ']') && depth > 0) {
+      depth--;
+    }
+  }
+  *opened = in_string ? string_at : depth > 0 && !overflow ? stack[depth - 1] : len;
+  if (*opened == len) return false;
+  for (size_t i = offset; i < len; i++)
+    if (strchr("{}[],:", text[i]) && !(in_string && i >= string_at)) return false;
+  return true;
+}
+
+void rc_json_quote(const char *text, size_t len, size_t max, char *out, size_t cap) {
+  size_t o = 0;
+  if (cap < 8) {
+    if (cap) out[0] = '\0';
+    return;
+  }
+  out[o++] = '\'';
+  for (size_t i = 0; i < len && i < max && o + 6 < cap; i++) {
+    unsigned char ch = (unsigned char)text[i];
+    if (ch == '\n') o += (size_t)snprintf(out + o, cap - o, "\\n");
+    else if (ch == '\t') o += (size_t)snprintf(out + o, cap - o, "\\t");
+    else if (ch == '\r') o += (size_t)snprintf(out + o, cap - o, "\\r");
+    else if (ch < 32 || ch > 126) o += (size_t)snprintf(out + o, cap - o, "\\x%02x", ch);
+    else out[o++] = (char)ch;
+  }
+  out[o++] = '\'';
+  out[o] = '\0';
 }

@@ -26,4 +26,12 @@ size_t rc_json_find_nul_escape(const char *text, size_t len);
 /* Length of the scalar token at offset (number, string, literal); 0 for objects/arrays. */
 size_t rc_json_token_length(const char *text, size_t len, size_t offset);
 
+/* Whether a parse error at `offset` is the text ending inside a value: at the end some
+ * object, array or string is still open and nothing structural follows the error. Sets
+ * *opened to where the innermost open value began (len when nothing is open). */
+bool rc_json_truncated(const char *text, size_t len, size_t offset, size_t *opened);
+/* Up to `max` bytes of text, quoted, with control characters and bytes over 126 escaped
+ * (\n, \t, \xNN): an error message quotes a file without breaking its own line. */
+void rc_json_quote(const char *text, size_t len, size_t max, char *out, size_t cap);
+
 #endif

@@ -185,7 +185,12 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
   size_t bytes = 0;
   const char *why = rc_input_problem(file, &bytes);
   if (why) {
-    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, why);
+    /* The path as tried, absolute, beside the name as resolved from the scene's folder. */
+    char resolved[4200];
+    if (!rc_resolve_path(file, resolved, sizeof resolved) || strcmp(resolved, file) == 0)
+      fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, why);
+    else
+      fprintf(stderr, "%s: cannot load mesh %s (looked for %s): %s\n", where, file, resolved, why);
     return RC_ERR_IO;
   }
   file_policy policy = {.root = root};
@@ -208,6 +213,7 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
     fprintf(stderr, "%s: mesh %s has no triangles\n", where, file);
     st = RC_ERR_INPUT;
   }
+  size_t degenerate_before = s->degenerate_triangles;
   if (st == RC_OK) st = rc_scene_reserve_triangles(s, faces); /* one allocation for the whole mesh */
   for (unsigned i = 0; st == RC_OK && i < ai->mNumMeshes; i++) {
     const struct aiMesh *mesh = ai->mMeshes[i];
@@ -243,5 +249,11 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
     }
   }
   aiReleaseImport(ai);
+  /* Zero-area faces are a property of the mesh file: the warning names it. */
+  size_t skipped = s->degenerate_triangles - degenerate_before;
+  if (st == RC_OK && skipped)
+    fprintf(stderr, "%s: warning: skipped %zu degenerate (zero-area) triangle%s of %zu\n", file, skipped,
+            skipped == 1 ? "" : "s", faces);
+  s->degenerate_in_meshes += skipped;
   return st;
 }

@@ -11,34 +11,39 @@
 /* Scene files larger than this are refused before reading (a mesh belongs in a mesh file). */
 #define RC_MAX_SCENE_FILE_BYTES (256u << 20)
 
+/* The format: the extension, or for a stream without one (standard input, a pipe) the
+ * first character that is not white space: '{' is JSON, anything else the .test format. */
+static bool is_test_format(const char *path, const char *text, size_t len) {
+  size_t n = strlen(path);
+  if (n >= 5 && strcmp(path + n - 5, ".test") == 0) return true;
+  if (n >= 5 && strcmp(path + n - 5, ".json") == 0) return false;
+  size_t i = 0;
+  while (i < len && strchr(" \t\r\n", text[i]) && text[i]) i++;
+  return !(i < len && text[i] == '{');
+}
+
 rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
-  size_t len = 0;
-  FILE *f = rc_open_input(path, "scene file", &len);
-  if (!f) return RC_ERR_IO;
   char *text = NULL;
-  rc_status st = RC_OK;
-  if (len > RC_MAX_SCENE_FILE_BYTES) {
-    fprintf(stderr, "%s: error: scene file is %zu bytes, more than the %u allowed\n", path, len, RC_MAX_SCENE_FILE_BYTES);
-    st = RC_ERR_TOO_LARGE;
-  } else {
-    text = malloc(len + 1);
-    if (!text || fread(text, 1, len, f) != len) {
-      fprintf(stderr, "%s: error: cannot read scene file: %s\n", path, strerror(errno));
-      st = RC_ERR_IO;
-    } else {
-      text[len] = '\0';
-    }
-  }
-  fclose(f);
+  size_t len = 0;
+  rc_status st = rc_read_input(path, "scene file", RC_MAX_SCENE_FILE_BYTES, &text, &len);
+  if (st != RC_OK) return st;
+  /* Messages name standard input "<stdin>"; meshes are then found from the current folder. */
+  const char *name = strcmp(path, "-") == 0 ? RC_STDIN_NAME : path;
   size_t n = strlen(path);
-  bool test_format = n >= 5 && strcmp(path + n - 5, ".test") == 0;
-  if (st == RC_OK)
-    st = test_format ? rc_scene_parse_test(path, text, len, scene) : rc_scene_parse_json(path, text, len, options, scene);
+  bool named_format = n >= 5 && (strcmp(path + n - 5, ".test") == 0 || strcmp(path + n - 5, ".json") == 0);
+  if (len == 0 && !named_format) {
+    fprintf(stderr, "%s: error: the scene is empty (nothing was read)\n", name);
+    free(text);
+    return RC_ERR_INPUT;
+  }
+  st = is_test_format(path, text, len) ? rc_scene_parse_test(name, text, len, scene)
+                                       : rc_scene_parse_json(name, text, len, options, scene);
   free(text);
-  if (st == RC_OK && scene->degenerate_triangles)
-    rc_warning("%s: skipped %zu degenerate (zero-area) triangle%s", path, scene->degenerate_triangles,
-               scene->degenerate_triangles == 1 ? "" : "s");
+  size_t inline_skipped = scene->degenerate_triangles - scene->degenerate_in_meshes;
+  if (st == RC_OK && inline_skipped)
+    fprintf(stderr, "%s: warning: skipped %zu degenerate (zero-area) triangle%s\n", name, inline_skipped,
+            inline_skipped == 1 ? "" : "s");
   return st;
 }
 

@@ -127,6 +127,7 @@ typedef struct rc_scene {
   rc_triangle_def *triangles;
   size_t triangle_count, triangle_capacity;
   size_t degenerate_triangles; /* zero-area triangles skipped at load */
+  size_t degenerate_in_meshes; /* of which in mesh files (mesh.c warns about those by file) */
   rc_quadric_def *quadrics;    /* standalone quadrics */
   size_t quadric_count, quadric_capacity;
   rc_quadric_def *csg_leaves;  /* the solids composites are made of */

@@ -84,7 +84,13 @@ rc_status js_check_members(jctx *c, const cJSON *obj, const char *const *allowed
     bool known = false;
     for (const char *const *a = allowed; *a; a++) known |= strcmp(*a, m->string) == 0;
     js_push_key(c, m->string);
-    if (!known) return js_fail(c, "unknown field");
+    if (!known) {
+      size_t n = 0;
+      while (allowed[n]) n++;
+      const char *near = rc_nearest(m->string, allowed, n);
+      if (near) return js_fail(c, "unknown field (did you mean \"%s\"?)", near);
+      return js_fail(c, "unknown field");
+    }
     for (const cJSON *p = obj->child; p != m; p = p->next)
       if (strcmp(p->string, m->string) == 0) {
         js_mark_repeat(c);
@@ -198,6 +204,11 @@ static rc_status get_color_or_scalar(jctx *c, const cJSON *obj, const char *key,
     rc_status st = js_get_number(c, obj, key, true, 0, 0, HUGE_VAL, &x);
     *out = rcm_make_d(x, x, x);
     return st;
+  }
+  if (v && !(cJSON_IsArray(v) && cJSON_GetArraySize(v) == 3)) {
+    js_push_key(c, key);
+    return js_fail(c, "expected a number or an array of 3 numbers, got %s",
+                   cJSON_IsArray(v) ? "another length" : js_type_name(v));
   }
   return js_get_vec3(c, obj, key, false, rcm_make_d(0, 0, 0), 0.0, out);
 }
@@ -671,10 +682,24 @@ rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, co
     if (off > len) off = len;
     int line, col;
     rc_json_line_col(text, len, off, &line, &col);
-    if (off >= len)
-      fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected end of file\n", path, line, col);
-    else
-      fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected '%.12s'\n", path, line, col, text + off);
+    size_t opened = 0;
+    if (off >= len || rc_json_truncated(text, len, off, &opened)) {
+      /* The file ends inside a value: say so at its end, and where the value began. */
+      rc_json_line_col(text, len, len, &line, &col);
+      if (off >= len && opened == len) {
+        fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected end of file\n", path, line, col);
+      } else {
+        int oline, ocol;
+        rc_json_line_col(text, len, opened, &oline, &ocol);
+        fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected end of input inside the %s opened at %d:%d "
+                "(is the file cut short?)\n", path, line, col, text[opened] == '[' ? "array" : text[opened] == '"' ?
+                "string" : "object", oline, ocol);
+      }
+    } else {
+      char snippet[64];
+      rc_json_quote(text + off, len - off, 12, snippet, sizeof snippet);
+      fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected %s\n", path, line, col, snippet);
+    }
     return RC_ERR_INPUT;
   }
   /* Anything after the top-level value other than white space is a syntax error too. */

@@ -13,7 +13,7 @@ while IFS='|' read -r want expected args; do
   n=$((n + 1))
   OUT=$work/case$n.png
   eval "set -- $args"
-  VKRAYCAST_MESH_TIMEOUT_S=3 "$bin" "$@" >"$work/stdout" 2>"$work/stderr"
+  VKRAYCAST_MESH_TIMEOUT_S=3 "$bin" "$@" >"$work/stdout" 2>"$work/stderr" </dev/null
   got=$?
   problems=()
   [[ "$got" == "$want" ]] || problems+=("exit status $got, expected $want")

@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# The command-line conventions of docs/cli.md (issue 17): every option of `render --help`
+# is accepted in both spellings; options before the subcommand; `-` and pipes as the
+# scene; `--stats-json -`; refusals of `-o -`; one usage line for a usage error; statistics
+# true to the backend that ran; --version naming what it was built with.
+# Usage: test_cli.sh VKRAYCAST SCENES_DIR WORKDIR
+set -uo pipefail
+bin=$1 scenes=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+source "$(dirname "$0")/check.sh"
+S=$scenes/shadows.json
+small=(--width 24 --height 16 --quiet)
+
+# A reference render, and the same scene by every way of naming the input.
+"$bin" render "$S" -o "$work/ref.png" "${small[@]}" || check "reference render" "exit status $?"
+same() { # NAME FILE: FILE exists and equals the reference
+  check "$1" "$([[ -s $2 ]] && cmp -s "$work/ref.png" "$2" && echo ok || echo "missing or different")"
+}
+"$bin" render - -o "$work/stdin.png" "${small[@]}" <"$S"
+same "render - (redirected file)" "$work/stdin.png"
+cat "$S" | "$bin" render - -o "$work/pipe.png" "${small[@]}"
+same "render - (pipe)" "$work/pipe.png"
+cat "$S" | "$bin" render /dev/stdin -o "$work/devstdin.png" "${small[@]}"
+same "render /dev/stdin (pipe)" "$work/devstdin.png"
+"$bin" render <(cat "$S") -o "$work/procsub.png" "${small[@]}"
+same "render <(...) (process substitution)" "$work/procsub.png"
+mkfifo "$work/fifo"
+(cat "$S" >"$work/fifo") &
+timeout 20 "$bin" render "$work/fifo" -o "$work/fifo.png" "${small[@]}"
+same "render FIFO with a writer" "$work/fifo.png"
+# A stream has no extension: '{' first means JSON, anything else the .test format.
+T=$(dirname "$0")/../fuzz/corpus/test/small.test
+"$bin" render "$T" -o "$work/t_file.png" --quiet && "$bin" render - -o "$work/t_stdin.png" --quiet <"$T"
+check "a .test scene on standard input" \
+  "$([[ -s $work/t_file.png ]] && cmp -s "$work/t_file.png" "$work/t_stdin.png" && echo ok || echo differs)"
+"$bin" render - -o "$work/empty.png" "${small[@]}" </dev/null 2>"$work/err"
+check "render - with nothing on stdin: exit 2, says empty" \
+  "$([[ $? == 2 ]] && grep -q '<stdin>: error: the scene is empty' "$work/err" && echo ok || cat "$work/err")"
+printf '{ "image": { "width": 8, "height": 6 },\n  "camera": { "eye": [0, 0, 5], "look_at": [0, 0' |
+  "$bin" render - -o "$work/trunc.png" --quiet 2>"$work/err"
+check "truncated JSON on stdin names <stdin> and the end of input" \
+  "$(grep -q '<stdin>:2:49: error: JSON syntax: unexpected end of input inside the array opened at 2:44' "$work/err" &&
+     echo ok || cat "$work/err")"
+
+# Options: --opt=value, options before the subcommand, -q.
+"$bin" --backend=gpu render --output="$work/eq.png" --width=24 --height=16 -q "$S"
+same "--opt=value and options before the subcommand" "$work/eq.png"
+"$bin" render -o="$work/short_eq.png" "$S" --width 24 --height 16 --quiet
+same "-o=value" "$work/short_eq.png"
+# Every option the help lists is known to the parser (one table drives both).
+"$bin" render --help >"$work/help.txt"
+opts=$(grep -oE '^ +(-[a-z], )?--[a-z0-9-]+' "$work/help.txt" | sed -E 's/.*(--[a-z0-9-]+)$/\1/' | sort -u)
+n=0
+for o in $opts; do
+  n=$((n + 1))
+  "$bin" render "$S" -o "$work/x.png" "$o" 2>"$work/err" >/dev/null
+  if grep -q "unknown option" "$work/err"; then check "render --help lists $o" "the parser does not know it"; fi
+done
+check "render --help lists options" "$([[ $n -ge 28 ]] && echo ok || echo "only $n")"
+
+# A usage error: the problem and one usage line, not the whole help.
+"$bin" render "$S" 2>"$work/err"
+check "missing -o: exit 2, three lines" \
+  "$([[ $? == 2 && $(wc -l <"$work/err") == 3 ]] && grep -q 'no output file given (-o OUT)' "$work/err" &&
+     grep -q '^usage: vkraycast render SCENE -o OUT \[options\]$' "$work/err" && echo ok || cat "$work/err")"
+
+# --stats-json - writes the statistics to standard output; -o - is refused before reading.
+"$bin" render "$S" -o "$work/s.png" --stats-json - "${small[@]}" >"$work/stats.json"
+check "--stats-json - is JSON on stdout" \
+  "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print("ok" if d["width"] == 24 else d)' \
+     "$work/stats.json" 2>&1)"
+[[ -e $work/- ]] && check "--stats-json - wrote no file named -" "it did"
+"$bin" render "$S" -o - "${small[@]}" 2>"$work/err"
+check "-o - refused" "$([[ $? == 2 ]] && grep -q 'not written to standard output' "$work/err" && echo ok || cat "$work/err")"
+
+# Statistics true to the backend: the CPU's have no GPU-only fields; both name the
+# program version and the scene; max_dispatch_ms is the one dispatch's time for one tile.
+"$bin" render "$S" -o "$work/c.png" --backend cpu --stats-json "$work/cpu.json" "${small[@]}"
+python3 - "$work/cpu.json" "$S" <<'PY' >"$work/py.out" 2>&1
+import json, sys
+d = json.load(open(sys.argv[1]))
+gpu_only = [k for k in ("pipeline", "scene_buffers", "staging", "upload_ms", "pipeline_ms", "tiles", "dispatches",
+                        "max_dispatch_ms", "loop_budget", "subgroup_size", "readback_ms") if k in d]
+bad = gpu_only or d["backend"] != "cpu" or not d["vkraycast"].startswith("0.") or d["scene"] != sys.argv[2]
+print("ok" if not bad else (gpu_only, d["vkraycast"], d["scene"]))
+PY
+check "CPU statistics: no GPU-only fields; the version and the scene" "$(cat "$work/py.out")"
+for tile in "--tile 1024" "--tile 8"; do
+  # shellcheck disable=SC2086
+  "$bin" render "$S" -o "$work/t.png" $tile --stats-json "$work/tile.json" "${small[@]}"
+  python3 - "$work/tile.json" <<'PY' >"$work/py.out" 2>&1
+import json, sys
+d = json.load(open(sys.argv[1]))
+ok = d["max_dispatch_ms"] > 0 and d["max_dispatch_ms"] <= d["render_ms"] + 1e-9 and "pipeline" in d
+print("ok" if ok else (d["max_dispatch_ms"], d["render_ms"], d["tiles"]))
+PY
+  check "GPU statistics $tile: 0 < max_dispatch_ms <= render_ms" "$(cat "$work/py.out")"
+done
+
+# --version: the program, and what it was built and runs with.
+"$bin" --version >"$work/version.txt"
+check "--version names the loader and the shader compiler" \
+  "$(grep -q '^vkraycast [0-9]' "$work/version.txt" && grep -q 'Vulkan headers' "$work/version.txt" &&
+     grep -q 'glslangValidator' "$work/version.txt" && grep -q 'running with: Vulkan loader' "$work/version.txt" &&
+     echo ok || cat "$work/version.txt")"
+finish
