@@ -101,7 +101,9 @@ static rc_status store(const rc_command_spec *s, const rc_option *o, const char 
       char list[200] = "";
       for (int i = 0; o->choices[i]; i++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", o->choices[i]);
-      const char *near = rc_nearest(v, o->choices, 16);
+      size_t n = 0;
+      while (o->choices[n]) n++;
+      const char *near = rc_nearest(v, o->choices, n);
       rc_usage_error(s, "%s: expected one of %s, got '%s'%s%s%s", name, list, v, near ? " (did you mean " : "",
                      near ? near : "", near ? "?)" : "");
     }
