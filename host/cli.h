@@ -13,4 +13,8 @@ rc_status rc_cmd_compare(int argc, char **argv);
 
 extern const rc_command_spec rc_render_spec, rc_compare_spec, rc_devices_spec;
 
+/* "0.1.0 (git abc123...)": the version, with the git revision when built from a checkout
+ * (main.c; --version and the statistics). */
+const char *rc_version_string(void);
+
 #endif

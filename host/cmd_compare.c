@@ -179,7 +179,6 @@ rc_status rc_cmd_compare(int argc, char **argv) {
   }
   unsigned char *band = NULL;
   if (st == RC_OK && args.bands.count) st = load_band(&args.bands, &b, &band);
-  if (st == RC_OK && band == NULL && args.bands.count) st = RC_ERR_OUT_OF_MEMORY;
   /* AOV files: the colour metrics over R, G, B only (t, ids and bitfields are not colours). */
   bool colour[RC_AOV_MAX_CHANNELS] = {0};
   bool both_aov = st == RC_OK && a.aov && b.aov;

@@ -16,8 +16,6 @@
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
 #include "stats.h"
-#include "vkraycast_build.h"
-#include "vkraycast_revision.h"
 
 typedef struct {
   const char *scene; /* the positional argument; "-": standard input */
@@ -342,10 +340,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_status st = parse_args(argc, argv, &a);
   if (st != RC_OK) return st == RC_DONE ? RC_OK : st;
 
-  static char version[96];
-  snprintf(version, sizeof version, "%s%s%s%s", VKRAYCAST_VERSION, VKRAYCAST_GIT_REVISION[0] ? " (git " : "",
-           VKRAYCAST_GIT_REVISION, VKRAYCAST_GIT_REVISION[0] ? ")" : "");
-  rc_render_stats rs = {.version = version, .scene = strcmp(a.scene, "-") ? a.scene : RC_STDIN_NAME,
+  rc_render_stats rs = {.version = rc_version_string(), .scene = strcmp(a.scene, "-") ? a.scene : RC_STDIN_NAME,
                         .backend = "gpu", .repeat = a.repeat};
   rc_scene scene;
   double t0 = rc_now_ms();

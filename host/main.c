@@ -37,14 +37,21 @@ static const struct {
 };
 #define COMMAND_COUNT (sizeof commands / sizeof *commands)
 
+const char *rc_version_string(void) {
+  static char text[96];
+  if (!text[0])
+    snprintf(text, sizeof text, "%s%s%s%s", VKRAYCAST_VERSION, VKRAYCAST_GIT_REVISION[0] ? " (git " : "",
+             VKRAYCAST_GIT_REVISION, VKRAYCAST_GIT_REVISION[0] ? ")" : "");
+  return text;
+}
+
 static void print_version(void) {
   uint32_t loader = VK_API_VERSION_1_0;
   /* vkEnumerateInstanceVersion is a 1.1 loader entry point; a 1.0 loader lacks it. */
   PFN_vkEnumerateInstanceVersion enumerate =
       (PFN_vkEnumerateInstanceVersion)vkGetInstanceProcAddr(NULL, "vkEnumerateInstanceVersion");
   if (enumerate) enumerate(&loader);
-  printf("vkraycast %s%s%s%s\n", VKRAYCAST_VERSION, VKRAYCAST_GIT_REVISION[0] ? " (git " : "",
-         VKRAYCAST_GIT_REVISION, VKRAYCAST_GIT_REVISION[0] ? ")" : "");
+  printf("vkraycast %s\n", rc_version_string());
   printf("built with: Vulkan headers %s, loader %s; shader compiler %s\n", VKRAYCAST_VULKAN_HEADERS,
          VKRAYCAST_VULKAN_LIBRARY, VKRAYCAST_GLSLANG);
   printf("running with: Vulkan loader %u.%u.%u\n", VK_API_VERSION_MAJOR(loader), VK_API_VERSION_MINOR(loader),

@@ -151,15 +151,21 @@ static int open_regular(const char *path, size_t *bytes, const char **why) {
 }
 
 /* Reads fd to its end into a malloc'ed, NUL-terminated buffer of at most max bytes. */
-static rc_status read_all(int fd, const char *path, const char *what, size_t max, char **text, size_t *len) {
-  size_t cap = 1 << 16, n = 0;
+static rc_status read_all(int fd, const char *path, const char *what, size_t max, size_t size_hint, char **text,
+                          size_t *len) {
+  /* A regular file's size is known: one allocation, and one more read to see its end. */
+  size_t cap = size_hint + 1 > (1 << 16) ? size_hint + 1 : (1 << 16), n = 0;
   char *buf = malloc(cap + 1);
-  if (!buf) return RC_ERR_OUT_OF_MEMORY;
+  if (!buf) {
+    rc_error("out of memory: %s needs %zu bytes", what, cap + 1);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
   for (;;) {
     if (n == cap) {
       if (cap > max) break;
       char *grown = realloc(buf, 2 * cap + 1);
       if (!grown) {
+        rc_error("out of memory: %s needs %zu bytes", what, 2 * cap + 1);
         free(buf);
         return RC_ERR_OUT_OF_MEMORY;
       }
@@ -195,7 +201,7 @@ rc_status rc_read_input(const char *path, const char *what, size_t max, char **t
               "into it)\n", RC_STDIN_NAME, what);
       return RC_ERR_IO;
     }
-    return read_all(STDIN_FILENO, RC_STDIN_NAME, what, max, text, len);
+    return read_all(STDIN_FILENO, RC_STDIN_NAME, what, max, 0, text, len);
   }
   const char *why = NULL;
   size_t bytes = 0;
@@ -210,7 +216,7 @@ rc_status rc_read_input(const char *path, const char *what, size_t max, char **t
     close(fd);
     return RC_ERR_TOO_LARGE;
   }
-  rc_status st = read_all(fd, path, what, max, text, len);
+  rc_status st = read_all(fd, path, what, max, fifo ? 0 : bytes, text, len);
   close(fd);
   if (st == RC_OK && fifo && *len == 0) {
     /* A FIFO nobody writes to reads as empty at once (no writer: end of file). */

@@ -11,15 +11,22 @@
 /* Scene files larger than this are refused before reading (a mesh belongs in a mesh file). */
 #define RC_MAX_SCENE_FILE_BYTES (256u << 20)
 
-/* The format: the extension, or for a stream without one (standard input, a pipe) the
- * first character that is not white space: '{' is JSON, anything else the .test format. */
-static bool is_test_format(const char *path, const char *text, size_t len) {
+typedef enum { FORMAT_BY_CONTENT, FORMAT_JSON, FORMAT_TEST } scene_format;
+
+/* The format the name gives; a stream (standard input, a pipe) has no extension. */
+static scene_format format_of_name(const char *path) {
   size_t n = strlen(path);
-  if (n >= 5 && strcmp(path + n - 5, ".test") == 0) return true;
-  if (n >= 5 && strcmp(path + n - 5, ".json") == 0) return false;
+  if (n >= 5 && strcmp(path + n - 5, ".test") == 0) return FORMAT_TEST;
+  if (n >= 5 && strcmp(path + n - 5, ".json") == 0) return FORMAT_JSON;
+  return FORMAT_BY_CONTENT;
+}
+
+/* Without an extension, the first character that is not white space tells: '{' is JSON,
+ * anything else the .test format. */
+static bool starts_like_json(const char *text, size_t len) {
   size_t i = 0;
   while (i < len && strchr(" \t\r\n", text[i]) && text[i]) i++;
-  return !(i < len && text[i] == '{');
+  return i < len && text[i] == '{';
 }
 
 rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_scene *scene) {
@@ -30,15 +37,14 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
   if (st != RC_OK) return st;
   /* Messages name standard input "<stdin>"; meshes are then found from the current folder. */
   const char *name = strcmp(path, "-") == 0 ? RC_STDIN_NAME : path;
-  size_t n = strlen(path);
-  bool named_format = n >= 5 && (strcmp(path + n - 5, ".test") == 0 || strcmp(path + n - 5, ".json") == 0);
-  if (len == 0 && !named_format) {
+  scene_format format = format_of_name(path);
+  if (len == 0 && format == FORMAT_BY_CONTENT) {
     fprintf(stderr, "%s: error: the scene is empty (nothing was read)\n", name);
     free(text);
     return RC_ERR_INPUT;
   }
-  st = is_test_format(path, text, len) ? rc_scene_parse_test(name, text, len, scene)
-                                       : rc_scene_parse_json(name, text, len, options, scene);
+  bool test = format == FORMAT_TEST || (format == FORMAT_BY_CONTENT && !starts_like_json(text, len));
+  st = test ? rc_scene_parse_test(name, text, len, scene) : rc_scene_parse_json(name, text, len, options, scene);
   free(text);
   size_t inline_skipped = scene->degenerate_triangles - scene->degenerate_in_meshes;
   if (st == RC_OK && inline_skipped)
