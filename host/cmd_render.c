@@ -24,7 +24,7 @@ typedef struct {
   int device, tile_budget_ms; /* -1: the default */
   bool quiet, srgb, staging, allow_outside_paths;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
-  int backend, accel, quantize, precision, sphere, triangle, offset, camera_relative, reflection_depth, shadows,
+  int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, reflection_depth, shadows,
       scene_buffers, pipeline;
   double offset_epsilon; /* 0: the scene's */
   /* derived once parsed */
@@ -37,6 +37,7 @@ static const char *const off_on[] = {"off", "on", NULL};
 static const char *const backends[] = {"gpu", "cpu", NULL};
 static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
+static const char *const encodings[] = {"linear", "srgb", NULL};
 static const char *const buffer_kinds[] = {"texel", "storage", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
@@ -60,9 +61,13 @@ static const rc_option render_options[] = {
     {"--device", NULL, RC_OPT_INT, ARG(device), "N", 0, 1000,
      .help = "Vulkan device index (see `vkraycast devices`); default: discrete >\n"
              "integrated > virtual > CPU"},
-    {"--srgb", NULL, RC_OPT_FLAG, ARG(srgb), .help = "8-bit outputs get the sRGB transfer curve (default: linear, clamped)"},
+    {"--encoding", NULL, RC_OPT_CHOICE, ARG(encoding), "E", .choices = encodings,
+     .help = "8-bit outputs: linear (clamped; the default) or srgb (the transfer\n"
+             "curve); overrides the scene's image.encoding"},
+    {"--srgb", NULL, RC_OPT_FLAG, ARG(srgb), .help = "--encoding srgb (where both are given, --encoding rules)"},
     {"--quantize", NULL, RC_OPT_CHOICE, ARG(quantize), "Q", .choices = quantizers,
-     .help = "8-bit outputs: round (JSON scenes' default) or truncate (.test scenes')"},
+     .help = "8-bit outputs: round (JSON scenes' default) or truncate (.test scenes');\n"
+             "overrides the scene's image.quantize"},
     {"--repeat", NULL, RC_OPT_UINT, ARG(repeat), "N", 1, 1000,
      .help = "render N frames; statistics report the first and the median of the rest"},
     {"--stats-json", NULL, RC_OPT_STRING, ARG(stats_json), "FILE",
@@ -167,8 +172,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
   a->device = a->tile_budget_ms = -1;
   a->repeat = 1;
-  a->backend = a->accel = a->quantize = a->precision = a->sphere = a->triangle = a->offset = a->camera_relative =
-      a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
+  a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
+      a->camera_relative = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -200,7 +205,8 @@ static double steady(double *v, uint32_t n) {
 
 /* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
 static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
-  return rc_output_open(a->output, a->aov, scene->width, scene->height, a->srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+  bool srgb = a->encoding >= 0 ? a->encoding == 1 : a->srgb || scene->srgb_8bit;
+  return rc_output_open(a->output, a->aov, scene->width, scene->height, srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
                         a->quantize < 0 ? scene->truncate_8bit : a->quantize == 1, out);
 }
 

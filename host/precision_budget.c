@@ -6,6 +6,8 @@
 #include <stdarg.h>
 #include <stdio.h>
 
+#include "math/rcm_mat3.h"
+
 /* The spacing of f32 values near x. */
 static double ulp_f32(double x) {
   float f = fabsf((float)x);
@@ -88,10 +90,20 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
   }
   /* Quadrics (standalone and composite leaves): their math runs on p - centre in their own
    * frame, the sphere's geometric form generalized, so the far-sphere rule applies with
-   * the box's smallest half-extent as the radius; and the centre's f32 rounding against it. */
+   * the box's smallest half-extent as the radius; and the centre's f32 rounding against it.
+   * Under a transform the frame is scaled: a half-extent h along frame axis k spans
+   * h |column k of R^-1| in packed space. */
   for (uint32_t i = 0; i < p->quadric_total; i++) {
     const gpu_quadric *q = &p->quadrics[i];
     dvec3 half = rcm_scale_d(rcm_sub_d(rcm_to_d(q->hi), rcm_to_d(q->lo)), 0.5);
+    const double w[3][3] = {{q->axis_x.x, q->axis_x.y, q->axis_x.z}, {q->axis_y.x, q->axis_y.y, q->axis_y.z},
+                            {q->axis_z.x, q->axis_z.y, q->axis_z.z}};
+    double m[3][3];
+    if (rcm_mat3_inverse_d(w, m)) {
+      half.x *= sqrt(m[0][0] * m[0][0] + m[1][0] * m[1][0] + m[2][0] * m[2][0]);
+      half.y *= sqrt(m[0][1] * m[0][1] + m[1][1] * m[1][1] + m[2][1] * m[2][1]);
+      half.z *= sqrt(m[0][2] * m[0][2] + m[1][2] * m[1][2] + m[2][2] * m[2][2]);
+    }
     double size = fmin(half.x, fmin(half.y, half.z));
     double dist = rcm_length_d(rcm_sub_d(rcm_to_d(q->center), eye));
     double reach = rcm_max_abs_comp_f(q->center) + fmax(half.x, fmax(half.y, half.z));

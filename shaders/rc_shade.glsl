@@ -28,12 +28,14 @@ rvec3 quadric_refine(gpu_quadric q, rvec3 p, inout rvec3 p_error) {
   precise rvec3 mf = quadric_apply(q, f);
   precise rvec3 g = mf + L;
   precise real value = dot(f, mf) + 2.0 * dot(L, f) + real(q.constant);
-  real gg = dot(g, g);
+  // grad Q / 2 in packed space is R^T g (R the frame's rows: a rotation, or any invertible
+  // matrix under a transform), and Newton's step along it is Q / |grad Q|^2 grad Q. Only
+  // the (small) step is carried out of the frame: a round trip of p itself through f32
+  // rows would move it by their rounding times |p - c|.
+  precise rvec3 gw = g.x * rvec3(q.axis_x) + g.y * rvec3(q.axis_y) + g.z * rvec3(q.axis_z);
+  real gg = dot(gw, gw);
   if (gg == 0.0) return p;  // a singular point (a cone's apex): keep o + t d and its bound
-  // Only the (small) step goes back through R^T: the f32 axes are orthonormal to about
-  // 1e-7 only, and a round trip of p itself would move it by that much of |p - c|.
-  precise rvec3 step = (value / (2.0 * gg)) * g;
-  precise rvec3 dp = step.x * rvec3(q.axis_x) + step.y * rvec3(q.axis_y) + step.z * rvec3(q.axis_z);
+  precise rvec3 dp = (value / (2.0 * gg)) * gw;
   precise rvec3 pr = p - dp;
   real value_error = gamma_bound(16.0) * (dot(abs(f), abs(mf)) + 2.0 * dot(abs(L), abs(f)) + abs(real(q.constant)));
   p_error = gamma_bound(8.0) * (abs(pr) + abs(pc)) + rvec3(value_error / (2.0 * sqrt(gg)));

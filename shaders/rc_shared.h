@@ -200,7 +200,10 @@ struct gpu_vertex_normals {
 #define RC_TEXELS_PER_VERTEX_NORMALS 3
 
 /* A quadric surface Q = 0 clipped to a box, both in the quadric's own frame: f = R (p -
- * center), R's rows axis_x, axis_y, axis_z (orthonormal), and
+ * center), R's rows axis_x, axis_y, axis_z (orthonormal, unless the scene gave the object a
+ * "transform": then R is the inverse of the transform's linear part times the shape's own
+ * rotation, any invertible matrix; t is the same in both spaces, f = R(o - center) + t R d),
+ * and
  *   Q = f^T M f + 2 linear.f + constant,
  *   M = [[diag.x, off.x, off.y], [off.x, diag.y, off.z], [off.y, off.z, diag.z]],
  * the box lo <= f <= hi. The named shapes (ellipsoid, cylinder, cone, ...) are built in

@@ -14,11 +14,10 @@
 
 static const char *bin;
 static char tmp[256];
-static char tmp[256];
 
 /* Runs vkraycast with the arguments (a printf format); returns its exit status. */
-static int run(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static int run(const char *fmt, ...) {
+static inline int run(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static inline int run(const char *fmt, ...) {
   char args[2048], cmd[4096];
   va_list ap;
   va_start(ap, fmt);
@@ -36,7 +35,7 @@ static int run(const char *fmt, ...) {
   return code;
 }
 
-static bool stderr_contains(const char *text) {
+static inline bool stderr_contains(const char *text) {
   char buf[8192] = "";
   char path[300];
   snprintf(path, sizeof path, "%s/stderr.txt", tmp);
@@ -48,7 +47,7 @@ static bool stderr_contains(const char *text) {
   return strstr(buf, text) != NULL;
 }
 
-static cJSON *load_json(const char *name) {
+static inline cJSON *load_json(const char *name) {
   char path[300];
   snprintf(path, sizeof path, "%s/%s", tmp, name);
   FILE *f = fopen(path, "r");
@@ -60,7 +59,7 @@ static cJSON *load_json(const char *name) {
   return cJSON_Parse(buf);
 }
 
-static double json_number(const cJSON *o, const char *key) {
+static inline double json_number(const cJSON *o, const char *key) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
   return cJSON_IsNumber(v) ? v->valuedouble : -1.0;
 }

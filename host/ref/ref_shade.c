@@ -13,11 +13,11 @@ rvec3 REF(quadric_refine)(const gpu_quadric *q, rvec3 p, rvec3 *p_error) {
   rvec3 mf = REF(quadric_apply)(q, f);
   rvec3 g = RV(add)(mf, L);
   real value = RV(dot)(f, mf) + 2 * RV(dot)(L, f) + (real)q->constant;
-  real gg = RV(dot)(g, g);
+  rvec3 gw = RV(add)(RV(add)(RV(scale)(rvec3_from(q->axis_x), g.x), RV(scale)(rvec3_from(q->axis_y), g.y)),
+                     RV(scale)(rvec3_from(q->axis_z), g.z));
+  real gg = RV(dot)(gw, gw);
   if (gg == 0) return p;
-  rvec3 step = RV(scale)(g, value / (2 * gg));
-  rvec3 dp = RV(add)(RV(add)(RV(scale)(rvec3_from(q->axis_x), step.x), RV(scale)(rvec3_from(q->axis_y), step.y)),
-                     RV(scale)(rvec3_from(q->axis_z), step.z));
+  rvec3 dp = RV(scale)(gw, value / (2 * gg));
   rvec3 pr = RV(sub)(p, dp);
   real value_error = REF(gamma_bound)(16) * (RV(dot)(RV(abs)(f), RV(abs)(mf)) + 2 * RV(dot)(RV(abs)(L), RV(abs)(f)) +
                                              R_ABS((real)q->constant));

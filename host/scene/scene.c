@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "math/rcm_mat3.h"
 #include "scene/json_locate.h"
 
 /* Scene files larger than this are refused before reading (a mesh belongs in a mesh file). */
@@ -154,13 +155,23 @@ rc_quality rc_quality_default(void) {
 }
 
 void rc_frame_box_bounds(dvec3 center, const dvec3 axis[3], dvec3 lo, dvec3 hi, dvec3 *out_lo, dvec3 *out_hi) {
+  /* f = W (p - center) with W's rows the axes, so p = center + W^-1 f. W is a rotation for
+   * an untransformed shape and any invertible matrix under a "transform". */
+  const double w[3][3] = {{axis[0].x, axis[0].y, axis[0].z}, {axis[1].x, axis[1].y, axis[1].z},
+                          {axis[2].x, axis[2].y, axis[2].z}};
+  double m[3][3];
+  if (!rcm_mat3_inverse_d(w, m)) { /* refused at load; f32 rounding cannot get here, but stay safe */
+    *out_lo = rcm_make_d(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
+    *out_hi = rcm_make_d(HUGE_VAL, HUGE_VAL, HUGE_VAL);
+    return;
+  }
   *out_lo = rcm_make_d(HUGE_VAL, HUGE_VAL, HUGE_VAL);
   *out_hi = rcm_make_d(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
   for (int k = 0; k < 8; k++) {
-    dvec3 f = rcm_make_d(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
-    /* p = center + R^T f: the axes are R's rows. */
-    dvec3 p = rcm_add_d(center, rcm_add_d(rcm_add_d(rcm_scale_d(axis[0], f.x), rcm_scale_d(axis[1], f.y)),
-                                          rcm_scale_d(axis[2], f.z)));
+    double f[3] = {k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z};
+    dvec3 p = rcm_make_d(center.x + m[0][0] * f[0] + m[0][1] * f[1] + m[0][2] * f[2],
+                         center.y + m[1][0] * f[0] + m[1][1] * f[1] + m[1][2] * f[2],
+                         center.z + m[2][0] * f[0] + m[2][1] * f[1] + m[2][2] * f[2]);
     out_lo->x = fmin(out_lo->x, p.x), out_lo->y = fmin(out_lo->y, p.y), out_lo->z = fmin(out_lo->z, p.z);
     out_hi->x = fmax(out_hi->x, p.x), out_hi->y = fmax(out_hi->y, p.y), out_hi->z = fmax(out_hi->z, p.z);
   }

@@ -41,8 +41,9 @@ typedef struct rc_triangle_def {
   dvec3 n[3];
 } rc_triangle_def;
 
-/* A quadric in its own frame (gpu_quadric has the formula): world centre, the frame's
- * axes as rows, M (diag, off), linear, constant, and the clip box [lo, hi] in the frame. */
+/* A quadric in its own frame (gpu_quadric has the formula): world centre, the rows of the
+ * world-to-frame matrix (the frame's axes; scaled or sheared by a "transform"), M (diag,
+ * off), linear, constant, and the clip box [lo, hi] in the frame. */
 typedef struct rc_quadric_def {
   dvec3 center, axis[3];
   dvec3 diag, off, linear;
@@ -135,6 +136,7 @@ typedef struct rc_scene {
   rc_csg_def *csgs;
   size_t csg_count, csg_capacity;
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
+  bool srgb_8bit;              /* 8-bit outputs sRGB-encoded (JSON image.encoding); else linear */
   rc_origin *origins;          /* in file order */
   size_t origin_count, origin_capacity;
 } rc_scene;
@@ -176,8 +178,9 @@ rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
  * in f64: degenerate but meaningful input is skipped and counted (docs/numerics.md §7).
  * The one rule for JSON triangles, .test triangles and mesh faces. */
 rc_status rc_scene_add_triangle(rc_scene *scene, const rc_triangle_def *t);
-/* The axis-aligned bounds of the box [lo, hi] of a frame (centre, orthonormal axes as
- * rows): its 8 corners carried out of the frame. */
+/* The axis-aligned bounds of the box [lo, hi] of a frame (centre, and the rows of the
+ * world-to-frame matrix: orthonormal axes, or any invertible matrix under a transform):
+ * its 8 corners carried out of the frame. */
 void rc_frame_box_bounds(dvec3 center, const dvec3 axis[3], dvec3 lo, dvec3 hi, dvec3 *out_lo, dvec3 *out_hi);
 /* The world-space bounding box of a quadric's clip box. */
 void rc_quadric_world_box(const rc_quadric_def *q, dvec3 *lo, dvec3 *hi);

@@ -240,11 +240,18 @@ static rc_status parse_image(jctx *c, const cJSON *root, rc_scene *s) {
   if (!img) return js_fail(c, "missing field \"image\"");
   js_push_key(c, "image");
   TRY(js_expect_object(c, img));
-  static const char *const allowed[] = {"width", "height", "samples_per_pixel", NULL};
+  static const char *const allowed[] = {"width", "height", "samples_per_pixel", "encoding", "quantize", NULL};
   TRY(js_check_members(c, img, allowed));
   TRY(js_get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
   TRY(js_get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
   TRY(js_get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
+  /* How 8-bit outputs store a linear value (render --encoding and --quantize override). */
+  static const char *const encodings[] = {"linear", "srgb", NULL}, *const quantizers[] = {"round", "truncate", NULL};
+  uint32_t k;
+  TRY(js_get_enum(c, img, "encoding", encodings, 0, &k));
+  s->srgb_8bit = k == 1;
+  TRY(js_get_enum(c, img, "quantize", quantizers, 0, &k));
+  s->truncate_8bit = k == 1;
   js_pop(c);
   return RC_OK;
 }
@@ -389,6 +396,17 @@ rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KIN
   return rc_scene_note_origin(s, before, c->lc_line, c->lc_col, what, item);
 }
 
+rc_status js_get_bool(jctx *c, const cJSON *obj, const char *key, bool def, bool *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  *out = def;
+  if (!v) return RC_OK;
+  js_push_key(c, key);
+  if (!cJSON_IsBool(v)) return js_fail(c, "expected true or false, got %s", js_type_name(v));
+  *out = cJSON_IsTrue(v);
+  js_pop(c);
+  return RC_OK;
+}
+
 rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out) {
   const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "material");
   if (!v) return js_fail(c, "missing field \"material\"");
@@ -400,13 +418,13 @@ rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out) {
   return RC_OK;
 }
 
-static void affine_identity(rc_affine *a) {
+void js_affine_identity(rc_affine *a) {
   memset(a, 0, sizeof *a);
   a->m[0][0] = a->m[1][1] = a->m[2][2] = 1;
 }
 
 /* a = a * b (b applied first to points). */
-static void affine_multiply(rc_affine *a, const rc_affine *b) {
+void js_affine_multiply(rc_affine *a, const rc_affine *b) {
   rc_affine r;
   for (int i = 0; i < 3; i++) {
     for (int j = 0; j < 4; j++) {
@@ -427,8 +445,8 @@ static rc_affine rotation(dvec3 axis, double deg) {
  * are scaled first, then rotated, translated, and last taken through the raw matrix:
  * M = matrix * T * R * S. rotate_deg is {"axis": [x, y, z], "angle": a} or Euler angles
  * [x, y, z] applied about X, then Y, then Z. */
-static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *present) {
-  affine_identity(out);
+rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *present) {
+  js_affine_identity(out);
   const cJSON *t = cJSON_GetObjectItemCaseSensitive(obj, "transform");
   *present = t != NULL;
   if (!t) return RC_OK;
@@ -460,9 +478,9 @@ static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *
   if (cJSON_GetObjectItemCaseSensitive(t, "translate")) {
     TRY(js_get_vec3(c, t, "translate", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
     rc_affine tr;
-    affine_identity(&tr);
+    js_affine_identity(&tr);
     tr.m[0][3] = v.x, tr.m[1][3] = v.y, tr.m[2][3] = v.z;
-    affine_multiply(out, &tr);
+    js_affine_multiply(out, &tr);
   }
   const cJSON *r = cJSON_GetObjectItemCaseSensitive(t, "rotate_deg");
   if (r) {
@@ -478,14 +496,14 @@ static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *
         return js_fail(c, "must not be the zero vector");
       }
       rc_affine rot = rotation(rcm_normalize_d(v), angle);
-      affine_multiply(out, &rot);
+      js_affine_multiply(out, &rot);
     } else {
       TRY(js_vec3_value(c, r, -HUGE_VAL, &v));
       rc_affine rz = rotation(rcm_make_d(0, 0, 1), v.z), ry = rotation(rcm_make_d(0, 1, 0), v.y),
                 rx = rotation(rcm_make_d(1, 0, 0), v.x);
-      affine_multiply(out, &rz);
-      affine_multiply(out, &ry);
-      affine_multiply(out, &rx);
+      js_affine_multiply(out, &rz);
+      js_affine_multiply(out, &ry);
+      js_affine_multiply(out, &rx);
     }
     js_pop(c);
   }
@@ -503,10 +521,16 @@ static rc_status get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *
       return js_fail(c, "a zero scale makes the object vanish");
     }
     rc_affine s3;
-    affine_identity(&s3);
+    js_affine_identity(&s3);
     s3.m[0][0] = v.x, s3.m[1][1] = v.y, s3.m[2][2] = v.z;
-    affine_multiply(out, &s3);
+    js_affine_multiply(out, &s3);
   }
+  /* A singular linear part flattens the object onto a plane or a line (a raw matrix can
+   * be singular with every scale non-zero); so does one whose inverse overflows. */
+  double a[3][3], inv[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) a[i][j] = out->m[i][j];
+  if (!rcm_mat3_inverse_d(a, inv)) return js_fail(c, "is singular (determinant %g): the object would vanish", rcm_mat3_det_d(a));
   js_pop(c);
   return RC_OK;
 }
@@ -579,7 +603,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
       TRY(js_get_positive(c, o, "radius", true, 0, &d->radius));
       TRY(js_get_material_ref(c, o, &d->material));
-      TRY(get_transform(c, o, &m, &transformed));
+      TRY(js_get_transform(c, o, &m, &transformed));
       d->transformed = transformed;
       d->world_from_object = m;
     } else if (type == 1) {
@@ -598,13 +622,13 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       }
       js_pop(c);
       TRY(js_get_material_ref(c, o, &d.material));
-      TRY(get_transform(c, o, &m, &transformed));
+      TRY(js_get_transform(c, o, &m, &transformed));
       for (int k = 0; k < 3; k++) d.v[k] = rc_affine_point(&m, d.v[k]);
       TRY(rc_scene_add_triangle(s, &d));
     } else {
       static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
       TRY(js_check_members(c, o, allowed));
-      TRY(get_transform(c, o, &m, &transformed));
+      TRY(js_get_transform(c, o, &m, &transformed));
       TRY(parse_mesh(c, o, s, &m));
     }
     TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
@@ -637,7 +661,7 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(js_expect_object(c, q));
     static const char *const qfields[] = {"reflection_depth", "precision", "sphere_intersection",
                                           "triangle_intersection", "shadow_offset", "shadow_epsilon",
-                                          "camera_relative", NULL};
+                                          "camera_relative", "shadows", NULL};
     TRY(js_check_members(c, q, qfields));
     rc_quality *k = &s->quality;
     TRY(js_get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
@@ -646,13 +670,8 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(js_get_enum(c, q, "triangle_intersection", rc_triangle_formula_names, k->triangle, &k->triangle));
     TRY(js_get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
     TRY(js_get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
-    const cJSON *cr = cJSON_GetObjectItemCaseSensitive(q, "camera_relative");
-    if (cr) {
-      js_push_key(c, "camera_relative");
-      if (!cJSON_IsBool(cr)) return js_fail(c, "expected true or false, got %s", js_type_name(cr));
-      k->camera_relative = cJSON_IsTrue(cr);
-      js_pop(c);
-    }
+    TRY(js_get_bool(c, q, "camera_relative", k->camera_relative, &k->camera_relative));
+    TRY(js_get_bool(c, q, "shadows", k->shadows, &k->shadows));
     js_pop(c);
   }
   TRY(parse_materials(c, root, s));

@@ -53,7 +53,15 @@ rc_status js_vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out);
 rc_status js_get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def, double lo, dvec3 *out);
 rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names, uint32_t def,
                       uint32_t *out);
+/* Member `key`: true or false; `def` when absent. */
+rc_status js_get_bool(jctx *c, const cJSON *obj, const char *key, bool def, bool *out);
 rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out);
+/* Member "transform" ({"matrix", "translate", "rotate_deg", "scale"}: docs/scene-format.md)
+ * as world_from_object, the identity when absent; a singular one is refused. */
+rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *present);
+void js_affine_identity(rc_affine *a);
+/* a = a * b (b applied first to points). */
+void js_affine_multiply(rc_affine *a, const rc_affine *b);
 /* Offset in the text of the value at the current path (rc_json_locate). */
 size_t js_offset(const jctx *c);
 /* Records that what was added to the scene since `before` comes from the value at `off`

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "math/rcm_mat3.h"
 #include "scene/scene_json.h"
 
 /* The clip box of a closed shape reaches this fraction beyond its surface, so that a box
@@ -55,20 +56,9 @@ static rc_status get_axis(jctx *c, const cJSON *o, dvec3 *out) {
   return RC_OK;
 }
 
-static rc_status get_bool(jctx *c, const cJSON *o, const char *key, bool def, bool *out) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-  *out = def;
-  if (!v) return RC_OK;
-  js_push_key(c, key);
-  if (!cJSON_IsBool(v)) return js_fail(c, "expected true or false, got %s", js_type_name(v));
-  *out = cJSON_IsTrue(v);
-  js_pop(c);
-  return RC_OK;
-}
-
 /* {"type": "quadric", "matrix": 4x4 symmetric, "bounds": {"min", "max"}, "solid"}. */
 static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool *solid) {
-  static const char *const allowed[] = {"type", "matrix", "bounds", "material", "solid", NULL};
+  static const char *const allowed[] = {"type", "matrix", "bounds", "material", "solid", "transform", NULL};
   TRY(js_check_members(c, o, allowed));
   const cJSON *m = cJSON_GetObjectItemCaseSensitive(o, "matrix");
   if (!m) return js_fail(c, "missing field \"matrix\"");
@@ -112,7 +102,7 @@ static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool 
     return js_fail(c, "must exceed min in every coordinate");
   }
   js_pop(c);
-  TRY(get_bool(c, o, "solid", false, solid));
+  TRY(js_get_bool(c, o, "solid", false, solid));
   /* Recentred on the bounds: f = p - c, Q = f^T M f + 2 (M c + l).f + (c^T M c + 2 l.c + J). */
   dvec3 ctr = rcm_scale_d(rcm_add_d(lo, hi), 0.5);
   double cv[3] = {ctr.x, ctr.y, ctr.z}, lin[3], mc[3];
@@ -141,7 +131,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   q->off = zero;
   q->linear = zero;
   if (type == T_ELLIPSOID) {
-    static const char *const allowed[] = {"type", "center", "radii", "material", NULL};
+    static const char *const allowed[] = {"type", "center", "radii", "material", "transform", NULL};
     TRY(js_check_members(c, o, allowed));
     dvec3 r;
     TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
@@ -160,7 +150,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   if (type == T_SPHERE) {
     /* Only as a composite's operand (a standalone sphere has its own type): the solid
      * ellipsoid with three equal radii. */
-    static const char *const allowed[] = {"type", "center", "radius", "material", NULL};
+    static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
     TRY(js_check_members(c, o, allowed));
     double r;
     TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
@@ -173,7 +163,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     return RC_OK;
   }
   if (type == T_BOX) {
-    static const char *const allowed[] = {"type", "min", "max", "material", NULL};
+    static const char *const allowed[] = {"type", "min", "max", "material", "transform", NULL};
     TRY(js_check_members(c, o, allowed));
     dvec3 lo, hi;
     TRY(js_get_vec3(c, o, "min", true, zero, -HUGE_VAL, &lo));
@@ -190,11 +180,13 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     q->hi = rcm_sub_d(hi, q->center);
     return RC_OK;
   }
-  static const char *const cyl[] = {"type", "center", "axis", "radius", "height", "capped", "material", NULL};
-  static const char *const cone[] = {"type", "apex", "axis", "angle_deg", "height", "capped", "material", NULL};
-  static const char *const para[] = {"type", "vertex", "axis", "radius", "height", "capped", "material", NULL};
+  static const char *const cyl[] = {"type", "center", "axis", "radius", "height", "capped", "material", "transform", NULL};
+  static const char *const cone[] = {"type", "apex", "axis", "angle_deg", "height", "capped", "material", "transform",
+                                     NULL};
+  static const char *const para[] = {"type", "vertex", "axis", "radius", "height", "capped", "material", "transform",
+                                     NULL};
   static const char *const hyp[] = {"type", "center", "axis", "radius", "end_radius", "height", "capped", "material",
-                                    NULL};
+                                    "transform", NULL};
   const char *const *allowed = type == T_CYLINDER ? cyl : type == T_CONE ? cone : type == T_PARABOLOID ? para : hyp;
   TRY(js_check_members(c, o, allowed));
   const char *origin = type == T_CONE ? "apex" : type == T_PARABOLOID ? "vertex" : "center";
@@ -203,7 +195,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   TRY(js_get_vec3(c, o, origin, true, zero, -HUGE_VAL, &q->center));
   TRY(get_axis(c, o, &z));
   TRY(js_get_positive(c, o, "height", true, 0, &h));
-  TRY(get_bool(c, o, "capped", true, solid));
+  TRY(js_get_bool(c, o, "capped", true, solid));
   frame_from_axis(z, q->axis);
   if (type == T_CYLINDER) {
     double r;
@@ -252,8 +244,39 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   return RC_OK;
 }
 
-/* One quadric object (any type but csg) into *q; *intervals as for parse_named. */
-static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, int inherited,
+/* The object's own "transform" after the enclosing composites' (outer, applied last):
+ * *t = outer * own. */
+static rc_status get_composed_transform(jctx *c, const cJSON *o, const rc_affine *outer, rc_affine *t) {
+  bool present;
+  TRY(js_get_transform(c, o, t, &present));
+  rc_affine own = *t;
+  *t = *outer;
+  js_affine_multiply(t, &own);
+  return RC_OK;
+}
+
+/* Carries a shape built in its frame (centre c, world-to-frame rows W) through
+ * world_from_object t = (A, b): the centre to A c + b and the rows to W A^-1, so that the
+ * frame coordinates of a moved point are those of the point before: W A^-1 (A p + b - A c
+ * - b) = W (p - c). Its box, coefficients and t along a ray are unchanged; W stops being a
+ * rotation under a scale or shear (docs/scene-format.md, "Transforms"). */
+static rc_status transform_quadric(jctx *c, const rc_affine *t, rc_quadric_def *q) {
+  double a[3][3], inv[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) a[i][j] = t->m[i][j];
+  if (!rcm_mat3_inverse_d(a, inv)) return js_fail(c, "the transforms of this object and its composites compose to a singular one");
+  q->center = rc_affine_point(t, q->center);
+  for (int k = 0; k < 3; k++) {
+    dvec3 w = q->axis[k];
+    q->axis[k] = rcm_make_d(w.x * inv[0][0] + w.y * inv[1][0] + w.z * inv[2][0], w.x * inv[0][1] + w.y * inv[1][1] + w.z * inv[2][1],
+                            w.x * inv[0][2] + w.y * inv[1][2] + w.z * inv[2][2]);
+  }
+  return RC_OK;
+}
+
+/* One quadric object (any type but csg) into *q, moved by outer (the enclosing composites'
+ * transforms) after its own; *intervals as for parse_named. */
+static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, int inherited, const rc_affine *outer,
                                rc_quadric_def *q, uint32_t *intervals) {
   memset(q, 0, sizeof *q);
   bool solid = true;
@@ -262,6 +285,9 @@ static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, int inher
     TRY(parse_general(c, o, q, &solid));
   else
     TRY(parse_named(c, o, type, q, &solid, intervals));
+  rc_affine t;
+  TRY(get_composed_transform(c, o, outer, &t));
+  TRY(transform_quadric(c, &t, q));
   q->solid = solid;
   normalize_coefficients(q);
   if (cJSON_GetObjectItemCaseSensitive(o, "material") || inherited < 0) {
@@ -287,7 +313,8 @@ typedef struct {
   dvec3 lo, hi;
 } csg_need;
 
-static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inherited, program *p, csg_need *need) {
+static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inherited, const rc_affine *outer,
+                                program *p, csg_need *need) {
   TRY(js_expect_object(c, o));
   const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "type");
   if (!t) return js_fail(c, "missing field \"type\"");
@@ -297,7 +324,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
   TRY(js_get_enum(c, o, "type", leaf_types, 0, &type));
   if (type == T_CSG) {
     if (c->depth + 4 >= RC_JSON_MAX_DEPTH) return js_fail(c, "composites nested too deeply");
-    static const char *const allowed[] = {"type", "op", "left", "right", "material", NULL};
+    static const char *const allowed[] = {"type", "op", "left", "right", "material", "transform", NULL};
     TRY(js_check_members(c, o, allowed));
     static const char *const ops[] = {"union", "intersection", "difference", NULL};
     if (!cJSON_GetObjectItemCaseSensitive(o, "op")) return js_fail(c, "missing field \"op\"");
@@ -309,13 +336,15 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
       TRY(js_get_material_ref(c, o, &id));
       material = (int)id;
     }
+    rc_affine t;
+    TRY(get_composed_transform(c, o, outer, &t));
     csg_need l, r;
     const char *sides[2] = {"left", "right"};
     for (int k = 0; k < 2; k++) {
       const cJSON *child = cJSON_GetObjectItemCaseSensitive(o, sides[k]);
       if (!child) return js_fail(c, "missing field \"%s\"", sides[k]);
       js_push_key(c, sides[k]);
-      TRY(parse_csg_node(c, child, s, material, p, k ? &r : &l));
+      TRY(parse_csg_node(c, child, s, material, &t, p, k ? &r : &l));
       js_pop(c);
     }
     /* Postfix: the left list waits on the stack while the right one is built. */
@@ -340,7 +369,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     return RC_OK;
   }
   rc_quadric_def q;
-  TRY(parse_quadric(c, o, type, inherited, &q, &need->intervals));
+  TRY(parse_quadric(c, o, type, inherited, outer, &q, &need->intervals));
   if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
   need->stack = 1;
   need->steps = 1 + need->intervals;
@@ -353,19 +382,21 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
 }
 
 rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s) {
+  rc_affine identity;
+  js_affine_identity(&identity);
   uint32_t type;
   TRY(js_get_enum(c, o, "type", quadric_types, 0, &type));
   if (type != T_CSG) {
     GROW(s->quadrics, s->quadric_count, s->quadric_capacity);
     uint32_t intervals;
-    TRY(parse_quadric(c, o, type, -1, &s->quadrics[s->quadric_count], &intervals));
+    TRY(parse_quadric(c, o, type, -1, &identity, &s->quadrics[s->quadric_count], &intervals));
     s->quadric_count++;
     return RC_OK;
   }
   GROW(s->csgs, s->csg_count, s->csg_capacity); /* first, while there is nothing to free */
   program p = {0};
   csg_need need;
-  rc_status st = parse_csg_node(c, o, s, -1, &p, &need);
+  rc_status st = parse_csg_node(c, o, s, -1, &identity, &p, &need);
   if (st == RC_OK && !(need.lo.x <= need.hi.x && need.lo.y <= need.hi.y && need.lo.z <= need.hi.z))
     st = js_fail(c, "the operands of this intersection do not overlap: the composite is empty");
   if (st != RC_OK) {

@@ -97,6 +97,27 @@ PY
   check "GPU statistics $tile: 0 < max_dispatch_ms <= render_ms" "$(cat "$work/py.out")"
 done
 
+# Every render setting that changes pixels lives in the scene too, and the command line
+# overrides it: quality.shadows and --shadows, image.encoding and --encoding/--srgb,
+# image.quantize and --quantize. Each pair gives byte-identical PNGs; the settings are
+# chosen where they change the image (checked against the defaults).
+scene_with() { # FILE SED-EXPR: shadows.json edited
+  sed "$2" "$S" >"$1"
+}
+scene_with "$work/noshadow.json" 's/"quality": *{/&"shadows": false, /; t; s/^{/{"quality": {"shadows": false},/'
+scene_with "$work/srgb.json" 's/"image": *{/&"encoding": "srgb", "quantize": "truncate", /'
+"$bin" render "$work/noshadow.json" -o "$work/q_scene.png" "${small[@]}"
+"$bin" render "$S" -o "$work/q_cli.png" --shadows off "${small[@]}"
+check "quality.shadows false = --shadows off, and differs from shadows on"   "$(cmp -s "$work/q_scene.png" "$work/q_cli.png" && ! cmp -s "$work/q_scene.png" "$work/ref.png" && echo ok || echo differs)"
+"$bin" render "$work/noshadow.json" -o "$work/q_back.png" --shadows on "${small[@]}"
+same "--shadows on overrides quality.shadows false" "$work/q_back.png"
+"$bin" render "$work/srgb.json" -o "$work/e_scene.png" "${small[@]}"
+"$bin" render "$S" -o "$work/e_cli.png" --srgb --quantize truncate "${small[@]}"
+check "image.encoding srgb + quantize truncate = --srgb --quantize truncate, and differ from the defaults" \
+  "$(cmp -s "$work/e_scene.png" "$work/e_cli.png" && ! cmp -s "$work/e_scene.png" "$work/ref.png" && echo ok || echo differs)"
+"$bin" render "$work/srgb.json" -o "$work/e_back.png" --encoding linear --quantize round "${small[@]}"
+same "--encoding linear --quantize round override the scene's image settings" "$work/e_back.png"
+
 # --version: the program, and what it was built and runs with.
 "$bin" --version >"$work/version.txt"
 check "--version names the loader and the shader compiler" \

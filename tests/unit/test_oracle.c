@@ -6,7 +6,15 @@
  * 1e-12 (1 + |o|) of an edge, as f64 resolves coordinates of magnitude |o| to about
  * 1e-16 |o|, with margin) the classification must agree and t must match to 1e-12
  * relative. */
+#if __has_include(<quadmath.h>)
 #include <quadmath.h>
+#else
+/* clang does not search GCC's private include folder, where quadmath.h lives; libquadmath
+ * links with either compiler. The functions used here, as quadmath.h declares them: */
+__float128 fabsq(__float128);
+__float128 fminq(__float128, __float128);
+__float128 sqrtq(__float128);
+#endif
 #include <stdlib.h>
 
 #include "ref/ref_intersect.h"
