@@ -317,7 +317,10 @@ static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t 
   uint32_t *slot = malloc(cap * sizeof *slot); /* without it: every object, only slower */
   if (slot) memset(slot, 0xff, cap * sizeof *slot);
   uint32_t a[GEOMETRY_WORDS_MAX], m = 0;
+  const gpu_frame *f = &p->frame;
+  uint32_t planes_end = f->sphere_count + f->triangle_count + f->quadric_count, planes = planes_end - f->plane_count;
   for (uint32_t i = 0; i < n; i++) {
+    if (i >= planes && i < planes_end) continue; /* unbounded: every ray tests the planes after the tree */
     uint32_t words = slot ? geometry_words(p, i, a) : 0; /* 0: a composite, never compared */
     if (words && seen_before(p, slot, cap, i, a, words)) continue;
     refs[m++] = i;
@@ -342,7 +345,13 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
     return RC_ERR_OUT_OF_MEMORY;
   }
   uint32_t m = distinct_objects(p, n, b.refs); /* objects in the tree */
-  stats->repeats = n - m;
+  stats->repeats = n - f->plane_count - m;
+  if (m == 0) { /* planes only */
+    free(b.info);
+    free(b.refs);
+    stats->build_ms = rc_now_ms() - t0;
+    return RC_OK;
+  }
   for (uint32_t i = 0; i < n; i++) {
     prim_info *q = &b.info[i];
     q->bounds = empty_box();

@@ -329,9 +329,10 @@ static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const c
            "image: --backend cpu renders it",
            g->budget_x, g->budget_y, device, g->budget_pixels);
   size_t o = g->budget_object;
-  size_t counts[] = {s->sphere_count, s->triangle_count, s->quadric_count, s->csg_count};
-  uint32_t kinds[] = {RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_CSG};
-  for (int k = 0; k < 4 && g->budget_object != UINT32_MAX; k++) {
+  /* The shader's object numbers: spheres, triangles, quadrics, planes, composites. */
+  size_t counts[] = {s->sphere_count, s->triangle_count, s->quadric_count, s->plane_count, s->csg_count};
+  uint32_t kinds[] = {RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_PLANE, RC_ORIGIN_CSG};
+  for (int k = 0; k < 5 && g->budget_object != UINT32_MAX; k++) {
     if (o < counts[k]) {
       rc_scene_error(s, kinds[k], o, "%s", what);
       return;
@@ -379,6 +380,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rs.triangles = scene.triangle_count;
   rs.lights = scene.light_count;
   rs.quadrics = scene.quadric_count;
+  rs.planes = scene.plane_count;
   rs.composites = scene.csg_count;
   rs.materials = scene.material_count;
   rs.shadows = scene.quality.shadows;

@@ -25,8 +25,11 @@ uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
 
 rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
   plan->budget = budget;
+  /* Through the BVH: its boxes and leaves, then every infinite plane, one step each (a
+   * plane's test has no loop: rc_bvh.glsl, test_planes). */
   plan->steps_per_sample =
-      bvh_depth ? steps_per_sample(f, 4ull * bvh_depth + leaf_tests(f) * object_steps(f)) : rc_gpu_plan_steps_per_sample(f);
+      bvh_depth ? steps_per_sample(f, 4ull * bvh_depth + leaf_tests(f) * object_steps(f) + f->plane_count)
+                : rc_gpu_plan_steps_per_sample(f);
   uint64_t batch = budget / plan->steps_per_sample;
   if (batch == 0 && bvh_depth) batch = 1;
   if (batch == 0) {

@@ -95,6 +95,17 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
    * h |column k of R^-1| in packed space. */
   for (uint32_t i = 0; i < p->quadric_total; i++) {
     const gpu_quadric *q = &p->quadrics[i];
+    if (q->flags & RC_QUADRIC_UNBOUNDED) {
+      /* An infinite plane is centred on its point nearest the eye (scene_pack.c): a primary
+       * ray's t is one division of two inputs rounded once, its hit point is projected onto
+       * the plane, and its normal is exact, at any distance or angle; rounding the centre
+       * moves the plane by 2^-24 of its distance from the eye. Only the f32 range limits it. */
+      double reach = rcm_max_abs_comp_f(q->center);
+      if (reach > RC_BUDGET_FAR_COORDINATE)
+        note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "plane %u: %g from the eye leaves the f32 range once squared",
+             i - (p->frame.quadric_count - p->frame.plane_count), reach);
+      continue;
+    }
     dvec3 half = rcm_scale_d(rcm_sub_d(rcm_to_d(q->hi), rcm_to_d(q->lo)), 0.5);
     const double w[3][3] = {{q->axis_x.x, q->axis_x.y, q->axis_x.z}, {q->axis_y.x, q->axis_y.y, q->axis_y.z},
                             {q->axis_z.x, q->axis_z.y, q->axis_z.z}};

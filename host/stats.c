@@ -14,8 +14,9 @@ double rc_stats_mrays_per_s(const rc_render_stats *s) {
 
 void rc_stats_print(const rc_render_stats *s) {
   fprintf(stderr, "vkraycast: device %s (%s, %s)\n", s->device, s->device_type, s->driver);
-  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles + %zu quadrics + %zu composites, %zu lights; "
-          "%s backend, %s\n", s->width, s->height, s->samples_per_pixel, s->spheres, s->triangles, s->quadrics,
+  fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles + %zu quadrics + %zu planes + %zu composites, "
+          "%zu lights; %s backend, %s\n", s->width, s->height, s->samples_per_pixel, s->spheres, s->triangles, s->quadrics,
+          s->planes,
           s->composites, s->lights, s->backend, s->precision);
   if (strcmp(s->backend, "gpu") == 0)
     fprintf(stderr, "vkraycast: %s buffers%s; %u tiles, %u dispatches, %u samples per batch\n",
@@ -68,6 +69,7 @@ char *rc_stats_json(const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
   cJSON_AddNumberToObject(o, "lights", (double)s->lights);
   cJSON_AddNumberToObject(o, "quadrics", (double)s->quadrics);
+  cJSON_AddNumberToObject(o, "planes", (double)s->planes);
   cJSON_AddNumberToObject(o, "composites", (double)s->composites);
   cJSON_AddNumberToObject(o, "materials", (double)s->materials);
   cJSON_AddBoolToObject(o, "shadows", s->shadows);

@@ -18,7 +18,7 @@ typedef struct rc_render_stats {
   double budget_ms;
   uint32_t threads;      /* cpu backend */
   uint32_t width, height, samples_per_pixel;
-  size_t spheres, triangles, lights, quadrics, composites, materials;
+  size_t spheres, triangles, lights, quadrics, planes, composites, materials;
   bool shadows;
   bool generic_pipeline;
   double parse_ms, pack_ms, write_ms;

@@ -83,11 +83,34 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   return h.kind != RC_HIT_NONE;
 }
 
+// The infinite planes, the last frame.plane_count standalone quadrics, have no box and no
+// place in the tree: after the traversal every ray tests each of them. True when `any`
+// and one blocks.
+bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
+  if (!has_kind(RC_KIND_QUADRICS) || frame.plane_count == 0u) return false;
+  uint first = frame.sphere_count + frame.triangle_count + frame.quadric_count - frame.plane_count;
+  if (!budget_take(frame.plane_count)) {
+    budget_blame = 1u + first;
+    return false;
+  }
+  ray_shear sh = ray_shear_for(d);
+  for (uint object = first; object < first + frame.plane_count; object++) {
+    real side;
+    rvec3 bary;
+    uint part;
+    real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary, part);
+    if (any && t < real(RC_T_FAR)) return true;
+    consider_hit(object, t, side, bary, part, h);
+  }
+  return false;
+}
+
 // The queries shading uses: the BVH or brute force, as the pipeline was specialized.
 bool closest_hit(rvec3 o, rvec3 d, out hit_record h) {
   h = no_hit();
   if (use_bvh) {
     traverse_bvh(o, d, false, real(RC_T_FAR), h);
+    test_planes(o, d, false, real(RC_T_FAR), h);
   } else {
     closest_hit_linear(o, d, h);
   }
@@ -97,5 +120,5 @@ bool closest_hit(rvec3 o, rvec3 d, out hit_record h) {
 bool occluded(rvec3 o, rvec3 d, real t_max) {
   if (!use_bvh) return occluded_linear(o, d, t_max);
   hit_record h = no_hit();
-  return traverse_bvh(o, d, true, t_max, h);
+  return traverse_bvh(o, d, true, t_max, h) || test_planes(o, d, true, t_max, h);
 }

@@ -66,7 +66,9 @@ uint quadric_roots(gpu_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi
   precise real c = dot(f, mf) + 2.0 * lf + J;
   if (a == 0.0) {
     if (h == 0.0) return (c <= 0.0) ? RC_QR_ALL : RC_QR_NONE;
-    precise real root = -c / (2.0 * h);
+    // A grazing ray (a plane's tiny v.z) puts the root beyond RC_T_FAR: pinned, not divided.
+    precise real root = (abs(c) >= abs(2.0 * h) * real(RC_T_FAR)) ? (((c > 0.0) == (h > 0.0)) ? -real(RC_T_FAR) : real(RC_T_FAR))
+                                                                  : -c / (2.0 * h);
     if (h > 0.0) t_hi = root;  // Q falls with t: inside before the root
     else t_lo = root;
     return RC_QR_BETWEEN;
@@ -196,10 +198,26 @@ real first_interval_end(uint base, uint n, real t_max, out uint code) {
   return real(RC_T_FAR);
 }
 
+// An infinite plane (RC_QUADRIC_UNBOUNDED): Q = 2 f.z, so the root is t = -f.z / v.z, the
+// value quadric_roots finds with a = 0, without its products; a one-sided plane is met
+// only by rays moving against its normal. A root beyond RC_T_FAR is a miss, not a division.
+real intersect_plane(gpu_quadric q, rvec3 o, rvec3 d, real t_max) {
+  precise real fz = dot(rvec3(q.axis_z), o - rvec3(q.center));
+  precise real vz = dot(rvec3(q.axis_z), d);
+  bool facing = ((q.flags & RC_QUADRIC_ONE_SIDED) == 0u) || vz < 0.0;
+  if (vz == 0.0 || !facing || abs(fz) >= abs(vz) * real(RC_T_FAR)) return real(RC_T_FAR);
+  precise real t = -fz / vz;
+  return (t > 0.0 && t <= t_max) ? t : real(RC_T_FAR);
+}
+
 // A standalone quadric, open or solid: t and the code of the surface hit.
 real intersect_quadric(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
   code = 0u;
   gpu_quadric q = load_quadric(index);
+  if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
+    code = csg_code(index, 0u, false, false);
+    return intersect_plane(q, o, d, t_max);
+  }
   if ((q.flags & RC_QUADRIC_SOLID) == 0u) {
     code = csg_code(index, 0u, false, false);
     return intersect_quadric_surface(q, o, d, t_max);

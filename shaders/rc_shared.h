@@ -161,6 +161,9 @@ struct gpu_frame {
   uint quadric_count;     uint csg_count;
   uint shadows;           /* 0: no shadow rays */
   uint csg_max_steps;     /* the most loop steps one ray can take in a composite (the host's plan) */
+  uint plane_count;       /* the last plane_count of the quadric_count standalone quadrics are
+                             infinite planes: outside the BVH, every ray tests them */
+  uint pad0; uint pad1; uint pad2;
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -215,6 +218,14 @@ struct gpu_vertex_normals {
  * it (a capped cylinder; M = 0, linear = 0 and constant = -1 is the box itself); without
  * it, the open surface alone. CSG leaves are always solid. */
 #define RC_QUADRIC_SOLID 1u
+/* An infinite plane (scene type "plane"): Q = 2 f.z in a frame whose z is the unit normal
+ * and whose centre is the plane's point nearest the eye, so that for a primary ray (o = 0
+ * in packed space) t = -f.z / v.z is one division of two well-conditioned numbers. No clip
+ * box (lo, hi are unused) and no place in the BVH. */
+#define RC_QUADRIC_UNBOUNDED 2u
+/* Hit only from the side the normal faces (a ray with d.normal < 0); seen from behind,
+ * and for shadow rays leaving from behind, the plane is not there. */
+#define RC_QUADRIC_ONE_SIDED 4u
 struct gpu_quadric {
   vec3 center; uint material;
   vec3 axis_x; float constant;
@@ -340,7 +351,8 @@ RC_ASSERT_LAYOUT(gpu_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(gpu_frame, tr
 RC_ASSERT_LAYOUT(gpu_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(gpu_frame, offset_epsilon, 172);
 RC_ASSERT_LAYOUT(gpu_frame, quadric_count, 176); RC_ASSERT_LAYOUT(gpu_frame, csg_count, 180);
 RC_ASSERT_LAYOUT(gpu_frame, shadows, 184); RC_ASSERT_LAYOUT(gpu_frame, csg_max_steps, 188);
-RC_ASSERT_SIZE(gpu_frame, 192);
+RC_ASSERT_LAYOUT(gpu_frame, plane_count, 192);
+RC_ASSERT_SIZE(gpu_frame, 208);
 RC_ASSERT_LAYOUT(gpu_quadric, center, 0);   RC_ASSERT_LAYOUT(gpu_quadric, material, 12);
 RC_ASSERT_LAYOUT(gpu_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(gpu_quadric, constant, 28);
 RC_ASSERT_LAYOUT(gpu_quadric, axis_y, 32);  RC_ASSERT_LAYOUT(gpu_quadric, flags, 44);

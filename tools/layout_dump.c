@@ -44,6 +44,10 @@ int main(void) {
   OFF("frame.csg_count", gpu_frame, csg_count);
   OFF("frame.shadows", gpu_frame, shadows);
   OFF("frame.csg_max_steps", gpu_frame, csg_max_steps);
+  OFF("frame.plane_count", gpu_frame, plane_count);
+  OFF("frame.pad0", gpu_frame, pad0);
+  OFF("frame.pad1", gpu_frame, pad1);
+  OFF("frame.pad2", gpu_frame, pad2);
   printf("Frame size %zu\n", sizeof(gpu_frame));
 
   OFF("scene_bvh_nodes.lo", gpu_bvh_node, lo);

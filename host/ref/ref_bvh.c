@@ -61,10 +61,27 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
   return h->kind != RC_HIT_NONE;
 }
 
+bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
+  const gpu_frame *f = sc->frame;
+  if (f->plane_count == 0) return false;
+  uint32_t first = f->sphere_count + f->triangle_count + f->quadric_count - f->plane_count;
+  ref_shear sh = REF(ray_shear_for)(d);
+  for (uint32_t object = first; object < first + f->plane_count; object++) {
+    real side;
+    rvec3 bary;
+    uint32_t part;
+    real t = REF(intersect_object)(sc, object, o, d, &sh, any ? t_max : h->t, &side, &bary, &part);
+    if (any && t < (real)RC_T_FAR) return true;
+    REF(consider_hit)(sc, object, t, side, bary, part, h);
+  }
+  return false;
+}
+
 bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
   *h = REF(no_hit)();
   if (sc->use_bvh) {
     REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, h);
+    REF(test_planes)(sc, o, d, false, (real)RC_T_FAR, h);
   } else {
     REF(closest_hit_linear)(sc, o, d, h);
   }
@@ -74,5 +91,5 @@ bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
 bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
   if (!sc->use_bvh) return REF(occluded_linear)(sc, o, d, t_max);
   ref_hit h = REF(no_hit)();
-  return REF(traverse_bvh)(sc, o, d, true, t_max, &h);
+  return REF(traverse_bvh)(sc, o, d, true, t_max, &h) || REF(test_planes)(sc, o, d, true, t_max, &h);
 }

@@ -53,6 +53,7 @@ extern _Thread_local bool ref_spawned_ray;
   bool ref_test_leaf_##S(const ref_scene *sc, uint32_t first, uint32_t count, V o, V d, const ref_shear_##S *sh,       \
                           bool any, R t_max, ref_hit_##S *h);                                   \
   bool ref_traverse_bvh_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);  \
+  bool ref_test_planes_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);   \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);                      \
   bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max);
 
@@ -67,6 +68,7 @@ extern _Thread_local bool ref_spawned_ray;
   uint32_t ref_solid_intervals_##S(uint32_t leaf, const gpu_quadric *q, V o, V d, bool flip, uint32_t base); \
   R ref_intersect_quadric_surface_##S(const gpu_quadric *q, V o, V d, R t_max);                 \
   R ref_first_interval_end_##S(uint32_t base, uint32_t n, R t_max, uint32_t *code);             \
+  R ref_intersect_plane_##S(const gpu_quadric *q, V o, V d, R t_max);                              \
   R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
   uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
   R ref_intersect_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \

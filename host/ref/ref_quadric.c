@@ -48,7 +48,8 @@ uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, 
   real c = RV(dot)(f, mf) + 2 * lf + J;
   if (a == 0) {
     if (h == 0) return c <= 0 ? QR_ALL : QR_NONE;
-    real root = -c / (2 * h);
+    real root = R_ABS(c) >= R_ABS(2 * h) * (real)RC_T_FAR ? ((c > 0) == (h > 0) ? -(real)RC_T_FAR : (real)RC_T_FAR)
+                                                          : -c / (2 * h);
     if (h > 0) *t_hi = root;
     else *t_lo = root;
     return QR_BETWEEN;
@@ -164,9 +165,23 @@ real REF(first_interval_end)(uint32_t base, uint32_t n, real t_max, uint32_t *co
   return (real)RC_T_FAR;
 }
 
+real REF(intersect_plane)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
+  const real far = (real)RC_T_FAR;
+  real fz = RV(dot)(v3(q->axis_z), RV(sub)(o, v3(q->center)));
+  real vz = RV(dot)(v3(q->axis_z), d);
+  bool facing = !(q->flags & RC_QUADRIC_ONE_SIDED) || vz < 0;
+  if (vz == 0 || !facing || R_ABS(fz) >= R_ABS(vz) * far) return far;
+  real t = -fz / vz;
+  return t > 0 && t <= t_max ? t : far;
+}
+
 real REF(intersect_quadric)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max, uint32_t *code) {
   *code = 0;
   const gpu_quadric *q = &sc->quadrics[index];
+  if (q->flags & RC_QUADRIC_UNBOUNDED) {
+    *code = REF(csg_code)(index, 0, false, false);
+    return REF(intersect_plane)(q, o, d, t_max);
+  }
   if ((q->flags & RC_QUADRIC_SOLID) == 0) {
     *code = REF(csg_code)(index, 0, false, false);
     return REF(intersect_quadric_surface)(q, o, d, t_max);

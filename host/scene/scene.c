@@ -102,6 +102,7 @@ void rc_scene_free(rc_scene *scene) {
   free(scene->spheres);
   free(scene->triangles);
   free(scene->quadrics);
+  free(scene->planes);
   free(scene->csg_leaves);
   for (size_t i = 0; i < scene->csg_count; i++) free(scene->csgs[i].program);
   free(scene->csgs);
@@ -194,6 +195,7 @@ void rc_scene_counts(const rc_scene *s, size_t counts[RC_ORIGIN_KINDS]) {
   counts[RC_ORIGIN_CSG] = s->csg_count;
   counts[RC_ORIGIN_LIGHT] = s->light_count;
   counts[RC_ORIGIN_MATERIAL] = s->material_count;
+  counts[RC_ORIGIN_PLANE] = s->plane_count;
 }
 
 rc_status rc_scene_note_origin(rc_scene *s, const size_t before[RC_ORIGIN_KINDS], int line, int col,
@@ -210,7 +212,7 @@ rc_status rc_scene_note_origin(rc_scene *s, const size_t before[RC_ORIGIN_KINDS]
 }
 
 void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
-  static const char *const kinds[] = {"sphere", "triangle", "quadric", "composite", "light", "material"};
+  static const char *const kinds[] = {"sphere", "triangle", "quadric", "composite", "light", "material", "plane"};
   char message[512];
   va_list ap;
   va_start(ap, fmt);

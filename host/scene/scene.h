@@ -51,6 +51,7 @@ typedef struct rc_quadric_def {
   dvec3 lo, hi;
   uint32_t material;
   bool solid;
+  bool one_sided; /* planes: hit from the normal's side only (RC_QUADRIC_ONE_SIDED) */
 } rc_quadric_def;
 
 /* Where primitives came from in the scene file, for errors found after parsing (values
@@ -58,7 +59,7 @@ typedef struct rc_quadric_def {
  * `kind` come from the value at line:col, field `what`[item] (JSON: "objects", "lights",
  * or "materials" with the material's name; .test: the command, item UINT32_MAX). */
 enum { RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_CSG, RC_ORIGIN_LIGHT, RC_ORIGIN_MATERIAL,
-       RC_ORIGIN_KINDS };
+       RC_ORIGIN_PLANE, RC_ORIGIN_KINDS };
 typedef struct rc_origin {
   uint32_t kind, line, col, item;
   const char *what; /* a static string */
@@ -131,6 +132,8 @@ typedef struct rc_scene {
   size_t degenerate_in_meshes; /* of which in mesh files (mesh.c warns about those by file) */
   rc_quadric_def *quadrics;    /* standalone quadrics */
   size_t quadric_count, quadric_capacity;
+  rc_quadric_def *planes;      /* infinite planes (RC_QUADRIC_UNBOUNDED), packed after the quadrics */
+  size_t plane_count, plane_capacity;
   rc_quadric_def *csg_leaves;  /* the solids composites are made of */
   size_t csg_leaf_count, csg_leaf_capacity;
   rc_csg_def *csgs;

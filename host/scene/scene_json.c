@@ -582,7 +582,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
     rc_scene_counts(s, before);
     TRY(js_expect_object(c, o));
     static const char *const types[] = {"sphere",     "triangle",    "mesh", "quadric", "ellipsoid", "cylinder", "cone",
-                                        "paraboloid", "hyperboloid", "box",  "csg",     NULL};
+                                        "paraboloid", "hyperboloid", "box",  "csg",     "plane", NULL};
     const cJSON *tv = cJSON_GetObjectItemCaseSensitive(o, "type");
     if (!tv) return js_fail(c, "missing field \"type\"");
     if (cJSON_IsString(tv) && js_is_quadric_type(tv->valuestring)) {

@@ -66,12 +66,14 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
   for (size_t i = 0; i < s->triangle_count && !field; i++)
     if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2))
       BAD(RC_ORIGIN_TRIANGLE, i, "a vertex (relative to the eye, transformed)");
-  for (size_t i = 0; i < s->quadric_count + s->csg_leaf_count && !field; i++) {
+  size_t standalone = s->quadric_count + s->plane_count;
+  for (size_t i = 0; i < standalone + s->csg_leaf_count && !field; i++) {
     const gpu_quadric *q = &p->quadrics[i];
     bool bad = !finite3(q->center) || !finite3(q->diag) || !finite3(q->off) || !finite3(q->linear) ||
                !isfinite(q->constant) || !finite3(q->lo) || !finite3(q->hi);
     if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size or coefficients");
-    else if (bad) BAD(RC_ORIGIN_CSG, csg_of_leaf(s, i - s->quadric_count), "an operand's centre (relative to the eye), size or coefficients");
+    else if (bad && i < standalone) BAD(RC_ORIGIN_PLANE, i - s->quadric_count, "its point nearest the eye (relative to the eye)");
+    else if (bad) BAD(RC_ORIGIN_CSG, csg_of_leaf(s, i - standalone), "an operand's centre (relative to the eye), size or coefficients");
   }
   for (size_t i = 0; i < s->light_count && !field; i++) {
     if (!finite3(p->lights[i].position)) BAD(RC_ORIGIN_LIGHT, i, "its position (relative to the eye)");
@@ -121,12 +123,24 @@ static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, gpu_
                      .axis_y = rcm_to_f(q->axis[1]),
                      .axis_z = rcm_to_f(q->axis[2]),
                      .constant = (float)q->constant,
-                     .flags = q->solid ? RC_QUADRIC_SOLID : 0u,
+                     .flags = (q->solid ? RC_QUADRIC_SOLID : 0u) | (q->one_sided ? RC_QUADRIC_ONE_SIDED : 0u),
                      .diag = rcm_to_f(q->diag),
                      .off = rcm_to_f(q->off),
                      .linear = rcm_to_f(q->linear),
                      .lo = rcm_to_f(q->lo),
                      .hi = rcm_to_f(q->hi)};
+}
+
+/* A plane is packed centred on its point nearest the eye, found in f64: relative to the
+ * eye the centre is then the plane's signed distance times its unit normal, and a primary
+ * ray's t = -f.z / v.z takes one rounding of each input and one division (however far the
+ * point the scene named lies from the eye). */
+static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_quadric_def *q, gpu_quadric *g) {
+  rc_quadric_def moved = *q;
+  dvec3 n = q->axis[2];
+  moved.center = rcm_sub_d(s->camera.eye, rcm_scale_d(n, rcm_dot_d(rcm_sub_d(s->camera.eye, q->center), n)));
+  pack_quadric(p, &moved, g);
+  g->flags |= RC_QUADRIC_UNBOUNDED;
 }
 
 rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
@@ -154,7 +168,8 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   f->triangle_count = (uint32_t)s->triangle_count;
   f->material_count = (uint32_t)s->material_count;
   f->light_count = (uint32_t)s->light_count;
-  f->quadric_count = (uint32_t)s->quadric_count;
+  f->quadric_count = (uint32_t)(s->quadric_count + s->plane_count);
+  f->plane_count = (uint32_t)s->plane_count;
   f->csg_count = (uint32_t)s->csg_count;
   f->object_count = f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count;
   f->shadows = s->quality.shadows ? 1u : 0u;
@@ -174,7 +189,9 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   size_t smooth = 0;
   for (size_t i = 0; i < s->triangle_count; i++) smooth += s->triangles[i].smooth;
   p->normals = rc_alloc(smooth + 1, sizeof *p->normals, "packed normals");
-  p->quadrics = rc_alloc(s->quadric_count + s->csg_leaf_count + 1, sizeof *p->quadrics, "packed quadrics");
+  /* Standalone quadrics, then planes, then the composites' leaves. */
+  size_t standalone = s->quadric_count + s->plane_count;
+  p->quadrics = rc_alloc(standalone + s->csg_leaf_count + 1, sizeof *p->quadrics, "packed quadrics");
   p->csg = rc_alloc(s->csg_count + 1, sizeof *p->csg, "packed composites");
   size_t program = 0;
   for (size_t i = 0; i < s->csg_count; i++) {
@@ -183,7 +200,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   }
   p->csg_program = rc_alloc((program + 4) / 4 * 4, sizeof *p->csg_program, "packed CSG programs");
   p->csg_program_length = (uint32_t)program;
-  p->quadric_total = (uint32_t)(s->quadric_count + s->csg_leaf_count);
+  p->quadric_total = (uint32_t)(standalone + s->csg_leaf_count);
   if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals || !p->quadrics ||
       !p->csg || !p->csg_program) {
     rc_packed_scene_free(p);
@@ -239,17 +256,18 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
                                                       : rcm_to_f(rcm_normalize_d(l->direction));
   }
   for (size_t i = 0; i < s->quadric_count; i++) pack_quadric(p, &s->quadrics[i], &p->quadrics[i]);
-  for (size_t i = 0; i < s->csg_leaf_count; i++)
-    pack_quadric(p, &s->csg_leaves[i], &p->quadrics[s->quadric_count + i]);
+  for (size_t i = 0; i < s->plane_count; i++) pack_plane(p, s, &s->planes[i], &p->quadrics[s->quadric_count + i]);
+  for (size_t i = 0; i < s->csg_leaf_count; i++) pack_quadric(p, &s->csg_leaves[i], &p->quadrics[standalone + i]);
   uint32_t at = 0;
   for (size_t i = 0; i < s->csg_count; i++) {
     const rc_csg_def *c = &s->csgs[i];
     p->csg[i] = (gpu_csg){.lo = to_packed(p, c->lo), .hi = to_packed(p, c->hi), .first = at, .count = c->length};
-    /* Leaf operands index the packed quadric array, where the leaves follow the standalone quadrics. */
+    /* Leaf operands index the packed quadric array, where the leaves follow the standalone
+     * quadrics and planes. */
     for (uint32_t k = 0; k < c->length; k++) {
       uint32_t ins = c->program[k];
       bool leaf = (ins >> RC_CSG_OP_SHIFT) == RC_CSG_LEAF;
-      p->csg_program[at++] = leaf ? ins + (uint32_t)s->quadric_count : ins;
+      p->csg_program[at++] = leaf ? ins + (uint32_t)standalone : ins;
     }
   }
   rc_status st = check_f32_range(s, p);

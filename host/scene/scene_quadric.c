@@ -17,7 +17,7 @@ static const char *const quadric_types[] = {"quadric", "ellipsoid", "cylinder", 
                                              "paraboloid", "hyperboloid", "box", "csg", NULL};
 enum { T_QUADRIC, T_ELLIPSOID, T_CYLINDER, T_CONE, T_PARABOLOID, T_HYPERBOLOID, T_BOX, T_CSG, T_SPHERE };
 
-bool js_is_quadric_type(const char *type) { return rc_name_index(quadric_types, type) >= 0; }
+bool js_is_quadric_type(const char *type) { return rc_name_index(quadric_types, type) >= 0 || !strcmp(type, "plane"); }
 
 static void identity_frame(dvec3 axis[3]) {
   axis[0] = rcm_make_d(1, 0, 0), axis[1] = rcm_make_d(0, 1, 0), axis[2] = rcm_make_d(0, 0, 1);
@@ -318,6 +318,10 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
   TRY(js_expect_object(c, o));
   const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "type");
   if (!t) return js_fail(c, "missing field \"type\"");
+  if (cJSON_IsString(t) && !strcmp(t->valuestring, "plane")) {
+    js_push_key(c, "type");
+    return js_fail(c, "a plane is infinite, not a composite's operand (a large box makes a half-space)");
+  }
   uint32_t type;
   static const char *const leaf_types[] = {"quadric", "ellipsoid", "cylinder", "cone", "paraboloid",
                                            "hyperboloid", "box", "csg", "sphere", NULL};
@@ -381,7 +385,52 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
   return RC_OK;
 }
 
+/* The extent of a plane's frame: finite (Vulkan lets shaders assume no Inf), and unused,
+ * since RC_QUADRIC_UNBOUNDED skips the clip box. */
+#define PLANE_EXTENT 1e30
+
+/* {"type": "plane", "point", "normal", "material", "one_sided", "transform"}: Q = 2 f.z in a
+ * frame whose z is the unit normal, centred on the given point (packing moves the centre to
+ * the plane's point nearest the eye: rc_scene_pack). */
+static rc_status parse_plane(jctx *c, const cJSON *o, rc_scene *s) {
+  static const char *const allowed[] = {"type", "point", "normal", "material", "one_sided", "transform", NULL};
+  TRY(js_check_members(c, o, allowed));
+  dvec3 zero = rcm_make_d(0, 0, 0), point, normal;
+  TRY(js_get_vec3(c, o, "point", true, zero, -HUGE_VAL, &point));
+  TRY(js_get_vec3(c, o, "normal", true, zero, -HUGE_VAL, &normal));
+  if (rcm_max_abs_comp_d(normal) == 0) {
+    js_push_key(c, "normal");
+    return js_fail(c, "must not be the zero vector");
+  }
+  rc_affine t;
+  bool present;
+  TRY(js_get_transform(c, o, &t, &present));
+  double a[3][3], inv[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) a[i][j] = t.m[i][j];
+  if (!rcm_mat3_inverse_d(a, inv)) return js_fail(c, "its transform is singular");
+  /* Points go through the transform, normals through its inverse transpose. */
+  point = rc_affine_point(&t, point);
+  normal = rcm_make_d(inv[0][0] * normal.x + inv[1][0] * normal.y + inv[2][0] * normal.z,
+                      inv[0][1] * normal.x + inv[1][1] * normal.y + inv[2][1] * normal.z,
+                      inv[0][2] * normal.x + inv[1][2] * normal.y + inv[2][2] * normal.z);
+  dvec3 n = rcm_normalize_d(normal);
+  rc_quadric_def q = {0};
+  q.center = point;
+  frame_from_axis(n, q.axis);
+  q.linear = rcm_make_d(0, 0, 1);
+  q.hi = rcm_make_d(PLANE_EXTENT, PLANE_EXTENT, PLANE_EXTENT);
+  q.lo = rcm_scale_d(q.hi, -1);
+  TRY(js_get_bool(c, o, "one_sided", false, &q.one_sided));
+  TRY(js_get_material_ref(c, o, &q.material));
+  GROW(s->planes, s->plane_count, s->plane_capacity);
+  s->planes[s->plane_count++] = q;
+  return RC_OK;
+}
+
 rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s) {
+  const cJSON *tv = cJSON_GetObjectItemCaseSensitive(o, "type");
+  if (cJSON_IsString(tv) && !strcmp(tv->valuestring, "plane")) return parse_plane(c, o, s);
   rc_affine identity;
   js_affine_identity(&identity);
   uint32_t type;

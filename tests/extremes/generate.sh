@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes the extreme-case scenes of docs/numerics.md §7 (S01-S21) into tests/extremes/scenes/.
+# Writes the extreme-case scenes of docs/extremes.md (S01-S21, S23) into tests/extremes/scenes/.
 # The files are committed; this script is how they were made (rerun it after a change).
 #   tests/extremes/generate.sh [OUTDIR]
 set -euo pipefail
@@ -283,4 +283,32 @@ scene S20_ellipsoid_1e4_needle 96x96 "$(persp "[0, 0.5, 3]" "[0, 0, 0]" 45)" "$(
 scene S20_far_cylinder_1e6 64x64 "$(persp "[0, 0, 1e6]" "[0, 0, 0]" "2 * atan2(2, 1e6) * 180 / 3.14159265358979323846")" \
   "$(sun "[0.3, -0.6, -1]")" \
   "{ \"type\": \"cylinder\", \"center\": [0, 0, 0], \"axis\": [0.3, 1, 0.2], \"radius\": 1, \"height\": 2.5, \"material\": \"red\" }"
+# S23 infinite planes and transforms at extreme scales: a floor and a wall seen edge-on (the
+# eye in the floor's plane), a floor grazed from 1e-3 above it, a floor 1e6 below the eye
+# (planes need no f64 at any distance: one division from the point nearest the eye), and a
+# transformed cylinder and composite at scales 1e-4 and 1e4 with the camera scaled alike.
+plane() { echo "{ \"type\": \"plane\", \"point\": $1, \"normal\": $2, \"material\": \"${3:-white}\" }"; }
+scene S23_plane_edge_on 96x96 "$(persp "[0, 0, 6]" "[0, 0.5, 0]" 40)" "$(point "[2, 3, 4]" 30)" \
+  "$(plane "[0, 0, 0]" "[0, 1, 0]"),
+    $(plane "[0, 0, -2]" "[0, 0, 1]" red),
+    $(sph "[0, 1, 0]" 1 blue)"
+scene S23_plane_grazing 96x96 "$(persp "[0, 1e-3, 6]" "[0, 1e-3, 0]" 30)" "$(point "[1, 2, 2]" 10)" \
+  "$(plane "[0, 0, 0]" "[0, 1, 0]"),
+    $(sph "[0, 0.5, 0]" 0.5 red)"
+scene S23_plane_far_1e6 96x96 "$(persp "[0, 1e6, 0]" "[1e6, 0, 0]" 40)" "$(sun "[0.3, -1, 0.2]")" \
+  "$(plane "[5, 0, 7]" "[0, 1, 0]"),
+    $(plane "[3e6, 0, 0]" "[-1, 0.2, 0.1]" red)"
+scaled() {  # NAME SCALE
+  local k=$2
+  scene "$1" 96x96 "$(persp "$(v3 "0.5 * $k" "1.5 * $k" "5 * $k")" "[0, 0, 0]" 45)" "$(sun "[0.3, -1, -0.5]")" \
+    "{ \"type\": \"cylinder\", \"center\": [0, 0, 0], \"radius\": 0.6, \"height\": 2, \"material\": \"red\",
+      \"transform\": { \"rotate_deg\": [20, 0, 60], \"scale\": $(g "$k") } },
+    { \"type\": \"csg\", \"op\": \"difference\", \"material\": \"blue\",
+      \"transform\": { \"rotate_deg\": [0, 35, 0], \"scale\": [$(g "$k"), $(g "0.5 * $k"), $(g "$k")], \"translate\": $(v3 "1.5 * $k" 0 "-1.5 * $k") },
+      \"left\": { \"type\": \"box\", \"min\": [-0.7, -0.7, -0.7], \"max\": [0.7, 0.7, 0.7] },
+      \"right\": { \"type\": \"sphere\", \"center\": [0.7, 0.7, 0.7], \"radius\": 0.8 } },
+    $(plane "$(v3 0 "-1.2 * $k" 0)" "[0, 1, 0]")"
+}
+scaled S23_transform_scale_1e-4 1e-4
+scaled S23_transform_scale_1e4 1e4
 echo "wrote $(ls "$out"/*.json | wc -l) scenes to $out"

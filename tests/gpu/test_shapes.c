@@ -1,6 +1,7 @@
-/* Shapes given two ways must render alike (issue 18): a quadric under a "transform"
- * against the same surface reached another way (a transformed sphere, the cylinder's
- * own axis, a general matrix), on the GPU in f32 and on the CPU reference in f64 and f32.
+/* Shapes of issue 18 on the GPU in f32 and on the CPU reference in f64 and f32: a quadric
+ * under a "transform" against the same surface reached another way (a transformed sphere,
+ * the cylinder's own axis, a general matrix), and infinite planes against their closed
+ * form.
  * One case per ctest: test_shapes VKRAYCAST CASE. */
 #include <math.h>
 #include <stdbool.h>
@@ -167,6 +168,102 @@ TEST(composite_transform_moves_its_operands_as_one) {
   check_alike("whole", "each", 0);
 }
 
+/* Renders TMP/name.json on each backend and precision to name.BACKEND.PRECISION.aov.exr
+ * (channels as read back: R, G, B, hit, object, shadow, t, N.X, N.Y, N.Z) and hands each
+ * image to check(). */
+static void for_each_variant(const char *name, void (*check)(const image *im, const char *variant)) {
+  static const char *const variants[3][2] = {{"gpu", "f32"}, {"cpu", "f64"}, {"cpu", "f32"}};
+  for (int v = 0; v < 3; v++) {
+    char out[200], variant[32];
+    snprintf(variant, sizeof variant, "%s %s", variants[v][0], variants[v][1]);
+    snprintf(out, sizeof out, "%s.%s.%s.aov.exr", name, variants[v][0], variants[v][1]);
+    CHECK_EQ_INT(run("render %s/%s.json -o %s/%s.png --aov %s/%s --backend %s --precision %s --quiet", tmp, name, tmp, name,
+                     tmp, out, variants[v][0], variants[v][1]),
+                 0);
+    image im = load(out);
+    if (!im.px || im.c != 10) {
+      CHECK(false);
+    } else {
+      check(&im, variant);
+    }
+    free(im.px);
+  }
+}
+
+/* The floor y = 0 (stated by the point (3, 0, -2) and the normal (0, 2, 0)) seen straight
+ * down by a parallel camera at height 10, lit by a point light at (1, 4, -1) with the
+ * physical 1/r^2 falloff and nothing else: pixel (i, j) looks at (x, 0, z) with
+ * x = -4 + 8 (i + 0.5) / 64 and z = -4 + 8 (j + 0.5) / 64 (image rows downwards; v = -z), where t is
+ * the height 10, the normal (0, 1, 0), and the radiance kd I cos / r^2 = kd I h / r^3. */
+static void check_floor(const image *im, const char *variant) {
+  int bad_t = 0, bad_n = 0, bad_c = 0;
+  double worst = 0;
+  for (int j = 0; j < im->h; j++) {
+    for (int i = 0; i < im->w; i++) {
+      const float *px = im->px + ((size_t)j * im->w + i) * im->c;
+      double x = -4 + 8 * (i + 0.5) / 64, z = -4 + 8 * (j + 0.5) / 64;
+      double dx = x - 1, dy = 4, dz = z + 1, r = sqrt(dx * dx + dy * dy + dz * dz);
+      double want = 0.5 * 10 * dy / (r * r * r);
+      bad_t += !(px[3] == 1 && fabs(px[6] - 10) <= 4e-6 * 10);
+      bad_n += !(fabs(px[7]) <= 1e-6 && fabs(px[8] - 1) <= 1e-6 && fabs(px[9]) <= 1e-6);
+      double e = fabs(px[0] - want) / want;
+      worst = fmax(worst, e);
+      bad_c += e > 1e-5;
+    }
+  }
+  printf("  floor, %s: %d pixels with a wrong t, %d with a wrong normal, %d with radiance off by more than 1e-5 "
+         "(worst %.3g relative)\n", variant, bad_t, bad_n, bad_c, worst);
+  CHECK_EQ_INT(bad_t, 0);
+  CHECK_EQ_INT(bad_n, 0);
+  CHECK_EQ_INT(bad_c, 0);
+}
+
+TEST(plane_matches_the_closed_form) {
+  char path[300];
+  snprintf(path, sizeof path, "%s/floor.json", tmp);
+  FILE *f = fopen(path, "w");
+  if (!f) return;
+  fprintf(f, "{\"image\": {\"width\": 64, \"height\": 64},\n"
+             " \"camera\": {\"projection\": \"parallel\", \"eye\": [0, 10, 0], \"look_at\": [0, 0, 0], \"up\": [0, 0, -1],"
+             " \"view_height\": 8},\n"
+             " \"materials\": {\"m\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
+             " \"lights\": [{\"type\": \"point\", \"position\": [1, 4, -1], \"intensity\": [10, 10, 10]}],\n"
+             " \"objects\": [{\"type\": \"plane\", \"point\": [3, 0, -2], \"normal\": [0, 2, 0], \"material\": \"m\"}]}\n");
+  fclose(f);
+  for_each_variant("floor", check_floor);
+}
+
+/* A one-sided plane is there from its front only: a camera behind the wall sees through it
+ * to the floor beyond (and the light behind it still reaches the floor), a camera in front
+ * sees the wall. */
+static int wall_hits;
+static void count_wall(const image *im, const char *variant) {
+  (void)variant;
+  wall_hits = 0;
+  for (size_t i = 0; i < (size_t)im->w * im->h; i++) wall_hits += im->px[i * im->c + 3] == 1 && im->px[i * im->c + 4] == 1;
+}
+
+TEST(one_sided_plane_is_seen_from_its_front_only) {
+  const char *sides[2] = {"front", "back"};
+  for (int k = 0; k < 2; k++) {
+    char path[300];
+    snprintf(path, sizeof path, "%s/%s.json", tmp, sides[k]);
+    FILE *f = fopen(path, "w");
+    if (!f) return;
+    fprintf(f, "{\"image\": {\"width\": 32, \"height\": 32},\n"
+               " \"camera\": {\"eye\": [0, 1, %d], \"look_at\": [0, 0.5, 0]},\n"
+               " \"materials\": {\"m\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
+               " \"lights\": [{\"type\": \"point\", \"position\": [0, 3, -3], \"intensity\": [10, 10, 10]}],\n"
+               " \"objects\": [{\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 1, 0], \"material\": \"m\"},\n"
+               "   {\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1], \"one_sided\": true, \"material\": \"m\"}]}\n",
+            k ? -5 : 5);
+    fclose(f);
+    for_each_variant(sides[k], count_wall);
+    printf("  camera at the wall's %s: %d pixels on the wall\n", sides[k], wall_hits);
+    CHECK(k ? wall_hits == 0 : wall_hits > 200);
+  }
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: test_shapes VKRAYCAST CASE\n");
@@ -184,6 +281,8 @@ int main(int argc, char **argv) {
       {"rotated_cylinder_axis", test_rotated_cylinder_is_the_cylinder_along_the_rotated_axis},
       {"rotated_cylinder_matrix", test_rotated_cylinder_is_the_quadric_matrix},
       {"composite_transform", test_composite_transform_moves_its_operands_as_one},
+      {"plane_closed_form", test_plane_matches_the_closed_form},
+      {"plane_one_sided", test_one_sided_plane_is_seen_from_its_front_only},
   };
   bool found = false;
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
