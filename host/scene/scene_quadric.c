@@ -186,8 +186,12 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   static const char *const para[] = {"type", "vertex", "axis", "radius", "height", "capped", "material", "transform",
                                      NULL};
   static const char *const hyp[] = {"type", "center", "axis", "radius", "end_radius", "height", "capped", "material",
-                                    "transform", NULL};
-  const char *const *allowed = type == T_CYLINDER ? cyl : type == T_CONE ? cone : type == T_PARABOLOID ? para : hyp;
+                                    "transform", "sheets", NULL};
+  static const char *const hyp2[] = {"type", "center", "axis", "gap", "end_radius", "height", "capped", "material",
+                                     "transform", "sheets", NULL};
+  uint32_t sheets = 1;
+  if (type == T_HYPERBOLOID) TRY(js_get_uint(c, o, "sheets", false, 1, 1, 2, &sheets));
+  const char *const *allowed = type == T_CYLINDER ? cyl : type == T_CONE ? cone : type == T_PARABOLOID ? para : sheets == 1 ? hyp : hyp2;
   TRY(js_check_members(c, o, allowed));
   const char *origin = type == T_CONE ? "apex" : type == T_PARABOLOID ? "vertex" : "center";
   dvec3 z = rcm_make_d(0, 0, 1);
@@ -225,6 +229,22 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     q->constant = 0;
     q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), h);
     q->lo = rcm_make_d(-q->hi.x, -q->hi.y, 0);
+  } else if (sheets == 2) {
+    double g, e;
+    TRY(js_get_positive(c, o, "gap", true, 0, &g));
+    TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
+    if (!(h > g)) {
+      js_push_key(c, "height");
+      return js_fail(c, "must exceed gap (the distance between the two sheets' vertices)");
+    }
+    /* Two sheets: (x^2 + y^2) / a^2 - z^2 / s^2 + 1, vertices at z = +-s (s = gap / 2), radius
+     * e at z = +-h/2; Q < 0 inside the two cups. */
+    double s2 = (g / 2) * (g / 2), a2 = e * e / ((h / 2) * (h / 2) / s2 - 1);
+    q->diag = rcm_make_d(1 / a2, 1 / a2, -1 / s2);
+    q->constant = 1;
+    q->hi = rcm_make_d(e * (1 + BOX_MARGIN), e * (1 + BOX_MARGIN), h / 2);
+    q->lo = rcm_scale_d(q->hi, -1);
+    *intervals = 2;
   } else {
     double a, e;
     TRY(js_get_positive(c, o, "radius", true, 0, &a));
