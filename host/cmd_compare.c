@@ -130,7 +130,9 @@ static rc_status parse_args(int argc, char **argv, compare_args *a) {
       {a->files[0], "image A", false}, {a->files[1], "image B", false}, {a->diff, "the heat map", true}};
   if (rc_check_distinct(roles, 3) != RC_OK) return RC_ERR_USAGE;
   if (a->diff && rc_check_output(a->diff, "the heat map") != RC_OK) return RC_ERR_IO;
-  if (a->diff && !rc_image_can_write(a->diff)) {
+  int can = a->diff ? rc_image_can_write(a->diff) : 1;
+  if (can < 0) return RC_ERR_INSTALL;
+  if (!can) {
     rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->diff);
     return RC_ERR_USAGE;
   }

@@ -135,7 +135,8 @@ const rc_command_spec rc_render_spec = {
 };
 
 /* Every output is checked before anything renders: an existing special file or folder,
- * a missing folder, a format the name does not give, or two roles naming one file. */
+ * a missing folder, or two roles naming one file (and, once the scene has loaded, a format
+ * the name does not give: check_format). */
 static rc_status check_outputs(const render_args *a) {
   if (strcmp(a->output, "-") == 0) {
     rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
@@ -161,7 +162,16 @@ static rc_status check_outputs(const render_args *a) {
       return RC_ERR_USAGE;
     }
   }
-  if (!rc_image_can_write(a->output)) {
+  return RC_OK;
+}
+
+/* The output's format, from its name. This loads the image module (image/image_module.h),
+ * so it runs after the scene has loaded: a bad scene is refused without it. Still before
+ * anything renders or is written. */
+static rc_status check_format(const render_args *a) {
+  int can = rc_image_can_write(a->output);
+  if (can < 0) return RC_ERR_INSTALL;
+  if (!can) {
     rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->output);
     return RC_ERR_USAGE;
   }
@@ -354,6 +364,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_set_scene_path(a.scene);
   st = rc_scene_load(a.scene, &a.load, &scene);
   rs.parse_ms = rc_now_ms() - t0;
+  if (st == RC_OK) st = check_format(&a);
   if (st != RC_OK) {
     rc_scene_free(&scene);
     return st;

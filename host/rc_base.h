@@ -21,7 +21,8 @@
   X(ERR_DEVICE, 3, "no usable Vulkan device")                       \
   X(ERR_OUT_OF_MEMORY, 3, "out of memory")                          \
   X(ERR_VULKAN, 3, "Vulkan call failed")                            \
-  X(ERR_VALIDATION, 3, "Vulkan validation reported errors")
+  X(ERR_VALIDATION, 3, "Vulkan validation reported errors")        \
+  X(ERR_INSTALL, 3, "the installation is incomplete")
 
 typedef enum {
 #define RC_STATUS_ENUM(name, code, text) RC_##name,

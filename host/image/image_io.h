@@ -51,7 +51,8 @@ const char *rc_image_writer_temp_path(const rc_image_writer *w);
 int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
                         int max_names, int *name_count, char *err, size_t err_len);
 
-/* 1 if OpenImageIO can write a file of this name (by its extension), else 0. */
+/* 1 if OpenImageIO can write a file of this name (by its extension), else 0; in the
+ * vkraycast binary, -1 when its image module cannot be loaded (the reason on stderr). */
 int rc_image_can_write(const char *path);
 
 /* Reads any image OpenImageIO reads, as float. *pixels is malloc'ed (free()). */

@@ -94,9 +94,9 @@ static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool 
   TRY(js_expect_object(c, b));
   static const char *const bfields[] = {"min", "max", NULL};
   TRY(js_check_members(c, b, bfields));
-  dvec3 lo, hi;
-  TRY(js_get_vec3(c, b, "min", true, lo, -HUGE_VAL, &lo));
-  TRY(js_get_vec3(c, b, "max", true, hi, -HUGE_VAL, &hi));
+  dvec3 zero = rcm_make_d(0, 0, 0), lo, hi;
+  TRY(js_get_vec3(c, b, "min", true, zero, -HUGE_VAL, &lo));
+  TRY(js_get_vec3(c, b, "max", true, zero, -HUGE_VAL, &hi));
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {
     js_push_key(c, "max");
     return js_fail(c, "must exceed min in every coordinate");

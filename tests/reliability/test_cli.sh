@@ -118,6 +118,21 @@ check "image.encoding srgb + quantize truncate = --srgb --quantize truncate, and
 "$bin" render "$work/srgb.json" -o "$work/e_back.png" --encoding linear --quantize round "${small[@]}"
 same "--encoding linear --quantize round override the scene's image settings" "$work/e_back.png"
 
+# OpenImageIO (and its ~260 libraries) is loaded at the first image, not before
+# (host/image/image_module.h): --help, --version and a refused scene never load it, a
+# render does, and a binary whose module is missing says so and exits 3.
+loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c 'file=libOpenImageIO\.so' || true; }
+sed 's/"radius": *[0-9.]*/"radius": -1/' "$S" >"$work/bad_radius.json"
+check "--version, --help and a refused scene do not load OpenImageIO" \
+  "$(n=$(( $(loads_oiio "$bin" --version) + $(loads_oiio "$bin" render --help) +
+          $(loads_oiio "$bin" render "$work/bad_radius.json" -o "$work/x.png") )); [[ $n == 0 ]] && echo ok || echo "$n loads")"
+check "a render loads OpenImageIO" \
+  "$([[ $(loads_oiio "$bin" render "$S" -o "$work/oiio.png" "${small[@]}") -ge 1 ]] && echo ok || echo "not loaded")"
+mkdir -p "$work/lonely" && cp "$bin" "$work/lonely/vkraycast"
+"$work/lonely/vkraycast" render "$S" -o "$work/lonely.png" "${small[@]}" 2>"$work/err"
+check "a binary without its image module: exit 3, names the module, writes nothing" \
+  "$([[ $? == 3 && ! -e $work/lonely.png ]] && grep -q 'cannot load the image module .*vkraycast-image.so' "$work/err" && echo ok || cat "$work/err")"
+
 # --version: the program, and what it was built and runs with.
 "$bin" --version >"$work/version.txt"
 check "--version names the loader and the shader compiler" \

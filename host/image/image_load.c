@@ -1,0 +1,97 @@
+/* image_load.c: image_io.h for the vkraycast binary, forwarding to vkraycast-image.so,
+ * loaded on the first call (image_module.h says why). The module is looked for beside the
+ * binary (/proc/self/exe), where the build puts it. */
+#include "image/image_module.h"
+
+#include <dlfcn.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+static const rc_image_api *api;
+static char load_error[PATH_MAX + 600];
+static pthread_once_t once = PTHREAD_ONCE_INIT;
+
+static void load(void) {
+  char exe[PATH_MAX], path[PATH_MAX + 32];
+  ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n <= 0) {
+    snprintf(load_error, sizeof load_error, "cannot find the image module: /proc/self/exe unreadable");
+    return;
+  }
+  exe[n] = '\0';
+  char *slash = strrchr(exe, '/');
+  if (slash) *slash = '\0';
+  snprintf(path, sizeof path, "%s/vkraycast-image.so", exe);
+  void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+  if (!h) {
+    snprintf(load_error, sizeof load_error, "cannot load the image module %s: %s", path, dlerror());
+    return;
+  }
+  const rc_image_api *(*get)(void) = (const rc_image_api *(*)(void))dlsym(h, RC_IMAGE_MODULE_SYMBOL);
+  const rc_image_api *a = get ? get() : NULL;
+  if (!a || a->version != RC_IMAGE_API_VERSION) {
+    snprintf(load_error, sizeof load_error, "the image module %s is from another build (API %u, this binary %u)", path,
+             a ? a->version : 0u, RC_IMAGE_API_VERSION);
+    return;
+  }
+  api = a;
+}
+
+/* The table, or NULL with the reason in err. */
+static const rc_image_api *module(char *err, size_t err_len) {
+  pthread_once(&once, load);
+  if (!api && err && err_len) snprintf(err, err_len, "%s", load_error);
+  return api;
+}
+
+int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
+                   bool truncate, char *err, size_t err_len) {
+  const rc_image_api *m = module(err, err_len);
+  return m ? m->write(path, width, height, channels, pixels, enc, truncate, err, err_len) : -1;
+}
+
+rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels, const char *const *names,
+                                      rc_encoding enc, bool truncate, char *err, size_t err_len) {
+  const rc_image_api *m = module(err, err_len);
+  return m ? m->writer_open(path, width, height, channels, names, enc, truncate, err, err_len) : NULL;
+}
+
+/* A writer exists only once the module is loaded. */
+int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len) {
+  return api->writer_rows(w, rows, pixels, err, err_len);
+}
+
+int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len) { return api->writer_finish(w, err, err_len); }
+
+int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len) {
+  return api->writer_close(w, commit, err, err_len);
+}
+
+rc_image_writer *rc_file_writer_open(const char *path, const void *bytes, size_t len, char *err, size_t err_len) {
+  const rc_image_api *m = module(err, err_len);
+  return m ? m->file_writer_open(path, bytes, len, err, err_len) : NULL;
+}
+
+const char *rc_image_writer_temp_path(const rc_image_writer *w) { return api->writer_temp_path(w); }
+
+int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
+                        int max_names, int *name_count, char *err, size_t err_len) {
+  const rc_image_api *m = module(err, err_len);
+  return m ? m->read_named(path, width, height, channels, pixels, names, max_names, name_count, err, err_len) : -1;
+}
+
+/* Without the module: -1, and the reason on stderr. */
+int rc_image_can_write(const char *path) {
+  char err[sizeof load_error];
+  const rc_image_api *m = module(err, sizeof err);
+  if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);
+  return m ? m->can_write(path) : -1;
+}
+
+int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len) {
+  const rc_image_api *m = module(err, err_len);
+  return m ? m->read(path, width, height, channels, pixels, err, err_len) : -1;
+}
