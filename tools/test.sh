@@ -20,7 +20,7 @@ cmake --build build-asan -j"$(nproc)" >&2
 # all, to keep the suite's time in bounds: the extremes suite runs four of its cases (S01:
 # every measurement path, S09: 1,000-triangle fans, S20: quadrics, S21: 2,000 spheres;
 # S23's planes and transforms run under the sanitizers in the shapes_ tests);
-# gpu_vs_cpu (tolerances between backends on full-size renders: gpu_render's every-example
+# gpu_vs_cpu (tolerances between backends on full-size renders: gpu_render_examples
 # test renders the same scenes on both backends under ASan), parse_scale (parsing time;
 # the fuzzers and strict_input run the parsers under ASan) and memory_per_frame (peak RSS,
 # which ASan's own allocator decides) run only in the pass above.

@@ -551,8 +551,8 @@ TEST(mirror_reflection_at_1024_spp_equals_the_cpu_reference) {
 }
 
 int main(int argc, char **argv) {
-  if (argc != 4) {
-    fprintf(stderr, "usage: test_gpu_render VKRAYCAST TESTS_GPU_DIR SCENES_DIR\n");
+  if (argc != 4 && argc != 5) {
+    fprintf(stderr, "usage: test_gpu_render VKRAYCAST TESTS_GPU_DIR SCENES_DIR [CASE]\n");
     return 2;
   }
   bin = argv[1];
@@ -560,25 +560,45 @@ int main(int argc, char **argv) {
   scenes_dir = argv[3];
   snprintf(tmp, sizeof tmp, "/tmp/vkraycast-test-XXXXXX");
   if (!mkdtemp(tmp)) return 2;
+  /* One ctest per case (tests/CMakeLists.txt), so that ctest -j spreads them; without a
+   * CASE, all of them. */
+  static const struct {
+    const char *name;
+    void (*fn)(void);
+  } cases[] = {
+      {"head_on", test_head_on_sphere_centre_is_ambient_plus_lambert},
+      {"attenuation", test_attenuation_and_emission_follow_their_formulas},
+      {"shadow", test_pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder},
+      {"parallel", test_parallel_camera_matches_the_analytic_sphere},
+      {"highlights", test_blinn_phong_and_phong_highlights_follow_their_formulas},
+      {"ellipsoid", test_transformed_sphere_is_the_analytic_ellipsoid},
+      {"csg_bowl", test_sphere_minus_sphere_shows_the_analytic_inner_surface},
+      {"buffer_kinds", test_buffer_kinds_and_staging_path_give_identical_images},
+      {"loop_budget", test_loop_budget_splits_heavy_scenes_into_batches_and_renders_them_right},
+      {"budget_refusal", test_one_sample_beyond_the_budget_fails_loudly},
+      {"stats", test_stats_json_reports_rays_and_timings},
+      {"png", test_png_is_the_clamped_linear_value},
+      {"failed_render", test_failed_render_leaves_the_old_image},
+      {"examples", test_every_example_scene_renders},
+      {"bit_identical", test_cpu_threads_and_gpu_reruns_are_bit_identical},
+      {"cpu_analytic", test_cpu_backend_matches_the_analytic_pixel},
+      {"compare", test_compare_reports_and_gates},
+      {"mirror_1024spp", test_mirror_reflection_at_1024_spp_equals_the_cpu_reference},
+  };
   TEST_MAIN_BEGIN
-  RUN(head_on_sphere_centre_is_ambient_plus_lambert);
-  RUN(attenuation_and_emission_follow_their_formulas);
-  RUN(pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder);
-  RUN(parallel_camera_matches_the_analytic_sphere);
-  RUN(blinn_phong_and_phong_highlights_follow_their_formulas);
-  RUN(transformed_sphere_is_the_analytic_ellipsoid);
-  RUN(sphere_minus_sphere_shows_the_analytic_inner_surface);
-  RUN(buffer_kinds_and_staging_path_give_identical_images);
-  RUN(loop_budget_splits_heavy_scenes_into_batches_and_renders_them_right);
-  RUN(one_sample_beyond_the_budget_fails_loudly);
-  RUN(stats_json_reports_rays_and_timings);
-  RUN(png_is_the_clamped_linear_value);
-  RUN(failed_render_leaves_the_old_image);
-  RUN(every_example_scene_renders);
-  RUN(cpu_threads_and_gpu_reruns_are_bit_identical);
-  RUN(cpu_backend_matches_the_analytic_pixel);
-  RUN(compare_reports_and_gates);
-  RUN(mirror_reflection_at_1024_spp_equals_the_cpu_reference);
+  bool found = false;
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    if (argc == 5 && strcmp(argv[4], cases[i].name) != 0) continue;
+    found = true;
+    int before = rc_test_failed_checks;
+    cases[i].fn();
+    if (rc_test_failed_checks == before) rc_test_passed++;
+    else rc_test_failed++, printf("FAIL %s\n", cases[i].name);
+  }
+  if (!found) {
+    fprintf(stderr, "test_gpu_render: no case %s\n", argv[4]);
+    return 2;
+  }
   char cleanup[300];
   snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
   if (rc_test_failed == 0 && system(cleanup) != 0) printf("could not remove %s\n", tmp);
