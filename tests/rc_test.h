@@ -5,7 +5,9 @@
 #define RC_TEST_H
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
+#include <string.h>
 
 static int rc_test_failed_checks;
 
@@ -25,6 +27,32 @@ static int rc_test_failed_checks;
 #define TEST_MAIN_END                                                    \
   printf("%d passed, %d failed\n", rc_test_passed, rc_test_failed);      \
   return rc_test_failed;
+
+/* A table of named cases for a test program registered as one ctest per case. */
+typedef struct {
+  const char *name;
+  void (*fn)(void);
+} rc_test_case;
+
+/* Runs the case named `only`, or every case when `only` is NULL, counting into passed and
+ * failed; returns 0 when no case has that name. */
+static inline int rc_run_cases(const rc_test_case *cases, size_t n, const char *only, int *passed, int *failed) {
+  int found = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (only && strcmp(only, cases[i].name) != 0) continue;
+    found = 1;
+    int before = rc_test_failed_checks;
+    cases[i].fn();
+    if (rc_test_failed_checks == before) {
+      ++*passed;
+    } else {
+      ++*failed;
+      printf("FAIL %s\n", cases[i].name);
+    }
+  }
+  if (!found) fprintf(stderr, "no test case %s\n", only);
+  return found;
+}
 
 #define CHECK(cond)                                                      \
   do {                                                                   \

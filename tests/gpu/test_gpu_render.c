@@ -562,10 +562,7 @@ int main(int argc, char **argv) {
   if (!mkdtemp(tmp)) return 2;
   /* One ctest per case (tests/CMakeLists.txt), so that ctest -j spreads them; without a
    * CASE, all of them. */
-  static const struct {
-    const char *name;
-    void (*fn)(void);
-  } cases[] = {
+  static const rc_test_case cases[] = {
       {"head_on", test_head_on_sphere_centre_is_ambient_plus_lambert},
       {"attenuation", test_attenuation_and_emission_follow_their_formulas},
       {"shadow", test_pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder},
@@ -586,19 +583,7 @@ int main(int argc, char **argv) {
       {"mirror_1024spp", test_mirror_reflection_at_1024_spp_equals_the_cpu_reference},
   };
   TEST_MAIN_BEGIN
-  bool found = false;
-  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-    if (argc == 5 && strcmp(argv[4], cases[i].name) != 0) continue;
-    found = true;
-    int before = rc_test_failed_checks;
-    cases[i].fn();
-    if (rc_test_failed_checks == before) rc_test_passed++;
-    else rc_test_failed++, printf("FAIL %s\n", cases[i].name);
-  }
-  if (!found) {
-    fprintf(stderr, "test_gpu_render: no case %s\n", argv[4]);
-    return 2;
-  }
+  if (!rc_run_cases(cases, sizeof cases / sizeof cases[0], argc == 5 ? argv[4] : NULL, &rc_test_passed, &rc_test_failed)) return 2;
   char cleanup[300];
   snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
   if (rc_test_failed == 0 && system(cleanup) != 0) printf("could not remove %s\n", tmp);

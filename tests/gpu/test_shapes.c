@@ -292,10 +292,7 @@ int main(int argc, char **argv) {
   snprintf(tmp, sizeof tmp, "/tmp/vkraycast-shapes-XXXXXX");
   if (!mkdtemp(tmp)) return 2;
   TEST_MAIN_BEGIN
-  static const struct {
-    const char *name;
-    void (*fn)(void);
-  } cases[] = {
+  static const rc_test_case cases[] = {
       {"transformed_ellipsoid", test_transformed_ellipsoid_is_the_transformed_sphere},
       {"rotated_cylinder_axis", test_rotated_cylinder_is_the_cylinder_along_the_rotated_axis},
       {"rotated_cylinder_matrix", test_rotated_cylinder_is_the_quadric_matrix},
@@ -304,21 +301,10 @@ int main(int argc, char **argv) {
       {"plane_closed_form", test_plane_matches_the_closed_form},
       {"plane_one_sided", test_one_sided_plane_is_seen_from_its_front_only},
   };
-  bool found = false;
-  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-    if (strcmp(argv[2], cases[i].name) != 0) continue;
-    found = true;
-    int before = rc_test_failed_checks;
-    cases[i].fn();
-    if (rc_test_failed_checks == before) rc_test_passed++;
-    else rc_test_failed++, printf("FAIL %s\n", cases[i].name);
-  }
-  if (!found) {
-    fprintf(stderr, "test_shapes: no case %s\n", argv[2]);
-    return 2;
-  }
+  if (!rc_run_cases(cases, sizeof cases / sizeof cases[0], argv[2], &rc_test_passed, &rc_test_failed)) return 2;
   char cleanup[300];
   snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
+  /* KEEP=1 keeps the scenes and images for a look. */
   if (rc_test_failed == 0 && !getenv("KEEP") && system(cleanup) != 0) printf("could not remove %s\n", tmp);
   TEST_MAIN_END
 }
