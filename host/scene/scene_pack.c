@@ -313,7 +313,8 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
   for (uint32_t i = 0; i < p->frame.light_count; i++)
     if (p->lights[i].type == RC_LIGHT_POINT) p->lights[i].position = perturb_vec3(p->lights[i].position, seed);
   /* A quadric's inputs are its centre, coefficients and clip box (its radii, angles and
-   * heights live there); its frame stays orthonormal. */
+   * heights live there). Its frame rows are left as they are: a rotation, or under a
+   * transform also its scale, whose own rounding the band therefore does not cover. */
   for (uint32_t i = 0; i < p->quadric_total; i++) {
     gpu_quadric *q = &p->quadrics[i];
     q->center = perturb_vec3(q->center, seed);
