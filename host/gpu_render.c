@@ -233,7 +233,8 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   bool generic = r->opts.generic_pipeline;
   uint32_t kinds = generic ? RC_KIND_ALL
                            : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
-                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0);
+                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
+                                 (f->plane_count ? RC_KIND_PLANES : 0);
   const uint32_t spec_values[15] = {r->local_x,
                                     r->local_y,
                                     r->budget,

@@ -79,7 +79,8 @@ typedef struct gpu_csg gpu_csg;
 #define RC_KIND_TRIANGLES 2u
 #define RC_KIND_QUADRICS 4u
 #define RC_KIND_CSG 8u
-#define RC_KIND_ALL 15u
+#define RC_KIND_PLANES 16u /* frame.plane_count > 0: a plane loop after every traversal */
+#define RC_KIND_ALL 31u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
