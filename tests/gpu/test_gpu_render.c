@@ -12,25 +12,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "image/image_io.h"
 #include "rc_shared.h"
 #include "rc_test.h"
 #include "rc_cli_test.h"
+#include "rc_image_test.h"
 
 static const char *gpu_dir, *scenes_dir;
-
-typedef struct {
-  int w, h, c;
-  float *px;
-} image;
-
-static image load(const char *name) {
-  image im = {0};
-  char path[300], err[256];
-  snprintf(path, sizeof path, "%s/%s", tmp, name);
-  if (rc_image_read(path, &im.w, &im.h, &im.c, &im.px, err, sizeof err) != 0) printf("  cannot read %s: %s\n", path, err);
-  return im;
-}
 
 static const float *pixel(const image *im, int x, int y) { return im->px + ((size_t)y * im->w + x) * im->c; }
 

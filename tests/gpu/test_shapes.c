@@ -4,48 +4,49 @@
  * form.
  * One case per ctest: test_shapes VKRAYCAST CASE. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#include "image/image_io.h"
 #include "rc_cli_test.h"
+#include "rc_image_test.h"
 #include "rc_test.h"
 
-typedef struct {
-  int w, h, c;
-  float *px;
-} image;
-
-static image load(const char *name) {
-  image im = {0};
-  char path[300], err[256];
-  snprintf(path, sizeof path, "%s/%s", tmp, name);
-  if (rc_image_read(path, &im.w, &im.h, &im.c, &im.px, err, sizeof err) != 0) printf("  cannot read %s: %s\n", path, err);
-  return im;
+/* Writes TMP/name.json from a printf format. */
+static void write_json(const char *name, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void write_json(const char *name, const char *fmt, ...) {
+  char path[300];
+  snprintf(path, sizeof path, "%s/%s.json", tmp, name);
+  FILE *f = fopen(path, "w");
+  if (!f) {
+    printf("  cannot write %s\n", path);
+    rc_test_failed_checks++;
+    return;
+  }
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(f, fmt, ap);
+  va_end(ap);
+  fclose(f);
 }
 
 /* Writes TMP/name.json: a 96x96 perspective view of `objects` (JSON array members) lit by
  * a point light and a directional one, with shadows on a floor below. */
 static void write_scene(const char *name, const char *objects) {
-  char path[300];
-  snprintf(path, sizeof path, "%s/%s.json", tmp, name);
-  FILE *f = fopen(path, "w");
-  if (!f) return;
-  fprintf(f,
-          "{\"image\": {\"width\": 96, \"height\": 96},\n"
-          " \"camera\": {\"eye\": [0.5, 1.5, 6], \"look_at\": [0, 0, 0], \"fov_y_deg\": 45},\n"
-          " \"background\": [0.1, 0.2, 0.3],\n"
-          " \"materials\": {\"m\": {\"diffuse\": [0.7, 0.6, 0.5], \"specular\": [0.3, 0.3, 0.3], \"shininess\": 40},\n"
-          "               \"floor\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
-          " \"lights\": [{\"type\": \"point\", \"position\": [3, 4, 5], \"intensity\": [30, 30, 30]},\n"
-          "            {\"type\": \"directional\", \"direction\": [-1, -2, -0.5], \"intensity\": [0.4, 0.4, 0.4]}],\n"
-          " \"objects\": [{\"type\": \"box\", \"min\": [-4, -2.5, -4], \"max\": [4, -2, 4], \"material\": \"floor\"},\n"
-          "   %s]}\n",
-          objects);
-  fclose(f);
+  write_json(name,
+             "{\"image\": {\"width\": 96, \"height\": 96},\n"
+             " \"camera\": {\"eye\": [0.5, 1.5, 6], \"look_at\": [0, 0, 0], \"fov_y_deg\": 45},\n"
+             " \"background\": [0.1, 0.2, 0.3],\n"
+             " \"materials\": {\"m\": {\"diffuse\": [0.7, 0.6, 0.5], \"specular\": [0.3, 0.3, 0.3], \"shininess\": 40},\n"
+             "               \"floor\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
+             " \"lights\": [{\"type\": \"point\", \"position\": [3, 4, 5], \"intensity\": [30, 30, 30]},\n"
+             "            {\"type\": \"directional\", \"direction\": [-1, -2, -0.5], \"intensity\": [0.4, 0.4, 0.4]}],\n"
+             " \"objects\": [{\"type\": \"box\", \"min\": [-4, -2.5, -4], \"max\": [4, -2, 4], \"material\": \"floor\"},\n"
+             "   %s]}\n",
+             objects);
 }
 
 /* Pixels of two images of one size whose colours differ by more than tol in a channel. */
@@ -238,17 +239,12 @@ static void check_floor(const image *im, const char *variant) {
 }
 
 TEST(plane_matches_the_closed_form) {
-  char path[300];
-  snprintf(path, sizeof path, "%s/floor.json", tmp);
-  FILE *f = fopen(path, "w");
-  if (!f) return;
-  fprintf(f, "{\"image\": {\"width\": 64, \"height\": 64},\n"
+  write_json("floor", "{\"image\": {\"width\": 64, \"height\": 64},\n"
              " \"camera\": {\"projection\": \"parallel\", \"eye\": [0, 10, 0], \"look_at\": [0, 0, 0], \"up\": [0, 0, -1],"
              " \"view_height\": 8},\n"
              " \"materials\": {\"m\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
              " \"lights\": [{\"type\": \"point\", \"position\": [1, 4, -1], \"intensity\": [10, 10, 10]}],\n"
              " \"objects\": [{\"type\": \"plane\", \"point\": [3, 0, -2], \"normal\": [0, 2, 0], \"material\": \"m\"}]}\n");
-  fclose(f);
   for_each_variant("floor", check_floor);
 }
 
@@ -265,18 +261,13 @@ static void count_wall(const image *im, const char *variant) {
 TEST(one_sided_plane_is_seen_from_its_front_only) {
   const char *sides[2] = {"front", "back"};
   for (int k = 0; k < 2; k++) {
-    char path[300];
-    snprintf(path, sizeof path, "%s/%s.json", tmp, sides[k]);
-    FILE *f = fopen(path, "w");
-    if (!f) return;
-    fprintf(f, "{\"image\": {\"width\": 32, \"height\": 32},\n"
+    write_json(sides[k], "{\"image\": {\"width\": 32, \"height\": 32},\n"
                " \"camera\": {\"eye\": [0, 1, %d], \"look_at\": [0, 0.5, 0]},\n"
                " \"materials\": {\"m\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
                " \"lights\": [{\"type\": \"point\", \"position\": [0, 3, -3], \"intensity\": [10, 10, 10]}],\n"
                " \"objects\": [{\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 1, 0], \"material\": \"m\"},\n"
                "   {\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1], \"one_sided\": true, \"material\": \"m\"}]}\n",
             k ? -5 : 5);
-    fclose(f);
     for_each_variant(sides[k], count_wall);
     printf("  camera at the wall's %s: %d pixels on the wall\n", sides[k], wall_hits);
     CHECK(k ? wall_hits == 0 : wall_hits > 200);
