@@ -199,14 +199,15 @@ static double box_distance2(const box *b, const float p[3]) {
  * child nearer the eye first: in packed space every primary ray starts at the eye, so
  * the stackless traversal (rc_bvh.glsl) then meets near geometry first and culls more
  * of the far side. Shadow rays start elsewhere; the order never changes a result. */
-static void flatten(const builder *b, uint32_t id, const float eye[3], gpu_bvh_node *out, uint32_t *next) {
+static void flatten(const builder *b, uint32_t id, const float eye[3], uint32_t prim_base, gpu_bvh_node *out,
+                    uint32_t *next) {
   const build_node *bn = &b->nodes[id];
   uint32_t at = (*next)++;
   out[at].lo = (vec3){bn->bounds.lo[0], bn->bounds.lo[1], bn->bounds.lo[2]};
   out[at].hi = (vec3){bn->bounds.hi[0], bn->bounds.hi[1], bn->bounds.hi[2]};
   if (bn->count) {
     RC_ASSERT(bn->count <= RC_BVH_LEAF_MAX);
-    out[at].leaf = bn->first << RC_BVH_LEAF_SHIFT | bn->count;
+    out[at].leaf = (prim_base + bn->first) << RC_BVH_LEAF_SHIFT | bn->count;
   } else {
     uint32_t near = bn->left, far = bn->right;
     if (box_distance2(&b->nodes[far].bounds, eye) < box_distance2(&b->nodes[near].bounds, eye)) {
@@ -214,8 +215,8 @@ static void flatten(const builder *b, uint32_t id, const float eye[3], gpu_bvh_n
       far = bn->left;
     }
     out[at].leaf = 0;
-    flatten(b, near, eye, out, next);
-    flatten(b, far, eye, out, next);
+    flatten(b, near, eye, prim_base, out, next);
+    flatten(b, far, eye, prim_base, out, next);
   }
   out[at].skip = *next;
 }
@@ -329,31 +330,20 @@ static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t 
   return m;
 }
 
-rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
-  memset(stats, 0, sizeof *stats);
-  double t0 = rc_now_ms();
-  gpu_frame *f = &p->frame;
-  uint32_t n = f->object_count;
-  f->bvh_node_count = 0;
-  if (n == 0) return RC_OK;
-  builder b = {0};
-  b.info = rc_alloc(n, sizeof *b.info, "BVH build");
-  b.refs = rc_alloc(n, sizeof *b.refs, "BVH build");
-  if (!b.info || !b.refs) {
-    free(b.info);
-    free(b.refs);
-    return RC_ERR_OUT_OF_MEMORY;
-  }
-  uint32_t m = distinct_objects(p, n, b.refs); /* objects in the tree */
-  stats->repeats = n - f->plane_count - m;
-  if (m == 0) { /* planes only */
-    free(b.info);
-    free(b.refs);
-    stats->build_ms = rc_now_ms() - t0;
-    return RC_OK;
-  }
-  for (uint32_t i = 0; i < n; i++) {
-    prim_info *q = &b.info[i];
+/* The bounds of triangle t. */
+static box triangle_box(const gpu_triangle *t) {
+  box b = empty_box();
+  const vec3 v[3] = {t->v0, t->v1, t->v2};
+  for (int j = 0; j < 3; j++) grow_point(&b, (const float[3]){v[j].x, v[j].y, v[j].z});
+  return b;
+}
+
+/* The object tree's boxes: every object's, planes and repeats included (the tree leaves
+ * them out through refs). */
+static void object_boxes(const rc_packed_scene *p, prim_info *info) {
+  const gpu_frame *f = &p->frame;
+  for (uint32_t i = 0; i < f->object_count; i++) {
+    prim_info *q = &info[i];
     q->bounds = empty_box();
     if (i < f->sphere_count && p->spheres[i].transform != RC_NO_TRANSFORM) {
       q->bounds = ellipsoid_box(&p->spheres[i], &p->transforms[p->spheres[i].transform]);
@@ -366,9 +356,7 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
         q->bounds.hi[k] = nextafterf(c[k] + s->radius, FLT_MAX);
       }
     } else if (i < f->sphere_count + f->triangle_count) {
-      const gpu_triangle *t = &p->triangles[i - f->sphere_count];
-      const vec3 v[3] = {t->v0, t->v1, t->v2};
-      for (int j = 0; j < 3; j++) grow_point(&q->bounds, (const float[3]){v[j].x, v[j].y, v[j].z});
+      q->bounds = triangle_box(&p->triangles[i - f->sphere_count]);
     } else if (i < f->sphere_count + f->triangle_count + f->quadric_count) {
       q->bounds = quadric_box(&p->quadrics[i - f->sphere_count - f->triangle_count]);
     } else {
@@ -377,34 +365,108 @@ rc_status rc_bvh_build(rc_packed_scene *p, rc_bvh_stats *stats) {
     }
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
   }
+}
+
+/* One tree over refs[0, m) (indices into info), appended to p's node and reference arrays;
+ * the references written are base + ref. */
+static rc_status append_tree(rc_packed_scene *p, prim_info *info, uint32_t *refs, uint32_t m, uint32_t base,
+                             builder *b) {
+  *b = (builder){.info = info, .refs = refs};
+  uint32_t root = build(b, 0, m, 0);
+  if (root == UINT32_MAX) {
+    free(b->nodes);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
+  uint32_t nodes = p->bvh_node_total + b->node_count, prims = p->bvh_prim_total + m;
+  gpu_bvh_node *n = realloc(p->bvh_nodes, (size_t)nodes * sizeof *n);
+  if (n) p->bvh_nodes = n;
+  uint32_t *r = realloc(p->bvh_prims, (size_t)(prims + 3) / 4 * 4 * sizeof *r);
+  if (r) p->bvh_prims = r;
+  if (!n || !r) {
+    free(b->nodes);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
+  for (uint32_t i = 0; i < m; i++) p->bvh_prims[p->bvh_prim_total + i] = base + refs[i];
+  for (uint32_t i = prims; i < (prims + 3) / 4 * 4; i++) p->bvh_prims[i] = 0;
+  const gpu_camera *cam = &p->frame.camera;
+  const float eye[3] = {cam->eye.x, cam->eye.y, cam->eye.z};
+  uint32_t next = p->bvh_node_total;
+  flatten(b, root, eye, p->bvh_prim_total, p->bvh_nodes, &next);
+  RC_ASSERT(next == nodes);
+  p->bvh_node_total = nodes;
+  p->bvh_prim_total = prims;
+  free(b->nodes);
+  return RC_OK;
+}
+
+/* The object tree (the first frame.bvh_node_count nodes). */
+static rc_status build_objects(rc_packed_scene *p, rc_bvh_stats *stats) {
+  gpu_frame *f = &p->frame;
+  uint32_t n = f->object_count;
   if (n >= (UINT32_MAX >> RC_BVH_LEAF_SHIFT)) {
     rc_refuse_scene("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
-    free(b.info);
-    free(b.refs);
     return RC_ERR_TOO_LARGE;
   }
-  uint32_t root = build(&b, 0, m, 0);
-  rc_status st = root == UINT32_MAX ? RC_ERR_OUT_OF_MEMORY : RC_OK;
+  prim_info *info = rc_alloc(n, sizeof *info, "BVH build");
+  uint32_t *refs = rc_alloc(n, sizeof *refs, "BVH build");
+  rc_status st = info && refs ? RC_OK : RC_ERR_OUT_OF_MEMORY;
+  uint32_t m = 0;
   if (st == RC_OK) {
-    p->bvh_nodes = rc_alloc(b.node_count, sizeof *p->bvh_nodes, "BVH nodes");
-    p->bvh_prims = rc_alloc((n + 3) / 4 * 4, sizeof *p->bvh_prims, "BVH references");
-    if (!p->bvh_nodes || !p->bvh_prims) st = RC_ERR_OUT_OF_MEMORY;
+    m = distinct_objects(p, n, refs); /* objects in the tree */
+    stats->repeats = n - f->plane_count - m;
+    object_boxes(p, info);
   }
-  if (st == RC_OK) {
-    memcpy(p->bvh_prims, b.refs, m * sizeof *b.refs);
-    const float eye[3] = {f->camera.eye.x, f->camera.eye.y, f->camera.eye.z};
-    uint32_t next = 0;
-    flatten(&b, root, eye, p->bvh_nodes, &next);
-    RC_ASSERT(next == b.node_count);
+  builder b;
+  if (st == RC_OK && m) st = append_tree(p, info, refs, m, 0, &b);
+  if (st == RC_OK && m) {
     f->bvh_node_count = b.node_count;
     stats->nodes = b.node_count;
     stats->leaves = b.leaves;
     stats->depth = b.depth;
     stats->max_leaf = b.max_leaf;
   }
-  free(b.info);
-  free(b.refs);
-  free(b.nodes);
+  free(info);
+  free(refs);
+  return st;
+}
+
+/* Each mesh operand's own tree over its triangles, after the object tree. A ray through a
+ * composite may visit every node and test every triangle of its mesh operands, and insert
+ * each crossing into a sorted list: the composites' step bound grows by that. */
+static rc_status build_operands(rc_packed_scene *p) {
+  uint64_t steps = 0;
+  for (uint32_t k = 0; k < p->mesh_operand_count; k++) {
+    const rc_mesh_operand *op = &p->mesh_operands[k];
+    prim_info *info = rc_alloc(op->count, sizeof *info, "mesh operand BVH");
+    uint32_t *refs = rc_alloc(op->count, sizeof *refs, "mesh operand BVH");
+    rc_status st = info && refs ? RC_OK : RC_ERR_OUT_OF_MEMORY;
+    for (uint32_t i = 0; st == RC_OK && i < op->count; i++) {
+      info[i].bounds = triangle_box(&p->triangles[op->first + i]);
+      for (int a = 0; a < 3; a++) info[i].centroid[a] = 0.5f * (info[i].bounds.lo[a] + info[i].bounds.hi[a]);
+      refs[i] = i;
+    }
+    gpu_quadric *q = &p->quadrics[op->leaf];
+    q->mesh_root = p->bvh_node_total;
+    builder b;
+    if (st == RC_OK) st = append_tree(p, info, refs, op->count, op->first, &b);
+    q->mesh_end = p->bvh_node_total;
+    free(info);
+    free(refs);
+    if (st != RC_OK) return st;
+    steps += (uint64_t)(q->mesh_end - q->mesh_root) + op->count + (uint64_t)q->mesh_crossings * q->mesh_crossings;
+  }
+  steps += p->frame.csg_max_steps;
+  p->frame.csg_max_steps = steps > UINT32_MAX ? UINT32_MAX : (uint32_t)steps;
+  return RC_OK;
+}
+
+rc_status rc_bvh_build(rc_packed_scene *p, bool objects, rc_bvh_stats *stats) {
+  memset(stats, 0, sizeof *stats);
+  double t0 = rc_now_ms();
+  p->frame.bvh_node_count = 0;
+  p->bvh = objects;
+  rc_status st = objects && p->frame.object_count ? build_objects(p, stats) : RC_OK;
+  if (st == RC_OK) st = build_operands(p);
   stats->build_ms = rc_now_ms() - t0;
   return st;
 }

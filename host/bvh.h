@@ -21,7 +21,10 @@ typedef struct rc_bvh_stats {
   uint32_t repeats; /* objects left out: bit-for-bit repeats of an earlier one's geometry */
 } rc_bvh_stats;
 
-/* Builds into packed->bvh_nodes / bvh_prims and sets frame.bvh_node_count. */
-rc_status rc_bvh_build(rc_packed_scene *packed, rc_bvh_stats *stats);
+/* Builds into packed->bvh_nodes / bvh_prims: the object tree when `objects` (setting
+ * frame.bvh_node_count; without it both renderers test every object), then always a tree
+ * for each of the composites' mesh operands (their mesh_root, mesh_end), which adds their
+ * worst-case steps to frame.csg_max_steps. */
+rc_status rc_bvh_build(rc_packed_scene *packed, bool objects, rc_bvh_stats *stats);
 
 #endif

@@ -248,6 +248,8 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   return st;
 }
 
+static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uint32_t y);
+
 /* The CPU reference in bands of CPU_BAND_ROWS rows. */
 #define CPU_BAND_ROWS 32u
 
@@ -268,6 +270,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += band) {
       uint32_t rows = h - y0 < band ? h - y0 : band;
       st = rc_ref_render(packed, &opts, y0, rows, rgb, aov, &fs);
+      if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
       if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, aov, *out);
     }
     ms[i] = fs.render_ms;
@@ -328,6 +331,21 @@ static bool gpu_precision(const rc_scene *s, const rc_precision_report *b, const
   return false;
 }
 
+/* An error about the shader's object number `o` (spheres, triangles, quadrics, planes,
+ * composites), with its place in the scene file; UINT32_MAX: the scene as a whole. */
+static void report_object(const rc_scene *s, size_t o, const char *what) {
+  size_t counts[] = {s->sphere_count, s->triangle_count, s->quadric_count, s->plane_count, s->csg_count};
+  uint32_t kinds[] = {RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_PLANE, RC_ORIGIN_CSG};
+  for (int k = 0; k < 5 && o != UINT32_MAX; k++) {
+    if (o < counts[k]) {
+      rc_scene_error(s, kinds[k], o, "%s", what);
+      return;
+    }
+    o -= counts[k];
+  }
+  fprintf(stderr, "%s: error: %s\n", s->path, what);
+}
+
 /* A sample that ran out of the GPU's loop budget on its own (a ray through a pile of
  * overlapping objects): the object the shader was testing, with its place in the scene
  * file, and the way out. Nothing has been written. */
@@ -338,18 +356,19 @@ static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const c
            "on %s (%u pixels did: objects piled up along a ray, or --accel none); refusing to write a wrong "
            "image: --backend cpu renders it",
            g->budget_x, g->budget_y, device, g->budget_pixels);
-  size_t o = g->budget_object;
-  /* The shader's object numbers: spheres, triangles, quadrics, planes, composites. */
-  size_t counts[] = {s->sphere_count, s->triangle_count, s->quadric_count, s->plane_count, s->csg_count};
-  uint32_t kinds[] = {RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_PLANE, RC_ORIGIN_CSG};
-  for (int k = 0; k < 5 && g->budget_object != UINT32_MAX; k++) {
-    if (o < counts[k]) {
-      rc_scene_error(s, kinds[k], o, "%s", what);
-      return;
-    }
-    o -= counts[k];
-  }
-  fprintf(stderr, "%s: error: %s\n", s->path, what);
+  report_object(s, g->budget_object, what);
+}
+
+/* A ray line that crossed a composite's mesh operand more often than its max_crossings, or
+ * an odd number of times: the composite, the pixel and the way out. Nothing has been written. */
+static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uint32_t y) {
+  char what[400];
+  snprintf(what, sizeof what,
+           "the line of a ray through pixel (%u, %u) crosses a mesh operand of this composite more often than its "
+           "\"max_crossings\" (default 8, at most %u), or an odd number of times (a hole the loader's edge check "
+           "cannot see); refusing to write a wrong image",
+           x, y, 2 * RC_CSG_MAX_INTERVALS);
+  report_object(s, object, what);
 }
 
 rc_status rc_cmd_render(int argc, char **argv) {
@@ -379,10 +398,10 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_output *out = NULL;
   st = rc_scene_pack(&scene, &packed);
   if (st == RC_OK && a.perturb) rc_packed_scene_perturb(&packed, a.perturb);
-  if (st == RC_OK && !a.no_bvh) {
-    st = rc_bvh_build(&packed, &rs.bvh);
+  if (st == RC_OK) {
+    st = rc_bvh_build(&packed, !a.no_bvh, &rs.bvh);
     /* The plan's traversal estimate uses the depth; 0 means brute force. */
-    a.gpu.bvh_depth = packed.bvh_nodes ? rs.bvh.depth + 1 : 0;
+    a.gpu.bvh_depth = packed.bvh && packed.frame.bvh_node_count ? rs.bvh.depth + 1 : 0;
   }
   rs.width = scene.width;
   rs.height = scene.height;
@@ -434,6 +453,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rs.precision = a.gpu.f64 ? "f64" : "f32";
       st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
       if (rs.gpu.budget_refused) report_loop_budget(&scene, &rs.gpu, ctx.props.deviceName);
+      if (rs.gpu.crossing_object != UINT32_MAX)
+        report_crossings(&scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
     }
   }
   rs.write_ms = rc_output_write_ms(out);

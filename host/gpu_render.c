@@ -23,6 +23,7 @@ struct rc_gpu_renderer {
   rc_gpu_options opts;
   uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
   gpu_frame frame;
+  bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];
@@ -103,16 +104,16 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
    * binding must be valid even where the specialized shader never reads it. */
   static const gpu_bvh_node no_node;
   static const uint32_t no_refs[4];
-  bool bvh = r->opts.bvh_depth > 0 && s->bvh_nodes;
+  bool bvh = s->bvh_node_total > 0; /* the object tree, or a mesh operand's */
   const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
                                     bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs,
                                     s->transforms, s->normals, s->quadrics, s->csg, s->csg_program};
   /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
   VkDeviceSize sizes[SCENE_ARRAYS] = {
-      (f->sphere_count + 1) * sizeof(gpu_sphere), (f->triangle_count + 1) * sizeof(gpu_triangle),
+      (f->sphere_count + 1) * sizeof(gpu_sphere), (s->triangle_total + 1) * sizeof(gpu_triangle),
       (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
-      bvh ? f->bvh_node_count * sizeof(gpu_bvh_node) : sizeof no_node,
-      bvh ? (f->object_count + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
+      bvh ? s->bvh_node_total * sizeof(gpu_bvh_node) : sizeof no_node,
+      bvh ? (s->bvh_prim_total + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
       (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals),
       (s->quadric_total + 1) * sizeof(gpu_quadric), (f->csg_count + 1) * sizeof(gpu_csg),
       (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t)};
@@ -234,7 +235,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   uint32_t kinds = generic ? RC_KIND_ALL
                            : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
                                  (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
-                                 (f->plane_count ? RC_KIND_PLANES : 0);
+                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0);
   const uint32_t spec_values[15] = {r->local_x,
                                     r->local_y,
                                     r->budget,
@@ -352,6 +353,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->ctx = ctx;
   r->opts = *opts;
   r->frame = scene->frame;
+  r->mesh_operands = scene->mesh_operand_count > 0;
   r->budget = rc_vk_loop_budget(ctx);
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
   stats->tile_budget_ms = r->tile_budget_ms;
@@ -540,6 +542,14 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     if (r->tile_budget_ms > 0 && ms > r->tile_budget_ms) stats->over_budget++;
     stats->shadow_rays += status.shadow_rays;
     stats->reflection_rays += status.reflection_rays;
+    if (status.crossing_object) {
+      /* A mesh operand crossed more often than its bound, or an odd number of times: no
+       * batch size helps, and the pixel would be wrong. Reported by the caller. */
+      stats->crossing_object = status.crossing_object - 1;
+      uint32_t at = status.crossing_pixel ? status.crossing_pixel - 1 : 0;
+      stats->crossing_x = at % r->frame.camera.width, stats->crossing_y = at / r->frame.camera.width;
+      return RC_ERR_TOO_LARGE;
+    }
     if (status.exhausted_pixels) {
       if (push.batch_samples == 1) {
         /* Reported by the caller, which knows where the object came from. */
@@ -596,6 +606,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
+  stats->crossing_object = UINT32_MAX;
   const uint32_t w = r->frame.camera.width, h = r->frame.camera.height, batch = stats->plan.batch_samples;
   const uint64_t total = (uint64_t)w * h;
   uint64_t done = 0;

@@ -51,6 +51,8 @@ typedef struct rc_gpu_stats {
   uint32_t budget_pixels;  /* then: the pixels of the dispatch that ran out */
   uint32_t budget_object;  /* an object a ray was testing then (UINT32_MAX: unknown) */
   uint32_t budget_x, budget_y; /* and that ray's pixel */
+  uint32_t crossing_object;    /* UINT32_MAX, or as rc_ref_stats.crossing_object (ref_render.h) */
+  uint32_t crossing_x, crossing_y;
   rc_gpu_plan plan;
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
   uint32_t subgroup_size;

@@ -57,7 +57,8 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
            "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, centre, q);
   }
-  for (size_t i = 0; i < p->frame.triangle_count; i++) {
+  /* Triangles, standalone and of composites' mesh operands alike. */
+  for (size_t i = 0; i < p->triangle_total; i++) {
     const gpu_triangle *t = &p->triangles[i];
     dvec3 a = rcm_to_d(t->v0), b = rcm_to_d(t->v1), c = rcm_to_d(t->v2);
     dvec3 e0 = rcm_sub_d(b, a), e1 = rcm_sub_d(c, b), e2 = rcm_sub_d(a, c);
@@ -106,6 +107,7 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
              i - (p->frame.quadric_count - p->frame.plane_count), reach);
       continue;
     }
+    if (q->flags & RC_QUADRIC_MESH) continue; /* a mesh operand: its triangles were judged above */
     dvec3 half = rcm_scale_d(rcm_sub_d(rcm_to_d(q->hi), rcm_to_d(q->lo)), 0.5);
     const double w[3][3] = {{q->axis_x.x, q->axis_x.y, q->axis_x.z}, {q->axis_y.x, q->axis_y.y, q->axis_y.z},
                             {q->axis_z.x, q->axis_z.y, q->axis_z.z}};

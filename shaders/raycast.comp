@@ -66,6 +66,7 @@ uint scene_reflection_depth() {
 #include "rc_budget.glsl"
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
+#include "rc_triangle.glsl"
 #if RC_QUADRICS
 #include "rc_quadric.glsl"
 #endif
@@ -101,6 +102,10 @@ void main() {
       if (!budget_step()) break;
       sum.rgb += vec3(trace_sample(pixel, s));
     }
+#if RC_QUADRICS
+    if (crossing_blame != 0u && atomicCompSwap(status.crossing_object, 0u, crossing_blame) == 0u)
+      status.crossing_pixel = 1u + pixel.y * frame.camera.width + pixel.x;
+#endif
     if (budget_exhausted) {
       group_exhausted = true;
       // The first lane to report names its object and pixel (both, or neither).

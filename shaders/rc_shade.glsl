@@ -98,10 +98,17 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     // A box face (a plane) is hit as well as o + t d allows, as for transformed spheres;
     // a quadric surface point is re-projected onto the surface.
     sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
-    gpu_quadric q = load_quadric(h.part >> 4u);  // the surface's leaf (rc_quadric.glsl, csg_code)
-    if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
-    n = normalize(quadric_normal(q, h.part, sf.p, d));
-    sf.material = q.material;
+    uint leaf = h.part >> RC_CSG_CODE_LEAF_SHIFT;  // the surface's leaf (rc_quadric.glsl, csg_code)
+    if ((h.part & RC_CSG_CODE_MESH) != 0u) {
+      gpu_triangle tri = load_triangle(leaf);
+      n = normalize(mesh_normal(tri, h.part, d));
+      sf.material = tri.material;
+    } else {
+      gpu_quadric q = load_quadric(leaf);
+      if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
+      n = normalize(quadric_normal(q, h.part, sf.p, d));
+      sf.material = q.material;
+    }
 #endif
   } else {
     gpu_triangle tri = load_triangle(h.index);

@@ -80,7 +80,8 @@ typedef struct gpu_csg gpu_csg;
 #define RC_KIND_QUADRICS 4u
 #define RC_KIND_CSG 8u
 #define RC_KIND_PLANES 16u /* frame.plane_count > 0: a plane loop after every traversal */
-#define RC_KIND_ALL 31u
+#define RC_KIND_CSG_MESHES 32u /* a composite has a closed mesh operand (RC_QUADRIC_MESH) */
+#define RC_KIND_ALL 63u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -227,13 +228,20 @@ struct gpu_vertex_normals {
 /* Hit only from the side the normal faces (a ray with d.normal < 0); seen from behind,
  * and for shadow rays leaving from behind, the plane is not there. */
 #define RC_QUADRIC_ONE_SIDED 4u
+/* A composite's operand that is a closed triangle mesh (scene type "mesh" inside a "csg"):
+ * no quadric, only the box lo..hi (axes identity, centre 0) and the mesh's own BVH, nodes
+ * [mesh_root, mesh_end) of the node array after the object tree, whose leaves reference
+ * triangles after the standalone ones. A ray line crosses it at most mesh_crossings times
+ * (the scene's "max_crossings"); its inside is where the number of crossings before a point
+ * is odd (rc_quadric.glsl, mesh_intervals). */
+#define RC_QUADRIC_MESH 8u
 struct gpu_quadric {
   vec3 center; uint material;
   vec3 axis_x; float constant;
   vec3 axis_y; uint flags;
-  vec3 axis_z; float pad0;
-  vec3 diag;   float pad1;
-  vec3 off;    float pad2;
+  vec3 axis_z; uint mesh_root;
+  vec3 diag;   uint mesh_end;
+  vec3 off;    uint mesh_crossings;
   vec3 linear; float pad3;
   vec3 lo;     float pad4;
   vec3 hi;     float pad5;
@@ -249,6 +257,12 @@ struct gpu_quadric {
 #define RC_CSG_DIFFERENCE 3u
 #define RC_CSG_OP_SHIFT 28u
 #define RC_CSG_OPERAND_MASK 0x0fffffffu
+/* An interval end's code (rc_quadric.glsl, csg_code): bit 0 from a subtracted solid, bit 1
+ * the leaf's exit, bits 2-3 the face (0: the quadric, 1..3: a box face), bit 4 set when the
+ * leaf is a triangle of a mesh operand, and the leaf's index (a quadric or, with bit 4, a
+ * triangle) from bit 5 on. */
+#define RC_CSG_CODE_MESH 16u
+#define RC_CSG_CODE_LEAF_SHIFT 5u
 /* Fixed sizes of the shader's interval lists: a list holds at most RC_CSG_MAX_INTERVALS
  * [in, out] intervals, and at most RC_CSG_STACK lists are live at once. The loader bounds
  * both for each tree (a leaf has up to 2 intervals, a union or difference up to the sum of
@@ -287,6 +301,9 @@ struct gpu_status {
   uint reflection_rays;
   uint exhausted_object;  /* 1 + an object some ray was testing when its invocation ran out of budget; 0: none */
   uint exhausted_pixel;   /* 1 + y * width + x of that ray's pixel in the frame */
+  uint crossing_object;   /* 1 + a composite a ray line crossed more often than its mesh operand's
+                             bound, or an odd number of times; 0: none (the render fails) */
+  uint crossing_pixel;    /* 1 + y * width + x of that ray's pixel */
 };
 
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
@@ -357,8 +374,9 @@ RC_ASSERT_SIZE(gpu_frame, 208);
 RC_ASSERT_LAYOUT(gpu_quadric, center, 0);   RC_ASSERT_LAYOUT(gpu_quadric, material, 12);
 RC_ASSERT_LAYOUT(gpu_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(gpu_quadric, constant, 28);
 RC_ASSERT_LAYOUT(gpu_quadric, axis_y, 32);  RC_ASSERT_LAYOUT(gpu_quadric, flags, 44);
-RC_ASSERT_LAYOUT(gpu_quadric, axis_z, 48);  RC_ASSERT_LAYOUT(gpu_quadric, diag, 64);
-RC_ASSERT_LAYOUT(gpu_quadric, off, 80);     RC_ASSERT_LAYOUT(gpu_quadric, linear, 96);
+RC_ASSERT_LAYOUT(gpu_quadric, axis_z, 48);  RC_ASSERT_LAYOUT(gpu_quadric, mesh_root, 60);
+RC_ASSERT_LAYOUT(gpu_quadric, diag, 64);    RC_ASSERT_LAYOUT(gpu_quadric, mesh_end, 76);
+RC_ASSERT_LAYOUT(gpu_quadric, off, 80);     RC_ASSERT_LAYOUT(gpu_quadric, mesh_crossings, 92);     RC_ASSERT_LAYOUT(gpu_quadric, linear, 96);
 RC_ASSERT_LAYOUT(gpu_quadric, lo, 112);     RC_ASSERT_LAYOUT(gpu_quadric, hi, 128);
 RC_ASSERT_SIZE(gpu_quadric, 16 * RC_TEXELS_PER_QUADRIC);
 RC_ASSERT_LAYOUT(gpu_csg, lo, 0);  RC_ASSERT_LAYOUT(gpu_csg, first, 12);
@@ -396,7 +414,8 @@ RC_ASSERT_SIZE(gpu_light, 16 * RC_TEXELS_PER_LIGHT);
 RC_ASSERT_LAYOUT(gpu_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(gpu_status, incomplete_pixels, 4);
 RC_ASSERT_LAYOUT(gpu_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(gpu_status, reflection_rays, 12);
 RC_ASSERT_LAYOUT(gpu_status, exhausted_object, 16); RC_ASSERT_LAYOUT(gpu_status, exhausted_pixel, 20);
-RC_ASSERT_SIZE(gpu_status, 24);
+RC_ASSERT_LAYOUT(gpu_status, crossing_object, 24); RC_ASSERT_LAYOUT(gpu_status, crossing_pixel, 28);
+RC_ASSERT_SIZE(gpu_status, 32);
 
 RC_ASSERT_LAYOUT(gpu_aov, hit, 0);    RC_ASSERT_LAYOUT(gpu_aov, object, 4);
 RC_ASSERT_LAYOUT(gpu_aov, t, 8);      RC_ASSERT_LAYOUT(gpu_aov, shadow_bits, 12);

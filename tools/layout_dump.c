@@ -108,11 +108,11 @@ int main(void) {
   OFF("scene_quadrics.axis_y", gpu_quadric, axis_y);
   OFF("scene_quadrics.flags", gpu_quadric, flags);
   OFF("scene_quadrics.axis_z", gpu_quadric, axis_z);
-  OFF("scene_quadrics.pad0", gpu_quadric, pad0);
+  OFF("scene_quadrics.mesh_root", gpu_quadric, mesh_root);
   OFF("scene_quadrics.diag", gpu_quadric, diag);
-  OFF("scene_quadrics.pad1", gpu_quadric, pad1);
+  OFF("scene_quadrics.mesh_end", gpu_quadric, mesh_end);
   OFF("scene_quadrics.off", gpu_quadric, off);
-  OFF("scene_quadrics.pad2", gpu_quadric, pad2);
+  OFF("scene_quadrics.mesh_crossings", gpu_quadric, mesh_crossings);
   OFF("scene_quadrics.linear", gpu_quadric, linear);
   OFF("scene_quadrics.pad3", gpu_quadric, pad3);
   OFF("scene_quadrics.lo", gpu_quadric, lo);
@@ -142,6 +142,8 @@ int main(void) {
   OFF("status.reflection_rays", gpu_status, reflection_rays);
   OFF("status.exhausted_object", gpu_status, exhausted_object);
   OFF("status.exhausted_pixel", gpu_status, exhausted_pixel);
+  OFF("status.crossing_object", gpu_status, crossing_object);
+  OFF("status.crossing_pixel", gpu_status, crossing_pixel);
   printf("Status size %zu\n", sizeof(gpu_status));
 
   OFF("aov.hit", gpu_aov, hit);

@@ -24,6 +24,9 @@ typedef struct ref_scene {
 
 /* The shader's `spawned_ray` global: the ray being traced left a surface. Per thread. */
 extern _Thread_local bool ref_spawned_ray;
+/* The shader's `crossing_blame` (rc_quadric.glsl): 1 + the composite whose mesh operand a
+ * ray line crossed too often or an odd number of times. Per thread. */
+extern _Thread_local uint32_t ref_crossing_blame;
 
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
   typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; uint32_t part; } ref_hit_##S; \
@@ -38,6 +41,11 @@ extern _Thread_local bool ref_spawned_ray;
   R ref_intersect_any_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side); \
   ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
   V ref_permute_##S(V a, const int k[3]);                                                       \
+  typedef struct ref_sheared_##S { V x, y, z, e; } ref_sheared_##S;                             \
+  ref_sheared_##S ref_shear_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);       \
+  R ref_triangle_t_error_##S(const ref_sheared_##S *st, R det);                                 \
+  bool ref_edge_owned_##S(R x0, R y0, R x1, R y1, R det);                                       \
+  R ref_triangle_crossing_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);                  \
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \
   R ref_intersect_triangle_moller_trumbore_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);   \
   R ref_intersect_triangle_cramer_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);            \
@@ -71,8 +79,12 @@ extern _Thread_local bool ref_spawned_ray;
   R ref_intersect_plane_##S(const gpu_quadric *q, V o, V d, R t_max);                              \
   R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
   uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
+  bool ref_line_meets_box_##S(V lo, V hi, V o, V d);                                            \
+  uint32_t ref_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const gpu_quadric *q, V o, V d, bool flip, \
+                                  uint32_t base);                                               \
   R ref_intersect_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
-  V ref_quadric_normal_##S(const gpu_quadric *q, uint32_t code, V p, V d);
+  V ref_quadric_normal_##S(const gpu_quadric *q, uint32_t code, V p, V d);                      \
+  V ref_mesh_normal_##S(gpu_triangle tri, uint32_t code, V d);
 
 REF_DECLARE_QUADRIC(d, double, dvec3)
 REF_DECLARE_QUADRIC(f, float, vec3)

@@ -18,8 +18,12 @@ static real rmin(real a, real b) { return a < b ? a : b; }
 static real rmax(real a, real b) { return a > b ? a : b; }
 static rvec3 v3(vec3 a) { return rvec3_from(a); }
 
+#if REF_F64 /* one definition for both builds */
+_Thread_local uint32_t ref_crossing_blame;
+#endif
+
 uint32_t REF(csg_code)(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip) {
-  return (leaf << 4u) | (face << 2u) | (leaf_exit ? 2u : 0u) | (flip ? 1u : 0u);
+  return (leaf << RC_CSG_CODE_LEAF_SHIFT) | (face << 2u) | (leaf_exit ? 2u : 0u) | (flip ? 1u : 0u);
 }
 
 rvec3 REF(quadric_local)(const gpu_quadric *q, rvec3 v) {
@@ -138,6 +142,60 @@ uint32_t REF(solid_intervals)(uint32_t leaf, const gpu_quadric *q, rvec3 o, rvec
   return n;
 }
 
+bool REF(line_meets_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d) {
+  real t_in, t_out;
+  uint32_t a_in, a_out;
+  REF(box_span)(lo, hi, o, d, &t_in, &t_out, &a_in, &a_out);
+  if (t_in >= (real)RC_T_FAR) return false;
+  return t_in <= t_out + 2 * REF(gamma_bound)(3) * (R_ABS(t_in) + R_ABS(t_out));
+}
+
+uint32_t REF(mesh_intervals)(const ref_scene *sc, uint32_t csg, const gpu_quadric *q, rvec3 o, rvec3 d, bool flip,
+                             uint32_t base) {
+  const gpu_frame *f = sc->frame;
+  ref_shear sh = REF(ray_shear_for)(d);
+  uint32_t n = 0;
+  uint32_t node = q->mesh_root;
+  while (node < q->mesh_end) {
+    const gpu_bvh_node *b = &sc->bvh_nodes[node];
+    if (!REF(line_meets_box)(v3(b->lo), v3(b->hi), o, d)) {
+      node = b->skip;
+      continue;
+    }
+    if (b->leaf == 0) {
+      node++;
+      continue;
+    }
+    uint32_t first = b->leaf >> RC_BVH_LEAF_SHIFT;
+    uint32_t count = b->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+    for (uint32_t k = first; k < first + count; k++) {
+      uint32_t tri = sc->bvh_prims[k];
+      real t = REF(triangle_crossing)(o, &sh, sc->triangles[tri]);
+      if (t >= (real)RC_T_FAR) continue;
+      if (n == q->mesh_crossings) {
+        ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+        return 0;
+      }
+      uint32_t i = n;
+      for (; i > 0 && csg_t[base + i - 1] > t; i--) {
+        csg_t[base + i] = csg_t[base + i - 1];
+        csg_code_of[base + i] = csg_code_of[base + i - 1];
+      }
+      csg_t[base + i] = t;
+      csg_code_of[base + i] = tri;
+      n++;
+    }
+    node = b->skip;
+  }
+  if (n & 1u) {
+    ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+    return 0;
+  }
+  for (uint32_t i = 0; i < n; i++)
+    csg_code_of[base + i] = REF(csg_code)(csg_code_of[base + i], 0, (i & 1u) != 0, flip) | RC_CSG_CODE_MESH;
+  return n;
+}
+
 real REF(intersect_quadric_surface)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
   const real far = (real)RC_T_FAR;
   rvec3 f = REF(quadric_local)(q, RV(sub)(o, v3(q->center)));
@@ -233,7 +291,13 @@ real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, r
     uint32_t op = ins >> RC_CSG_OP_SHIFT;
     uint32_t operand = ins & RC_CSG_OPERAND_MASK;
     if (op == RC_CSG_LEAF) {
-      count[sp] = REF(solid_intervals)(operand, &sc->quadrics[operand], o, d, false, sp * SLOT);
+      const gpu_quadric *q = &sc->quadrics[operand];
+      if (q->flags & RC_QUADRIC_MESH) {
+        count[sp] = REF(mesh_intervals)(sc, index, q, o, d, false, sp * SLOT);
+        if (ref_crossing_blame != 0) return (real)RC_T_FAR;
+      } else {
+        count[sp] = REF(solid_intervals)(operand, q, o, d, false, sp * SLOT);
+      }
       sp++;
       continue;
     }
@@ -261,4 +325,12 @@ rvec3 REF(quadric_normal)(const gpu_quadric *q, uint32_t code, rvec3 p, rvec3 d)
   }
   rvec3 n = RV(add)(RV(add)(RV(scale)(v3(q->axis_x), g.x), RV(scale)(v3(q->axis_y), g.y)), RV(scale)(v3(q->axis_z), g.z));
   return (code & 1u) ? RV(neg)(n) : n;
+}
+
+rvec3 REF(mesh_normal)(gpu_triangle tri, uint32_t code, rvec3 d) {
+  rvec3 v0 = v3(tri.v0);
+  rvec3 g = RV(cross)(RV(sub)(v3(tri.v1), v0), RV(sub)(v3(tri.v2), v0));
+  bool leaving = (code & 2u) != 0;
+  if ((RV(dot)(g, d) > 0) != leaving) g = RV(neg)(g);
+  return (code & 1u) ? RV(neg)(g) : g;
 }

@@ -26,6 +26,8 @@ typedef struct {
   uint32_t y0, rows;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays, reflection_rays;
+  atomic_uint crossing_object; /* 1 + the composite of the first crossing failure, 0: none */
+  uint32_t crossing_x, crossing_y;
 } job;
 
 static void render_pixel(job *j, uint32_t x, uint32_t y) {
@@ -44,6 +46,11 @@ static void render_pixel(job *j, uint32_t x, uint32_t y) {
     o[0] = sum.x / (float)spp, o[1] = sum.y / (float)spp, o[2] = sum.z / (float)spp;
   }
   if (j->aov) j->aov[index] = ref_aov_record;
+  if (ref_crossing_blame) {
+    unsigned none = 0;
+    if (atomic_compare_exchange_strong(&j->crossing_object, &none, ref_crossing_blame)) j->crossing_x = x, j->crossing_y = y;
+    ref_crossing_blame = 0;
+  }
 }
 
 static void *worker(void *arg) {
@@ -76,7 +83,7 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, ui
                      .quadrics = p->quadrics,
                      .csg = p->csg,
                      .csg_program = p->csg_program,
-                     .use_bvh = p->bvh_nodes != NULL},
+                     .use_bvh = p->bvh && p->frame.bvh_node_count > 0},
            .frame = &p->frame,
            .f64 = opts->f64,
            .rgb = rgb,
@@ -86,6 +93,7 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, ui
   atomic_init(&j.next_row, 0);
   atomic_init(&j.shadow_rays, 0);
   atomic_init(&j.reflection_rays, 0);
+  atomic_init(&j.crossing_object, 0);
   long cores = sysconf(_SC_NPROCESSORS_ONLN);
   uint32_t n = opts->threads ? opts->threads : (uint32_t)(cores > 0 ? cores : 1);
   pthread_t *threads = calloc(n, sizeof *threads);
@@ -102,5 +110,11 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, ui
   stats->threads = started ? started : 1;
   stats->shadow_rays += atomic_load(&j.shadow_rays);
   stats->reflection_rays += atomic_load(&j.reflection_rays);
+  uint32_t crossing = atomic_load(&j.crossing_object);
+  if (crossing) {
+    stats->crossing_object = crossing - 1;
+    stats->crossing_x = j.crossing_x, stats->crossing_y = j.crossing_y;
+    return RC_ERR_TOO_LARGE;
+  }
   return RC_OK;
 }

@@ -16,6 +16,10 @@ typedef struct rc_ref_stats {
   double render_ms, cpu_ms;
   uint64_t shadow_rays, reflection_rays;
   uint32_t threads;
+  /* A ray line crossed a composite's mesh operand more often than its max_crossings, or an
+   * odd number of times (rc_quadric.glsl, mesh_intervals): the composite's object number and
+   * the pixel; the render then fails with RC_ERR_TOO_LARGE. */
+  uint32_t crossing_object, crossing_x, crossing_y;
 } rc_ref_stats;
 
 /* Renders into rgb (width * height * 3 floats, rows top to bottom). */

@@ -70,10 +70,17 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     rvec3 td = RV(scale)(d, h->t);
     sf.p = RV(add)(o, td);
     sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
-    const gpu_quadric *q = &sc->quadrics[h->part >> 4u];
-    if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
-    n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
-    sf.material = q->material;
+    uint32_t leaf = h->part >> RC_CSG_CODE_LEAF_SHIFT;
+    if (h->part & RC_CSG_CODE_MESH) {
+      gpu_triangle tri = sc->triangles[leaf];
+      n = RV(normalize)(REF(mesh_normal)(tri, h->part, d));
+      sf.material = tri.material;
+    } else {
+      const gpu_quadric *q = &sc->quadrics[leaf];
+      if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
+      n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
+      sf.material = q->material;
+    }
   } else {
     gpu_triangle tri = sc->triangles[h->index];
     rvec3 v0 = rvec3_from(tri.v0), v1 = rvec3_from(tri.v1), v2 = rvec3_from(tri.v2);

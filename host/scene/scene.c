@@ -104,6 +104,7 @@ void rc_scene_free(rc_scene *scene) {
   free(scene->quadrics);
   free(scene->planes);
   free(scene->csg_leaves);
+  free(scene->csg_triangles);
   for (size_t i = 0; i < scene->csg_count; i++) free(scene->csgs[i].program);
   free(scene->csgs);
   free(scene->origins);

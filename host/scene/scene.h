@@ -52,6 +52,10 @@ typedef struct rc_quadric_def {
   uint32_t material;
   bool solid;
   bool one_sided; /* planes: hit from the normal's side only (RC_QUADRIC_ONE_SIDED) */
+  /* A composite's closed mesh operand (RC_QUADRIC_MESH): triangles [mesh_first, mesh_first +
+   * mesh_count) of rc_scene.csg_triangles; [lo, hi] about `center` is their box. */
+  bool mesh;
+  uint32_t mesh_first, mesh_count, max_crossings;
 } rc_quadric_def;
 
 /* Where primitives came from in the scene file, for errors found after parsing (values
@@ -138,6 +142,8 @@ typedef struct rc_scene {
   size_t csg_leaf_count, csg_leaf_capacity;
   rc_csg_def *csgs;
   size_t csg_count, csg_capacity;
+  rc_triangle_def *csg_triangles; /* of the composites' mesh operands, packed after the triangles */
+  size_t csg_triangle_count, csg_triangle_capacity;
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
   bool srgb_8bit;              /* 8-bit outputs sRGB-encoded (JSON image.encoding); else linear */
   rc_origin *origins;          /* in file order */

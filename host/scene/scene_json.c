@@ -536,7 +536,7 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
 }
 
 /* A mesh object: the file relative to the scene file's folder. */
-static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m) {
+rc_status js_load_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m, int material) {
   const cJSON *f = cJSON_GetObjectItemCaseSensitive(o, "file");
   if (!f) return js_fail(c, "missing field \"file\"");
   js_push_key(c, "file");
@@ -557,7 +557,6 @@ static rc_status parse_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affin
   js_format_path(c, fpath, sizeof fpath);
   snprintf(where, sizeof where, "%s:%d:%d: error: %s", c->file, line, col, fpath);
   js_pop(c);
-  int material = -1;
   if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
     uint32_t id;
     TRY(js_get_material_ref(c, o, &id));
@@ -629,7 +628,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
       TRY(js_check_members(c, o, allowed));
       TRY(js_get_transform(c, o, &m, &transformed));
-      TRY(parse_mesh(c, o, s, &m));
+      TRY(js_load_mesh(c, o, s, &m, -1));
     }
     TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
     js_pop(c);

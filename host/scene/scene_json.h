@@ -73,6 +73,14 @@ rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KIN
 /* scene_quadric.c: the object types that are quadrics ("quadric", "ellipsoid", "cylinder",
  * "cone", "paraboloid", "hyperboloid", "box") and composites ("csg"). Whether `type` is
  * one of them; and the parser of such an object into the scene. */
+/* The triangles of the mesh file o.file (relative to the scene's folder), through m, appended
+ * to the scene; o.material, else `material`, else (-1) the file's own materials. */
+rc_status js_load_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m, int material);
+/* A closed mesh as a composite's operand (csg_mesh.c): its triangles, through t, go to
+ * s->csg_triangles, and *q becomes its leaf (RC_QUADRIC_MESH); *intervals is the most
+ * [in, out] intervals a ray line can have in it (its max_crossings / 2). */
+rc_status js_parse_mesh_operand(jctx *c, const cJSON *o, rc_scene *s, int material, const rc_affine *t,
+                                rc_quadric_def *q, uint32_t *intervals);
 bool js_is_quadric_type(const char *type);
 rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s);
 

@@ -48,6 +48,15 @@ static size_t csg_of_leaf(const rc_scene *s, size_t leaf) {
   return 0;
 }
 
+/* The composite with mesh operand triangle `t` (rc_scene.csg_triangles). */
+static size_t csg_of_mesh_triangle(const rc_scene *s, size_t t) {
+  for (size_t i = 0; i < s->csg_leaf_count; i++) {
+    const rc_quadric_def *q = &s->csg_leaves[i];
+    if (q->mesh && t >= q->mesh_first && t < (size_t)q->mesh_first + q->mesh_count) return csg_of_leaf(s, i);
+  }
+  return 0;
+}
+
 /* Values that are finite in f64 but leave the f32 range once packed would reach the
  * shader as Inf, which Vulkan lets shaders assume away (docs/numerics.md §1). The error names
  * the object in the scene file and the value. */
@@ -63,9 +72,11 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
       BAD(RC_ORIGIN_SPHERE, i, "its centre (relative to the eye, transformed)");
     else if (!isfinite(p->spheres[i].radius * p->spheres[i].radius)) BAD(RC_ORIGIN_SPHERE, i, "its radius squared");
   }
-  for (size_t i = 0; i < s->triangle_count && !field; i++)
-    if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2))
-      BAD(RC_ORIGIN_TRIANGLE, i, "a vertex (relative to the eye, transformed)");
+  for (size_t i = 0; i < p->triangle_total && !field; i++)
+    if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2)) {
+      if (i < s->triangle_count) BAD(RC_ORIGIN_TRIANGLE, i, "a vertex (relative to the eye, transformed)");
+      else BAD(RC_ORIGIN_CSG, csg_of_mesh_triangle(s, i - s->triangle_count), "a vertex of a mesh operand (relative to the eye, transformed)");
+    }
   size_t standalone = s->quadric_count + s->plane_count;
   for (size_t i = 0; i < standalone + s->csg_leaf_count && !field; i++) {
     const gpu_quadric *q = &p->quadrics[i];
@@ -182,7 +193,8 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
 
   /* At least one element each: Vulkan has no zero-sized buffers. */
   p->spheres = rc_alloc(s->sphere_count + 1, sizeof *p->spheres, "packed spheres");
-  p->triangles = rc_alloc(s->triangle_count + 1, sizeof *p->triangles, "packed triangles");
+  p->triangle_total = (uint32_t)(s->triangle_count + s->csg_triangle_count);
+  p->triangles = rc_alloc(p->triangle_total + 1, sizeof *p->triangles, "packed triangles");
   p->materials = rc_alloc(s->material_count + 1, sizeof *p->materials, "packed materials");
   p->lights = rc_alloc(s->light_count + 1, sizeof *p->lights, "packed lights");
   p->transforms = rc_alloc(s->sphere_count + 1, sizeof *p->transforms, "packed transforms");
@@ -201,7 +213,9 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   p->csg_program = rc_alloc((program + 4) / 4 * 4, sizeof *p->csg_program, "packed CSG programs");
   p->csg_program_length = (uint32_t)program;
   p->quadric_total = (uint32_t)(standalone + s->csg_leaf_count);
-  if (!p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals || !p->quadrics ||
+  for (size_t i = 0; i < s->csg_leaf_count; i++) p->mesh_operand_count += s->csg_leaves[i].mesh;
+  p->mesh_operands = rc_alloc(p->mesh_operand_count + 1, sizeof *p->mesh_operands, "packed mesh operands");
+  if (!p->mesh_operands || !p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals || !p->quadrics ||
       !p->csg || !p->csg_program) {
     rc_packed_scene_free(p);
     return RC_ERR_OUT_OF_MEMORY;
@@ -238,6 +252,14 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
       p->triangles[i].normals = p->normal_count++;
     }
   }
+  for (size_t i = 0; i < s->csg_triangle_count; i++) {
+    gpu_triangle *g = &p->triangles[s->triangle_count + i];
+    g->v0 = to_packed(p, s->csg_triangles[i].v[0]);
+    g->v1 = to_packed(p, s->csg_triangles[i].v[1]);
+    g->v2 = to_packed(p, s->csg_triangles[i].v[2]);
+    g->material = s->csg_triangles[i].material;
+    g->normals = RC_NO_NORMALS;
+  }
   for (size_t i = 0; i < s->material_count; i++) {
     const rc_material_def *m = &s->materials[i];
     p->materials[i].ambient = rcm_to_f(m->ambient);
@@ -257,7 +279,16 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   }
   for (size_t i = 0; i < s->quadric_count; i++) pack_quadric(p, &s->quadrics[i], &p->quadrics[i]);
   for (size_t i = 0; i < s->plane_count; i++) pack_plane(p, s, &s->planes[i], &p->quadrics[s->quadric_count + i]);
-  for (size_t i = 0; i < s->csg_leaf_count; i++) pack_quadric(p, &s->csg_leaves[i], &p->quadrics[standalone + i]);
+  for (size_t i = 0, m = 0; i < s->csg_leaf_count; i++) {
+    const rc_quadric_def *q = &s->csg_leaves[i];
+    pack_quadric(p, q, &p->quadrics[standalone + i]);
+    if (!q->mesh) continue;
+    p->quadrics[standalone + i].flags |= RC_QUADRIC_MESH;
+    p->quadrics[standalone + i].mesh_crossings = q->max_crossings;
+    p->mesh_operands[m++] = (rc_mesh_operand){.leaf = (uint32_t)(standalone + i),
+                                              .first = (uint32_t)(s->triangle_count + q->mesh_first),
+                                              .count = q->mesh_count};
+  }
   uint32_t at = 0;
   for (size_t i = 0; i < s->csg_count; i++) {
     const rc_csg_def *c = &s->csgs[i];
@@ -305,7 +336,7 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
     p->spheres[i].center = perturb_vec3(p->spheres[i].center, seed);
     p->spheres[i].radius = perturb_value(p->spheres[i].radius, seed);
   }
-  for (uint32_t i = 0; i < p->frame.triangle_count; i++) {
+  for (uint32_t i = 0; i < p->triangle_total; i++) {
     p->triangles[i].v0 = perturb_vec3(p->triangles[i].v0, seed);
     p->triangles[i].v1 = perturb_vec3(p->triangles[i].v1, seed);
     p->triangles[i].v2 = perturb_vec3(p->triangles[i].v2, seed);
@@ -341,5 +372,6 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->quadrics);
   free(p->csg);
   free(p->csg_program);
+  free(p->mesh_operands);
   memset(p, 0, sizeof *p);
 }

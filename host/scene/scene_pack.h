@@ -7,14 +7,24 @@
 
 #include "scene/scene.h"
 
+/* A composite's closed mesh operand: quadric `leaf` (RC_QUADRIC_MESH) stands for triangles
+ * [first, first + count), which follow the standalone ones. Its tree (mesh_root, mesh_end)
+ * comes from rc_bvh_build_operands (bvh.h). */
+typedef struct rc_mesh_operand {
+  uint32_t leaf, first, count;
+} rc_mesh_operand;
+
 typedef struct rc_packed_scene {
   gpu_frame frame;
   gpu_sphere *spheres;
   gpu_triangle *triangles;
+  uint32_t triangle_total;   /* the standalone ones (frame.triangle_count), then the mesh operands' */
   gpu_material *materials;
   gpu_light *lights;
-  gpu_bvh_node *bvh_nodes; /* NULL until rc_bvh_build (bvh.h) */
-  uint32_t *bvh_prims;     /* object references of the leaves, padded to a multiple of 4 */
+  gpu_bvh_node *bvh_nodes; /* NULL until rc_bvh_build (bvh.h): the object tree, then the mesh operands' */
+  uint32_t *bvh_prims;     /* object (mesh operands: triangle) references of the leaves, padded to a multiple of 4 */
+  uint32_t bvh_node_total, bvh_prim_total; /* of both kinds of tree */
+  bool bvh;                /* the object tree was built (frame.bvh_node_count of its nodes) */
   gpu_transform *transforms; /* of the transformed spheres (at least one element) */
   uint32_t transform_count;
   gpu_vertex_normals *normals; /* of the smooth-shaded triangles (at least one element) */
@@ -24,6 +34,8 @@ typedef struct rc_packed_scene {
   gpu_csg *csg;
   uint32_t *csg_program;   /* padded to a multiple of 4 */
   uint32_t csg_program_length;
+  rc_mesh_operand *mesh_operands;
+  uint32_t mesh_operand_count;
   dvec3 origin; /* world position of the packed space's origin (the eye) */
 } rc_packed_scene;
 

@@ -15,7 +15,7 @@
 
 static const char *const quadric_types[] = {"quadric", "ellipsoid", "cylinder", "cone",
                                              "paraboloid", "hyperboloid", "box", "csg", NULL};
-enum { T_QUADRIC, T_ELLIPSOID, T_CYLINDER, T_CONE, T_PARABOLOID, T_HYPERBOLOID, T_BOX, T_CSG, T_SPHERE };
+enum { T_QUADRIC, T_ELLIPSOID, T_CYLINDER, T_CONE, T_PARABOLOID, T_HYPERBOLOID, T_BOX, T_CSG, T_SPHERE, T_MESH };
 
 bool js_is_quadric_type(const char *type) { return rc_name_index(quadric_types, type) >= 0 || !strcmp(type, "plane"); }
 
@@ -333,6 +333,19 @@ typedef struct {
   dvec3 lo, hi;
 } csg_need;
 
+/* A leaf (need->intervals set): into the scene's leaves and the program. A mesh leaf's
+ * traversal steps are counted once its tree is built (bvh.c, rc_bvh_build). */
+static rc_status add_leaf(rc_scene *s, const rc_quadric_def *q, program *p, csg_need *need) {
+  need->stack = 1;
+  need->steps = 1 + need->intervals;
+  rc_quadric_world_box(q, &need->lo, &need->hi);
+  GROW(s->csg_leaves, s->csg_leaf_count, s->csg_leaf_capacity);
+  s->csg_leaves[s->csg_leaf_count] = *q;
+  GROW(p->code, p->length, p->capacity);
+  p->code[p->length++] = (RC_CSG_LEAF << RC_CSG_OP_SHIFT) | (uint32_t)s->csg_leaf_count++;
+  return RC_OK;
+}
+
 static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inherited, const rc_affine *outer,
                                 program *p, csg_need *need) {
   TRY(js_expect_object(c, o));
@@ -344,8 +357,15 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
   }
   uint32_t type;
   static const char *const leaf_types[] = {"quadric", "ellipsoid", "cylinder", "cone", "paraboloid",
-                                           "hyperboloid", "box", "csg", "sphere", NULL};
+                                           "hyperboloid", "box", "csg", "sphere", "mesh", NULL};
   TRY(js_get_enum(c, o, "type", leaf_types, 0, &type));
+  rc_quadric_def q;
+  if (type == T_MESH) {
+    rc_affine t;
+    TRY(get_composed_transform(c, o, outer, &t));
+    TRY(js_parse_mesh_operand(c, o, s, inherited, &t, &q, &need->intervals));
+    return add_leaf(s, &q, p, need);
+  }
   if (type == T_CSG) {
     if (c->depth + 4 >= RC_JSON_MAX_DEPTH) return js_fail(c, "composites nested too deeply");
     static const char *const allowed[] = {"type", "op", "left", "right", "material", "transform", NULL};
@@ -392,17 +412,9 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     p->code[p->length++] = ((op + 1) << RC_CSG_OP_SHIFT);
     return RC_OK;
   }
-  rc_quadric_def q;
   TRY(parse_quadric(c, o, type, inherited, outer, &q, &need->intervals));
   if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
-  need->stack = 1;
-  need->steps = 1 + need->intervals;
-  rc_quadric_world_box(&q, &need->lo, &need->hi);
-  GROW(s->csg_leaves, s->csg_leaf_count, s->csg_leaf_capacity);
-  s->csg_leaves[s->csg_leaf_count] = q;
-  GROW(p->code, p->length, p->capacity);
-  p->code[p->length++] = (RC_CSG_LEAF << RC_CSG_OP_SHIFT) | (uint32_t)s->csg_leaf_count++;
-  return RC_OK;
+  return add_leaf(s, &q, p, need);
 }
 
 /* The extent of a plane's frame: finite (Vulkan lets shaders assume no Inf), and unused,

@@ -214,6 +214,52 @@ TEST(quadric_paraboloid_along_its_axis_has_one_root) {
              1e-6);
 }
 
+/* The cube [-1, 1]^3 as 12 triangles, some wound in, some out (parity needs no winding). */
+static void cube_triangles(gpu_triangle t[12]) {
+  static const float v[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  static const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                               {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  for (int i = 0; i < 12; i++) {
+    const float *a = v[f[i][0]], *b = v[f[i][1]], *c = v[f[i][2]];
+    t[i] = triangle((vec3){a[0], a[1], a[2]}, (vec3){b[0], b[1], b[2]}, (vec3){c[0], c[1], c[2]});
+  }
+}
+
+/* Crossings of the line o + t d with the cube, in f64 and in f32 (must agree). */
+static int cube_crossings(dvec3 o, dvec3 d) {
+  gpu_triangle t[12];
+  cube_triangles(t);
+  ref_shear_d sd = ref_ray_shear_for_d(d);
+  vec3 of = rcm_to_f(o), df = rcm_to_f(d);
+  ref_shear_f sf = ref_ray_shear_for_f(df);
+  int n = 0, nf = 0;
+  for (int i = 0; i < 12; i++) {
+    n += ref_triangle_crossing_d(o, &sd, t[i]) < FAR;
+    nf += ref_triangle_crossing_f(of, &sf, t[i]) < (float)FAR;
+  }
+  return n == nf ? n : -1;
+}
+
+TEST(mesh_line_through_shared_edges_and_vertices_crosses_once_each) {
+  /* Through the diagonal that splits the faces z = +-1 into two triangles. */
+  CHECK_EQ_INT(cube_crossings(rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1)), 2);
+  /* Through the edges x = y = +-1 (where two faces meet), across the inside. */
+  dvec3 diag = rcm_normalize_d(rcm_make_d(-1, -1, 0));
+  CHECK_EQ_INT(cube_crossings(rcm_make_d(3, 3, 0.25), diag), 2);
+  /* Through the opposite corners (1, 1, 1) and (-1, -1, -1), where fans of triangles meet. */
+  CHECK_EQ_INT(cube_crossings(rcm_make_d(3, 3, 3), rcm_normalize_d(rcm_make_d(-1, -1, -1))), 2);
+  /* Along the outside of an edge, touching it: none or two, never one. */
+  int graze = cube_crossings(rcm_make_d(1, 1, 5), rcm_make_d(0, 0, -1));
+  CHECK(graze == 0 || graze == 2);
+  /* Every line through the cube's centre in a fan of directions: always two. */
+  for (int k = 0; k < 64; k++) {
+    double a = k * 0.0981748, b = k * 0.3926991;
+    dvec3 d = rcm_make_d(cos(a) * cos(b), sin(a), cos(a) * sin(b));
+    CHECK_EQ_INT(cube_crossings(rcm_scale_d(d, -4), d), 2);
+  }
+}
+
 TEST(csg_difference_and_intersection_give_the_interval_ends) {
   /* Unit sphere at 0 (leaf 0) and radius-0.5 sphere at (0, 0, 0.8) (leaf 1), along -z from
    * z = 5: A is [4, 6], B is [3.7, 4.7]. A - B starts where B ends, 4.7, on B's surface,
@@ -232,12 +278,12 @@ TEST(csg_difference_and_intersection_give_the_interval_ends) {
   uint32_t code;
   /* (B's centre is the float nearest 0.8, 1.2e-8 above it.) */
   CHECK_NEAR(ref_intersect_csg_d(&sc, 0, rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.7, 2e-8);
-  CHECK_EQ_INT(code >> 4, 1u);   /* on B */
+  CHECK_EQ_INT(code >> RC_CSG_CODE_LEAF_SHIFT, 1u);   /* on B */
   CHECK_EQ_INT(code & 1u, 1u);   /* flipped: B was subtracted */
-  dvec3 n = ref_quadric_normal_d(&leaves[code >> 4], code, rcm_make_d(0, 0, 0.3), rcm_make_d(0, 0, -1));
+  dvec3 n = ref_quadric_normal_d(&leaves[code >> RC_CSG_CODE_LEAF_SHIFT], code, rcm_make_d(0, 0, 0.3), rcm_make_d(0, 0, -1));
   CHECK(n.z > 0); /* B's inner surface faces up, out of A - B */
   CHECK_NEAR(ref_intersect_csg_d(&sc, 1, rcm_make_d(0, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.0, 1e-12);
-  CHECK_EQ_INT(code >> 4, 0u);
+  CHECK_EQ_INT(code >> RC_CSG_CODE_LEAF_SHIFT, 0u);
   /* Beside B (x = 0.6) the difference is A itself. */
   CHECK_NEAR(ref_intersect_csg_d(&sc, 0, rcm_make_d(0.6, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.2, 1e-12);
 }
@@ -255,6 +301,7 @@ int main(void) {
   RUN(triangle_miss_and_behind);
   RUN(triangle_both_windings_hit);
   RUN(triangle_shared_edge_has_no_crack);
+  RUN(mesh_line_through_shared_edges_and_vertices_crosses_once_each);
   RUN(degenerate_triangle_is_missed);
   RUN(closest_hit_takes_the_nearest_and_lowest_index_on_ties);
   RUN(occluded_only_within_t_max);
