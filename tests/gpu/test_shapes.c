@@ -1,7 +1,7 @@
 /* Shapes of issue 18 on the GPU in f32 and on the CPU reference in f64 and f32: a quadric
  * under a "transform" against the same surface reached another way (a transformed sphere,
- * the cylinder's own axis, a general matrix), and infinite planes against their closed
- * form.
+ * the cylinder's own axis, a general matrix), infinite planes against their closed form,
+ * and closed meshes in composites against the boxes they equal.
  * One case per ctest: test_shapes VKRAYCAST CASE. */
 #include <math.h>
 #include <stdarg.h>
@@ -274,6 +274,77 @@ TEST(one_sided_plane_is_seen_from_its_front_only) {
   }
 }
 
+/* Writes TMP/name.obj: `cubes` cubes [-1, 1]^3 moved by (4 k, 0, 0), 12 triangles each,
+ * the first of each face pair wound outwards and the second inwards (parity must not care). */
+static void write_cubes(const char *name, int cubes) {
+  char path[300];
+  snprintf(path, sizeof path, "%s/%s.obj", tmp, name);
+  FILE *f = fopen(path, "w");
+  if (!f) {
+    printf("  cannot write %s\n", path);
+    rc_test_failed_checks++;
+    return;
+  }
+  static const int face[12][3] = {{1, 3, 2}, {1, 3, 4}, {5, 6, 7}, {5, 8, 7}, {1, 2, 6}, {1, 5, 6},
+                                  {4, 8, 7}, {4, 3, 7}, {1, 5, 8}, {1, 4, 8}, {2, 3, 7}, {2, 6, 7}};
+  for (int k = 0; k < cubes; k++)
+    for (int v = 0; v < 8; v++)
+      fprintf(f, "v %d %d %d\n", 4 * k + ((v == 1 || v == 2 || v == 5 || v == 6) ? 1 : -1), (v % 4 >= 2) ? 1 : -1,
+              v >= 4 ? 1 : -1);
+  for (int k = 0; k < cubes; k++)
+    for (int i = 0; i < 12; i++) fprintf(f, "f %d %d %d\n", 8 * k + face[i][0], 8 * k + face[i][1], 8 * k + face[i][2]);
+  fclose(f);
+}
+
+/* A cube as a closed mesh minus a sphere, against the box minus the same sphere, both
+ * turned and moved by one transform: the mesh's intervals come from parity over its own
+ * BVH, the box's from its slabs, and they bound the same solid. */
+TEST(mesh_cube_minus_sphere_is_the_box_minus_sphere) {
+  write_cubes("cube", 1);
+  const char *t = "\"transform\": {\"rotate_deg\": [25, 35, 0], \"translate\": [0, -0.4, 0]}";
+  const char *sphere = "{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1.3}";
+  char o[1024];
+  snprintf(o, sizeof o, "{\"type\": \"csg\", \"op\": \"difference\", \"material\": \"m\", %s,"
+           " \"left\": {\"type\": \"mesh\", \"file\": \"cube.obj\"}, \"right\": %s}", t, sphere);
+  write_scene("mesh_cube", o);
+  snprintf(o, sizeof o, "{\"type\": \"csg\", \"op\": \"difference\", \"material\": \"m\", %s,"
+           " \"left\": {\"type\": \"box\", \"min\": [-1, -1, -1], \"max\": [1, 1, 1]}, \"right\": %s}", t, sphere);
+  write_scene("box_cube", o);
+  check_alike("mesh_cube", "box_cube", 12);
+}
+
+/* Two cubes in one mesh along the view: a ray line crosses it 4 times. With max_crossings
+ * 2 every backend refuses the scene, naming the composite, and writes nothing; with 4 it
+ * renders the two cubes as the boxes would. */
+TEST(mesh_crossings_beyond_the_bound_fail_loudly) {
+  write_cubes("cubes", 2);
+  const char *layout = "\"transform\": {\"rotate_deg\": [0, 80, 0], \"translate\": [1.2, 0, -1]}";
+  char o[1024];
+  for (int bound = 2; bound <= 4; bound += 2) {
+    snprintf(o, sizeof o, "{\"type\": \"csg\", \"op\": \"union\", \"material\": \"m\", %s,"
+             " \"left\": {\"type\": \"mesh\", \"file\": \"cubes.obj\", \"max_crossings\": %d},"
+             " \"right\": {\"type\": \"sphere\", \"center\": [-9, 0, 0], \"radius\": 0.5}}", layout, bound);
+    char name[32];
+    snprintf(name, sizeof name, "cubes%d", bound);
+    write_scene(name, o);
+  }
+  static const char *const backends[] = {"gpu", "cpu"};
+  for (int b = 0; b < 2; b++) {
+    CHECK_EQ_INT(run("render %s/cubes2.json -o %s/cubes2.%s.png --backend %s --quiet", tmp, tmp, backends[b], backends[b]), 2);
+    CHECK(stderr_contains("cubes2.json:9:4: error: objects[1]: the line of a ray through pixel"));
+    CHECK(stderr_contains("\"max_crossings\""));
+    char out[300];
+    snprintf(out, sizeof out, "%s/cubes2.%s.png", tmp, backends[b]);
+    CHECK(access(out, F_OK) != 0);
+  }
+  snprintf(o, sizeof o, "{\"type\": \"csg\", \"op\": \"union\", \"material\": \"m\", %s,"
+           " \"left\": {\"type\": \"csg\", \"op\": \"union\", \"left\": {\"type\": \"box\", \"min\": [-1, -1, -1], \"max\": [1, 1, 1]},"
+           " \"right\": {\"type\": \"box\", \"min\": [3, -1, -1], \"max\": [5, 1, 1]}},"
+           " \"right\": {\"type\": \"sphere\", \"center\": [-9, 0, 0], \"radius\": 0.5}}", layout);
+  write_scene("boxes", o);
+  check_alike("cubes4", "boxes", 12);
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: test_shapes VKRAYCAST CASE\n");
@@ -291,6 +362,8 @@ int main(int argc, char **argv) {
       {"hyperboloid_two_sheets", test_two_sheet_hyperboloid_is_the_quadric_matrix},
       {"plane_closed_form", test_plane_matches_the_closed_form},
       {"plane_one_sided", test_one_sided_plane_is_seen_from_its_front_only},
+      {"mesh_cube_minus_sphere", test_mesh_cube_minus_sphere_is_the_box_minus_sphere},
+      {"mesh_crossings_bound", test_mesh_crossings_beyond_the_bound_fail_loudly},
   };
   if (!rc_run_cases(cases, sizeof cases / sizeof cases[0], argv[2], &rc_test_passed, &rc_test_failed)) return 2;
   char cleanup[300];
