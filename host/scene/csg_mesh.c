@@ -72,9 +72,9 @@ rc_status js_parse_mesh_operand(jctx *c, const cJSON *o, rc_scene *s, int materi
   size_t before = s->triangle_count;
   rc_status st = js_load_mesh(c, o, s, t, material);
   size_t n = s->triangle_count - before;
-  const rc_triangle_def *tris = s->triangles + before;
   s->triangle_count = before; /* the triangles belong to the composite, not the scene's objects */
   if (st != RC_OK) return st;
+  const rc_triangle_def *tris = s->triangles + before; /* after a failure, s->triangles may be NULL */
   bool open;
   edge e;
   TRY(find_open_edge(tris, n, &open, &e));
