@@ -74,6 +74,10 @@ rc_status js_parse_mesh_operand(jctx *c, const cJSON *o, rc_scene *s, int materi
   size_t n = s->triangle_count - before;
   s->triangle_count = before; /* the triangles belong to the composite, not the scene's objects */
   if (st != RC_OK) return st;
+  if (n == 0) {
+    js_push_key(c, "file");
+    return js_fail(c, "the mesh has no triangle of non-zero area, so it has no inside for a composite");
+  }
   const rc_triangle_def *tris = s->triangles + before; /* after a failure, s->triangles may be NULL */
   bool open;
   edge e;
