@@ -78,26 +78,37 @@ real triangle_t_error(sheared_triangle st, real det) {
   return 3.0 * (gamma_bound(3.0) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / abs(det);
 }
 
+// u + v + w when the edge functions (u, v, w) do not differ in sign, so that the ray
+// passes inside the triangle or on its boundary; 0 when it passes outside or the triangle
+// is degenerate (Woop et al.: det 0 is a miss).
+real enclosing_det(rvec3 e) {
+  if ((e.x < 0.0 || e.y < 0.0 || e.z < 0.0) && (e.x > 0.0 || e.y > 0.0 || e.z > 0.0)) return 0.0;
+  precise real det = e.x + e.y + e.z;
+  return det;
+}
+
+// The ray's t at the triangle: the depths weighted by the edge functions, over det.
+real triangle_t(sheared_triangle st, real det) {
+  precise real t_scaled = st.e.x * st.z.x + st.e.y * st.z.y + st.e.z * st.z.z;
+  precise real t = t_scaled / det;
+  return t;
+}
+
 // The watertight test: inclusive edges (a zero edge function counts as inside); a
 // degenerate triangle (det 0) is missed.
 real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out rvec3 bary) {
   bary = rvec3(0.0);
   sheared_triangle st = shear_triangle(o, sh, tri);
-  real u = st.e.x;
-  real v = st.e.y;
-  real w = st.e.z;
-  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return real(RC_T_FAR);
-  precise real det = u + v + w;
+  real det = enclosing_det(st.e);
   if (det == 0.0) return real(RC_T_FAR);
-  precise real t_scaled = u * st.z.x + v * st.z.y + w * st.z.z;
-  precise real t = t_scaled / det;
+  real t = triangle_t(st, det);
   if (!(t > 0.0 && t <= t_max)) return real(RC_T_FAR);
   // A hit of a spawned ray nearer than t's error bound may be the very surface the ray
   // left (or its neighbour across an edge), so it does not count; this is what lets the
   // error-bound offset stay small. The bound grows as 1/det, so it would drop slivers and
   // huge triangles seen up close: primary rays, which leave no surface, skip it.
   if (spawned_ray && t <= triangle_t_error(st, det)) return real(RC_T_FAR);
-  bary = rvec3(u, v, w) / det;
+  bary = st.e / det;
   return t;
 }
 
@@ -121,17 +132,12 @@ bool edge_owned(real x0, real y0, real x1, real y1, real det) {
 // the count at t = 0, behind the origin, so it is never hit.
 real triangle_crossing(rvec3 o, ray_shear sh, gpu_triangle tri) {
   sheared_triangle st = shear_triangle(o, sh, tri);
-  real u = st.e.x;
-  real v = st.e.y;
-  real w = st.e.z;
-  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return real(RC_T_FAR);
-  precise real det = u + v + w;
+  real det = enclosing_det(st.e);
   if (det == 0.0) return real(RC_T_FAR);
-  if (u == 0.0 && !edge_owned(st.x.y, st.y.y, st.x.z, st.y.z, det)) return real(RC_T_FAR);
-  if (v == 0.0 && !edge_owned(st.x.z, st.y.z, st.x.x, st.y.x, det)) return real(RC_T_FAR);
-  if (w == 0.0 && !edge_owned(st.x.x, st.y.x, st.x.y, st.y.y, det)) return real(RC_T_FAR);
-  precise real t_scaled = u * st.z.x + v * st.z.y + w * st.z.z;
-  precise real t = t_scaled / det;
+  if (st.e.x == 0.0 && !edge_owned(st.x.y, st.y.y, st.x.z, st.y.z, det)) return real(RC_T_FAR);
+  if (st.e.y == 0.0 && !edge_owned(st.x.z, st.y.z, st.x.x, st.y.x, det)) return real(RC_T_FAR);
+  if (st.e.z == 0.0 && !edge_owned(st.x.x, st.y.x, st.x.y, st.y.y, det)) return real(RC_T_FAR);
+  real t = triangle_t(st, det);
   if (spawned_ray && abs(t) <= triangle_t_error(st, det)) return 0.0;
   return t;
 }

@@ -44,6 +44,8 @@ extern _Thread_local uint32_t ref_crossing_blame;
   typedef struct ref_sheared_##S { V x, y, z, e; } ref_sheared_##S;                             \
   ref_sheared_##S ref_shear_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);       \
   R ref_triangle_t_error_##S(const ref_sheared_##S *st, R det);                                 \
+  R ref_enclosing_det_##S(V e);                                                                 \
+  R ref_triangle_t_##S(const ref_sheared_##S *st, R det);                                       \
   bool ref_edge_owned_##S(R x0, R y0, R x1, R y1, R det);                                       \
   R ref_triangle_crossing_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);                  \
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \

@@ -54,18 +54,25 @@ real REF(triangle_t_error)(const ref_sheared *st, real det) {
   return 3 * (REF(gamma_bound)(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / R_ABS(det);
 }
 
+real REF(enclosing_det)(rvec3 e) {
+  if ((e.x < 0 || e.y < 0 || e.z < 0) && (e.x > 0 || e.y > 0 || e.z > 0)) return 0;
+  return e.x + e.y + e.z;
+}
+
+real REF(triangle_t)(const ref_sheared *st, real det) {
+  real t_scaled = st->e.x * st->z.x + st->e.y * st->z.y + st->e.z * st->z.z;
+  return t_scaled / det;
+}
+
 real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, real t_max, rvec3 *bary) {
   *bary = RV(make)(0, 0, 0);
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
-  real u = st.e.x, v = st.e.y, w = st.e.z;
-  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return (real)RC_T_FAR;
-  real det = u + v + w;
+  real det = REF(enclosing_det)(st.e);
   if (det == 0) return (real)RC_T_FAR;
-  real t_scaled = u * st.z.x + v * st.z.y + w * st.z.z;
-  real t = t_scaled / det;
+  real t = REF(triangle_t)(&st, det);
   if (!(t > 0 && t <= t_max)) return (real)RC_T_FAR;
   if (ref_spawned_ray && t <= REF(triangle_t_error)(&st, det)) return (real)RC_T_FAR;
-  *bary = RV(make)(u / det, v / det, w / det);
+  *bary = RV(make)(st.e.x / det, st.e.y / det, st.e.z / det);
   return t;
 }
 
@@ -77,15 +84,12 @@ bool REF(edge_owned)(real x0, real y0, real x1, real y1, real det) {
 
 real REF(triangle_crossing)(rvec3 o, const ref_shear *sh, gpu_triangle tri) {
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
-  real u = st.e.x, v = st.e.y, w = st.e.z;
-  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return (real)RC_T_FAR;
-  real det = u + v + w;
+  real det = REF(enclosing_det)(st.e);
   if (det == 0) return (real)RC_T_FAR;
-  if (u == 0 && !REF(edge_owned)(st.x.y, st.y.y, st.x.z, st.y.z, det)) return (real)RC_T_FAR;
-  if (v == 0 && !REF(edge_owned)(st.x.z, st.y.z, st.x.x, st.y.x, det)) return (real)RC_T_FAR;
-  if (w == 0 && !REF(edge_owned)(st.x.x, st.y.x, st.x.y, st.y.y, det)) return (real)RC_T_FAR;
-  real t_scaled = u * st.z.x + v * st.z.y + w * st.z.z;
-  real t = t_scaled / det;
+  if (st.e.x == 0 && !REF(edge_owned)(st.x.y, st.y.y, st.x.z, st.y.z, det)) return (real)RC_T_FAR;
+  if (st.e.y == 0 && !REF(edge_owned)(st.x.z, st.y.z, st.x.x, st.y.x, det)) return (real)RC_T_FAR;
+  if (st.e.z == 0 && !REF(edge_owned)(st.x.x, st.y.x, st.x.y, st.y.y, det)) return (real)RC_T_FAR;
+  real t = REF(triangle_t)(&st, det);
   if (ref_spawned_ray && R_ABS(t) <= REF(triangle_t_error)(&st, det)) return 0;
   return t;
 }

@@ -15,17 +15,23 @@
 #include "rc_image_test.h"
 #include "rc_test.h"
 
-/* Writes TMP/name.json from a printf format. */
-static void write_json(const char *name, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void write_json(const char *name, const char *fmt, ...) {
+/* TMP/name.ext opened for writing, or NULL with the test failed. */
+static FILE *create_tmp(const char *name, const char *ext) {
   char path[300];
-  snprintf(path, sizeof path, "%s/%s.json", tmp, name);
+  snprintf(path, sizeof path, "%s/%s.%s", tmp, name, ext);
   FILE *f = fopen(path, "w");
   if (!f) {
     printf("  cannot write %s\n", path);
     rc_test_failed_checks++;
-    return;
   }
+  return f;
+}
+
+/* Writes TMP/name.json from a printf format. */
+static void write_json(const char *name, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void write_json(const char *name, const char *fmt, ...) {
+  FILE *f = create_tmp(name, "json");
+  if (!f) return;
   va_list ap;
   va_start(ap, fmt);
   vfprintf(f, fmt, ap);
@@ -277,14 +283,8 @@ TEST(one_sided_plane_is_seen_from_its_front_only) {
 /* Writes TMP/name.obj: `cubes` cubes [-1, 1]^3 moved by (4 k, 0, 0), 12 triangles each,
  * the first of each face pair wound outwards and the second inwards (parity must not care). */
 static void write_cubes(const char *name, int cubes) {
-  char path[300];
-  snprintf(path, sizeof path, "%s/%s.obj", tmp, name);
-  FILE *f = fopen(path, "w");
-  if (!f) {
-    printf("  cannot write %s\n", path);
-    rc_test_failed_checks++;
-    return;
-  }
+  FILE *f = create_tmp(name, "obj");
+  if (!f) return;
   static const int face[12][3] = {{1, 3, 2}, {1, 3, 4}, {5, 6, 7}, {5, 8, 7}, {1, 2, 6}, {1, 5, 6},
                                   {4, 8, 7}, {4, 3, 7}, {1, 5, 8}, {1, 4, 8}, {2, 3, 7}, {2, 6, 7}};
   for (int k = 0; k < cubes; k++)
