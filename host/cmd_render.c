@@ -11,6 +11,7 @@
 #include "gpu_render.h"
 #include "bvh.h"
 #include "output.h"
+#include "part.h"
 #include "precision_budget.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
@@ -20,6 +21,7 @@
 typedef struct {
   const char *scene; /* the positional argument; "-": standard input */
   const char *output, *stats_json, *aov;
+  const char *region_text, *shard_text; /* --region, --shard */
   uint32_t width, height, spp, repeat, threads, perturb, tile, plan_budget;
   int device, tile_budget_ms; /* -1: the default */
   bool quiet, srgb, staging, allow_outside_paths;
@@ -29,6 +31,9 @@ typedef struct {
   double offset_epsilon; /* 0: the scene's */
   /* derived once parsed */
   bool cpu, no_bvh, stats_stdout;
+  rc_region region_asked;
+  uint32_t shard_index, shard_count; /* count 0: no --shard */
+  rc_part_info part;                 /* what the image's header says (part.h) */
   rc_gpu_options gpu;
   rc_load_options load;
 } render_args;
@@ -80,6 +85,14 @@ static const rc_option render_options[] = {
      .help = "let meshes (and the files a mesh names) lie outside the scene\n"
              "file's folder; off by default, so an untrusted scene cannot read\n"
              "other files into the image"},
+    {"--region", NULL, RC_OPT_STRING, ARG(region_text), "X0,Y0,X1,Y1",
+     .heading = "render farms (docs/cluster.md):",
+     .help = "render only columns [X0, X1) and rows [Y0, Y1) of the frame (pbrt's crop\n"
+             "window, in pixels); its pixels are bit-identical to the whole frame's"},
+    {"--shard", NULL, RC_OPT_STRING, ARG(shard_text), "I/N",
+     .help = "render shard I of N (0 <= I < N): full-width bands of rows balanced by\n"
+             "an estimate of their cost; write it as .exr and join the N parts with\n"
+             "`vkraycast merge`"},
     {"--sphere", NULL, RC_OPT_CHOICE, ARG(sphere), "F", .choices = rc_sphere_formula_names,
      .heading = "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):",
      .help = "geometric (default) or algebraic ray/sphere formula"},
@@ -198,6 +211,31 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->gpu.force_staging = a->staging || (force && force[0] && strcmp(force, "0") != 0);
   a->gpu.aov = a->aov != NULL;
   a->load.allow_outside_paths = a->allow_outside_paths;
+  const char *why = NULL;
+  char msg[300];
+  if (a->region_text && a->shard_text) {
+    rc_usage_error(&rc_render_spec, "--region and --shard: a shard is already a region of the frame; give one");
+    return RC_ERR_USAGE;
+  }
+  if (a->region_text && !rc_region_parse(a->region_text, &a->region_asked, &why)) {
+    snprintf(msg, sizeof msg, "--region %s: %s", a->region_text, why);
+    rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  if (a->shard_text && !rc_shard_parse(a->shard_text, &a->shard_index, &a->shard_count, &why)) {
+    snprintf(msg, sizeof msg, "--shard %s: %s", a->shard_text, why);
+    rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  size_t n = strlen(a->output);
+  if (a->shard_text && (n < 4 || strcmp(a->output + n - 4, ".exr") != 0)) {
+    snprintf(msg, sizeof msg,
+             "--shard %s -o %s: a shard is a part for `vkraycast merge`, which needs its float pixels and its "
+             "header: name it .exr",
+             a->shard_text, a->output);
+    rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
   return check_outputs(a);
 }
 
@@ -216,8 +254,13 @@ static double steady(double *v, uint32_t n) {
 /* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
 static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
   bool srgb = a->encoding >= 0 ? a->encoding == 1 : a->srgb || scene->srgb_8bit;
-  return rc_output_open(a->output, a->aov, scene->width, scene->height, srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
-                        a->quantize < 0 ? scene->truncate_8bit : a->quantize == 1, out);
+  rc_image_meta meta[RC_PART_FIELDS];
+  char text[RC_PART_FIELDS][64];
+  int n = rc_part_meta(&a->part, meta, text);
+  const rc_region r = a->part.region;
+  return rc_output_open(a->output, a->aov, rc_region_width(r), rc_region_height(r),
+                        srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+                        a->quantize < 0 ? scene->truncate_8bit : a->quantize == 1, meta, n, out);
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -256,7 +299,8 @@ static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uin
 static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
                                    rc_render_stats *rs, rc_output **out) {
   rc_ref_options opts = {.f64 = a->gpu.f64, .threads = a->threads};
-  uint32_t w = scene->width, h = scene->height;
+  const rc_region region = a->part.region;
+  uint32_t w = rc_region_width(region), h = rc_region_height(region);
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
   double *ms = calloc(a->repeat, sizeof *ms);
   float *rgb = rc_alloc((size_t)w * band * 3, sizeof(float), "one band of the image");
@@ -269,7 +313,8 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     if (last) st = open_output(a, scene, out);
     for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += band) {
       uint32_t rows = h - y0 < band ? h - y0 : band;
-      st = rc_ref_render(packed, &opts, y0, rows, rgb, aov, &fs);
+      rc_region part = {region.x0, region.y0 + y0, region.x1, region.y0 + y0 + rows};
+      st = rc_ref_render(packed, &opts, part, rgb, aov, &fs);
       if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
       if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, aov, *out);
     }
@@ -371,6 +416,54 @@ static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uin
   report_object(s, object, what);
 }
 
+/* The pixels to render: --region, --shard's band of rows, or the frame; and what the
+ * image's header will say about them (part.h). */
+static rc_status resolve_part(render_args *a, const rc_scene *s, const rc_packed_scene *packed) {
+  const uint32_t w = s->width, h = s->height;
+  rc_part_info *p = &a->part;
+  p->width = w, p->height = h;
+  p->region = (rc_region){0, 0, w, h};
+  if (a->region_text) {
+    rc_region r = a->region_asked;
+    if (r.x1 > w || r.y1 > h) {
+      rc_error("--region %s: the frame is %u x %u pixels; a region lies within it (X1 <= %u, Y1 <= %u)",
+               a->region_text, w, h, w, h);
+      return RC_ERR_USAGE;
+    }
+    p->region = r;
+  }
+  if (a->shard_count) {
+    if (a->shard_count > h) {
+      rc_error("--shard %s: the frame has %u rows, and a shard is at least one row: at most %u shards", a->shard_text,
+               h, h);
+      return RC_ERR_USAGE;
+    }
+    double *cost = a->shard_count > 1 ? rc_alloc(h, sizeof *cost, "the shard cost estimate") : NULL;
+    if (a->shard_count > 1 && !cost) return RC_ERR_OUT_OF_MEMORY;
+    if (cost) rc_ref_row_costs(packed, cost);
+    rc_shard_rows(cost, h, a->shard_index, a->shard_count, &p->region.y0, &p->region.y1);
+    free(cost);
+    p->shard_index = a->shard_index, p->shard_count = a->shard_count;
+  }
+  snprintf(p->scene_hash, sizeof p->scene_hash, "%016llx", (unsigned long long)rc_packed_scene_hash(packed));
+  return RC_OK;
+}
+
+/* Every setting that changes a pixel and is not in the packed scene, for the header:
+ * parts that disagree on one are never merged. */
+static void part_settings(render_args *a, const rc_scene *s, const char *backend, const char *precision) {
+  const rc_quality *q = &s->quality;
+  bool srgb = a->encoding >= 0 ? a->encoding == 1 : a->srgb || s->srgb_8bit;
+  bool truncate = a->quantize < 0 ? s->truncate_8bit : a->quantize == 1;
+  snprintf(a->part.settings, sizeof a->part.settings,
+           "backend=%s precision=%s spp=%u accel=%s sphere=%s triangle=%s shadow_offset=%s shadow_epsilon=%.9g "
+           "camera_relative=%s reflection_depth=%u shadows=%s perturb=%u encoding=%s quantize=%s",
+           backend, precision, s->samples_per_pixel, a->no_bvh ? "none" : "bvh", rc_sphere_formula_names[q->sphere],
+           rc_triangle_formula_names[q->triangle], rc_offset_names[q->offset], q->offset_epsilon,
+           q->camera_relative ? "on" : "off", s->reflection_depth, q->shadows ? "on" : "off", a->perturb,
+           srgb ? "srgb" : "linear", truncate ? "truncate" : "round");
+}
+
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
@@ -403,6 +496,14 @@ rc_status rc_cmd_render(int argc, char **argv) {
     /* The plan's traversal estimate uses the depth; 0 means brute force. */
     a.gpu.bvh_depth = packed.bvh && packed.frame.bvh_node_count ? rs.bvh.depth + 1 : 0;
   }
+  if (st == RC_OK) {
+    double t1 = rc_now_ms();
+    st = resolve_part(&a, &scene, &packed);
+    a.gpu.region = a.part.region;
+    rs.part_ms = rc_now_ms() - t1;
+  }
+  rs.region = a.part.region;
+  rs.shard_index = a.part.shard_index, rs.shard_count = a.part.shard_count;
   rs.width = scene.width;
   rs.height = scene.height;
   rs.samples_per_pixel = scene.samples_per_pixel;
@@ -415,7 +516,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rs.materials = scene.material_count;
   rs.shadows = scene.quality.shadows;
   rs.generic_pipeline = a.gpu.generic_pipeline;
-  rs.rays_primary = (uint64_t)scene.width * scene.height * scene.samples_per_pixel;
+  rs.rays_primary = rc_region_pixels(a.part.region) * scene.samples_per_pixel;
   rc_precision_report budget = {0};
   if (st == RC_OK) {
     rc_precision_budget(&packed, scene.quality.sphere == RC_SPHERE_ALGEBRAIC, &budget);
@@ -439,6 +540,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
     /* The reference renders in f64 unless f32 is asked for: it is the accuracy yardstick. */
     a.gpu.f64 = scene.quality.precision != RC_PRECISION_F32;
     rs.precision = a.gpu.f64 ? "f64" : "f32";
+    part_settings(&a, &scene, rs.backend, rs.precision);
+    snprintf(a.part.device, sizeof a.part.device, "%s", rs.device);
     st = render_frames_cpu(&a, &scene, &packed, &rs, &out);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a.device};
@@ -451,6 +554,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rs.driver = driver;
       a.gpu.f64 = gpu_precision(&scene, &budget, &ctx);
       rs.precision = a.gpu.f64 ? "f64" : "f32";
+      part_settings(&a, &scene, rs.backend, rs.precision);
+      snprintf(a.part.device, sizeof a.part.device, "%s (%s)", rs.device, driver);
       st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
       if (rs.gpu.budget_refused) report_loop_budget(&scene, &rs.gpu, ctx.props.deviceName);
       if (rs.gpu.crossing_object != UINT32_MAX)

@@ -23,6 +23,7 @@ struct rc_gpu_renderer {
   rc_gpu_options opts;
   uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
   gpu_frame frame;
+  rc_region region; /* the pixels rendered, within the frame */
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
@@ -78,7 +79,7 @@ static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
 }
 
 static void planner_init(const rc_gpu_renderer *r, rc_tile_planner *p) {
-  rc_tiles_init(p, r->frame.camera.width, r->frame.camera.height, r->opts.tile_size, r->tile_budget_ms,
+  rc_tiles_init(p, rc_region_width(r->region), rc_region_height(r->region), r->opts.tile_size, r->tile_budget_ms,
                 max_tile_pixels(r));
 }
 
@@ -168,7 +169,7 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   VkDeviceSize aov_size = r->opts.aov ? tile_pixels * sizeof(gpu_aov) : sizeof(gpu_aov);
-  size_t band = (size_t)r->frame.camera.width * max_band_rows(r);
+  size_t band = (size_t)rc_region_width(r->region) * max_band_rows(r);
   r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
   r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(gpu_aov), "one band of AOVs") : NULL;
   if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_OUT_OF_MEMORY;
@@ -353,6 +354,9 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->ctx = ctx;
   r->opts = *opts;
   r->frame = scene->frame;
+  r->region = opts->region;
+  if (r->region.x1 == 0) r->region = (rc_region){0, 0, r->frame.camera.width, r->frame.camera.height};
+  RC_ASSERT(r->region.x1 <= r->frame.camera.width && r->region.y1 <= r->frame.camera.height);
   r->mesh_operands = scene->mesh_operand_count > 0;
   r->budget = rc_vk_loop_budget(ctx);
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
@@ -582,17 +586,18 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
   if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
   if (st != RC_OK) return st;
-  uint32_t width = r->frame.camera.width;
+  /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
+  uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
   if (r->band_aov) {
     const gpu_aov *src = vb->mapped;
     for (uint32_t y = 0; y < th; y++)
-      memcpy(r->band_aov + (size_t)y * width + x0, src + (size_t)y * tw, tw * sizeof *src);
+      memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
   }
   const float *acc = ab->mapped;
   for (uint32_t y = 0; y < th; y++) {
     for (uint32_t x = 0; x < tw; x++) {
       const float *a = acc + 4 * ((size_t)y * tw + x);
-      float *o = r->band_rgb + 3 * ((size_t)y * width + (x0 + x));
+      float *o = r->band_rgb + 3 * ((size_t)y * width + (bx + x));
       RC_ASSERT(a[3] == (float)r->frame.samples_per_pixel);
       for (int c = 0; c < 3; c++) o[c] = a[c] / a[3];
     }
@@ -607,7 +612,8 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->shadow_rays = stats->reflection_rays = 0;
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
   stats->crossing_object = UINT32_MAX;
-  const uint32_t w = r->frame.camera.width, h = r->frame.camera.height, batch = stats->plan.batch_samples;
+  const rc_region reg = r->region;
+  const uint32_t w = rc_region_width(reg), h = rc_region_height(reg), batch = stats->plan.batch_samples;
   const uint64_t total = (uint64_t)w * h;
   uint64_t done = 0;
   rc_tile_planner planner;
@@ -617,7 +623,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
     uint32_t rows = rc_tiles_band_rows(&planner, y0, batch);
     for (uint32_t x0 = 0; x0 < w;) {
       uint32_t cols = rc_tiles_cols(&planner, rows, x0, batch);
-      rc_status st = render_tile(r, x0, y0, cols, rows, &planner, stats);
+      rc_status st = render_tile(r, reg.x0 + x0, reg.y0 + y0, cols, rows, &planner, stats);
       if (st != RC_OK) return st;
       x0 += cols;
       done += (uint64_t)cols * rows;

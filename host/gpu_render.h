@@ -5,6 +5,7 @@
 #define RC_GPU_RENDER_H
 
 #include "gpu_plan.h"
+#include "region.h"
 #include "scene/scene_pack.h"
 #include "vk/vk_buffer.h"
 
@@ -30,6 +31,7 @@ typedef struct rc_gpu_options {
   bool generic_pipeline; /* one pipeline for every scene (all primitive kinds, light count,
                             shadows, specular model and bounces read from the frame), to
                             measure what specializing to the scene buys */
+  rc_region region;     /* the pixels to render (region.h); all zero: the whole frame */
 } rc_gpu_options;
 
 #define RC_DEFAULT_TILE_BUDGET_MS 100.0
@@ -65,8 +67,9 @@ typedef struct rc_gpu_renderer rc_gpu_renderer;
 
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats);
-/* Receives the image in bands of rows, top to bottom: rgb (rows * width * 3 floats) and,
- * when the renderer records AOVs, aov (rows * width records); NULL aov otherwise. */
+/* Receives the region's pixels in bands of rows, top to bottom: rgb (rows * width * 3
+ * floats, width the region's) and, when the renderer records AOVs, aov (rows * width
+ * records); NULL aov otherwise. y0 counts from the region's first row. */
 typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *user);
 
 /* Renders one frame, band by band: host memory is one band, whatever the image size. */

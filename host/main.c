@@ -1,5 +1,6 @@
 /* vkraycast: a ray caster whose renderer is a Vulkan compute shader.
  *   vkraycast render SCENE -o OUT [options]   render a scene to an image (cmd_render.c)
+ *   vkraycast merge PARTS... -o OUT           join the parts of a frame (cmd_merge.c)
  *   vkraycast compare A B [options]           metrics between two images (cmd_compare.c)
  *   vkraycast devices                         list the Vulkan devices (cmd_devices.c)
  * Exit status: 0 ok, 1 images differ (compare), 2 bad input or usage, 3 device failure.
@@ -19,6 +20,8 @@ static const char usage[] =
     "\n"
     "commands:\n"
     "  render SCENE -o OUT   render a scene file (or - : standard input) to an image (PNG, EXR, ...)\n"
+    "  merge PARTS... -o OUT join the parts of one frame (render --shard/--region, .exr) into one\n"
+    "                        image, bit for bit the single render's\n"
     "  compare A B           compare two images (or AOV files): error metrics, heat map, exit 1 if beyond\n"
     "                        thresholds\n"
     "  devices               list Vulkan devices\n"
@@ -32,6 +35,7 @@ static const struct {
   const rc_command_spec *spec;
 } commands[] = {
     {"render", rc_cmd_render, &rc_render_spec},
+    {"merge", rc_cmd_merge, &rc_merge_spec},
     {"compare", rc_cmd_compare, &rc_compare_spec},
     {"devices", rc_cmd_devices, &rc_devices_spec},
 };
@@ -89,7 +93,7 @@ int main(int argc, char **argv) {
   }
   int at = find_command(argc, argv);
   if (at < 0) {
-    rc_error("no command given (render, compare or devices)");
+    rc_error("no command given (render, merge, compare or devices)");
     fputs(usage, stderr);
     return rc_status_exit_code(RC_ERR_USAGE);
   }

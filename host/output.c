@@ -49,12 +49,13 @@ static void remember(int slot, rc_image_writer *w) {
 }
 
 rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
-                         rc_encoding enc, bool truncate, rc_output **out) {
+                         rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, rc_output **out) {
   rc_output *o = calloc(1, sizeof *o);
   if (!o) return RC_ERR_OUT_OF_MEMORY;
   o->image_path = image_path, o->aov_path = aov_path, o->width = width;
   char err[512];
-  o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, err, sizeof err);
+  o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, meta, meta_count, err,
+                                  sizeof err);
   if (!o->image) {
     rc_error("%s: cannot write image: %s", image_path, err);
     free(o);
@@ -63,7 +64,7 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
   remember(0, o->image);
   if (aov_path) {
     o->aov = rc_image_writer_open(aov_path, (int)width, (int)height, RC_AOV_CHANNELS, rc_aov_channel_names,
-                                  RC_ENCODING_LINEAR, false, err, sizeof err);
+                                  RC_ENCODING_LINEAR, false, meta, meta_count, err, sizeof err);
     if (!o->aov) {
       rc_error("%s: cannot write the AOV file: %s", aov_path, err);
       rc_output_close(o, false);

@@ -65,6 +65,14 @@ char *rc_stats_json(const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "width", s->width);
   cJSON_AddNumberToObject(o, "height", s->height);
   cJSON_AddNumberToObject(o, "samples_per_pixel", s->samples_per_pixel);
+  const double region[4] = {s->region.x0, s->region.y0, s->region.x1, s->region.y1};
+  cJSON_AddItemToObject(o, "region", cJSON_CreateDoubleArray(region, 4));
+  if (s->shard_count) {
+    char shard[24];
+    snprintf(shard, sizeof shard, "%u/%u", s->shard_index, s->shard_count);
+    cJSON_AddStringToObject(o, "shard", shard);
+  }
+  cJSON_AddNumberToObject(o, "part_ms", s->part_ms);
   cJSON_AddNumberToObject(o, "spheres", (double)s->spheres);
   cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
   cJSON_AddNumberToObject(o, "lights", (double)s->lights);

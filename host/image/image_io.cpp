@@ -221,7 +221,8 @@ bool name_temp(rc_image_writer *w, std::string &err) {
 }  // namespace
 
 extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels,
-                                                 const char *const *names, rc_encoding enc, bool truncate, char *err,
+                                                 const char *const *names, rc_encoding enc, bool truncate,
+                                                 const rc_image_meta *meta, int meta_count, char *err,
                                                  size_t err_len) {
   try {
     auto w = std::make_unique<rc_image_writer>();
@@ -247,6 +248,7 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     }
     spec.attribute("oiio:ColorSpace", w->fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
     spec.attribute("Software", "vkraycast");
+    for (int i = 0; i < meta_count; i++) spec.attribute(meta[i].name, meta[i].value);
     w->path = path;
     w->dir = dir_of(path);
     w->width = width, w->height = height, w->channels = channels;
@@ -374,7 +376,8 @@ namespace {
 
 int write_image(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
                 bool truncate, char *err, size_t err_len) {
-  rc_image_writer *w = rc_image_writer_open(path, width, height, channels, nullptr, enc, truncate, err, err_len);
+  rc_image_writer *w =
+      rc_image_writer_open(path, width, height, channels, nullptr, enc, truncate, nullptr, 0, err, err_len);
   if (!w) return -1;
   if (rc_image_writer_rows(w, height, pixels, err, err_len) != 0) {
     rc_image_writer_close(w, 0, nullptr, 0);
@@ -439,4 +442,53 @@ extern "C" int rc_image_read_named(const char *path, int *width, int *height, in
     set_error(err, err_len, e.what());
     return -1;
   }
+}
+
+struct rc_image_reader {
+  std::unique_ptr<ImageInput> in;
+};
+
+extern "C" rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height, int *channels,
+                                                 bool *float32, char *err, size_t err_len) {
+  try {
+    auto r = std::make_unique<rc_image_reader>();
+    r->in = ImageInput::open(path);
+    if (!r->in) {
+      set_error(err, err_len, OIIO::geterror());
+      return nullptr;
+    }
+    const ImageSpec &spec = r->in->spec();
+    *width = spec.width;
+    *height = spec.height;
+    *channels = spec.nchannels;
+    *float32 = spec.format == TypeDesc::FLOAT;
+    for (const TypeDesc &t : spec.channelformats) *float32 = *float32 && t == TypeDesc::FLOAT;
+    return r.release();
+  } catch (const std::exception &e) {
+    set_error(err, err_len, e.what());
+    return nullptr;
+  }
+}
+
+extern "C" int rc_image_reader_meta(const rc_image_reader *r, const char *name, char *value, size_t len) {
+  const OIIO::ParamValue *p = r->in->spec().find_attribute(name, TypeDesc::STRING);
+  if (!p) return 0;
+  std::snprintf(value, len, "%s", p->get_string().c_str());
+  return 1;
+}
+
+extern "C" int rc_image_reader_rows(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len) {
+  try {
+    if (r->in->read_scanlines(0, 0, y0, y1, 0, 0, r->in->spec().nchannels, TypeDesc::FLOAT, pixels)) return 0;
+    set_error(err, err_len, r->in->geterror());
+    return -1;
+  } catch (const std::exception &e) {
+    set_error(err, err_len, e.what());
+    return -1;
+  }
+}
+
+extern "C" void rc_image_reader_close(rc_image_reader *r) {
+  if (r && r->in) r->in->close();
+  delete r;
 }

@@ -15,6 +15,12 @@ typedef enum {
   RC_ENCODING_SRGB,   /* 8-bit formats store the sRGB-encoded value */
 } rc_encoding;
 
+/* A named string attribute of an image file (EXR header attributes): how the parts of a
+ * render carry their region, scene hash and settings (region.h). */
+typedef struct rc_image_meta {
+  const char *name, *value;
+} rc_image_meta;
+
 /* Writes `path` in the format its extension names: float pixels for EXR, HDR, TIFF with
  * ".exr/.hdr/.tif" and 8 bits for PNG, JPEG, BMP, PPM..., rounded to the nearest level or,
  * with `truncate`, truncated (int)(255 c) as the CSE167 format specifies. The file is written to a temporary
@@ -30,10 +36,12 @@ int rc_image_write(const char *path, int width, int height, int channels, const 
  * format plugin does with errors; close(commit = 1) flushes, fsyncs, names the file and
  * renames it into place, then fsyncs the folder, and fails (-1, with the reason) if any
  * write failed; close(commit = 0) discards it. names: NULL, or one name per channel
- * (float formats only). */
+ * (float formats only). meta: meta_count attributes for the file's header (formats
+ * without such headers drop them). */
 typedef struct rc_image_writer rc_image_writer;
 rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels, const char *const *names,
-                                      rc_encoding enc, bool truncate, char *err, size_t err_len);
+                                      rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count,
+                                      char *err, size_t err_len);
 int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len);
 /* Everything written and fsynced, not yet named: after this succeeds for every file of a
  * run, their closes with commit = 1 only rename (one transaction over several files). */
@@ -54,6 +62,18 @@ int rc_image_read_named(const char *path, int *width, int *height, int *channels
 /* 1 if OpenImageIO can write a file of this name (by its extension), else 0; in the
  * vkraycast binary, -1 when its image module cannot be loaded (the reason on stderr). */
 int rc_image_can_write(const char *path);
+
+/* A reader that hands out rows on demand, so that `vkraycast merge` streams its parts
+ * however large the frame. *float32: every channel is stored as 32-bit float (the
+ * parts' pixels come back bit for bit). */
+typedef struct rc_image_reader rc_image_reader;
+rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height, int *channels, bool *float32,
+                                      char *err, size_t err_len);
+/* The string attribute `name` into value (truncated to len): 1, or 0 when absent. */
+int rc_image_reader_meta(const rc_image_reader *r, const char *name, char *value, size_t len);
+/* Rows [y0, y1), all channels, as float. */
+int rc_image_reader_rows(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len);
+void rc_image_reader_close(rc_image_reader *r);
 
 /* Reads any image OpenImageIO reads, as float. *pixels is malloc'ed (free()). */
 int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err,

@@ -54,9 +54,10 @@ int rc_image_write(const char *path, int width, int height, int channels, const 
 }
 
 rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels, const char *const *names,
-                                      rc_encoding enc, bool truncate, char *err, size_t err_len) {
+                                      rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count,
+                                      char *err, size_t err_len) {
   const rc_image_api *m = module(err, err_len);
-  return m ? m->writer_open(path, width, height, channels, names, enc, truncate, err, err_len) : NULL;
+  return m ? m->writer_open(path, width, height, channels, names, enc, truncate, meta, meta_count, err, err_len) : NULL;
 }
 
 /* A writer exists only once the module is loaded. */
@@ -94,4 +95,23 @@ int rc_image_can_write(const char *path) {
 int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len) {
   const rc_image_api *m = module(err, err_len);
   return m ? m->read(path, width, height, channels, pixels, err, err_len) : -1;
+}
+
+rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height, int *channels, bool *float32,
+                                      char *err, size_t err_len) {
+  const rc_image_api *m = module(err, err_len);
+  return m ? m->reader_open(path, width, height, channels, float32, err, err_len) : NULL;
+}
+
+/* A reader exists only once the module is loaded. */
+int rc_image_reader_meta(const rc_image_reader *r, const char *name, char *value, size_t len) {
+  return api->reader_meta(r, name, value, len);
+}
+
+int rc_image_reader_rows(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len) {
+  return api->reader_rows(r, y0, y1, pixels, err, err_len);
+}
+
+void rc_image_reader_close(rc_image_reader *r) {
+  if (r) api->reader_close(r);
 }

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#define RC_IMAGE_API_VERSION 1u
+#define RC_IMAGE_API_VERSION 2u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
 
 typedef struct rc_image_api {
@@ -19,7 +19,8 @@ typedef struct rc_image_api {
   int (*write)(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
                bool truncate, char *err, size_t err_len);
   rc_image_writer *(*writer_open)(const char *path, int width, int height, int channels, const char *const *names,
-                                  rc_encoding enc, bool truncate, char *err, size_t err_len);
+                                  rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, char *err,
+                                  size_t err_len);
   int (*writer_rows)(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len);
   int (*writer_finish)(rc_image_writer *w, char *err, size_t err_len);
   int (*writer_close)(rc_image_writer *w, int commit, char *err, size_t err_len);
@@ -29,6 +30,11 @@ typedef struct rc_image_api {
                     int max_names, int *name_count, char *err, size_t err_len);
   int (*can_write)(const char *path);
   int (*read)(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len);
+  rc_image_reader *(*reader_open)(const char *path, int *width, int *height, int *channels, bool *float32, char *err,
+                                  size_t err_len);
+  int (*reader_meta)(const rc_image_reader *r, const char *name, char *value, size_t len);
+  int (*reader_rows)(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len);
+  void (*reader_close)(rc_image_reader *r);
 } rc_image_api;
 
 #ifdef __cplusplus

@@ -43,6 +43,7 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
     uint32_t leaf = 0;
     while (node < sc->frame->bvh_node_count) {
       n = &sc->bvh_nodes[node];
+      ref_work++;
       real limit = any ? t_max : h->t;
       if (REF(intersect_box)(rvec3_from(n->lo), rvec3_from(n->hi), o, inv_d, limit) >= (real)RC_T_FAR) {
         node = n->skip;

@@ -88,6 +88,7 @@ uint32_t REF(object_kind)(const ref_scene *sc, uint32_t object, uint32_t *index)
 
 real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max,
                            real *side, rvec3 *bary, uint32_t *part) {
+  ref_work++;
   *side = 0;
   *bary = RV(make)(0, 0, 0);
   *part = 0;

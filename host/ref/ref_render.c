@@ -10,7 +10,7 @@
 
 #include "ref/ref_shader.h"
 
-_Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+_Thread_local uint64_t ref_shadow_rays, ref_reflection_rays, ref_work;
 _Thread_local bool ref_spawned_ray;
 _Thread_local bool ref_aov_enabled, ref_aov_recording;
 _Thread_local gpu_aov ref_aov_record;
@@ -23,7 +23,7 @@ typedef struct {
   bool f64;
   float *rgb;
   gpu_aov *aov;
-  uint32_t y0, rows;
+  rc_region region;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays, reflection_rays;
   atomic_uint crossing_object; /* 1 + the composite of the first crossing failure, 0: none */
@@ -32,7 +32,7 @@ typedef struct {
 
 static void render_pixel(job *j, uint32_t x, uint32_t y) {
   const uint32_t spp = j->frame->samples_per_pixel;
-  size_t index = (size_t)(y - j->y0) * j->frame->camera.width + x;
+  size_t index = (size_t)(y - j->region.y0) * rc_region_width(j->region) + (x - j->region.x0);
   float *o = j->rgb + 3 * index;
   if (j->f64) {
     dvec3 sum = {0, 0, 0};
@@ -57,21 +57,20 @@ static void *worker(void *arg) {
   job *j = arg;
   ref_shadow_rays = ref_reflection_rays = 0;
   ref_aov_enabled = j->aov != NULL;
-  const uint32_t w = j->frame->camera.width, h = j->y0 + j->rows;
+  const rc_region r = j->region;
   for (;;) {
-    uint32_t y0 = j->y0 + atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
-    if (y0 >= h) break;
-    for (uint32_t y = y0; y < y0 + ROWS_PER_JOB && y < h; y++)
-      for (uint32_t x = 0; x < w; x++) render_pixel(j, x, y);
+    uint32_t y0 = r.y0 + atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
+    if (y0 >= r.y1) break;
+    for (uint32_t y = y0; y < y0 + ROWS_PER_JOB && y < r.y1; y++)
+      for (uint32_t x = r.x0; x < r.x1; x++) render_pixel(j, x, y);
   }
   atomic_fetch_add(&j->shadow_rays, ref_shadow_rays);
   atomic_fetch_add(&j->reflection_rays, ref_reflection_rays);
   return NULL;
 }
 
-rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, uint32_t y0, uint32_t rows, float *rgb,
-                        gpu_aov *aov, rc_ref_stats *stats) {
-  job j = {.scene = {.frame = &p->frame,
+static ref_scene scene_of(const rc_packed_scene *p) {
+  return (ref_scene){.frame = &p->frame,
                      .spheres = p->spheres,
                      .triangles = p->triangles,
                      .materials = p->materials,
@@ -83,13 +82,12 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, ui
                      .quadrics = p->quadrics,
                      .csg = p->csg,
                      .csg_program = p->csg_program,
-                     .use_bvh = p->bvh && p->frame.bvh_node_count > 0},
-           .frame = &p->frame,
-           .f64 = opts->f64,
-           .rgb = rgb,
-           .aov = aov,
-           .y0 = y0,
-           .rows = rows};
+                     .use_bvh = p->bvh && p->frame.bvh_node_count > 0};
+}
+
+rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
+                        gpu_aov *aov, rc_ref_stats *stats) {
+  job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = opts->f64, .rgb = rgb, .aov = aov, .region = region};
   atomic_init(&j.next_row, 0);
   atomic_init(&j.shadow_rays, 0);
   atomic_init(&j.reflection_rays, 0);
@@ -117,4 +115,33 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, ui
     return RC_ERR_TOO_LARGE;
   }
   return RC_OK;
+}
+
+/* The cost model of a pixel: a fixed part (ray generation, shading, the write) worth this
+ * many loop steps, plus the steps its first sample's rays take. */
+#define COST_PIXEL_STEPS 8.0
+/* Sampled at most this many rows and columns. */
+#define COST_ROWS 256u
+#define COST_COLS 64u
+
+void rc_ref_row_costs(const rc_packed_scene *p, double *row_cost) {
+  const ref_scene sc = scene_of(p);
+  const uint32_t w = p->frame.camera.width, h = p->frame.camera.height;
+  const uint32_t sy = (h + COST_ROWS - 1) / COST_ROWS, sx = (w + COST_COLS - 1) / COST_COLS;
+  bool aov = ref_aov_enabled;
+  ref_aov_enabled = false;
+  for (uint32_t b = 0; b < h; b += sy) {
+    /* The middle row and columns of each block stand for the block. */
+    uint32_t y = b + sy / 2 < h ? b + sy / 2 : h - 1;
+    double cost = 0;
+    for (uint32_t x = sx / 2; x < w; x += sx) {
+      ref_work = 0;
+      ref_trace_sample_f(&sc, x, y, 0);
+      cost += COST_PIXEL_STEPS + (double)ref_work;
+    }
+    cost *= (double)w / (double)((w - sx / 2 + sx - 1) / sx); /* per sampled pixel, times the row */
+    for (uint32_t r = b; r < b + sy && r < h; r++) row_cost[r] = cost;
+  }
+  ref_aov_enabled = aov;
+  ref_crossing_blame = 0;
 }

@@ -5,6 +5,7 @@
 #ifndef RC_REF_RENDER_H
 #define RC_REF_RENDER_H
 
+#include "region.h"
 #include "scene/scene_pack.h"
 
 typedef struct rc_ref_options {
@@ -22,11 +23,17 @@ typedef struct rc_ref_stats {
   uint32_t crossing_object, crossing_x, crossing_y;
 } rc_ref_stats;
 
-/* Renders into rgb (width * height * 3 floats, rows top to bottom). */
-/* Renders rows [y0, y0 + rows) into rgb (rows * width * 3 floats) and, if aov is not
- * NULL, the gpu_aov records of each pixel's first sample (rows * width). The stats add up
- * over calls. */
-rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, uint32_t y0, uint32_t rows,
-                        float *rgb, gpu_aov *aov, rc_ref_stats *stats);
+/* Renders the pixels of `region` (of the full frame) into rgb (its pixels * 3 floats,
+ * rows top to bottom) and, if aov is not NULL, the gpu_aov records of each pixel's first
+ * sample. The stats add up over calls. */
+rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
+                        gpu_aov *aov, rc_ref_stats *stats);
+
+/* An estimate of each row's cost (row_cost: one value per row of the frame), for cutting
+ * shards (region.h): the loop steps (BVH nodes visited, objects tested) of the first
+ * sample of a grid of at most 256 x 64 pixels, in f32 on this thread, plus a fixed cost
+ * per pixel. Integer counts of the same arithmetic on every machine, so that every
+ * shard of a render cuts the frame alike. */
+void rc_ref_row_costs(const rc_packed_scene *scene, double *row_cost);
 
 #endif

@@ -15,6 +15,8 @@ ref_vec2 ref_sample_offset(const ref_scene *sc, uint32_t px, uint32_t py, uint32
 
 /* The shader's per-invocation globals; here per thread (ref_render.c sums and copies). */
 extern _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
+/* Loop steps taken (BVH nodes visited, objects tested): the shard cost estimate. */
+extern _Thread_local uint64_t ref_work;
 extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
 extern _Thread_local gpu_aov ref_aov_record;
 

@@ -1,6 +1,7 @@
 #include "scene/scene_pack.h"
 
 #include "math/rcm_mat3.h"
+#include "scene/name_table.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -374,4 +375,29 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->csg_program);
   free(p->mesh_operands);
   memset(p, 0, sizeof *p);
+}
+
+uint64_t rc_packed_scene_hash(const rc_packed_scene *p) {
+  const gpu_frame *f = &p->frame;
+  const struct {
+    const void *data;
+    size_t bytes;
+  } parts[] = {{f, sizeof *f},
+               {&p->origin, sizeof p->origin},
+               {p->spheres, f->sphere_count * sizeof *p->spheres},
+               {p->triangles, p->triangle_total * sizeof *p->triangles},
+               {p->materials, f->material_count * sizeof *p->materials},
+               {p->lights, f->light_count * sizeof *p->lights},
+               {p->transforms, p->transform_count * sizeof *p->transforms},
+               {p->normals, p->normal_count * sizeof *p->normals},
+               {p->quadrics, p->quadric_total * sizeof *p->quadrics},
+               {p->csg, f->csg_count * sizeof *p->csg},
+               {p->csg_program, p->csg_program_length * sizeof *p->csg_program}};
+  /* Each part's hash chained into the next, so that moving bytes between parts counts. */
+  uint64_t h[2] = {0, 0};
+  for (size_t i = 0; i < sizeof parts / sizeof *parts; i++) {
+    h[1] = parts[i].bytes ? rc_hash_bytes(parts[i].data, parts[i].bytes) : i;
+    h[0] = rc_hash_bytes(h, sizeof h);
+  }
+  return h[0];
 }

@@ -44,5 +44,9 @@ rc_status rc_scene_pack(const rc_scene *scene, rc_packed_scene *packed);
  * value: the conditioning band's re-renders (render --perturb, compare --band). */
 void rc_packed_scene_perturb(rc_packed_scene *packed, uint32_t seed);
 void rc_packed_scene_free(rc_packed_scene *packed);
+/* A hash of everything the renderers read (the frame and every array, the eye's world
+ * position; not the BVH, which only speeds them up): the parts of one render agree on it
+ * (region.h, `vkraycast merge`). */
+uint64_t rc_packed_scene_hash(const rc_packed_scene *packed);
 
 #endif

@@ -35,7 +35,7 @@ static void write_exr(const char *name, const float (*px)[C], int channels, cons
   float rows[W * H * C];
   for (int i = 0; i < W * H; i++)
     for (int k = 0; k < channels; k++) rows[i * channels + k] = px[i][k];
-  rc_image_writer *w = rc_image_writer_open(path, W, H, channels, names, RC_ENCODING_LINEAR, false, err, sizeof err);
+  rc_image_writer *w = rc_image_writer_open(path, W, H, channels, names, RC_ENCODING_LINEAR, false, NULL, 0, err, sizeof err);
   CHECK(w != NULL);
   if (!w) return;
   CHECK_EQ_INT(rc_image_writer_rows(w, H, rows, err, sizeof err), 0);

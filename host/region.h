@@ -1,0 +1,44 @@
+/* region.h: parts of a frame, for renders that outgrow one machine (docs/cluster.md).
+ *
+ * A region is a window of the full frame in pixels, pbrt's crop window: columns
+ * [x0, x1) and rows [y0, y1). The camera, the BVH and every pixel's sample seeds are
+ * those of the full frame, so a pixel comes out bit-identical whichever region renders
+ * it. A shard I/N is one of N full-width bands of rows, cut where an estimate of the
+ * rows' cost (ref_cost.c) reaches I/N of the total: a band of sky is taller than a band
+ * through a mirror sphere. Pure arithmetic: unit-tested without a device
+ * (tests/unit/test_region.c). */
+#ifndef RC_REGION_H
+#define RC_REGION_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct rc_region {
+  uint32_t x0, y0, x1, y1;
+} rc_region;
+
+static inline uint32_t rc_region_width(rc_region r) { return r.x1 - r.x0; }
+static inline uint32_t rc_region_height(rc_region r) { return r.y1 - r.y0; }
+static inline uint64_t rc_region_pixels(rc_region r) { return (uint64_t)rc_region_width(r) * rc_region_height(r); }
+
+/* "X0,Y0,X1,Y1" (decimal, no spaces); false with the reason in why (a static string). */
+bool rc_region_parse(const char *text, rc_region *r, const char **why);
+/* "I/N" with 0 <= I < N; false with the reason. */
+bool rc_shard_parse(const char *text, uint32_t *index, uint32_t *count, const char **why);
+
+/* The rows of shard `index` of `count` over `height` rows whose costs are row_cost[y]
+ * (non-negative; NULL: all equal). Every shard gets at least one row (count <= height),
+ * the shards tile [0, height) in order, and shard i starts at the first row where the
+ * cost before it reaches i/count of the total, so the cuts depend only on the costs. */
+void rc_shard_rows(const double *row_cost, uint32_t height, uint32_t index, uint32_t count, uint32_t *y0,
+                   uint32_t *y1);
+
+/* Coverage of a width x height frame by n parts: 0 when every pixel lies in exactly one
+ * part. Otherwise 1 with *overlap_a/_b the first two parts that share a pixel, or 2 with
+ * *gap the first uncovered rectangle (its rows where the same columns stay uncovered),
+ * or 3 with *overlap_a the first part that leaves the frame. */
+int rc_region_coverage(const rc_region *parts, size_t n, uint32_t width, uint32_t height, size_t *overlap_a,
+                       size_t *overlap_b, rc_region *gap);
+
+#endif

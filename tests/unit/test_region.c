@@ -1,0 +1,114 @@
+/* Regions and shards (host/region.c): parsing, the cuts of shards by cost, and the
+ * coverage check that `vkraycast merge` relies on. Pure arithmetic, no device. */
+#include "region.h"
+#include "rc_test.h"
+
+#include <stdlib.h>
+
+TEST(parse) {
+  rc_region r;
+  const char *why = NULL;
+  CHECK(rc_region_parse("0,0,640,480", &r, &why));
+  CHECK(r.x0 == 0 && r.y0 == 0 && r.x1 == 640 && r.y1 == 480);
+  CHECK(rc_region_parse("10,20,11,21", &r, &why) && rc_region_pixels(r) == 1);
+  const char *bad[] = {"", "1,2,3", "1,2,3,4,5", "0,0,0,10", "5,0,4,10", "0,0,10,-1", " 0,0,1,1", "0,0,1,1 ",
+                       "0x0,0,1,1", "0,0,1,10000000000", "a,b,c,d"};
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+    why = NULL;
+    CHECK(!rc_region_parse(bad[i], &r, &why) && why != NULL);
+  }
+  uint32_t i, n;
+  CHECK(rc_shard_parse("0/1", &i, &n, &why) && i == 0 && n == 1);
+  CHECK(rc_shard_parse("3/4", &i, &n, &why) && i == 3 && n == 4);
+  const char *bad_shards[] = {"4/4", "0/0", "1", "1/", "/4", "-1/4", "1/4/5", "1 /4"};
+  for (size_t k = 0; k < sizeof bad_shards / sizeof *bad_shards; k++) CHECK(!rc_shard_parse(bad_shards[k], &i, &n, &why));
+}
+
+/* The shards of one count tile [0, height) in order, each at least one row. */
+static void check_tiling(const double *cost, uint32_t height, uint32_t count) {
+  uint32_t expect = 0;
+  for (uint32_t k = 0; k < count; k++) {
+    uint32_t y0 = 99999, y1 = 0;
+    rc_shard_rows(cost, height, k, count, &y0, &y1);
+    CHECK_EQ_INT(y0, expect);
+    CHECK(y1 > y0);
+    expect = y1;
+  }
+  CHECK_EQ_INT(expect, height);
+}
+
+TEST(shards_tile_the_frame) {
+  double cost[300];
+  for (uint32_t y = 0; y < 300; y++) cost[y] = y < 200 ? 1.0 : 50.0; /* sky, then a mirror */
+  for (uint32_t count = 1; count <= 300; count += count < 10 ? 1 : 37) {
+    check_tiling(NULL, 300, count);
+    check_tiling(cost, 300, count);
+  }
+  check_tiling(cost, 300, 300); /* one row each */
+  /* One row holding all the cost: the others still get a row each. */
+  double spike[7] = {0, 0, 0, 100, 0, 0, 0};
+  for (uint32_t count = 1; count <= 7; count++) check_tiling(spike, 7, count);
+  double zero[5] = {0};
+  check_tiling(zero, 5, 3);
+}
+
+TEST(shards_balance_cost) {
+  /* 200 cheap rows, then 100 rows 50 times costlier: 4 shards of 1/4 of the cost each
+   * (5,200 / 4 = 1,300): the first takes all the cheap rows and 22 costly ones. */
+  double cost[300], total = 0;
+  for (uint32_t y = 0; y < 300; y++) total += cost[y] = y < 200 ? 1.0 : 50.0;
+  double max_share = 0;
+  for (uint32_t k = 0; k < 4; k++) {
+    uint32_t y0, y1;
+    rc_shard_rows(cost, 300, k, 4, &y0, &y1);
+    double sum = 0;
+    for (uint32_t y = y0; y < y1; y++) sum += cost[y];
+    if (sum / total > max_share) max_share = sum / total;
+    if (k == 0) CHECK_EQ_INT(y1, 222);
+  }
+  /* Within one row's cost of the ideal quarter. */
+  CHECK(max_share <= 0.25 + 50.0 / total);
+  /* Equal costs: equal shards, the remainder spread. */
+  uint32_t y0, y1;
+  rc_shard_rows(NULL, 10, 1, 3, &y0, &y1);
+  CHECK(y0 == 3 && y1 == 6);
+}
+
+TEST(coverage) {
+  uint32_t w = 64, h = 48;
+  size_t a = 99, b = 99;
+  rc_region gap;
+  rc_region whole[] = {{0, 0, 64, 48}};
+  CHECK_EQ_INT(rc_region_coverage(whole, 1, w, h, &a, &b, &gap), 0);
+  /* Uneven rectangles that tile the frame. */
+  rc_region tiles[] = {{0, 0, 64, 10}, {0, 10, 17, 48}, {17, 10, 64, 30}, {17, 30, 40, 48}, {40, 30, 64, 48}};
+  CHECK_EQ_INT(rc_region_coverage(tiles, 5, w, h, &a, &b, &gap), 0);
+  /* One missing: the gap is that rectangle. */
+  rc_region missing[] = {{0, 0, 64, 10}, {0, 10, 17, 48}, {17, 30, 40, 48}, {40, 30, 64, 48}};
+  CHECK_EQ_INT(rc_region_coverage(missing, 4, w, h, &a, &b, &gap), 2);
+  CHECK(gap.x0 == 17 && gap.y0 == 10 && gap.x1 == 64 && gap.y1 == 30);
+  /* A part given twice. */
+  rc_region twice[] = {{0, 0, 64, 10}, {0, 10, 64, 48}, {0, 0, 64, 10}};
+  CHECK_EQ_INT(rc_region_coverage(twice, 3, w, h, &a, &b, &gap), 1);
+  CHECK(a == 0 && b == 2);
+  /* Overlap by one pixel, with the areas adding up to the frame's. */
+  rc_region shifted[] = {{0, 0, 64, 11}, {0, 10, 64, 47}};
+  CHECK_EQ_INT(rc_region_coverage(shifted, 2, w, h, &a, &b, &gap), 1);
+  /* Outside the frame. */
+  rc_region outside[] = {{0, 0, 65, 48}};
+  CHECK_EQ_INT(rc_region_coverage(outside, 1, w, h, &a, &b, &gap), 3);
+  CHECK(a == 0);
+  /* A hole in the middle of a row. */
+  rc_region hole[] = {{0, 0, 64, 20}, {0, 20, 30, 21}, {31, 20, 64, 21}, {0, 21, 64, 48}};
+  CHECK_EQ_INT(rc_region_coverage(hole, 4, w, h, &a, &b, &gap), 2);
+  CHECK(gap.x0 == 30 && gap.y0 == 20 && gap.x1 == 31 && gap.y1 == 21);
+}
+
+int main(void) {
+  TEST_MAIN_BEGIN
+  RUN(parse);
+  RUN(shards_tile_the_frame);
+  RUN(shards_balance_cost);
+  RUN(coverage);
+  TEST_MAIN_END
+}
