@@ -14,6 +14,7 @@ packages=(
   libcjson-dev
   libassimp-dev assimp-testmodels
   clang libclang-rt-14-dev
+  slurmctld slurmd slurm-client munge
 )
 
 missing=()

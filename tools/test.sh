@@ -23,7 +23,8 @@ cmake --build build-asan -j"$(nproc)" >&2
 # gpu_vs_cpu (tolerances between backends on full-size renders: gpu_render_examples
 # test renders the same scenes on both backends under ASan), parse_scale (parsing time;
 # the fuzzers and strict_input run the parsers under ASan) and memory_per_frame (peak RSS,
-# which ASan's own allocator decides) run only in the pass above.
+# which ASan's own allocator decides) run only in the pass above, and so does slurm (it
+# tests the Slurm scripts; `merge` runs the same render and merge code under ASan).
 (cd build-asan && ctest --output-on-failure --timeout 1800 -j"$(nproc)" \
-  -E 'extreme_S(0[2-8]|1[0-9]|23)|gpu_vs_cpu|parse_scale|memory_per_frame' "$@")
+  -E 'extreme_S(0[2-8]|1[0-9]|23)|gpu_vs_cpu|parse_scale|memory_per_frame|slurm' "$@")
 if [ -x tools/fuzz.sh ]; then tools/fuzz.sh; fi

@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# Parts of a frame merged bit for bit (docs/cluster.md): for the GPU and the CPU backend,
+# f32 and f64, 1 and 16 samples per pixel, the showcase (a mirror sphere above a floor,
+# sky above: rows of very different cost) is rendered whole and as 3 shards; the shards
+# merged into float EXR and 8-bit PNG must equal the whole render's pixels (the PNG's
+# bytes). The shards must be of uneven size (cut by cost) and cut alike whatever the
+# backend and precision. Uneven --region rectangles merge too. Then every way a merge can
+# be wrong is refused with exit 2, a message naming the problem, and no file written.
+# Usage: test_merge.sh VKRAYCAST SCENES WORKDIR
+set -uo pipefail
+bin=$1 scenes=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+source "$(dirname "$0")/../reliability/check.sh"
+scene=$scenes/showcase.json
+size=(--width 64 --height 48)
+region_of() { tr -d ' \n\t' <"$1" | sed -n 's/.*"region":\[\([0-9,]*\)\].*/\1/p'; }
+
+# Pixels equal bit for bit: no channel differs by more than 0.
+same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
+
+# Under the sanitizers (tools/test.sh's second pass) the same code paths run on fewer
+# combinations: the GPU in f32 at 16 spp and the CPU in f64 at 1 spp, plus what the
+# refusals below need.
+combos=()
+for backend in gpu cpu; do
+  for precision in f32 f64; do
+    for spp in 1 16; do
+      combos+=("$backend $precision $spp")
+    done
+  done
+done
+[[ -z ${ASAN_OPTIONS:-} ]] || combos=("gpu f32 1" "gpu f32 16" "gpu f64 1" "cpu f32 1" "cpu f64 1")
+declare -A cuts
+for combo in "${combos[@]}"; do
+  read -r backend precision spp <<<"$combo"
+  tag=$backend-$precision-$spp
+  args=(--backend "$backend" --precision "$precision" --spp "$spp" "${size[@]}" --quiet)
+  "$bin" render "$scene" "${args[@]}" -o "$work/$tag-whole.exr" || { check "$tag whole" "render failed"; continue; }
+  "$bin" render "$scene" "${args[@]}" -o "$work/$tag-whole.png" || { check "$tag whole png" "render failed"; continue; }
+  parts=() rows=()
+  for i in 0 1 2; do
+    "$bin" render "$scene" "${args[@]}" --shard $i/3 -o "$work/$tag-$i.exr" --stats-json "$work/$tag-$i.json"
+    parts+=("$work/$tag-$i.exr")
+    IFS=, read -r _ y0 _ y1 <<<"$(region_of "$work/$tag-$i.json")"
+    rows+=($((y1 - y0)))
+  done
+  cuts[$tag]="${rows[*]}"
+  why=ok
+  [[ ${rows[0]} != "${rows[1]}" || ${rows[1]} != "${rows[2]}" ]] || why="shards of equal size (${rows[*]}): not cut by cost"
+  check "$tag shards uneven (${rows[*]} rows)" "$why"
+  # Parts in any order.
+  "$bin" merge "${parts[2]}" "${parts[0]}" "${parts[1]}" -o "$work/$tag-merged.exr" --quiet &&
+    "$bin" merge "${parts[@]}" -o "$work/$tag-merged.png" --quiet
+  why=ok
+  same_pixels "$work/$tag-merged.exr" "$work/$tag-whole.exr" || why="merged EXR differs from the whole render"
+  check "$tag merged exr" "$why"
+  why=ok
+  cmp -s "$work/$tag-merged.png" "$work/$tag-whole.png" || why="merged PNG differs from the whole render"
+  check "$tag merged png" "$why"
+done
+# The cuts depend on the scene only (the f32 reference's estimate), not on the backend,
+# the precision or the sample count: every shard of one render cuts the frame alike.
+why=ok
+for tag in "${!cuts[@]}"; do [[ ${cuts[$tag]} == "${cuts[gpu-f32-1]}" ]] || why="$tag cut ${cuts[$tag]}, gpu-f32-1 ${cuts[gpu-f32-1]}"; done
+check "cuts alike on every backend" "$why"
+
+# Uneven regions (pbrt crop windows) that tile the frame, GPU f32 at 4 spp.
+args=(--spp 4 "${size[@]}" --quiet)
+"$bin" render "$scene" "${args[@]}" -o "$work/r-whole.exr"
+regions=(0,0,64,7 0,7,13,48 13,7,64,30 13,30,50,48 50,30,64,48)
+rparts=()
+for r in "${regions[@]}"; do
+  "$bin" render "$scene" "${args[@]}" --region "$r" -o "$work/r-$r.exr"
+  rparts+=("$work/r-$r.exr")
+done
+"$bin" merge "${rparts[@]}" -o "$work/r-merged.exr" --quiet
+why=ok
+same_pixels "$work/r-merged.exr" "$work/r-whole.exr" || why="merged regions differ from the whole render"
+check "regions merged" "$why"
+
+# `expect_merge_refusal NAME MESSAGE PARTS...`: exit 2, MESSAGE on stderr, no output.
+expect_merge_refusal() {
+  local name=$1 want=$2
+  shift 2
+  rm -f "$work/bad.png"
+  timeout 60 "$bin" merge "$@" -o "$work/bad.png" 2>"$work/err"
+  local got=$? why=ok
+  [[ $got == 2 ]] || why="exit status $got, expected 2"
+  grep -qF -- "$want" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"); expected: $want"
+  [[ ! -e $work/bad.png ]] || why="$why; an image was written"
+  check "$name" "$why"
+}
+p=$work/gpu-f32-1
+expect_merge_refusal "missing shard" "shard 1/3 is missing" "$p-0.exr" "$p-2.exr"
+expect_merge_refusal "missing region" "no part holds the pixels 13,7,64,30" "${rparts[@]:0:2}" "${rparts[@]:3}"
+expect_merge_refusal "shard twice" "both hold the pixels" "$p-0.exr" "$p-1.exr" "$p-1.exr" "$p-2.exr"
+expect_merge_refusal "other spp" "rendered with spp=16, but" "$p-0.exr" "$work/gpu-f32-16-1.exr" "$p-2.exr"
+expect_merge_refusal "other backend" "rendered with backend=cpu, but" "$p-0.exr" "$work/cpu-f32-1-1.exr" "$p-2.exr"
+expect_merge_refusal "other precision" "rendered with precision=f64, but" "$p-0.exr" "$work/gpu-f64-1-1.exr" "$p-2.exr"
+expect_merge_refusal "a PNG part" "a part is 3 channels of 32-bit float" "$p-0.exr" "$work/gpu-f32-1-whole.png" "$p-2.exr"
+expect_merge_refusal "a missing part" "cannot read the part" "$p-0.exr" "$work/nothing.exr" "$p-2.exr"
+# A shard of a changed scene (a light moved): its packed scene differs.
+sed 's/"position": \[-4, 6, 5\]/"position": [-4, 6, 5.5]/' "$scene" >"$work/moved.json"
+moved=$work/moved.json
+"$bin" render "$moved" "${size[@]}" --spp 1 --precision f32 --quiet --shard 1/3 -o "$work/moved-1.exr" 2>/dev/null
+expect_merge_refusal "other scene" "its packed scene (hash" "$p-0.exr" "$work/moved-1.exr" "$p-2.exr"
+# A frame of another size.
+"$bin" render "$scene" --width 64 --height 50 --spp 1 --precision f32 --quiet --shard 1/3 -o "$work/tall-1.exr"
+expect_merge_refusal "other frame" "a part of a 64 x 50 frame" "$p-0.exr" "$work/tall-1.exr" "$p-2.exr"
+# The output may not be one of the parts.
+rm -f "$work/err"
+"$bin" merge "$p-0.exr" "$p-1.exr" "$p-2.exr" -o "$p-1.exr" 2>"$work/err"
+got=$? why=ok
+[[ $got == 2 ]] || why="merging over a part was not refused (exit $got)"
+check "output is a part" "$why"
+
+# Render options: refused before anything renders.
+expect_refusal "shard to png" "$scene" "name it .exr" --shard 0/2
+rm -f "$work/o.exr"
+for bad in "--shard 3/3" "--shard 1" "--region 0,0,65,48" "--region 5,5,5,9" "--shard 0/49" "--region 0,0,1,1 --shard 0/2"; do
+  # shellcheck disable=SC2086
+  timeout 60 "$bin" render "$scene" "${size[@]}" --quiet -o "$work/o.exr" $bad 2>"$work/err"
+  got=$? why=ok
+  [[ $got == 2 ]] || why="exit status $got, expected 2"
+  [[ ! -e $work/o.exr ]] || why="$why; an image was written"
+  check "render $bad" "$why"
+done
+finish

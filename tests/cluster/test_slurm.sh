@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The Slurm scripts on a real, single-node Slurm (tests/cluster/slurm_node.sh): the
+# showcase as a 4-task job array plus the dependent merge (tools/slurm/submit.sh) equals
+# a single render byte for byte. Then a shard that fails (its output name is taken by a
+# folder): the merge runs anyway, writes nothing and names the shard and the command
+# that renders it again; tools/slurm/resubmit.sh renders it alone (sbatch --array=2) and
+# merges, and the image equals the single render.
+# Usage: test_slurm.sh VKRAYCAST SCENES WORKDIR
+set -uo pipefail
+bin=$1 scenes=$2 work=$3
+here=$(cd "$(dirname "$0")" && pwd)
+tools=$here/../../tools/slurm
+rm -rf "$work" && mkdir -p "$work"
+if [[ $(id -u) != 0 ]]; then
+  echo "skipped: slurmd starts jobs as their users, which needs root (CI runs as root)"
+  exit 77
+fi
+for d in munged slurmctld slurmd sbatch; do
+  command -v "$d" >/dev/null || { echo "FAIL: $d is missing: tools/setup.sh installs slurmctld, slurmd, slurm-client and munge"; exit 1; }
+done
+source "$here/../reliability/check.sh"
+source "$here/slurm_node.sh"
+slurm_start "$work/slurm" || { echo "FAIL: Slurm did not start"; exit 1; }
+export VKRAYCAST=$bin
+size=(--width 128 --height 96)
+"$bin" render "$scenes/showcase.json" "${size[@]}" --quiet -o "$work/whole.png"
+
+# The whole frame as 4 shards and a merge.
+read -r array merge < <("$tools/submit.sh" -n 4 "$scenes/showcase.json" "$work/sharded.png" "${size[@]}")
+slurm_wait "$array" "$merge"
+why=ok
+cmp -s "$work/sharded.png" "$work/whole.png" || why="the merged image differs from the single render: $(cat "$work"/sharded.png.parts/*.log 2>/dev/null | tail -5)"
+check "4 shards and a merge" "$why"
+rows=()
+for i in 0 1 2 3; do rows+=("$(tr -d ' \n\t' <"$work/sharded.png.parts/part-$i.json" | sed -n 's/.*"region":\[0,\([0-9]*\),128,\([0-9]*\)\].*/\1-\2/p')"); done
+why=ok
+[[ ${#rows[@]} == 4 && -n ${rows[3]} ]] || why="shard regions: ${rows[*]}"
+check "4 shards of rows ${rows[*]}" "$why"
+
+# A shard that fails, found by the merge, rendered again alone.
+parts=$work/failing.parts
+mkdir -p "$parts/part-2.exr"
+read -r array merge < <("$tools/submit.sh" -n 4 -p "$parts" "$scenes/showcase.json" "$work/failing.png" "${size[@]}")
+slurm_wait "$array" "$merge"
+log=$(cat "$parts"/vkraycast-merge-*.log 2>/dev/null)
+why=ok
+[[ ! -e $work/failing.png ]] || why="an image was written"
+grep -qF "shard 2/4 is missing" <<<"$log" || why="$why; the merge did not name shard 2/4: $log"
+grep -qF "resubmit.sh $parts 2" <<<"$log" || why="$why; no re-run command"
+state=$(scontrol show job "${array}_2" 2>/dev/null | sed -n 's/.*JobState=\([A-Z]*\).*/\1/p')
+[[ $state == FAILED ]] || why="$why; shard 2's task is $state, expected FAILED"
+check "a failed shard is named" "$why"
+rmdir "$parts/part-2.exr"
+read -r shard merge < <("$tools/resubmit.sh" "$parts" 2)
+slurm_wait "$shard" "$merge"
+why=ok
+cmp -s "$work/failing.png" "$work/whole.png" || why="after the re-run the image differs or is missing"
+check "the shard rendered again alone, merged" "$why"
+slurm_stop
+finish
