@@ -22,29 +22,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 
-# A scene around a mesh file: framed from its bounding box, a floor under it, two lights.
-mesh_scene() { # name file [transform-json]
-  read -r x0 y0 z0 x1 y1 z1 _ < <(build/bench_embree --bbox "$2")
-  awk -v x0="$x0" -v y0="$y0" -v z0="$z0" -v x1="$x1" -v y1="$y1" -v z1="$z1" -v file="$2" 'BEGIN {
-    cx = (x0 + x1) / 2; cy = (y0 + y1) / 2; cz = (z0 + z1) / 2
-    r = sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2 + (z1 - z0) ^ 2) / 2; d = r / sin(3.14159265 / 9) * 1.05
-    printf "{ \"image\": { \"width\": 1024, \"height\": 768 },\n"
-    printf "  \"camera\": { \"eye\": [%g, %g, %g], \"look_at\": [%g, %g, %g], \"fov_y_deg\": 40 },\n",
-      cx + 0.6 * d, cy + 0.45 * d, cz + 0.66 * d, cx, cy, cz
-    printf "  \"materials\": { \"m\": { \"ambient\": [0.05, 0.05, 0.05], \"diffuse\": [0.7, 0.6, 0.5], \"specular\": [0.3, 0.3, 0.3], \"shininess\": 30 },\n"
-    printf "                 \"floor\": { \"ambient\": [0.05, 0.05, 0.05], \"diffuse\": [0.6, 0.6, 0.6] } },\n"
-    printf "  \"lights\": [ { \"type\": \"point\", \"position\": [%g, %g, %g], \"intensity\": [%g, %g, %g] },\n",
-      cx - 2 * r, cy + 3 * r, cz + 2 * r, 10 * r * r, 10 * r * r, 10 * r * r
-    printf "              { \"type\": \"point\", \"position\": [%g, %g, %g], \"intensity\": [%g, %g, %g] } ],\n",
-      cx + 3 * r, cy + 1.5 * r, cz - r, 4 * r * r, 4 * r * r, 4 * r * r
-    printf "  \"objects\": [ { \"type\": \"mesh\", \"file\": \"%s\", \"material\": \"m\" },\n", file
-    f = 4 * r
-    printf "    { \"type\": \"triangle\", \"vertices\": [[%g, %g, %g], [%g, %g, %g], [%g, %g, %g]], \"material\": \"floor\" },\n",
-      cx - f, y0, cz - f, cx - f, y0, cz + f, cx + f, y0, cz + f
-    printf "    { \"type\": \"triangle\", \"vertices\": [[%g, %g, %g], [%g, %g, %g], [%g, %g, %g]], \"material\": \"floor\" } ] }\n",
-      cx - f, y0, cz - f, cx + f, y0, cz + f, cx + f, y0, cz - f
-  }' >"$work/$1.json"
-}
+# A scene around a mesh file (tools/mesh_scene.sh).
+mesh_scene() { tools/mesh_scene.sh "$2" >"$work/$1.json"; }
 
 for n in 1000 100000 1000000; do
   build/gen_mesh $n "$work/mesh$n.ply" >/dev/null

@@ -6,14 +6,23 @@
 # error against a 256-spp f64 render; acne and leaks where the scene defines them), and
 # writes docs/accuracy.csv, a markdown table and a PNG plot (gnuplot) with the Pareto front.
 #   tools/tradeoff.sh [OUTDIR]      (REPEAT=5 SIZE=160)
+# On a cluster each (scene, variant, spp) point is a task of its own
+# (tools/slurm/sweep.sh): TRADEOFF_POINT=I renders point I of 0..251 into the shared
+# folder TRADEOFF_WORK; TRADEOFF_GATHER=1 then writes the CSV, table and plot from there;
+# TRADEOFF_COUNT=1 prints the number of points.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/docs}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-bin=$root/build/vkraycast
+if [[ -n ${TRADEOFF_WORK:-} ]]; then
+  work=$TRADEOFF_WORK
+  mkdir -p "$work/rows"
+else
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  mkdir -p "$work/rows"
+fi
+bin=${VKRAYCAST:-$root/build/vkraycast}
 [[ -x $bin ]] || { echo "build first (tools/demo.sh)" >&2; exit 2; }
-command -v gnuplot >/dev/null || { echo "installing gnuplot-nox for the plot" >&2; apt-get install -y -qq gnuplot-nox >&2; }
 repeat=${REPEAT:-5} size=${SIZE:-160}
 ex=$root/tests/extremes/scenes
 scenes=("$ex/S01_baseline.json" "$ex/S03_distance_1e3.json" "$ex/S07_closed_mesh_embree.json"
@@ -30,47 +39,72 @@ variants=(
   "V6-f64|--precision f64")
 num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 csv=$out/accuracy.csv
-# PLOT_ONLY=1: the table and plot again from an existing accuracy.csv, rendering nothing.
-if [[ ${PLOT_ONLY:-0} != 1 ]]; then
-echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,rms_error,max_error,acne_pct,leak_pct" >"$csv"
+spps=(1 4 16 64)
+points=$((${#scenes[@]} * ${#variants[@]} * ${#spps[@]}))
 # One tile per frame (lavapipe's default, made explicit for other devices): every
 # variant pays the same one dispatch per batch. 160x160 so that the shading, not
 # lavapipe's ~8 ms fixed cost per dispatch, decides the times.
 common=(--width "$size" --height "$size" --tile "$size" --quiet --allow-outside-paths)
-for s in "${scenes[@]}"; do
+# Point I (scene-major, then variant, then spp) into $work/rows/I.csv. Its references
+# are rendered once into $work (tasks that race render the same file, renamed into place).
+point() {
+  local i=$1
+  local s=${scenes[$((i / (${#variants[@]} * ${#spps[@]})))]}
+  local v=${variants[$((i / ${#spps[@]} % ${#variants[@]}))]} spp=${spps[$((i % ${#spps[@]}))]}
+  local n vn opts t
   n=$(basename "$s" .json)
-  "$bin" render "$s" -o "$work/$n.ref256.exr" --backend cpu --precision f64 --spp 256 "${common[@]}" 2>/dev/null
-  for v in "${variants[@]}"; do
-    vn=${v%%|*} opts=${v#*|}
-    for spp in 1 4 16 64; do
-      t=$work/$n.$vn.$spp
-      # The AOVs record each pixel's first sample, whose position depends on spp: the
-      # decision reference renders the same samples.
-      [[ -f $work/$n.ref$spp.aov.exr ]] || "$bin" render "$s" -o "$work/$n.ref$spp.exr" --aov "$work/$n.ref$spp.aov.exr" \
-        --backend cpu --precision f64 --spp "$spp" "${common[@]}" 2>/dev/null
-      # shellcheck disable=SC2086
-      "$bin" render "$s" -o "$t.exr" --aov "$t.aov.exr" --spp "$spp" --repeat "$repeat" --stats-json "$t.json" \
-        "${common[@]}" $opts 2>/dev/null
-      "$bin" compare "$t.aov.exr" "$work/$n.ref$spp.aov.exr" --json >"$t.dec.json" || true
-      "$bin" compare "$t.exr" "$work/$n.ref256.exr" --json >"$t.col.json" || true
-      px=$((size * size)) hits=$(num a_hits "$t.dec.json") shadowed=$(num a_shadowed "$t.dec.json")
-      mm=$(( $(num hit_mismatch "$t.dec.json") + $(num object_mismatch "$t.dec.json") + $(num shadow_mismatch "$t.dec.json") ))
-      acne=0 leak=0
-      case $n in
-        S16_*) acne=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * a / h : 0 }') ;;
-        S07_*) leak=$(awk -v h="$hits" -v p="$px" 'BEGIN { printf "%.4g", 100 * (p - h) / p }') ;;
-        S17_*) leak=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * (h - a) / h : 0 }') ;;
-      esac
-      # compare writes 999 for the PSNR of identical images (MSE 0): the CSV says inf.
-      psnr=$(num psnr "$t.col.json"); [[ $psnr == 999 ]] && psnr=inf
-      printf '%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n' "$n" "$vn" "$spp" "$(num render_ms "$t.json")" \
-        "$(awk -v m="$mm" -v p="$px" 'BEGIN { printf "%.4g", 100 * m / p }')" "$psnr" "$(num rms_error "$t.col.json")" \
-        "$(num max_error "$t.col.json")" "$acne" "$leak" >>"$csv"
-    done
-  done
-  echo "  $n done" >&2
-done
+  [[ -f $work/$n.ref256.exr ]] ||
+    "$bin" render "$s" -o "$work/$n.ref256.exr" --backend cpu --precision f64 --spp 256 "${common[@]}" 2>/dev/null
+  vn=${v%%|*} opts=${v#*|}
+  t=$work/$n.$vn.$spp
+  # The AOVs record each pixel's first sample, whose position depends on spp: the
+  # decision reference renders the same samples.
+  [[ -f $work/$n.ref$spp.aov.exr ]] || "$bin" render "$s" -o "$work/$n.ref$spp.exr" --aov "$work/$n.ref$spp.aov.exr" \
+    --backend cpu --precision f64 --spp "$spp" "${common[@]}" 2>/dev/null
+  # shellcheck disable=SC2086
+  "$bin" render "$s" -o "$t.exr" --aov "$t.aov.exr" --spp "$spp" --repeat "$repeat" --stats-json "$t.json" \
+    "${common[@]}" $opts 2>/dev/null
+  "$bin" compare "$t.aov.exr" "$work/$n.ref$spp.aov.exr" --json >"$t.dec.json" || true
+  "$bin" compare "$t.exr" "$work/$n.ref256.exr" --json >"$t.col.json" || true
+  px=$((size * size)) hits=$(num a_hits "$t.dec.json") shadowed=$(num a_shadowed "$t.dec.json")
+  mm=$(( $(num hit_mismatch "$t.dec.json") + $(num object_mismatch "$t.dec.json") + $(num shadow_mismatch "$t.dec.json") ))
+  acne=0 leak=0
+  case $n in
+    S16_*) acne=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * a / h : 0 }') ;;
+    S07_*) leak=$(awk -v h="$hits" -v p="$px" 'BEGIN { printf "%.4g", 100 * (p - h) / p }') ;;
+    S17_*) leak=$(awk -v a="$shadowed" -v h="$hits" 'BEGIN { printf "%.4g", h ? 100 * (h - a) / h : 0 }') ;;
+  esac
+  # compare writes 999 for the PSNR of identical images (MSE 0): the CSV says inf.
+  psnr=$(num psnr "$t.col.json"); [[ $psnr == 999 ]] && psnr=inf
+  printf '%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n' "$n" "$vn" "$spp" "$(num render_ms "$t.json")" \
+    "$(awk -v m="$mm" -v p="$px" 'BEGIN { printf "%.4g", 100 * m / p }')" "$psnr" "$(num rms_error "$t.col.json")" \
+    "$(num max_error "$t.col.json")" "$acne" "$leak" >"$work/rows/$i.csv"
+}
+if [[ ${TRADEOFF_COUNT:-0} == 1 ]]; then
+  echo "$points"
+  exit 0
 fi
+if [[ -n ${TRADEOFF_POINT:-} ]]; then
+  ((TRADEOFF_POINT >= 0 && TRADEOFF_POINT < points)) || { echo "TRADEOFF_POINT: 0..$((points - 1))" >&2; exit 2; }
+  point "$TRADEOFF_POINT"
+  exit 0
+fi
+# PLOT_ONLY=1: the table and plot again from an existing accuracy.csv, rendering nothing;
+# TRADEOFF_GATHER=1: from the rows the points left in TRADEOFF_WORK.
+if [[ ${PLOT_ONLY:-0} != 1 ]]; then
+  if [[ ${TRADEOFF_GATHER:-0} != 1 ]]; then
+    for ((i = 0; i < points; i++)); do
+      point "$i"
+      if (((i + 1) % (${#variants[@]} * ${#spps[@]}) == 0)); then echo "  $((i + 1))/$points" >&2; fi
+    done
+  fi
+  missing=()
+  for ((i = 0; i < points; i++)); do [[ -s $work/rows/$i.csv ]] || missing+=("$i"); done
+  ((${#missing[@]} == 0)) || { echo "tradeoff: points missing: ${missing[*]} (re-run them: --array=$(IFS=,; echo "${missing[*]}"))" >&2; exit 2; }
+  echo "scene,variant,spp,gpu_ms,decision_mismatch_pct,psnr_db,rms_error,max_error,acne_pct,leak_pct" >"$csv"
+  for ((i = 0; i < points; i++)); do cat "$work/rows/$i.csv"; done >>"$csv"
+fi
+command -v gnuplot >/dev/null || { echo "installing gnuplot-nox for the plot" >&2; apt-get install -y -qq gnuplot-nox >&2; }
 
 # Per variant and spp: total GPU time over the scenes against the mean decision mismatch.
 # PSNR over the scenes is that of their mean MSE (the mean of rms^2), not the mean of the
