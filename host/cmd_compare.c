@@ -12,6 +12,7 @@
 #include "cli/options.h"
 #include "compare.h"
 #include "compare_report.h"
+#include "output.h"
 #include "image/image_io.h"
 
 typedef struct {
@@ -130,13 +131,7 @@ static rc_status parse_args(int argc, char **argv, compare_args *a) {
       {a->files[0], "image A", false}, {a->files[1], "image B", false}, {a->diff, "the heat map", true}};
   if (rc_check_distinct(roles, 3) != RC_OK) return RC_ERR_USAGE;
   if (a->diff && rc_check_output(a->diff, "the heat map") != RC_OK) return RC_ERR_IO;
-  int can = a->diff ? rc_image_can_write(a->diff) : 1;
-  if (can < 0) return RC_ERR_INSTALL;
-  if (!can) {
-    rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->diff);
-    return RC_ERR_USAGE;
-  }
-  return RC_OK;
+  return a->diff ? rc_output_check_format(a->diff) : RC_OK;
 }
 
 /* The heat map is written (or has failed) before any verdict is printed. */

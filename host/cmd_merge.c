@@ -259,14 +259,7 @@ rc_status rc_cmd_merge(int argc, char **argv) {
   }
   roles[n] = (rc_file_role){a->output, "the image", true};
   if (st == RC_OK) st = rc_check_distinct(roles, n + 1);
-  if (st == RC_OK) {
-    int can = rc_image_can_write(a->output);
-    if (can < 0) st = RC_ERR_INSTALL;
-    else if (!can) {
-      rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->output);
-      st = RC_ERR_USAGE;
-    }
-  }
+  if (st == RC_OK) st = rc_output_check_format(a->output);
   /* Every header first; the readers are closed until the pixels are needed, so that a
    * frame of thousands of parts never holds thousands of files open. */
   for (size_t i = 0; st == RC_OK && i < n; i++) {

@@ -147,9 +147,15 @@ const rc_command_spec rc_render_spec = {
     .option_count = sizeof render_options / sizeof *render_options,
 };
 
+static bool is_exr(const char *path) {
+  size_t n = strlen(path);
+  return n >= 4 && strcmp(path + n - 4, ".exr") == 0;
+}
+
 /* Every output is checked before anything renders: an existing special file or folder,
  * a missing folder, or two roles naming one file (and, once the scene has loaded, a format
- * the name does not give: check_format). */
+ * the name does not give: rc_output_check_format, which loads the image module, so that a
+ * bad scene is refused without it). */
 static rc_status check_outputs(const render_args *a) {
   if (strcmp(a->output, "-") == 0) {
     rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
@@ -168,24 +174,8 @@ static rc_status check_outputs(const render_args *a) {
                                 {a->aov, "the AOV file", true},
                                 {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
   if (rc_check_distinct(files, sizeof files / sizeof *files) != RC_OK) return RC_ERR_USAGE;
-  if (a->aov) {
-    size_t n = strlen(a->aov);
-    if (n < 4 || strcmp(a->aov + n - 4, ".exr") != 0) {
-      rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
-      return RC_ERR_USAGE;
-    }
-  }
-  return RC_OK;
-}
-
-/* The output's format, from its name. This loads the image module (image/image_module.h),
- * so it runs after the scene has loaded: a bad scene is refused without it. Still before
- * anything renders or is written. */
-static rc_status check_format(const render_args *a) {
-  int can = rc_image_can_write(a->output);
-  if (can < 0) return RC_ERR_INSTALL;
-  if (!can) {
-    rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", a->output);
+  if (a->aov && !is_exr(a->aov)) {
+    rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
     return RC_ERR_USAGE;
   }
   return RC_OK;
@@ -227,8 +217,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     rc_usage_error(&rc_render_spec, msg);
     return RC_ERR_USAGE;
   }
-  size_t n = strlen(a->output);
-  if (a->shard_text && (n < 4 || strcmp(a->output + n - 4, ".exr") != 0)) {
+  if (a->shard_text && !is_exr(a->output)) {
     snprintf(msg, sizeof msg,
              "--shard %s -o %s: a shard is a part for `vkraycast merge`, which needs its float pixels and its "
              "header: name it .exr",
@@ -252,15 +241,22 @@ static double steady(double *v, uint32_t n) {
 }
 
 /* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
+/* 8-bit output: the command line's choice, else the scene's. */
+static bool srgb_output(const render_args *a, const rc_scene *s) {
+  return a->encoding >= 0 ? a->encoding == 1 : a->srgb || s->srgb_8bit;
+}
+static bool truncate_output(const render_args *a, const rc_scene *s) {
+  return a->quantize < 0 ? s->truncate_8bit : a->quantize == 1;
+}
+
 static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
-  bool srgb = a->encoding >= 0 ? a->encoding == 1 : a->srgb || scene->srgb_8bit;
   rc_image_meta meta[RC_PART_FIELDS];
   char text[RC_PART_FIELDS][64];
   int n = rc_part_meta(&a->part, meta, text);
   const rc_region r = a->part.region;
   return rc_output_open(a->output, a->aov, rc_region_width(r), rc_region_height(r),
-                        srgb ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
-                        a->quantize < 0 ? scene->truncate_8bit : a->quantize == 1, meta, n, out);
+                        srgb_output(a, scene) ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR, truncate_output(a, scene),
+                        meta, n, out);
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -453,15 +449,13 @@ static rc_status resolve_part(render_args *a, const rc_scene *s, const rc_packed
  * parts that disagree on one are never merged. */
 static void part_settings(render_args *a, const rc_scene *s, const char *backend, const char *precision) {
   const rc_quality *q = &s->quality;
-  bool srgb = a->encoding >= 0 ? a->encoding == 1 : a->srgb || s->srgb_8bit;
-  bool truncate = a->quantize < 0 ? s->truncate_8bit : a->quantize == 1;
   snprintf(a->part.settings, sizeof a->part.settings,
            "backend=%s precision=%s spp=%u accel=%s sphere=%s triangle=%s shadow_offset=%s shadow_epsilon=%.9g "
            "camera_relative=%s reflection_depth=%u shadows=%s perturb=%u encoding=%s quantize=%s",
            backend, precision, s->samples_per_pixel, a->no_bvh ? "none" : "bvh", rc_sphere_formula_names[q->sphere],
            rc_triangle_formula_names[q->triangle], rc_offset_names[q->offset], q->offset_epsilon,
            q->camera_relative ? "on" : "off", s->reflection_depth, q->shadows ? "on" : "off", a->perturb,
-           srgb ? "srgb" : "linear", truncate ? "truncate" : "round");
+           srgb_output(a, s) ? "srgb" : "linear", truncate_output(a, s) ? "truncate" : "round");
 }
 
 rc_status rc_cmd_render(int argc, char **argv) {
@@ -476,7 +470,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_set_scene_path(a.scene);
   st = rc_scene_load(a.scene, &a.load, &scene);
   rs.parse_ms = rc_now_ms() - t0;
-  if (st == RC_OK) st = check_format(&a);
+  if (st == RC_OK) st = rc_output_check_format(a.output);
   if (st != RC_OK) {
     rc_scene_free(&scene);
     return st;

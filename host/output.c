@@ -43,6 +43,16 @@ struct rc_output {
   double write_ms;
 };
 
+rc_status rc_output_check_format(const char *path) {
+  int can = rc_image_can_write(path);
+  if (can < 0) return RC_ERR_INSTALL;
+  if (!can) {
+    rc_error("%s: no image format for this file name (use .png, .exr, .tif, .jpg, ...)", path);
+    return RC_ERR_USAGE;
+  }
+  return RC_OK;
+}
+
 static void remember(int slot, rc_image_writer *w) {
   const char *p = w ? rc_image_writer_temp_path(w) : "";
   snprintf(pending[slot], sizeof pending[slot], "%s", p);

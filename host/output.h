@@ -15,6 +15,11 @@
 
 typedef struct rc_output rc_output;
 
+/* An image name whose extension OpenImageIO can write: RC_OK, RC_ERR_USAGE with the
+ * message, or RC_ERR_INSTALL when the image module cannot be loaded. Loads the module, so
+ * commands call it once their cheaper checks have passed, before anything is written. */
+rc_status rc_output_check_format(const char *path);
+
 /* meta: header attributes of both files (image_io.h). */
 rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
                          rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, rc_output **out);
