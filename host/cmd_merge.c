@@ -88,19 +88,6 @@ static rc_status open_part(part *p) {
   return RC_OK;
 }
 
-/* A setting's value ("encoding" in "... encoding=srgb ..."), or "" when absent. */
-static void setting(const char *settings, const char *name, char *value, size_t len) {
-  size_t n = strlen(name);
-  value[0] = '\0';
-  for (const char *s = settings; s && *s; s = strchr(s, ' ') ? strchr(s, ' ') + 1 : NULL) {
-    if (strncmp(s, name, n) == 0 && s[n] == '=') {
-      size_t m = strcspn(s + n + 1, " ");
-      snprintf(value, len, "%.*s", (int)(m < len ? m : len - 1), s + n + 1);
-      return;
-    }
-  }
-}
-
 /* Every part against the first: the frame, the scene, the settings. */
 static rc_status check_agreement(const part *parts, size_t n) {
   const rc_part_info *a = &parts[0].info;
@@ -278,8 +265,8 @@ rc_status rc_cmd_merge(int argc, char **argv) {
     rc_image_meta meta[RC_PART_FIELDS];
     char text[RC_PART_FIELDS][64], encoding[16], quantize[16];
     int m = rc_part_meta(&whole, meta, text);
-    setting(whole.settings, "encoding", encoding, sizeof encoding);
-    setting(whole.settings, "quantize", quantize, sizeof quantize);
+    rc_part_setting(whole.settings, "encoding", encoding, sizeof encoding);
+    rc_part_setting(whole.settings, "quantize", quantize, sizeof quantize);
     rc_output_install_signal_handlers();
     st = rc_output_open(a->output, NULL, whole.width, whole.height,
                         strcmp(encoding, "srgb") == 0 ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,

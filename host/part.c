@@ -77,3 +77,16 @@ bool rc_part_settings_differ(const char *x, const char *y, char *a, size_t a_len
   }
   return false;
 }
+
+void rc_part_setting(const char *settings, const char *name, char *value, size_t len) {
+  size_t n = strlen(name);
+  value[0] = '\0';
+  for (size_t at = 0; settings[at];) {
+    size_t m = word(settings, at);
+    if (m > n && strncmp(settings + at, name, n) == 0 && settings[at + n] == '=') {
+      snprintf(value, len, "%.*s", (int)(m - n - 1), settings + at + n + 1);
+      return;
+    }
+    at += m + (settings[at + m] == ' ');
+  }
+}

@@ -30,4 +30,8 @@ bool rc_part_read(const rc_image_reader *r, rc_part_info *info, const char **mis
  * false when they are equal. */
 bool rc_part_settings_differ(const char *x, const char *y, char *a, size_t a_len, char *b, size_t b_len);
 
+/* The value of setting `name` ("srgb" for "encoding" in "... encoding=srgb ...") into
+ * value (truncated to len); "" when absent. */
+void rc_part_setting(const char *settings, const char *name, char *value, size_t len);
+
 #endif

@@ -134,12 +134,13 @@ void rc_ref_row_costs(const rc_packed_scene *p, double *row_cost) {
     /* The middle row and columns of each block stand for the block. */
     uint32_t y = b + sy / 2 < h ? b + sy / 2 : h - 1;
     double cost = 0;
-    for (uint32_t x = sx / 2; x < w; x += sx) {
+    uint32_t samples = 0;
+    for (uint32_t x = sx / 2; x < w; x += sx, samples++) {
       ref_work = 0;
       ref_trace_sample_f(&sc, x, y, 0);
       cost += COST_PIXEL_STEPS + (double)ref_work;
     }
-    cost *= (double)w / (double)((w - sx / 2 + sx - 1) / sx); /* per sampled pixel, times the row */
+    cost *= (double)w / samples; /* per sampled pixel, times the row */
     for (uint32_t r = b; r < b + sy && r < h; r++) row_cost[r] = cost;
   }
   ref_aov_enabled = aov;

@@ -1,5 +1,6 @@
 /* Regions and shards (host/region.c): parsing, the cuts of shards by cost, and the
  * coverage check that `vkraycast merge` relies on. Pure arithmetic, no device. */
+#include "part.h"
 #include "region.h"
 #include "rc_test.h"
 
@@ -104,11 +105,37 @@ TEST(coverage) {
   CHECK(gap.x0 == 30 && gap.y0 == 20 && gap.x1 == 31 && gap.y1 == 21);
 }
 
+/* The settings string of a part's header (part.c): one setting's value, and the first
+ * setting in which two strings differ. */
+TEST(part_settings) {
+  const char *s = "backend=gpu precision=f32 spp=16 encoding=srgb quantize=round";
+  char v[16], a[32], b[32];
+  rc_part_setting(s, "encoding", v, sizeof v);
+  CHECK(strcmp(v, "srgb") == 0);
+  rc_part_setting(s, "quantize", v, sizeof v);
+  CHECK(strcmp(v, "round") == 0);
+  rc_part_setting(s, "backend", v, sizeof v);
+  CHECK(strcmp(v, "gpu") == 0);
+  rc_part_setting(s, "spp", v, 3); /* truncated to the buffer */
+  CHECK(strcmp(v, "16") == 0);
+  rc_part_setting(s, "sp", v, sizeof v); /* a prefix of a name is not the name */
+  CHECK(v[0] == '\0');
+  rc_part_setting(s, "shadows", v, sizeof v);
+  CHECK(v[0] == '\0');
+  CHECK(!rc_part_settings_differ(s, s, a, sizeof a, b, sizeof b));
+  CHECK(rc_part_settings_differ(s, "backend=gpu precision=f32 spp=1 encoding=srgb quantize=round", a, sizeof a, b,
+                                sizeof b));
+  CHECK(strcmp(a, "spp=16") == 0 && strcmp(b, "spp=1") == 0);
+  CHECK(rc_part_settings_differ(s, "backend=gpu precision=f32", a, sizeof a, b, sizeof b));
+  CHECK(strcmp(a, "spp=16") == 0 && b[0] == '\0');
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(parse);
   RUN(shards_tile_the_frame);
   RUN(shards_balance_cost);
   RUN(coverage);
+  RUN(part_settings);
   TEST_MAIN_END
 }
