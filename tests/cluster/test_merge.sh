@@ -82,13 +82,7 @@ check "regions merged" "$why"
 expect_merge_refusal() {
   local name=$1 want=$2
   shift 2
-  rm -f "$work/bad.png"
-  timeout 60 "$bin" merge "$@" -o "$work/bad.png" 2>"$work/err"
-  local got=$? why=ok
-  [[ $got == 2 ]] || why="exit status $got, expected 2"
-  grep -qF -- "$want" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"); expected: $want"
-  [[ ! -e $work/bad.png ]] || why="$why; an image was written"
-  check "$name" "$why"
+  expect_exit2 "$name" "$work/bad.png" "$want" "$bin" merge "$@" -o "$work/bad.png"
 }
 p=$work/gpu-f32-1
 expect_merge_refusal "missing shard" "shard 1/3 is missing" "$p-0.exr" "$p-2.exr"

@@ -5,18 +5,25 @@ failed=0 passed=0
 check() {
   if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi
 }
-# `expect_refusal NAME SCENE MESSAGE [render args...]`: rendering SCENE (with $bin into
-# $work/o.png) must end within 60 s with exit status 2, MESSAGE on stderr and no image.
-expect_refusal() {
-  local name=$1 scene=$2 want=$3
+# `expect_exit2 NAME OUT MESSAGE COMMAND...`: COMMAND must end within 60 s with exit
+# status 2, MESSAGE on stderr and no file OUT.
+expect_exit2() {
+  local name=$1 out=$2 want=$3
   shift 3
-  rm -f "$work/o.png"
-  timeout 60 "$bin" render "$scene" -o "$work/o.png" --quiet "$@" 2>"$work/err"
+  rm -f "$out"
+  timeout 60 "$@" 2>"$work/err"
   local got=$? why=ok
   [[ $got == 2 ]] || why="exit status $got, expected 2"
   grep -qF -- "$want" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"); expected: $want"
-  [[ ! -e $work/o.png ]] || why="$why; an image was written"
+  [[ ! -e $out ]] || why="$why; an image was written"
   check "$name" "$why"
+}
+# `expect_refusal NAME SCENE MESSAGE [render args...]`: rendering SCENE (with $bin into
+# $work/o.png) must be refused so.
+expect_refusal() {
+  local name=$1 scene=$2 want=$3
+  shift 3
+  expect_exit2 "$name" "$work/o.png" "$want" "$bin" render "$scene" -o "$work/o.png" --quiet "$@"
 }
 finish() {
   echo "$passed passed, $failed failed"
