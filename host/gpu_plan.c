@@ -45,3 +45,15 @@ rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budg
   plan->batch_samples = (uint32_t)batch;
   return RC_OK;
 }
+
+uint32_t rc_gpu_loop_budget(bool capped, uint32_t subgroup_size) {
+  return capped && subgroup_size > 1 ? RC_LOOP_BUDGET / subgroup_size : RC_LOOP_BUDGET;
+}
+
+rc_workgroup rc_gpu_workgroup(uint32_t subgroup_size, const VkPhysicalDeviceLimits *limits) {
+  const uint32_t wide = 8, least = 64; /* Vulkan guarantees 128 invocations, 128 x 128 x 64 */
+  uint32_t group = subgroup_size > least ? subgroup_size : least;
+  if (group > limits->maxComputeWorkGroupInvocations || group / wide > limits->maxComputeWorkGroupSize[1])
+    group = least;
+  return (rc_workgroup){wide, group / wide};
+}

@@ -5,6 +5,8 @@
 #ifndef RC_GPU_PLAN_H
 #define RC_GPU_PLAN_H
 
+#include <vulkan/vulkan.h>
+
 #include "rc_base.h"
 #include "rc_shared.h"
 
@@ -29,5 +31,21 @@ uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
  * shader's exhaustion flag catches what the estimate misses (the batch is halved and the
  * work repeated; one sample over the budget is an error, never a wrong image). */
 rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan);
+
+/* The per-invocation loop budget on a device. llvmpipe (`capped`) caps the loop
+ * iterations of one SIMD vector, a subgroup of invocations run as lanes, at 65,535; with
+ * divergent nested loops the vector runs the union of its lanes' iterations, so only
+ * lanes x the per-lane count bounds it: RC_LOOP_BUDGET / subgroup size there. Other
+ * drivers have no such cap (docs/porting.md). */
+uint32_t rc_gpu_loop_budget(bool capped, uint32_t subgroup_size);
+
+/* The workgroup: 8 invocations wide (8 x 8 pixels share their rays' coherence) and
+ * max(64, subgroup size) in all, so that it holds whole subgroups (NVIDIA 32, AMD 64 or
+ * 32, Intel 8 to 32, Apple 32, llvmpipe 4 to 16) and no lane idles for want of a full one;
+ * 64 where the device's limits cannot take that many. */
+typedef struct rc_workgroup {
+  uint32_t x, y;
+} rc_workgroup;
+rc_workgroup rc_gpu_workgroup(uint32_t subgroup_size, const VkPhysicalDeviceLimits *limits);
 
 #endif

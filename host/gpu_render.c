@@ -8,11 +8,6 @@
 #include "gpu_shaders.h"
 #include "gpu_tiles.h"
 
-/* Workgroups are 8 invocations wide and hold max(64, subgroup size) invocations: whole
- * subgroups (NVIDIA 32, AMD 64, llvmpipe 8 on AVX2, Intel 8-32), so no lane idles for
- * want of a full subgroup, and 8 x 8 tiles of pixels share their rays' coherence. */
-#define LOCAL_X 8u
-#define MIN_WORKGROUP 64u
 /* The tile buffers hold this many pixels: no tile exceeds it. */
 #define MAX_TILE_PIXELS (1u << 20)
 #define SCENE_ARRAYS 11 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
@@ -41,6 +36,7 @@ struct rc_gpu_renderer {
   VkDescriptorPool descriptor_pool;
   VkDescriptorSet set;
   VkQueryPool queries;
+  VkCommandPool pool; /* holds `cmd` alone: reset as a whole before each recording */
   VkCommandBuffer cmd;
   VkFence fence;
   bool staging;
@@ -54,28 +50,94 @@ static const char *const array_names[SCENE_ARRAYS] = {
     "spheres",    "triangles", "materials", "lights", "BVH nodes", "BVH references", "transforms", "normals",
     "quadrics", "composites", "CSG programs"};
 
-/* Chooses the buffer kind the device can take for this scene: texel buffers need the
- * RGBA32UI uniform-texel-buffer format feature and maxTexelBufferElements room. */
-static rc_scene_buffers choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers wanted, const VkDeviceSize sizes[SCENE_ARRAYS]) {
-  if (wanted != RC_SCENE_BUFFERS_TEXEL) return wanted;
-  VkFormatProperties fp;
-  vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
-  if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) {
-    rc_warning("device has no RGBA32UI uniform texel buffers; using storage buffers");
-    return RC_SCENE_BUFFERS_STORAGE;
-  }
-  for (int i = 0; i < SCENE_ARRAYS; i++) {
-    if (sizes[i] / 16 > ctx->props.limits.maxTexelBufferElements) {
-      rc_warning("%s need %llu texels, more than maxTexelBufferElements (%u); using storage buffers",
-                 array_names[i], (unsigned long long)(sizes[i] / 16), ctx->props.limits.maxTexelBufferElements);
-      return RC_SCENE_BUFFERS_STORAGE;
+/* Within what every Vulkan device offers, so no device can refuse them (docs/porting.md). */
+_Static_assert(sizeof(gpu_frame) <= 16384, "gpu_frame must fit the guaranteed maxUniformBufferRange");
+_Static_assert(sizeof(gpu_push) <= 128, "gpu_push must fit the guaranteed maxPushConstantsSize");
+
+/* The shader's descriptors besides the scene arrays: the frame (a uniform buffer) and the
+ * accumulation, status and AOV storage buffers. */
+#define OUTPUT_STORAGE_BUFFERS 3u
+
+/* Whether the device can take the scene arrays as buffers of `kind`: NULL, or the first
+ * limit that stops it, with the numbers, in `why`. Texel views count against the sampled
+ * image limits (Vulkan 1.1, "Limits"); the arrays' sizes against the texel count or the
+ * storage range of one binding. */
+static const char *kind_blocked(const rc_vk_ctx *ctx, rc_scene_buffers kind, const VkDeviceSize sizes[SCENE_ARRAYS],
+                                char *why, size_t n) {
+  const VkPhysicalDeviceLimits *l = &ctx->props.limits;
+  bool texel = kind == RC_SCENE_BUFFERS_TEXEL;
+  uint32_t storage = OUTPUT_STORAGE_BUFFERS + (texel ? 0 : SCENE_ARRAYS);
+  if (texel) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
+    if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) {
+      snprintf(why, n, "the device has no RGBA32UI uniform texel buffers");
+      return why;
+    }
+    for (int i = 0; i < SCENE_ARRAYS; i++) {
+      if (sizes[i] / 16 > l->maxTexelBufferElements) {
+        snprintf(why, n, "the %s array needs %llu texels, more than maxTexelBufferElements (%u)", array_names[i],
+                 (unsigned long long)(sizes[i] / 16), l->maxTexelBufferElements);
+        return why;
+      }
+    }
+    uint32_t views = SCENE_ARRAYS;
+    if (views > l->maxPerStageDescriptorSampledImages || views > l->maxDescriptorSetSampledImages) {
+      snprintf(why, n, "%u texel buffers, more than maxPerStageDescriptorSampledImages (%u) or "
+               "maxDescriptorSetSampledImages (%u)", views, l->maxPerStageDescriptorSampledImages,
+               l->maxDescriptorSetSampledImages);
+      return why;
+    }
+  } else {
+    for (int i = 0; i < SCENE_ARRAYS; i++) {
+      if (sizes[i] > l->maxStorageBufferRange) {
+        snprintf(why, n, "the %s array is %llu bytes, more than maxStorageBufferRange (%u bytes)", array_names[i],
+                 (unsigned long long)sizes[i], l->maxStorageBufferRange);
+        return why;
+      }
     }
   }
-  return RC_SCENE_BUFFERS_TEXEL;
+  if (storage > l->maxPerStageDescriptorStorageBuffers || storage > l->maxDescriptorSetStorageBuffers) {
+    snprintf(why, n, "%u storage buffers, more than maxPerStageDescriptorStorageBuffers (%u) or "
+             "maxDescriptorSetStorageBuffers (%u)", storage, l->maxPerStageDescriptorStorageBuffers,
+             l->maxDescriptorSetStorageBuffers);
+    return why;
+  }
+  if (RC_BINDING_COUNT > l->maxPerStageResources) {
+    snprintf(why, n, "%u descriptors, more than maxPerStageResources (%u)", RC_BINDING_COUNT, l->maxPerStageResources);
+    return why;
+  }
+  return NULL;
 }
 
+/* The buffer kind the device can take for this scene. Texel buffers (the default, faster
+ * on lavapipe) give way to storage buffers where they do not fit; an explicit
+ * --scene-buffers storage is kept or refused. A scene neither fits is refused before
+ * anything is allocated, with the limits and the numbers (docs/porting.md). */
+static rc_status choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers *kind, const VkDeviceSize sizes[SCENE_ARRAYS]) {
+  char texel_why[256], storage_why[256];
+  if (*kind == RC_SCENE_BUFFERS_TEXEL) {
+    if (!kind_blocked(ctx, RC_SCENE_BUFFERS_TEXEL, sizes, texel_why, sizeof texel_why)) return RC_OK;
+    if (!kind_blocked(ctx, RC_SCENE_BUFFERS_STORAGE, sizes, storage_why, sizeof storage_why)) {
+      rc_warning("texel buffers do not fit (%s); using storage buffers", texel_why);
+      *kind = RC_SCENE_BUFFERS_STORAGE;
+      return RC_OK;
+    }
+    rc_refuse_scene("scene too large for device %u (%s): as texel buffers %s; as storage buffers %s",
+                    ctx->device_index, ctx->props.deviceName, texel_why, storage_why);
+    return RC_ERR_TOO_LARGE;
+  }
+  if (!kind_blocked(ctx, RC_SCENE_BUFFERS_STORAGE, sizes, storage_why, sizeof storage_why)) return RC_OK;
+  rc_refuse_scene("--scene-buffers storage: device %u (%s) cannot take this scene: %s", ctx->device_index,
+                  ctx->props.deviceName, storage_why);
+  return RC_ERR_TOO_LARGE;
+}
+
+/* The tile buffers' capacity in pixels: no tile is larger, nor larger than the region. */
 static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
-  return r->opts.tile_size ? r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
+  uint64_t cap = r->opts.tile_size ? (uint64_t)r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
+  uint64_t region = (uint64_t)rc_region_width(r->region) * rc_region_height(r->region);
+  return (uint32_t)(region < cap ? region : cap);
 }
 
 static void planner_init(const rc_gpu_renderer *r, rc_tile_planner *p) {
@@ -118,7 +180,8 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
       (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals),
       (s->quadric_total + 1) * sizeof(gpu_quadric), (f->csg_count + 1) * sizeof(gpu_csg),
       (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t)};
-  r->opts.scene_buffers = choose_buffers(ctx, r->opts.scene_buffers, sizes);
+  rc_status chosen = choose_buffers(ctx, &r->opts.scene_buffers, sizes);
+  if (chosen != RC_OK) return chosen;
   /* Everything the render allocates on the device, against its largest device-local heap:
    * refuse what cannot fit before allocating anything. */
   VkDeviceSize need = sizeof(gpu_frame) + max_tile_pixels(r) * (16 + (r->opts.aov ? sizeof(gpu_aov) : 0));
@@ -135,12 +198,6 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
   }
   bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
   for (int i = 0; i < SCENE_ARRAYS; i++) {
-    if (!texel && sizes[i] > ctx->props.limits.maxStorageBufferRange) {
-      rc_refuse_scene("scene too large: the %s array is %llu bytes, more than the device's maxStorageBufferRange "
-               "(%u bytes)",
-               array_names[i], (unsigned long long)sizes[i], ctx->props.limits.maxStorageBufferRange);
-      return RC_ERR_TOO_LARGE;
-    }
     VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                (texel ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);
@@ -336,8 +393,12 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
                               .queryType = VK_QUERY_TYPE_TIMESTAMP,
                               .queryCount = 2};
   if (ctx->timestamp_bits) RC_VK_TRY(vkCreateQueryPool(ctx->device, &qi, NULL, &r->queries));
+  VkCommandPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                  .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
+                                  .queueFamilyIndex = ctx->queue_family};
+  RC_VK_TRY(vkCreateCommandPool(ctx->device, &pci, NULL, &r->pool));
   VkCommandBufferAllocateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                    .commandPool = ctx->pool,
+                                    .commandPool = r->pool,
                                     .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                     .commandBufferCount = 1};
   RC_VK_TRY(vkAllocateCommandBuffers(ctx->device, &ci, &r->cmd));
@@ -349,6 +410,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats) {
   *out = NULL;
+  stats->crossing_object = UINT32_MAX; /* a refusal while setting up is no crossing */
   rc_gpu_renderer *r = calloc(1, sizeof *r);
   if (!r) return RC_ERR_VULKAN;
   r->ctx = ctx;
@@ -358,15 +420,14 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   if (r->region.x1 == 0) r->region = (rc_region){0, 0, r->frame.camera.width, r->frame.camera.height};
   RC_ASSERT(r->region.x1 <= r->frame.camera.width && r->region.y1 <= r->frame.camera.height);
   r->mesh_operands = scene->mesh_operand_count > 0;
-  r->budget = rc_vk_loop_budget(ctx);
+  r->budget = rc_gpu_loop_budget(ctx->llvmpipe, ctx->subgroup_size);
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
   stats->tile_budget_ms = r->tile_budget_ms;
   stats->loop_budget = r->budget;
   stats->subgroup_size = ctx->subgroup_size;
-  uint32_t group = ctx->subgroup_size > MIN_WORKGROUP ? ctx->subgroup_size : MIN_WORKGROUP;
-  if (group > ctx->props.limits.maxComputeWorkGroupInvocations) group = MIN_WORKGROUP;
-  r->local_x = LOCAL_X;
-  r->local_y = group / LOCAL_X;
+  rc_workgroup group = rc_gpu_workgroup(ctx->subgroup_size, &ctx->props.limits);
+  r->local_x = group.x;
+  r->local_y = group.y;
   stats->workgroup_x = r->local_x;
   stats->workgroup_y = r->local_y;
   rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget ? opts->plan_budget : r->budget,
@@ -388,6 +449,9 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->pipeline_ms = t2 - t1;
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
+  VkDeviceSize bytes = 0;
+  rc_mem_usage(ctx, &stats->memory_blocks, &bytes);
+  stats->memory_bytes = bytes;
   if (st != RC_OK) {
     rc_gpu_renderer_destroy(r);
     return st;
@@ -401,7 +465,7 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
   vkDeviceWaitIdle(ctx->device);
   vkDestroyFence(ctx->device, r->fence, NULL);
-  if (r->cmd) vkFreeCommandBuffers(ctx->device, ctx->pool, 1, &r->cmd);
+  vkDestroyCommandPool(ctx->device, r->pool, NULL); /* frees `cmd` */
   vkDestroyQueryPool(ctx->device, r->queries, NULL);
   vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
   vkDestroyPipeline(ctx->device, r->pipeline, NULL);
@@ -448,7 +512,7 @@ static rc_status submit(rc_gpu_renderer *r) {
 }
 
 static rc_status begin(rc_gpu_renderer *r) {
-  RC_VK_TRY(vkResetCommandBuffer(r->cmd, 0));
+  RC_VK_TRY(vkResetCommandPool(r->ctx->device, r->pool, 0));
   VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                  .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
   RC_VK_TRY(vkBeginCommandBuffer(r->cmd, &bi));

@@ -22,7 +22,7 @@ typedef struct rc_gpu_options {
                              after ~2 s (Windows TDR) or kill long dispatches. Negative: the
                              device's default (none on a CPU device, else
                              RC_DEFAULT_TILE_BUDGET_MS); 0: no limit */
-  uint32_t plan_budget; /* 0: the device's budget (rc_vk_loop_budget); larger values only in
+  uint32_t plan_budget; /* 0: the device's budget (rc_gpu_loop_budget); larger values only in
                            tests, to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
   bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
@@ -60,6 +60,8 @@ typedef struct rc_gpu_stats {
   uint32_t subgroup_size;
   uint32_t workgroup_x, workgroup_y; /* invocations per workgroup, chosen from the subgroup size */
   bool staging;            /* uploads and readback went through staging buffers */
+  uint32_t memory_blocks;  /* device memory allocations (vk_memory.h) after set-up */
+  uint64_t memory_bytes;   /* and their bytes */
   rc_scene_buffers scene_buffers;
 } rc_gpu_stats;
 

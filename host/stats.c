@@ -129,4 +129,6 @@ static void add_gpu_fields(cJSON *o, const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "subgroup_size", s->gpu.subgroup_size);
   cJSON_AddNumberToObject(o, "workgroup_x", s->gpu.workgroup_x);
   cJSON_AddNumberToObject(o, "workgroup_y", s->gpu.workgroup_y);
+  cJSON_AddNumberToObject(o, "memory_blocks", s->gpu.memory_blocks);
+  cJSON_AddNumberToObject(o, "memory_mib", (double)s->gpu.memory_bytes / (1 << 20));
 }

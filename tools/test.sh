@@ -24,7 +24,9 @@ cmake --build build-asan -j"$(nproc)" >&2
 # test renders the same scenes on both backends under ASan), parse_scale (parsing time;
 # the fuzzers and strict_input run the parsers under ASan) and memory_per_frame (peak RSS,
 # which ASan's own allocator decides) run only in the pass above, and so does slurm (it
-# tests the Slurm scripts; `merge` runs the same render and merge code under ASan).
+# tests the Slurm scripts; `merge` runs the same render and merge code under ASan), and
+# so do minimum_device and extreme_min_f64 (images and gates on the minimum device;
+# best_practices runs the allocator and every buffer path under ASan).
 (cd build-asan && ctest --output-on-failure --timeout 1800 -j"$(nproc)" \
-  -E 'extreme_S(0[2-8]|1[0-9]|23)|gpu_vs_cpu|parse_scale|memory_per_frame|slurm' "$@")
+  -E 'extreme_S(0[2-8]|1[0-9]|23)|extreme_min|minimum_device|gpu_vs_cpu|parse_scale|memory_per_frame|slurm' "$@")
 if [ -x tools/fuzz.sh ]; then tools/fuzz.sh; fi

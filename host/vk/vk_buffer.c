@@ -50,29 +50,17 @@ rc_status rc_buffer_create(rc_vk_ctx *ctx, VkDeviceSize size, VkBufferUsageFlags
     rc_error("no suitable memory type for a %llu-byte buffer", (unsigned long long)size);
     return RC_ERR_VULKAN;
   }
-  VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                .allocationSize = req.size,
-                                .memoryTypeIndex = (uint32_t)type};
-  VkResult r = rc_fault("device-memory") ? VK_ERROR_OUT_OF_DEVICE_MEMORY
-                                         : vkAllocateMemory(ctx->device, &alloc, NULL, &out->memory);
-  if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) {
-    rc_error("out of %s memory allocating a %llu-byte buffer on the Vulkan device", r == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "device" : "host",
-             (unsigned long long)req.size);
-    return RC_ERR_OUT_OF_MEMORY;
-  }
-  RC_VK_TRY(r);
-  RC_VK_TRY(vkBindBufferMemory(ctx->device, out->buffer, out->memory, 0));
-  VkMemoryPropertyFlags flags = ctx->memory.memoryTypes[type].propertyFlags;
-  out->coherent = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
-  if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
-    RC_VK_TRY(vkMapMemory(ctx->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
+  rc_status st = rc_mem_alloc(ctx, &req, (uint32_t)type, use, &out->memory);
+  if (st != RC_OK) return st;
+  RC_VK_TRY(vkBindBufferMemory(ctx->device, out->buffer, out->memory.memory, out->memory.offset));
+  out->coherent = out->memory.coherent;
+  out->mapped = out->memory.mapped;
   return RC_OK;
 }
 
 void rc_buffer_destroy(rc_vk_ctx *ctx, rc_buffer *buf) {
-  if (buf->mapped) vkUnmapMemory(ctx->device, buf->memory);
   vkDestroyBuffer(ctx->device, buf->buffer, NULL);
-  vkFreeMemory(ctx->device, buf->memory, NULL);
+  rc_mem_free(ctx, &buf->memory);
   memset(buf, 0, sizeof *buf);
 }
 
@@ -80,24 +68,16 @@ bool rc_buffer_is_direct(const rc_buffer *buf, bool force_staging) {
   return buf->mapped != NULL && !force_staging;
 }
 
-static VkMappedMemoryRange whole(const rc_buffer *buf) {
-  VkMappedMemoryRange r = {.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE,
-                           .memory = buf->memory,
-                           .offset = 0,
-                           .size = VK_WHOLE_SIZE};
-  return r;
-}
-
 rc_status rc_buffer_flush(rc_vk_ctx *ctx, const rc_buffer *buf) {
   if (buf->coherent) return RC_OK;
-  VkMappedMemoryRange r = whole(buf);
+  VkMappedMemoryRange r = rc_mem_range(ctx, &buf->memory);
   RC_VK_TRY(vkFlushMappedMemoryRanges(ctx->device, 1, &r));
   return RC_OK;
 }
 
 rc_status rc_buffer_invalidate(rc_vk_ctx *ctx, const rc_buffer *buf) {
   if (buf->coherent) return RC_OK;
-  VkMappedMemoryRange r = whole(buf);
+  VkMappedMemoryRange r = rc_mem_range(ctx, &buf->memory);
   RC_VK_TRY(vkInvalidateMappedMemoryRanges(ctx->device, 1, &r));
   return RC_OK;
 }

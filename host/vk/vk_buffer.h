@@ -7,17 +7,16 @@
  *                    write-combined memory are slow).
  * A DEVICE buffer that happens to be host visible is mapped and used directly unless
  * staging is forced (--staging or VKRAYCAST_FORCE_STAGING=1), which is how the staging
- * path is tested on lavapipe. Non-coherent memory is flushed and invalidated. */
+ * path is tested on lavapipe. Non-coherent memory is flushed and invalidated. Memory comes
+ * from vk_memory.c's blocks, never one allocation per buffer. */
 #ifndef RC_VK_BUFFER_H
 #define RC_VK_BUFFER_H
 
-#include "vk/vk_context.h"
-
-typedef enum { RC_MEM_DEVICE, RC_MEM_UPLOAD, RC_MEM_READBACK } rc_mem_use;
+#include "vk/vk_memory.h"
 
 typedef struct rc_buffer {
   VkBuffer buffer;
-  VkDeviceMemory memory;
+  rc_mem_slice memory; /* a slice of a shared block (vk_memory.h) */
   VkDeviceSize size;
   void *mapped; /* non-NULL when the memory is host visible */
   bool coherent;

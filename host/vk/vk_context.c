@@ -1,6 +1,7 @@
 #include "vk/vk_context.h"
 
 #include "rc_shared.h"
+#include "vk/vk_memory.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,18 +35,42 @@ const char *rc_vk_device_type_str(VkPhysicalDeviceType t) {
   }
 }
 
+/* Best-practice advice that cannot be followed in the situation it is given in. Such
+ * messages are printed, not counted:
+ *  - VK_EXT_debug_utils is for debugging: vkraycast enables it only while validating;
+ *  - memory priorities need VK_EXT_memory_priority, used wherever the device has it;
+ *  - "pipeline bound twice in the frame": every command buffer binds the one pipeline
+ *    once, as Vulkan requires (binding state does not outlive a command buffer), and the
+ *    layer counts binds per frame, which only vkQueuePresentKHR ends; a program without a
+ *    swapchain is one endless frame. */
+static const char *excused(const rc_vk_ctx *ctx, const char *id) {
+  if (!id) return NULL;
+  if (strcmp(id, "UNASSIGNED-BestPractices-vkCreateInstance-specialuse-extension-debugging") == 0)
+    return "VK_EXT_debug_utils is enabled only while validating";
+  if (strcmp(id, "UNASSIGNED-BestPractices-AllocateMemory-SetPriority") == 0 && !ctx->memory_priority)
+    return "the device has no VK_EXT_memory_priority";
+  if (strcmp(id, "UNASSIGNED-BestPractices-Pipeline-SortAndBind") == 0)
+    return "one bind per command buffer; without a swapchain the frame never ends";
+  return NULL;
+}
+
+/* Counts every warning and error of the validation and performance kinds: a command run
+ * with validation fails on any of them, best-practice checks included when they are
+ * enabled (VK_LAYER_ENABLES, docs/porting.md). */
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                  VkDebugUtilsMessageTypeFlagsEXT type,
                                                  const VkDebugUtilsMessengerCallbackDataEXT *data,
                                                  void *user) {
   rc_vk_ctx *ctx = user;
-  bool counts = (type & VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT) &&
-                severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
-  if (counts) {
+  bool perf = (type & VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT) != 0;
+  bool kind = perf || (type & VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT);
+  if (!kind || severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+  const char *why = excused(ctx, data->pMessageIdName);
+  if (why) {
+    fprintf(stderr, "vkraycast: validation (not counted: %s): %s\n", why, data->pMessage);
+  } else {
     ctx->validation_messages++;
-    fprintf(stderr, "vkraycast: validation: %s\n", data->pMessage);
-  } else if (type & VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT) {
-    fprintf(stderr, "vkraycast: validation (performance): %s\n", data->pMessage);
+    fprintf(stderr, "vkraycast: validation%s: %s\n", perf ? " (performance)" : "", data->pMessage);
   }
   return VK_FALSE;
 }
@@ -158,6 +183,50 @@ static void driver_props(VkPhysicalDevice pd, const VkPhysicalDeviceProperties *
   vkGetPhysicalDeviceProperties2(pd, &p2);
 }
 
+void rc_vk_apply_minimum_limits(VkPhysicalDeviceLimits *l, VkPhysicalDeviceFeatures *f) {
+  /* Vulkan 1.1, "Required Limits": the least a conformant device may report (for the
+   * alignments, the most). */
+#define AT_MOST(field, v) l->field = l->field < (v) ? l->field : (v)
+#define AT_LEAST(field, v) l->field = l->field > (v) ? l->field : (v)
+  AT_MOST(maxTexelBufferElements, 65536u);
+  AT_MOST(maxUniformBufferRange, 16384u);
+  AT_MOST(maxStorageBufferRange, 1u << 27);
+  AT_MOST(maxPushConstantsSize, 128u);
+  AT_MOST(maxMemoryAllocationCount, 4096u);
+  AT_MOST(maxBoundDescriptorSets, 4u);
+  AT_MOST(maxPerStageDescriptorUniformBuffers, 12u);
+  AT_MOST(maxPerStageDescriptorStorageBuffers, 4u);
+  AT_MOST(maxPerStageDescriptorSampledImages, 16u);
+  AT_MOST(maxPerStageResources, 128u);
+  AT_MOST(maxDescriptorSetUniformBuffers, 72u);
+  AT_MOST(maxDescriptorSetStorageBuffers, 24u);
+  AT_MOST(maxDescriptorSetSampledImages, 96u);
+  AT_MOST(maxComputeSharedMemorySize, 16384u);
+  AT_MOST(maxComputeWorkGroupInvocations, 128u);
+  AT_MOST(maxComputeWorkGroupSize[0], 128u);
+  AT_MOST(maxComputeWorkGroupSize[1], 128u);
+  AT_MOST(maxComputeWorkGroupSize[2], 64u);
+  for (int i = 0; i < 3; i++) AT_MOST(maxComputeWorkGroupCount[i], 65535u);
+  AT_LEAST(minTexelBufferOffsetAlignment, 256u);
+  AT_LEAST(minUniformBufferOffsetAlignment, 256u);
+  AT_LEAST(minStorageBufferOffsetAlignment, 256u);
+  AT_LEAST(nonCoherentAtomSize, 256u);
+#undef AT_MOST
+#undef AT_LEAST
+  if (f) f->shaderFloat64 = f->shaderInt64 = VK_FALSE;
+}
+
+/* VKRAYCAST_DEVICE_LIMITS: unset, or "minimum". */
+static rc_status limits_requested(bool *minimum) {
+  const char *v = getenv("VKRAYCAST_DEVICE_LIMITS");
+  *minimum = v && strcmp(v, "minimum") == 0;
+  if (v && v[0] && !*minimum) {
+    rc_error("VKRAYCAST_DEVICE_LIMITS=%s: the only value is `minimum` (Vulkan 1.1's required limits)", v);
+    return RC_ERR_USAGE;
+  }
+  return RC_OK;
+}
+
 static rc_status pick_device(rc_vk_ctx *ctx, int wanted) {
   VkPhysicalDevice *devs = NULL;
   uint32_t n = 0;
@@ -207,17 +276,32 @@ static rc_status pick_device(rc_vk_ctx *ctx, int wanted) {
   ctx->llvmpipe = ctx->driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE ||
                   strstr(ctx->props.deviceName, "llvmpipe") != NULL;
   if (!ctx->props.limits.timestampComputeAndGraphics) ctx->timestamp_bits = 0;
+  if (ctx->minimum_limits) rc_vk_apply_minimum_limits(&ctx->props.limits, NULL);
   return RC_OK;
+}
+
+static bool has_extension(VkPhysicalDevice pd, const char *name) {
+  uint32_t n = 0;
+  if (vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL) != VK_SUCCESS) return false;
+  VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+  if (!ext) return false;
+  bool found = false;
+  if (vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) == VK_SUCCESS)
+    for (uint32_t i = 0; i < n && !found; i++) found = strcmp(ext[i].extensionName, name) == 0;
+  free(ext);
+  return found;
 }
 
 rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
   memset(ctx, 0, sizeof *ctx);
-  rc_status st = create_instance(ctx);
+  rc_status st = limits_requested(&ctx->minimum_limits);
+  if (st == RC_OK) st = create_instance(ctx);
   if (st == RC_OK) st = pick_device(ctx, opts->device_index);
   if (st != RC_OK) return st;
 
   VkPhysicalDeviceFeatures supported;
   vkGetPhysicalDeviceFeatures(ctx->physical, &supported);
+  if (ctx->minimum_limits) rc_vk_apply_minimum_limits(&ctx->props.limits, &supported);
   VkPhysicalDeviceFeatures enabled = {0};
   enabled.shaderFloat64 = supported.shaderFloat64;
   enabled.shaderInt64 = supported.shaderInt64 && supported.shaderFloat64;
@@ -228,27 +312,37 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
                                .queueFamilyIndex = ctx->queue_family,
                                .queueCount = 1,
                                .pQueuePriorities = &priority};
+  /* Memory priorities let a driver keep the scene in device memory when memory runs short
+   * (NVIDIA's best practices ask for them). */
+  VkPhysicalDeviceMemoryPriorityFeaturesEXT prio = {
+      .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PRIORITY_FEATURES_EXT};
+  const char *prio_ext = VK_EXT_MEMORY_PRIORITY_EXTENSION_NAME;
+  if (!ctx->minimum_limits && has_extension(ctx->physical, prio_ext)) {
+    VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &prio};
+    vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
+    ctx->memory_priority = prio.memoryPriority;
+  }
   VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                             .pNext = ctx->memory_priority ? &prio : NULL,
+                             .enabledExtensionCount = ctx->memory_priority ? 1 : 0,
+                             .ppEnabledExtensionNames = &prio_ext,
                              .queueCreateInfoCount = 1,
                              .pQueueCreateInfos = &q,
                              .pEnabledFeatures = &enabled};
   RC_VK_TRY(vkCreateDevice(ctx->physical, &info, NULL, &ctx->device));
   vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
   VkCommandPoolCreateInfo pool = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-                                  .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                  .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
                                   .queueFamilyIndex = ctx->queue_family};
   RC_VK_TRY(vkCreateCommandPool(ctx->device, &pool, NULL, &ctx->pool));
   return RC_OK;
-}
-
-uint32_t rc_vk_loop_budget(const rc_vk_ctx *ctx) {
-  return ctx->llvmpipe ? RC_LOOP_BUDGET / ctx->subgroup_size : RC_LOOP_BUDGET;
 }
 
 rc_status rc_vk_destroy(rc_vk_ctx *ctx) {
   if (ctx->device) {
     vkDeviceWaitIdle(ctx->device);
     vkDestroyCommandPool(ctx->device, ctx->pool, NULL);
+    rc_mem_release_all(ctx);
     vkDestroyDevice(ctx->device, NULL);
   }
   if (ctx->messenger) {

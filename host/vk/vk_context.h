@@ -16,7 +16,7 @@ typedef struct rc_vk_ctx {
   VkDevice device;
   VkQueue queue;
   uint32_t queue_family;
-  VkCommandPool pool; /* resettable command buffers for uploads and dispatches */
+  VkCommandPool pool; /* transient command buffers for uploads (a renderer has its own pool) */
   uint32_t device_index;
   VkPhysicalDeviceProperties props;
   VkPhysicalDeviceDriverProperties driver; /* zeroed where the device lacks Vulkan 1.2 */
@@ -25,22 +25,24 @@ typedef struct rc_vk_ctx {
   uint32_t timestamp_bits; /* timestampValidBits of the queue family; 0 = no timestamps */
   uint32_t subgroup_size;
   bool llvmpipe;           /* Mesa's CPU driver, with its loop-iteration cap */
+  bool memory_priority;      /* VK_EXT_memory_priority enabled */
+  bool minimum_limits;       /* VKRAYCAST_DEVICE_LIMITS=minimum (see below) */
+  struct rc_mem_block *blocks; /* device memory (vk_memory.h) */
   bool validation;
-  uint32_t validation_messages; /* VALIDATION-type warnings and errors seen */
+  uint32_t validation_messages; /* validation and performance warnings and errors seen */
 } rc_vk_ctx;
-
-/* The per-invocation loop budget the shader and the planner use on this device. llvmpipe
- * caps the loop iterations of one SIMD vector (a subgroup of invocations run as lanes) at
- * 65,535; with divergent nested loops the vector runs the union of its lanes' iterations,
- * so only lanes x the per-lane count bounds it: the budget is RC_LOOP_BUDGET divided by
- * the subgroup size there. Other drivers have no such cap. */
-uint32_t rc_vk_loop_budget(const rc_vk_ctx *ctx);
 
 typedef struct rc_vk_options {
   int device_index; /* -1: pick discrete > integrated > virtual > CPU */
 } rc_vk_options;
 
 rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx);
+/* VKRAYCAST_DEVICE_LIMITS=minimum, a test switch: the host believes the device has only
+ * what Vulkan 1.1 guarantees (docs/porting.md): the limits below, no shaderFloat64 and no
+ * shaderInt64. Everything the host decides from limits (buffer kinds, refusals, workgroup
+ * size, --precision auto) then takes the path a minimal GPU would force. */
+void rc_vk_apply_minimum_limits(VkPhysicalDeviceLimits *limits, VkPhysicalDeviceFeatures *features);
+
 /* Destroys everything; returns RC_ERR_VALIDATION when validation reported messages. */
 rc_status rc_vk_destroy(rc_vk_ctx *ctx);
 

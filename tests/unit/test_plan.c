@@ -1,6 +1,7 @@
 /* The loop-budget plan: the worst-case step count mirrors the shader's loop nest. */
 #include "gpu_plan.h"
 #include "rc_test.h"
+#include "scene/scene.h"
 
 TEST(steps_per_sample_counts_every_loop) {
   gpu_frame f = {0};
@@ -68,6 +69,59 @@ TEST(bvh_plan_counts_composites_by_their_loaders_steps) {
   CHECK_EQ_INT(p.batch_samples, 4); /* 6144 / 616 = 9, capped at the 4 samples */
 }
 
+/* Limits of a device: its workgroup invocations and height. */
+static VkPhysicalDeviceLimits limits(uint32_t invocations, uint32_t height) {
+  VkPhysicalDeviceLimits l = {0};
+  l.maxComputeWorkGroupInvocations = invocations;
+  l.maxComputeWorkGroupSize[0] = l.maxComputeWorkGroupSize[1] = height;
+  l.maxComputeWorkGroupSize[2] = 64;
+  return l;
+}
+
+TEST(workgroup_holds_whole_subgroups_of_every_vendor) {
+  /* llvmpipe 4 (128-bit vectors), 8 (AVX2) and 16 (AVX-512); Intel 8 to 32; NVIDIA and
+   * Apple 32; AMD 32 or 64; and 128 for a device not yet seen. Vulkan guarantees 128
+   * invocations and 128 x 128 x 64; lavapipe and most GPUs offer 1,024. */
+  const uint32_t sizes[] = {1, 4, 8, 16, 32, 64, 128};
+  const uint32_t invocations[] = {128, 256, 1024};
+  for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+    for (size_t j = 0; j < sizeof invocations / sizeof *invocations; j++) {
+      VkPhysicalDeviceLimits l = limits(invocations[j], invocations[j] < 128 ? invocations[j] : 128);
+      rc_workgroup g = rc_gpu_workgroup(sizes[i], &l);
+      uint32_t n = g.x * g.y;
+      CHECK_EQ_INT(g.x, 8);
+      CHECK(n >= 64);
+      CHECK(n <= l.maxComputeWorkGroupInvocations);
+      CHECK(g.y <= l.maxComputeWorkGroupSize[1]);
+      CHECK_EQ_INT(n % sizes[i], 0); /* whole subgroups: no idle lane */
+      /* The largest frame's dispatch stays within the guaranteed 65,535 groups a side. */
+      CHECK(RC_MAX_IMAGE_SIDE / g.x <= 65535 && RC_MAX_IMAGE_SIDE / g.y <= 65535);
+    }
+  }
+  /* A device that cannot take the subgroup in one workgroup gets 64. */
+  VkPhysicalDeviceLimits small = limits(128, 128);
+  rc_workgroup g = rc_gpu_workgroup(256, &small);
+  CHECK_EQ_INT(g.x * g.y, 64);
+}
+
+TEST(loop_budget_keeps_llvmpipe_under_its_cap_at_every_width) {
+  /* llvmpipe counts a loop's iterations per SIMD vector (a subgroup), at most 65,535. */
+  for (uint32_t size = 1; size <= 64; size *= 2) {
+    uint32_t b = rc_gpu_loop_budget(true, size);
+    CHECK((uint64_t)b * size <= 65535);
+    CHECK(b * size >= RC_LOOP_BUDGET - size); /* no more lost than the division's remainder */
+    CHECK_EQ_INT(rc_gpu_loop_budget(false, size), RC_LOOP_BUDGET);
+    /* The showcase's plan (3 spheres + 5 triangles, 3 lights, 1 bounce, BVH depth 4) fits
+     * at least one sample into a dispatch at every width, within the budget. */
+    gpu_frame f = {0};
+    f.sphere_count = 3, f.triangle_count = 5, f.object_count = 8, f.light_count = 3;
+    f.reflection_depth = 1, f.samples_per_pixel = 4;
+    rc_gpu_plan p;
+    CHECK_EQ_INT(rc_gpu_plan_make(&f, 4, b, &p), RC_OK);
+    CHECK(p.batch_samples >= 1 && p.batch_samples * p.steps_per_sample <= b);
+  }
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(steps_per_sample_counts_every_loop);
@@ -75,5 +129,7 @@ int main(void) {
   RUN(one_sample_over_budget_is_refused);
   RUN(bvh_plans_from_the_depth_and_never_refuses);
   RUN(bvh_plan_counts_composites_by_their_loaders_steps);
+  RUN(workgroup_holds_whole_subgroups_of_every_vendor);
+  RUN(loop_budget_keeps_llvmpipe_under_its_cap_at_every_width);
   TEST_MAIN_END
 }
