@@ -80,6 +80,18 @@ static bool validation_requested(void) {
   return v && strcmp(v, "0") != 0 && v[0] != '\0';
 }
 
+static bool has_instance_extension(const char *name) {
+  uint32_t n = 0;
+  if (vkEnumerateInstanceExtensionProperties(NULL, &n, NULL) != VK_SUCCESS) return false;
+  VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+  if (!ext) return false;
+  bool found = false;
+  if (vkEnumerateInstanceExtensionProperties(NULL, &n, ext) == VK_SUCCESS)
+    for (uint32_t i = 0; i < n && !found; i++) found = strcmp(ext[i].extensionName, name) == 0;
+  free(ext);
+  return found;
+}
+
 static rc_status create_instance(rc_vk_ctx *ctx) {
   ctx->validation = validation_requested();
   if (ctx->validation) {
@@ -110,14 +122,21 @@ static rc_status create_instance(rc_vk_ctx *ctx) {
       .pfnUserCallback = on_message,
       .pUserData = ctx};
   const char *layer = VALIDATION_LAYER;
-  const char *ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  const char *ext[2];
+  uint32_t ext_count = 0;
+  if (ctx->validation) ext[ext_count++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  /* MoltenVK (Apple) is a portability driver: loaders since 1.3.216 list such devices only
+   * to an instance that asks for them (docs/porting.md). */
+  bool portability = has_instance_extension(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
+  if (portability) ext[ext_count++] = VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME;
   VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
                                .pNext = ctx->validation ? &dbg : NULL,
+                               .flags = portability ? VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR : 0,
                                .pApplicationInfo = &app,
                                .enabledLayerCount = ctx->validation ? 1 : 0,
                                .ppEnabledLayerNames = &layer,
-                               .enabledExtensionCount = ctx->validation ? 1 : 0,
-                               .ppEnabledExtensionNames = &ext};
+                               .enabledExtensionCount = ext_count,
+                               .ppEnabledExtensionNames = ext};
   VkResult r = vkCreateInstance(&info, NULL, &ctx->instance);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED) {
     rc_error("no Vulkan driver found (%s); install mesa-vulkan-drivers for lavapipe, or a GPU driver",
@@ -322,10 +341,15 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
     vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
     ctx->memory_priority = prio.memoryPriority;
   }
+  const char *dev_ext[2];
+  uint32_t dev_ext_count = 0;
+  if (ctx->memory_priority) dev_ext[dev_ext_count++] = prio_ext;
+  /* The specification requires it enabled wherever a device lists it (MoltenVK). */
+  if (has_extension(ctx->physical, "VK_KHR_portability_subset")) dev_ext[dev_ext_count++] = "VK_KHR_portability_subset";
   VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                              .pNext = ctx->memory_priority ? &prio : NULL,
-                             .enabledExtensionCount = ctx->memory_priority ? 1 : 0,
-                             .ppEnabledExtensionNames = &prio_ext,
+                             .enabledExtensionCount = dev_ext_count,
+                             .ppEnabledExtensionNames = dev_ext,
                              .queueCreateInfoCount = 1,
                              .pQueueCreateInfos = &q,
                              .pEnabledFeatures = &enabled};
