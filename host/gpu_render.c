@@ -449,9 +449,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->pipeline_ms = t2 - t1;
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
-  VkDeviceSize bytes = 0;
-  rc_mem_usage(ctx, &stats->memory_blocks, &bytes);
-  stats->memory_bytes = bytes;
+  rc_mem_usage(ctx, &stats->memory_blocks, &stats->memory_bytes);
   if (st != RC_OK) {
     rc_gpu_renderer_destroy(r);
     return st;
@@ -567,7 +565,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
   const rc_buffer *sb = r->staging ? &r->status_readback : &r->status;
   st = rc_buffer_invalidate(r->ctx, sb);
   if (st != RC_OK) return st;
-  memcpy(status, sb->mapped, sizeof *status);
+  memcpy(status, sb->memory.mapped, sizeof *status);
   if (r->queries) {
     uint64_t ts[2];
     RC_VK_TRY(vkGetQueryPoolResults(r->ctx->device, r->queries, 0, 2, sizeof ts, ts, sizeof ts[0],
@@ -653,11 +651,11 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
   uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
   if (r->band_aov) {
-    const gpu_aov *src = vb->mapped;
+    const gpu_aov *src = vb->memory.mapped;
     for (uint32_t y = 0; y < th; y++)
       memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
   }
-  const float *acc = ab->mapped;
+  const float *acc = ab->memory.mapped;
   for (uint32_t y = 0; y < th; y++) {
     for (uint32_t x = 0; x < tw; x++) {
       const float *a = acc + 4 * ((size_t)y * tw + x);

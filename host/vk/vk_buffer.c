@@ -53,8 +53,6 @@ rc_status rc_buffer_create(rc_vk_ctx *ctx, VkDeviceSize size, VkBufferUsageFlags
   rc_status st = rc_mem_alloc(ctx, &req, (uint32_t)type, use, &out->memory);
   if (st != RC_OK) return st;
   RC_VK_TRY(vkBindBufferMemory(ctx->device, out->buffer, out->memory.memory, out->memory.offset));
-  out->coherent = out->memory.coherent;
-  out->mapped = out->memory.mapped;
   return RC_OK;
 }
 
@@ -65,18 +63,18 @@ void rc_buffer_destroy(rc_vk_ctx *ctx, rc_buffer *buf) {
 }
 
 bool rc_buffer_is_direct(const rc_buffer *buf, bool force_staging) {
-  return buf->mapped != NULL && !force_staging;
+  return buf->memory.mapped != NULL && !force_staging;
 }
 
 rc_status rc_buffer_flush(rc_vk_ctx *ctx, const rc_buffer *buf) {
-  if (buf->coherent) return RC_OK;
+  if (buf->memory.coherent) return RC_OK;
   VkMappedMemoryRange r = rc_mem_range(ctx, &buf->memory);
   RC_VK_TRY(vkFlushMappedMemoryRanges(ctx->device, 1, &r));
   return RC_OK;
 }
 
 rc_status rc_buffer_invalidate(rc_vk_ctx *ctx, const rc_buffer *buf) {
-  if (buf->coherent) return RC_OK;
+  if (buf->memory.coherent) return RC_OK;
   VkMappedMemoryRange r = rc_mem_range(ctx, &buf->memory);
   RC_VK_TRY(vkInvalidateMappedMemoryRanges(ctx->device, 1, &r));
   return RC_OK;
@@ -126,13 +124,13 @@ rc_status rc_buffer_upload(rc_vk_ctx *ctx, rc_buffer *dst, const void *data, VkD
                            bool force_staging) {
   RC_ASSERT(size <= dst->size);
   if (rc_buffer_is_direct(dst, force_staging)) {
-    memcpy(dst->mapped, data, size);
+    memcpy(dst->memory.mapped, data, size);
     return rc_buffer_flush(ctx, dst);
   }
   rc_buffer staging;
   rc_status st = rc_buffer_create(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, RC_MEM_UPLOAD, &staging);
   if (st == RC_OK) {
-    memcpy(staging.mapped, data, size);
+    memcpy(staging.memory.mapped, data, size);
     st = rc_buffer_flush(ctx, &staging);
   }
   copy_job job = {staging.buffer, dst->buffer, size};

@@ -16,10 +16,9 @@
 
 typedef struct rc_buffer {
   VkBuffer buffer;
-  rc_mem_slice memory; /* a slice of a shared block (vk_memory.h) */
+  rc_mem_slice memory; /* a slice of a shared block (vk_memory.h); memory.mapped is non-NULL
+                          when it is host visible */
   VkDeviceSize size;
-  void *mapped; /* non-NULL when the memory is host visible */
-  bool coherent;
 } rc_buffer;
 
 rc_status rc_buffer_create(rc_vk_ctx *ctx, VkDeviceSize size, VkBufferUsageFlags usage, rc_mem_use use,

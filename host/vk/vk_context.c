@@ -80,14 +80,17 @@ static bool validation_requested(void) {
   return v && strcmp(v, "0") != 0 && v[0] != '\0';
 }
 
-static bool has_instance_extension(const char *name) {
+/* Whether the instance (pd VK_NULL_HANDLE) or the device offers extension `name`. */
+static bool has_extension(VkPhysicalDevice pd, const char *name) {
   uint32_t n = 0;
-  if (vkEnumerateInstanceExtensionProperties(NULL, &n, NULL) != VK_SUCCESS) return false;
+  VkResult r = pd ? vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL)
+                  : vkEnumerateInstanceExtensionProperties(NULL, &n, NULL);
+  if (r != VK_SUCCESS) return false;
   VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
   if (!ext) return false;
+  r = pd ? vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) : vkEnumerateInstanceExtensionProperties(NULL, &n, ext);
   bool found = false;
-  if (vkEnumerateInstanceExtensionProperties(NULL, &n, ext) == VK_SUCCESS)
-    for (uint32_t i = 0; i < n && !found; i++) found = strcmp(ext[i].extensionName, name) == 0;
+  for (uint32_t i = 0; r == VK_SUCCESS && i < n && !found; i++) found = strcmp(ext[i].extensionName, name) == 0;
   free(ext);
   return found;
 }
@@ -127,7 +130,7 @@ static rc_status create_instance(rc_vk_ctx *ctx) {
   if (ctx->validation) ext[ext_count++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
   /* MoltenVK (Apple) is a portability driver: loaders since 1.3.216 list such devices only
    * to an instance that asks for them (docs/porting.md). */
-  bool portability = has_instance_extension(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
+  bool portability = has_extension(VK_NULL_HANDLE, VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
   if (portability) ext[ext_count++] = VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME;
   VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
                                .pNext = ctx->validation ? &dbg : NULL,
@@ -295,20 +298,7 @@ static rc_status pick_device(rc_vk_ctx *ctx, int wanted) {
   ctx->llvmpipe = ctx->driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE ||
                   strstr(ctx->props.deviceName, "llvmpipe") != NULL;
   if (!ctx->props.limits.timestampComputeAndGraphics) ctx->timestamp_bits = 0;
-  if (ctx->minimum_limits) rc_vk_apply_minimum_limits(&ctx->props.limits, NULL);
   return RC_OK;
-}
-
-static bool has_extension(VkPhysicalDevice pd, const char *name) {
-  uint32_t n = 0;
-  if (vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL) != VK_SUCCESS) return false;
-  VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
-  if (!ext) return false;
-  bool found = false;
-  if (vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) == VK_SUCCESS)
-    for (uint32_t i = 0; i < n && !found; i++) found = strcmp(ext[i].extensionName, name) == 0;
-  free(ext);
-  return found;
 }
 
 rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
