@@ -17,15 +17,14 @@ export VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT:VALIDATI
 run() {
   local name=$1 scene=$2 blocks=$3 why=ok
   shift 3
-  add() { [[ $why == ok ]] && why=$1 || why="$why; $1"; }
   "$bin" render "$scene" -o "$work/$name.exr" --width 160 --height 100 --stats-json "$work/$name.json" --quiet \
     --allow-outside-paths "$@" 2>"$work/$name.err"
   local rc=$?
-  [[ $rc == 0 ]] || add "exit status $rc: $(grep -m3 'validation' "$work/$name.err" | cut -c1-300)"
-  grep -q "validation (not counted: " "$work/$name.err" || add "no best-practice message at all: were the checks on?"
+  [[ $rc == 0 ]] || because "exit status $rc: $(grep -m3 'validation' "$work/$name.err" | cut -c1-300)"
+  grep -q "validation (not counted: " "$work/$name.err" || because "no best-practice message at all: were the checks on?"
   local n
-  n=$(sed -n 's/.*"memory_blocks":[[:space:]]*\([0-9]*\).*/\1/p' "$work/$name.json")
-  [[ -n $n && $n -le $blocks ]] || add "$n device memory blocks, expected at most $blocks"
+  n=$(json_num memory_blocks "$work/$name.json")
+  [[ -n $n && $n -le $blocks ]] || because "$n device memory blocks, expected at most $blocks"
   check "$name" "$why"
 }
 

@@ -10,23 +10,21 @@ set -uo pipefail
 bin=$1 scenes=$2 work=$3 gen_mesh=$4
 mkdir -p "$work"
 source "$(dirname "$0")/../reliability/check.sh"
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
-str() { sed -n "s/.*\"$1\":[[:space:]]*\"\([^\"]*\)\".*/\1/p" "$2" | head -1; }
 
 # Every example scene: the minimum device's image equals the full device's f32 image.
 for s in "$scenes"/*.json; do
   n=$(basename "$s" .json) why=ok
   args=(--width 160 --height 100 --quiet --allow-outside-paths)
   "$bin" render "$s" -o "$work/$n.full.exr" --precision f32 "${args[@]}" 2>"$work/$n.full.err" ||
-    why="full device: exit status $?"
+    because "full device: exit status $?"
   VKRAYCAST_DEVICE_LIMITS=minimum "$bin" render "$s" -o "$work/$n.min.exr" --stats-json "$work/$n.min.json" \
-    "${args[@]}" 2>"$work/$n.min.err" || why="$why; minimum device: exit status $?: $(head -c 300 "$work/$n.min.err")"
+    "${args[@]}" 2>"$work/$n.min.err" || because "minimum device: exit status $?: $(head -c 300 "$work/$n.min.err")"
   if [[ $why == ok ]]; then
-    [[ $(str precision "$work/$n.min.json") == f32 ]] || why="precision $(str precision "$work/$n.min.json")"
-    (( $(num workgroup_x "$work/$n.min.json") * $(num workgroup_y "$work/$n.min.json") <= 128 )) ||
-      why="$why; a workgroup over maxComputeWorkGroupInvocations 128"
+    [[ $(json_str precision "$work/$n.min.json") == f32 ]] || because "precision $(json_str precision "$work/$n.min.json")"
+    (( $(json_num workgroup_x "$work/$n.min.json") * $(json_num workgroup_y "$work/$n.min.json") <= 128 )) ||
+      because "a workgroup over maxComputeWorkGroupInvocations 128"
     "$bin" compare "$work/$n.min.exr" "$work/$n.full.exr" --fail 0 >"$work/$n.cmp" 2>&1 ||
-      why="$why; differs from the full device's f32 image: $(tail -3 "$work/$n.cmp" | tr '\n' ' ')"
+      because "differs from the full device's f32 image: $(tail -3 "$work/$n.cmp" | tr '\n' ' ')"
   fi
   check "example $n" "$why"
 done
@@ -35,8 +33,8 @@ export VKRAYCAST_DEVICE_LIMITS=minimum
 # A scene that needs f64 falls back to f32 with the README's warning.
 "$bin" render "$(dirname "$0")/../extremes/scenes/S03_distance_1e8.json" -o "$work/far.exr" --quiet 2>"$work/far.err"
 rc=$? why=ok
-[[ $rc == 0 ]] || why="exit status $rc"
-grep -q "has no shaderFloat64; rendering in f32, the output is degraded" "$work/far.err" || why="$why; no warning: $(head -c 300 "$work/far.err")"
+[[ $rc == 0 ]] || because "exit status $rc"
+grep -q "has no shaderFloat64; rendering in f32, the output is degraded" "$work/far.err" || because "no warning: $(head -c 300 "$work/far.err")"
 check "precision auto without f64" "$why"
 # The 1M-triangle mesh of the benchmarks: too large for either kind of buffer there.
 "$gen_mesh" 1000000 "$work/m1m.ply" >/dev/null
@@ -54,10 +52,10 @@ expect_exit2 "storage buffers asked for" "$work/o.exr" "cannot take this scene: 
 rm -f "$work/o.exr"
 "$bin" render "$scenes/showcase.json" -o "$work/o.exr" --precision f64 --quiet 2>"$work/err"
 rc=$? why=ok
-[[ $rc == 3 ]] || why="exit status $rc, expected 3 (the device cannot)"
+[[ $rc == 3 ]] || because "exit status $rc, expected 3 (the device cannot)"
 grep -q "does not support shaderFloat64 and shaderInt64" "$work/err" && grep -q "llvmpipe" "$work/err" ||
-  why="$why; stderr: $(head -c 300 "$work/err")"
-[[ ! -e $work/o.exr ]] || why="$why; an image was written"
+  because "stderr: $(head -c 300 "$work/err")"
+[[ ! -e $work/o.exr ]] || because "an image was written"
 check "f64 asked for" "$why"
 VKRAYCAST_DEVICE_LIMITS=maximum expect_exit2 "unknown limits" "$work/o.exr" "the only value is \`minimum\`" \
   "$bin" render "$scenes/showcase.json" -o "$work/o.exr" --quiet

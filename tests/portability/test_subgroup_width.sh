@@ -8,7 +8,6 @@ set -uo pipefail
 bin=$1 scenes=$2 work=$3
 mkdir -p "$work"
 source "$(dirname "$0")/../reliability/check.sh"
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 
 # NAME SCENE [render args...]
 run() {
@@ -16,18 +15,18 @@ run() {
   shift 2
   for w in 128 256; do
     LP_NATIVE_VECTOR_WIDTH=$w "$bin" render "$scene" -o "$work/$name.$w.exr" --stats-json "$work/$name.$w.json" \
-      --quiet --allow-outside-paths "$@" 2>"$work/$name.$w.err" || why="width $w: exit status $?: $(head -c 300 "$work/$name.$w.err")"
+      --quiet --allow-outside-paths "$@" 2>"$work/$name.$w.err" || because "width $w: exit status $?: $(head -c 300 "$work/$name.$w.err")"
   done
   if [[ $why == ok ]]; then
     local s4 s8 b4 b8
-    s4=$(num subgroup_size "$work/$name.128.json") s8=$(num subgroup_size "$work/$name.256.json")
-    b4=$(num loop_budget "$work/$name.128.json") b8=$(num loop_budget "$work/$name.256.json")
-    [[ $s4 == 4 && $s8 == 8 ]] || why="subgroup sizes $s4 and $s8, expected 4 and 8"
-    [[ $b4 == 12288 && $b8 == 6144 ]] || why="$why; loop budgets $b4 and $b8, expected 12288 and 6144"
-    local shape="$(num workgroup_x "$work/$name.128.json")x$(num workgroup_y "$work/$name.128.json")"
-    [[ $shape == 8x8 ]] || why="$why; workgroup $shape at subgroup size 4, expected 8x8"
+    s4=$(json_num subgroup_size "$work/$name.128.json") s8=$(json_num subgroup_size "$work/$name.256.json")
+    b4=$(json_num loop_budget "$work/$name.128.json") b8=$(json_num loop_budget "$work/$name.256.json")
+    [[ $s4 == 4 && $s8 == 8 ]] || because "subgroup sizes $s4 and $s8, expected 4 and 8"
+    [[ $b4 == 12288 && $b8 == 6144 ]] || because "loop budgets $b4 and $b8, expected 12288 and 6144"
+    local shape="$(json_num workgroup_x "$work/$name.128.json")x$(json_num workgroup_y "$work/$name.128.json")"
+    [[ $shape == 8x8 ]] || because "workgroup $shape at subgroup size 4, expected 8x8"
     "$bin" compare "$work/$name.128.exr" "$work/$name.256.exr" --fail 0 >"$work/$name.cmp" 2>&1 ||
-      why="$why; images differ: $(tail -3 "$work/$name.cmp" | tr '\n' ' ')"
+      because "images differ: $(tail -3 "$work/$name.cmp" | tr '\n' ' ')"
   fi
   check "$name" "$why"
 }

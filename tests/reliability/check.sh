@@ -5,6 +5,11 @@ failed=0 passed=0
 check() {
   if [[ "$2" == ok ]]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $1: $2"; fi
 }
+# `because TEXT` adds TEXT to the caller's reason `why`, which is "ok" until the first.
+because() { if [[ $why == ok ]]; then why=$1; else why="$why; $1"; fi; }
+# `json_num FIELD FILE`, `json_str FIELD FILE`: a field of a --stats-json file.
+json_num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+json_str() { sed -n "s/.*\"$1\":[[:space:]]*\"\([^\"]*\)\".*/\1/p" "$2" | head -1; }
 # `expect_exit2 NAME OUT MESSAGE COMMAND...`: COMMAND must end within 60 s with exit
 # status 2, MESSAGE on stderr and no file OUT.
 expect_exit2() {
@@ -13,9 +18,9 @@ expect_exit2() {
   rm -f "$out"
   timeout 60 "$@" 2>"$work/err"
   local got=$? why=ok
-  [[ $got == 2 ]] || why="exit status $got, expected 2"
-  grep -qF -- "$want" "$work/err" || why="$why; stderr: $(head -c 300 "$work/err"); expected: $want"
-  [[ ! -e $out ]] || why="$why; an image was written"
+  [[ $got == 2 ]] || because "exit status $got, expected 2"
+  grep -qF -- "$want" "$work/err" || because "stderr: $(head -c 300 "$work/err"); expected: $want"
+  [[ ! -e $out ]] || because "an image was written"
   check "$name" "$why"
 }
 # `expect_refusal NAME SCENE MESSAGE [render args...]`: rendering SCENE (with $bin into
