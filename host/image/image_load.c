@@ -25,7 +25,7 @@ static void load(void) {
   char *slash = strrchr(exe, '/');
   if (slash) *slash = '\0';
   snprintf(path, sizeof path, "%s/vkraycast-image.so", exe);
-  void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+  void *h = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
   if (!h) {
     snprintf(load_error, sizeof load_error, "cannot load the image module %s: %s", path, dlerror());
     return;
