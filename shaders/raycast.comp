@@ -9,7 +9,7 @@
 
 #include "rc_shared.h"
 
-// RC_QUADRICS=0 builds the module without quadric and composite code (host/gpu_shaders.c
+// RC_QUADRICS=0 builds the module without quadric and composite code (host/gpu/gpu_shaders.c
 // picks it for scenes that have neither): lavapipe translates and optimizes the whole
 // module before specialization removes dead code, and the quadric code tripled that time.
 #ifndef RC_QUADRICS

@@ -1,9 +1,9 @@
-// rc_budget.glsl: the per-invocation loop budget (host/gpu_plan.h). llvmpipe ends every loop
+// rc_budget.glsl: the per-invocation loop budget (host/gpu/gpu_plan.h). llvmpipe ends every loop
 // after 65,535 iterations summed over the whole invocation, silently; so every loop here
 // calls budget_step() once per iteration and breaks when it returns false. Every loop
 // means every loop: llvmpipe does not unroll even a two-iteration loop, and an uncounted
 // one once let it cut samples silently (rc_bvh.glsl). The host sizes
-// each dispatch so that the worst case stays under loop_budget (host/gpu_plan.c); if an
+// each dispatch so that the worst case stays under loop_budget (host/gpu/gpu_plan.c); if an
 // invocation still runs out, its whole workgroup discards the batch (raycast.comp) and the
 // pixels are counted in gpu_status.exhausted_pixels.
 uint budget_steps = 0u;

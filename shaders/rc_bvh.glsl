@@ -1,4 +1,4 @@
-// rc_bvh.glsl: BVH traversal (host/bvh.c builds the tree) and the closest-hit and
+// rc_bvh.glsl: BVH traversal (host/scene/bvh.c builds the tree) and the closest-hit and
 // occlusion queries the shading code calls.
 
 // 1/d with zero components replaced by a huge finite value: Vulkan lets shaders assume no
@@ -45,7 +45,7 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
 // or a tested leaf continues at `skip`, past its subtree. No per-lane stack in private
 // memory (llvmpipe lowers such arrays to scratch with per-lane gathers and scatters, and
 // a real GPU spills them), one box and one fetch of two texels per step. Children are
-// ordered near-to-far from the eye at build time (host/bvh.c), which is what a primary
+// ordered near-to-far from the eye at build time (host/scene/bvh.c), which is what a primary
 // ray needs; the tie rule (consider_hit) makes the result independent of the order.
 bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   ray_shear sh = ray_shear_for(d);

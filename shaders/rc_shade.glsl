@@ -194,8 +194,43 @@ real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
   return (c > 0.0) ? real(pow(float(c), shininess)) : 0.0;
 }
 
+// Light `light` seen from the surface point p, whose shadow rays leave from origin: the
+// unit direction l towards it, the irradiance it delivers there (a point light's intensity
+// over its attenuation c0 + c1 r + c2 r^2), and the shadow ray's direction and extent
+// (short of the light by RC_SHADOW_EPSILON, so the light's own position never blocks).
+// False for a point light exactly at p (r = 0), which contributes nothing.
+bool light_at(gpu_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 irradiance, out rvec3 to_light,
+              out real shadow_t_max) {
+  if (light.type == RC_LIGHT_POINT) {
+    rvec3 lp = rvec3(light.position);
+    rvec3 delta = lp - p;
+    real r2 = dot(delta, delta);
+    if (r2 == 0.0) return false;
+    real r = sqrt(r2);
+    l = delta / r;
+    rvec3 k = rvec3(light.attenuation);
+    irradiance = rvec3(light.intensity) / (k.x + k.y * r + k.z * r2);
+    rvec3 from_origin = lp - origin;
+    real dist = length(from_origin);
+    to_light = from_origin / dist;
+    shadow_t_max = dist * (1.0 - RC_SHADOW_EPSILON);
+  } else {
+    l = -rvec3(light.position);
+    irradiance = rvec3(light.intensity);
+    to_light = l;
+    shadow_t_max = real(RC_T_FAR);
+  }
+  return true;
+}
+
+// What an unblocked light adds: Lambert diffuse plus the specular lobe, scaled by its
+// irradiance (n_dot_l = dot(n, l) > 0).
+rvec3 light_contribution(gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l, rvec3 irradiance) {
+  return irradiance * (rvec3(m.diffuse) * n_dot_l + rvec3(m.specular) * specular_term(n, l, v, m.shininess));
+}
+
 // Direct light at the surface seen along d: ambient, then each light whose shadow ray is
-// unblocked. A point light exactly on the hit point (r = 0) contributes nothing.
+// unblocked.
 rvec3 shade_phong(surface sf, rvec3 d) {
   gpu_material m = load_material(sf.material);
   rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
@@ -204,30 +239,11 @@ rvec3 shade_phong(surface sf, rvec3 d) {
   spawned_ray = true; // every shadow ray below leaves the surface
   for (uint i = 0u; i < scene_light_count(); i++) {
     if (!budget_step()) break;
-    gpu_light light = load_light(i);
     rvec3 l;
     rvec3 irradiance;
     rvec3 to_light;
     real shadow_t_max;
-    if (light.type == RC_LIGHT_POINT) {
-      rvec3 lp = rvec3(light.position);
-      rvec3 delta = lp - sf.p;
-      real r2 = dot(delta, delta);
-      if (r2 == 0.0) continue;
-      real r = sqrt(r2);
-      l = delta / r;
-      rvec3 k = rvec3(light.attenuation);
-      irradiance = rvec3(light.intensity) / (k.x + k.y * r + k.z * r2);
-      rvec3 from_origin = lp - origin;
-      real dist = length(from_origin);
-      to_light = from_origin / dist;
-      shadow_t_max = dist * (1.0 - RC_SHADOW_EPSILON);
-    } else {
-      l = -rvec3(light.position);
-      irradiance = rvec3(light.intensity);
-      to_light = l;
-      shadow_t_max = real(RC_T_FAR);
-    }
+    if (!light_at(load_light(i), sf.p, origin, l, irradiance, to_light, shadow_t_max)) continue;
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
     if (scene_shadows()) shadow_rays++;
@@ -235,8 +251,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;
     }
-    color += irradiance * (rvec3(m.diffuse) * n_dot_l +
-                           rvec3(m.specular) * specular_term(sf.n, l, v, m.shininess));
+    color += light_contribution(m, sf.n, l, v, n_dot_l, irradiance);
   }
   return color;
 }

@@ -66,7 +66,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SPEC_TRIANGLE_FORMULA 6 /* RC_TRIANGLE_* */
 #define RC_SPEC_OFFSET_STRATEGY 7  /* RC_OFFSET_* */
 #define RC_SPEC_OFFSET_EPSILON 8   /* float: the epsilon strategy's distance */
-/* The scene's features (create_pipeline, host/gpu_render.c): code for a kind the scene
+/* The scene's features (create_pipeline, host/gpu/gpu_render.c): code for a kind the scene
  * lacks is compiled out, and the light loop and bounce count become constants. A generic
  * pipeline (render --pipeline generic) sets every kind and RC_LIGHTS_FROM_FRAME. */
 #define RC_SPEC_KINDS 9            /* bit mask of RC_KIND_* present */
@@ -100,8 +100,8 @@ typedef struct gpu_csg gpu_csg;
 #define RC_OFFSET_EPSILON 2u     /* a fixed distance along the normal (quality.shadow_epsilon) */
 #define RC_OFFSET_EPSILON_DEFAULT 1.0e-4
 
-/* The builder caps the BVH's depth (host/bvh.c): the loop plan's traversal estimate grows
- * with it (host/gpu_plan.c). Traversal itself is stackless (rc_bvh.glsl). */
+/* The builder caps the BVH's depth (host/scene/bvh.c): the loop plan's traversal estimate grows
+ * with it (host/gpu/gpu_plan.c). Traversal itself is stackless (rc_bvh.glsl). */
 #define RC_BVH_MAX_DEPTH 47
 /* pbrt's conservative slab test: the far distance grows by 1 + 2 gamma(3) (f32) so that
  * rounding in the box test never culls a box the ray touches (Ize, JCGT 2(2), 2013). */
@@ -111,7 +111,7 @@ typedef struct gpu_csg gpu_csg;
  * in total (tests/gpu/test_gpu_render.c renders a scene past it), where an "invocation"
  * is a SIMD vector of lanes. Every shader loop counts into one per-lane budget (a specialization constant: this, a quarter
  * below the cap, divided by the subgroup size on llvmpipe, rc_vk_loop_budget), and the
- * host plans each dispatch's work so that its worst case fits (host/gpu_plan.c). */
+ * host plans each dispatch's work so that its worst case fits (host/gpu/gpu_plan.c). */
 #define RC_LOOP_BUDGET 49152u
 
 #define RC_PROJECTION_PERSPECTIVE 0u

@@ -35,49 +35,33 @@ static uint32_t material_of(const bench *b, unsigned geom, unsigned prim) {
   return geom == b->tri_geom ? b->p->triangles[prim].material : b->p->spheres[prim].material;
 }
 
-/* Shading as rc_shade.glsl's shade_phong (Blinn-Phong, attenuation, emission), with
- * Embree's occlusion test for the shadow rays. */
+/* Shading by the reference's own functions (ref/ref_shade.c, the shader's twin): the light
+ * directions, irradiance, shadow-ray extents and the Phong terms are vkraycast's; only the
+ * shadow rays' occlusion test is Embree's. The surface is the flat one Embree reports
+ * (its geometric normal facing the ray), leaving from the reference's offset origin. */
 static vec3 shade(bench *b, vec3 o, vec3 d, float t, vec3 ng, uint32_t mat, uint64_t *shadow_rays) {
-  const gpu_material *m = &b->p->materials[mat];
+  const gpu_material m = b->p->materials[mat];
   const gpu_frame *f = &b->p->frame;
   vec3 n = rcm_normalize_f(ng);
   if (rcm_dot_f(n, d) > 0) n = rcm_neg_f(n);
   vec3 p = rcm_add_f(o, rcm_scale_f(d, t));
   vec3 origin = ref_offset_ray_origin_f(p, n);
-  vec3 color = rcm_add_f(rcm_mul_f(m->ambient, f->ambient_light), m->emission);
+  vec3 color = rcm_add_f(rcm_mul_f(m.ambient, f->ambient_light), m.emission);
   vec3 v = rcm_neg_f(d);
   for (uint32_t i = 0; i < f->light_count; i++) {
-    const gpu_light *light = &b->p->lights[i];
     vec3 l, irradiance, to_light;
     float t_max;
-    if (light->type == RC_LIGHT_POINT) {
-      vec3 delta = rcm_sub_f(light->position, p);
-      float r2 = rcm_dot_f(delta, delta), r = sqrtf(r2);
-      if (r2 == 0) continue;
-      l = rcm_scale_f(delta, 1 / r);
-      irradiance = rcm_scale_f(light->intensity,
-                               1 / (light->attenuation.x + light->attenuation.y * r + light->attenuation.z * r2));
-      vec3 from = rcm_sub_f(light->position, origin);
-      float dist = rcm_length_f(from);
-      to_light = rcm_scale_f(from, 1 / dist);
-      t_max = dist * (1 - (float)RC_SHADOW_EPSILON);
-    } else {
-      l = rcm_neg_f(light->position);
-      irradiance = light->intensity;
-      to_light = l;
-      t_max = INFINITY;
-    }
+    if (!ref_light_at_f(b->p->lights[i], p, origin, &l, &irradiance, &to_light, &t_max)) continue;
     float ndl = rcm_dot_f(n, l);
     if (ndl <= 0) continue;
     (*shadow_rays)++;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    struct RTCRay ray = {origin.x, origin.y, origin.z, 0, to_light.x, to_light.y, to_light.z, 0, t_max, 0xffffffffu, 0, 0};
+    struct RTCRay ray = {origin.x, origin.y, origin.z, 0, to_light.x, to_light.y, to_light.z, 0,
+                         t_max == RC_T_FAR ? INFINITY : t_max, 0xffffffffu, 0, 0};
     rtcOccluded1(b->scene, &ctx, &ray);
     if (ray.tfar < 0) continue; /* blocked */
-    float c = rcm_dot_f(n, rcm_normalize_f(rcm_add_f(l, v)));
-    float spec = m->shininess == 0 ? 1 : (c > 0 ? powf(c, m->shininess) : 0);
-    color = rcm_add_f(color, rcm_mul_f(irradiance, rcm_add_f(rcm_scale_f(m->diffuse, ndl), rcm_scale_f(m->specular, spec))));
+    color = rcm_add_f(color, ref_light_contribution_f(&b->sc, m, n, l, v, ndl, irradiance));
   }
   return color;
 }

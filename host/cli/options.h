@@ -14,7 +14,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "rc_base.h"
+#include "base/rc_base.h"
 
 typedef enum {
   RC_OPT_FLAG,   /* bool, set to true */

@@ -3,7 +3,7 @@
 #define RC_REF_INTERSECT_H
 
 #include "math/rcm_vec3.h"
-#include "rc_base.h"
+#include "base/rc_base.h"
 
 /* The scene the reference reads: the very arrays the GPU gets (scene_pack.h). */
 typedef struct ref_scene {

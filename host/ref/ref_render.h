@@ -5,7 +5,7 @@
 #ifndef RC_REF_RENDER_H
 #define RC_REF_RENDER_H
 
-#include "region.h"
+#include "base/region.h"
 #include "scene/scene_pack.h"
 
 typedef struct rc_ref_options {

@@ -173,6 +173,37 @@ real REF(specular_term)(const ref_scene *sc, rvec3 n, rvec3 l, rvec3 v, float sh
 #endif
 }
 
+bool REF(light_at)(gpu_light light, rvec3 p, rvec3 origin, rvec3 *l, rvec3 *irradiance, rvec3 *to_light,
+                   real *shadow_t_max) {
+  if (light.type == RC_LIGHT_POINT) {
+    rvec3 lp = rvec3_from(light.position);
+    rvec3 delta = RV(sub)(lp, p);
+    real r2 = RV(dot)(delta, delta);
+    if (r2 == 0) return false;
+    real r = R_SQRT(r2);
+    *l = RV(scale)(delta, 1 / r);
+    rvec3 k = rvec3_from(light.attenuation);
+    *irradiance = RV(scale)(rvec3_from(light.intensity), 1 / (k.x + k.y * r + k.z * r2));
+    rvec3 from_origin = RV(sub)(lp, origin);
+    real dist = RV(length)(from_origin);
+    *to_light = RV(scale)(from_origin, 1 / dist);
+    *shadow_t_max = dist * (1 - (real)RC_SHADOW_EPSILON);
+  } else {
+    *l = RV(neg)(rvec3_from(light.position));
+    *irradiance = rvec3_from(light.intensity);
+    *to_light = *l;
+    *shadow_t_max = (real)RC_T_FAR;
+  }
+  return true;
+}
+
+rvec3 REF(light_contribution)(const ref_scene *sc, gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l,
+                              rvec3 irradiance) {
+  rvec3 diffuse = RV(scale)(rvec3_from(m.diffuse), n_dot_l);
+  rvec3 specular = RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, n, l, v, m.shininess));
+  return RV(mul)(irradiance, RV(add)(diffuse, specular));
+}
+
 rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   gpu_material m = sc->materials[sf->material];
   rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
@@ -180,28 +211,9 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   rvec3 origin = REF(spawn_origin)(sc, sf);
   ref_spawned_ray = true;
   for (uint32_t i = 0; i < sc->frame->light_count; i++) {
-    gpu_light light = sc->lights[i];
     rvec3 l, irradiance, to_light;
     real shadow_t_max;
-    if (light.type == RC_LIGHT_POINT) {
-      rvec3 lp = rvec3_from(light.position);
-      rvec3 delta = RV(sub)(lp, sf->p);
-      real r2 = RV(dot)(delta, delta);
-      if (r2 == 0) continue;
-      real r = R_SQRT(r2);
-      l = RV(scale)(delta, 1 / r);
-      rvec3 k = rvec3_from(light.attenuation);
-      irradiance = RV(scale)(rvec3_from(light.intensity), 1 / (k.x + k.y * r + k.z * r2));
-      rvec3 from_origin = RV(sub)(lp, origin);
-      real dist = RV(length)(from_origin);
-      to_light = RV(scale)(from_origin, 1 / dist);
-      shadow_t_max = dist * (1 - (real)RC_SHADOW_EPSILON);
-    } else {
-      l = RV(neg)(rvec3_from(light.position));
-      irradiance = rvec3_from(light.intensity);
-      to_light = l;
-      shadow_t_max = (real)RC_T_FAR;
-    }
+    if (!REF(light_at)(sc->lights[i], sf->p, origin, &l, &irradiance, &to_light, &shadow_t_max)) continue;
     real n_dot_l = RV(dot)(sf->n, l);
     if (n_dot_l <= 0) continue;
     if (sc->frame->shadows) ref_shadow_rays++;
@@ -209,9 +221,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;
     }
-    rvec3 diffuse = RV(scale)(rvec3_from(m.diffuse), n_dot_l);
-    rvec3 specular = RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, sf->n, l, v, m.shininess));
-    color = RV(add)(color, RV(mul)(irradiance, RV(add)(diffuse, specular)));
+    color = RV(add)(color, REF(light_contribution)(sc, m, sf->n, l, v, n_dot_l, irradiance));
   }
   return color;
 }

@@ -32,6 +32,8 @@ extern _Thread_local gpu_aov ref_aov_record;
   V ref_offset_error_bound_##S(V p, V n, V p_error);                                            \
   V ref_spawn_origin_##S(const ref_scene *sc, const ref_surface_##S *sf);                       \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
+  bool ref_light_at_##S(gpu_light light, V p, V origin, V *l, V *irradiance, V *to_light, R *shadow_t_max); \
+  V ref_light_contribution_##S(const ref_scene *sc, gpu_material m, V n, V l, V v, R n_dot_l, V irradiance); \
   V ref_shade_phong_##S(const ref_scene *sc, const ref_surface_##S *sf, V d);                   \
   void ref_aov_begin_##S(const ref_scene *sc, const ref_hit_##S *h);                            \
   V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);

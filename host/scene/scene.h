@@ -5,7 +5,7 @@
 #define RC_SCENE_H
 
 #include "math/rcm_vec3.h"
-#include "rc_base.h"
+#include "base/rc_base.h"
 
 typedef struct rc_material_def {
   char *name;
@@ -175,7 +175,7 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
 /* Neither format allows a NUL byte, which would silently end the C string of a name or a
  * token that holds it: an error with its line and column. Both parsers call it first. */
 rc_status rc_scene_check_text(const char *path, const char *text, size_t len);
-/* The CSE167x ray-tracer format (scene_test.c); it names no other files. */
+/* The CSE167x ray-tracer format (scene_cse167.c); it names no other files. */
 rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc_scene *scene);
 /* The JSON format from text in memory; `path` names it in messages and locates meshes. */
 rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, const rc_load_options *options,

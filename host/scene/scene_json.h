@@ -1,86 +1,25 @@
-/* scene_json.h: the JSON reader's context and field helpers, shared by scene_json.c
- * (the scene, camera, lights, triangles, meshes) and scene_quadric.c (quadrics and
- * composites). Every helper prints FILE:LINE:COL: error: FIELD.PATH: what (value) and
- * returns RC_ERR_INPUT on bad input. */
+/* scene_json.h: the parts of the JSON scene format that live in files of their own, for
+ * scene_json.c (the root and the objects list), which calls them: quadrics and composites
+ * (scene_quadric.c) and mesh files (scene_json_mesh.c). Calls go one way: scene_json.c ->
+ * scene_quadric.c -> scene_json_mesh.c, all reading through scene_json_read.h. */
 #ifndef RC_SCENE_JSON_H
 #define RC_SCENE_JSON_H
 
-#include <cjson/cJSON.h>
+#include "scene/scene_json_read.h"
 
-#include "scene/json_locate.h"
-#include "scene/name_table.h"
-#include "scene/scene.h"
-
-#define RC_JSON_MAX_DEPTH 24
-
-typedef struct {
-  const char *file;
-  const char *text;
-  size_t len;
-  rc_json_step path[RC_JSON_MAX_DEPTH];
-  size_t depth;
-  rc_name_table materials; /* material name -> index into rc_scene.materials */
-  bool allow_outside_paths; /* rc_load_options */
-  size_t lc_off;            /* js_note_origin's line counter: where it stopped */
-  int lc_line, lc_col;
-} jctx;
-
-#define TRY(expr)                 \
-  do {                            \
-    rc_status st_ = (expr);       \
-    if (st_ != RC_OK) return st_; \
-  } while (0)
-
-void js_push_key(jctx *c, const char *key);
-void js_push_index(jctx *c, size_t index);
-void js_pop(jctx *c);
-void js_format_path(const jctx *c, char *out, size_t cap);
-rc_status js_fail(jctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-const char *js_type_name(const cJSON *v);
-/* Rejects members not in `allowed` (NULL-terminated) and repeated members. */
-rc_status js_check_members(jctx *c, const cJSON *obj, const char *const *allowed);
-rc_status js_expect_object(jctx *c, const cJSON *v);
-rc_status js_number_value(jctx *c, const cJSON *v, double *out);
-/* Member `key`: a finite number in [lo, hi]; `def` when absent unless required. */
-rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def, double lo, double hi,
-                        double *out);
-/* Like js_get_number, with an exclusive lower bound of 0. */
-rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool required, double def, double *out);
-rc_status js_get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def, uint32_t lo,
-                      uint32_t hi, uint32_t *out);
-rc_status js_vec3_value(jctx *c, const cJSON *v, double lo, dvec3 *out);
-/* Member `key`: [x, y, z]; lo = 0 for colours and coefficients, -HUGE_VAL for positions. */
-rc_status js_get_vec3(jctx *c, const cJSON *obj, const char *key, bool required, dvec3 def, double lo, dvec3 *out);
-rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *const *names, uint32_t def,
-                      uint32_t *out);
-/* Member `key`: true or false; `def` when absent. */
-rc_status js_get_bool(jctx *c, const cJSON *obj, const char *key, bool def, bool *out);
-rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out);
-/* Member "transform" ({"matrix", "translate", "rotate_deg", "scale"}: docs/scene-format.md)
- * as world_from_object, the identity when absent; a singular one is refused. */
-rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *present);
-void js_affine_identity(rc_affine *a);
-/* a = a * b (b applied first to points). */
-void js_affine_multiply(rc_affine *a, const rc_affine *b);
-/* Offset in the text of the value at the current path (rc_json_locate). */
-size_t js_offset(const jctx *c);
-/* Records that what was added to the scene since `before` comes from the value at `off`
- * (an element of array `what`, or with item UINT32_MAX a member of object `what`). Lines
- * are counted on from the previous call, so values noted in file order cost the file once. */
-rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KINDS], size_t off, const char *what,
-                         uint32_t item);
-
-/* scene_quadric.c: the object types that are quadrics ("quadric", "ellipsoid", "cylinder",
- * "cone", "paraboloid", "hyperboloid", "box") and composites ("csg"). Whether `type` is
- * one of them; and the parser of such an object into the scene. */
-/* The triangles of the mesh file o.file (relative to the scene's folder), through m, appended
- * to the scene; o.material, else `material`, else (-1) the file's own materials. */
+/* scene_json_mesh.c. The triangles of the mesh file o.file (relative to the scene's
+ * folder), through m, appended to the scene; o.material, else `material`, else (-1) the
+ * file's own materials. */
 rc_status js_load_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m, int material);
-/* A closed mesh as a composite's operand (csg_mesh.c): its triangles, through t, go to
+/* A closed mesh as a composite's operand: its triangles, through t, go to
  * s->csg_triangles, and *q becomes its leaf (RC_QUADRIC_MESH); *intervals is the most
  * [in, out] intervals a ray line can have in it (its max_crossings / 2). */
 rc_status js_parse_mesh_operand(jctx *c, const cJSON *o, rc_scene *s, int material, const rc_affine *t,
                                 rc_quadric_def *q, uint32_t *intervals);
+
+/* scene_quadric.c: whether `type` names a quadric ("quadric", "ellipsoid", "cylinder",
+ * "cone", "paraboloid", "hyperboloid", "box", "plane") or a composite ("csg"); and the
+ * parser of such an object into the scene. */
 bool js_is_quadric_type(const char *type);
 rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s);
 

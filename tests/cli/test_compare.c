@@ -6,7 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "aov.h"
+#include "compare/aov.h"
 #include "image/image_io.h"
 #include "rc_test.h"
 #include "rc_cli_test.h"

@@ -2,7 +2,7 @@
 # Best practices for NVIDIA and AMD (docs/porting.md, "Best practices"): every GPU path
 # renders with the Khronos layer's best-practice checks and both vendors' checks on, and
 # vkraycast counts every warning they give (exit 3 on any). Advice that cannot apply is
-# printed as "not counted" with the reason (host/vk/vk_context.c, excused); at least one
+# printed as "not counted" with the reason (host/gpu/vk_context.c, excused); at least one
 # such line proves the checks ran. The memory comes in one block per use (vk_memory.h):
 # the device's, and with staging the upload and readback ones.
 #   test_best_practices.sh VKRAYCAST SCENES_DIR WORKDIR

@@ -102,7 +102,7 @@ check "adaptive tiles: the same image as one tile" "$([[ $? == 0 ]] && echo ok |
 "$bin" compare "$work/fixed.exr" "$work/one.exr" --fail 0 >/dev/null
 check "fixed tiles: the same image as one tile" "$([[ $? == 0 ]] && echo ok || echo differs)"
 
-# The pipeline cache on disk (host/gpu_pipeline_cache.c): written on the first run, read
+# The pipeline cache on disk (host/gpu/gpu_pipeline_cache.c): written on the first run, read
 # on the second; a corrupt, truncated or foreign file, or an unwritable folder, costs a
 # warning and never the render.
 cache=$work/cache

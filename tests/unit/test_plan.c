@@ -1,5 +1,5 @@
 /* The loop-budget plan: the worst-case step count mirrors the shader's loop nest. */
-#include "gpu_plan.h"
+#include "gpu/gpu_plan.h"
 #include "rc_test.h"
 #include "scene/scene.h"
 

@@ -1,7 +1,7 @@
-/* Regions and shards (host/region.c): parsing, the cuts of shards by cost, and the
+/* Regions and shards (host/base/region.c): parsing, the cuts of shards by cost, and the
  * coverage check that `vkraycast merge` relies on. Pure arithmetic, no device. */
-#include "part.h"
-#include "region.h"
+#include "cli/part.h"
+#include "base/region.h"
 #include "rc_test.h"
 
 #include <stdlib.h>

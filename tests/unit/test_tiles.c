@@ -1,7 +1,7 @@
-/* The tile planner (host/gpu_tiles.c) driven by simulated devices: each dispatch's time is
+/* The tile planner (host/gpu/gpu_tiles.c) driven by simulated devices: each dispatch's time is
  * computed from a cost model, never read from a clock, so every figure here is exact and
  * the test cannot depend on the machine's load. */
-#include "gpu_tiles.h"
+#include "gpu/gpu_tiles.h"
 #include "rc_test.h"
 
 #include <stdlib.h>

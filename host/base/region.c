@@ -1,0 +1,123 @@
+#include "base/region.h"
+
+
+/* One decimal number of at most 9 digits (every frame side is far below 10^9). */
+static bool parse_uint(const char **s, uint32_t *v) {
+  const char *p = *s;
+  uint64_t x = 0;
+  int digits = 0;
+  while (*p >= '0' && *p <= '9' && digits < 10) x = 10 * x + (uint64_t)(*p++ - '0'), digits++;
+  if (digits == 0 || digits > 9) return false;
+  *v = (uint32_t)x;
+  *s = p;
+  return true;
+}
+
+bool rc_region_parse(const char *text, rc_region *r, const char **why) {
+  uint32_t v[4];
+  const char *p = text;
+  for (int i = 0; i < 4; i++) {
+    if (!parse_uint(&p, &v[i]) || *p != (i < 3 ? ',' : '\0')) {
+      *why = "expected X0,Y0,X1,Y1: four whole numbers of pixels, columns [X0, X1) and rows [Y0, Y1)";
+      return false;
+    }
+    p++;
+  }
+  if (v[0] >= v[2] || v[1] >= v[3]) {
+    *why = "the region is empty: X0 < X1 and Y0 < Y1 are needed";
+    return false;
+  }
+  *r = (rc_region){v[0], v[1], v[2], v[3]};
+  return true;
+}
+
+bool rc_shard_parse(const char *text, uint32_t *index, uint32_t *count, const char **why) {
+  const char *p = text;
+  if (!parse_uint(&p, index) || *p++ != '/' || !parse_uint(&p, count) || *p != '\0') {
+    *why = "expected I/N: shard I of N, 0 <= I < N";
+    return false;
+  }
+  if (*count == 0 || *index >= *count) {
+    *why = "shards are numbered 0 to N-1 (Slurm's $SLURM_ARRAY_TASK_ID with --array=0-(N-1))";
+    return false;
+  }
+  return true;
+}
+
+void rc_shard_rows(const double *row_cost, uint32_t height, uint32_t index, uint32_t count, uint32_t *y0,
+                   uint32_t *y1) {
+  double total = 0;
+  for (uint32_t y = 0; row_cost && y < height; y++) total += row_cost[y];
+  bool equal = !row_cost || !(total > 0);
+  /* Cuts in order, each at the row where the cost before it (a row counting half on
+   * either side of its middle) reaches k/count of the total, then kept one row past the
+   * previous cut and far enough from the end to leave a row to each later shard. */
+  uint32_t prev = 0, y = 0;
+  double sum = 0;
+  for (uint32_t k = 1; k <= index + 1; k++) {
+    uint32_t c;
+    if (k == count) {
+      c = height;
+    } else if (equal) {
+      c = (uint32_t)((uint64_t)height * k / count);
+    } else {
+      double target = total * k / count;
+      while (y < height && sum + row_cost[y] * 0.5 < target) sum += row_cost[y++];
+      c = y;
+    }
+    if (c < prev + 1) c = prev + 1;
+    if (c > height - (count - k)) c = height - (count - k);
+    if (k == index) *y0 = c;
+    prev = c;
+  }
+  if (index == 0) *y0 = 0;
+  *y1 = prev;
+}
+
+/* Whether columns [x0, x1) of row y lie outside every part. */
+static bool row_span_uncovered(const rc_region *parts, size_t n, uint32_t y, uint32_t x0, uint32_t x1) {
+  for (size_t i = 0; i < n; i++)
+    if (parts[i].y0 <= y && y < parts[i].y1 && parts[i].x0 < x1 && x0 < parts[i].x1) return false;
+  return true;
+}
+
+int rc_region_coverage(const rc_region *parts, size_t n, uint32_t width, uint32_t height, size_t *overlap_a,
+                       size_t *overlap_b, rc_region *gap) {
+  uint64_t area = 0;
+  for (size_t i = 0; i < n; i++) {
+    const rc_region *p = &parts[i];
+    if (p->x0 >= p->x1 || p->y0 >= p->y1 || p->x1 > width || p->y1 > height) {
+      *overlap_a = i;
+      return 3;
+    }
+    area += rc_region_pixels(*p);
+    for (size_t j = 0; j < i; j++) {
+      const rc_region *q = &parts[j];
+      if (p->x0 < q->x1 && q->x0 < p->x1 && p->y0 < q->y1 && q->y0 < p->y1) {
+        *overlap_a = j, *overlap_b = i;
+        return 1;
+      }
+    }
+  }
+  /* No pixel is covered twice, so the parts cover the frame when their areas add up. */
+  if (area == (uint64_t)width * height) return 0;
+  /* The first uncovered span: the first row with one, from the first x that no part
+   * covers to the next part's start; then the rows below where it stays uncovered. */
+  for (uint32_t y = 0; y < height; y++) {
+    uint32_t x = 0;
+    for (bool moved = true; moved && x < width;) {
+      moved = false;
+      for (size_t i = 0; i < n; i++)
+        if (parts[i].y0 <= y && y < parts[i].y1 && parts[i].x0 <= x && x < parts[i].x1) x = parts[i].x1, moved = true;
+    }
+    if (x >= width) continue;
+    uint32_t x1 = width;
+    for (size_t i = 0; i < n; i++)
+      if (parts[i].y0 <= y && y < parts[i].y1 && parts[i].x0 > x && parts[i].x0 < x1) x1 = parts[i].x0;
+    uint32_t y1 = y + 1;
+    while (y1 < height && row_span_uncovered(parts, n, y1, x, x1)) y1++;
+    *gap = (rc_region){x, y, x1, y1};
+    return 2;
+  }
+  return 0; /* unreachable: the areas fell short, so some pixel is uncovered */
+}

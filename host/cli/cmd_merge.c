@@ -1,0 +1,286 @@
+/* cmd_merge.c: `vkraycast merge PARTS... -o OUT`: the parts of one frame (render --shard,
+ * --region) into the image a single render would have written, bit for bit. Every part
+ * is checked before anything is written: an EXR of 32-bit float RGB whose header
+ * (part.h) agrees with the first part's on the frame, the scene and every setting that
+ * changes a pixel, and whose regions cover the frame exactly once. The image is then
+ * streamed in bands of rows through the same writer as `render` (output.h): no part is
+ * ever whole in memory, and a failure leaves no file behind (docs/cluster.md). */
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "cli/options.h"
+#include "cli/output.h"
+#include "cli/part.h"
+
+#define MAX_PARTS 4096u
+/* Rows per band of the merged image. */
+#define BAND_ROWS 64u
+
+typedef struct {
+  const char *parts[MAX_PARTS];
+  const char *output;
+  bool quiet;
+} merge_args;
+
+#define ARG(field) offsetof(merge_args, field)
+static const rc_option merge_options[] = {
+    {"--output", "-o", RC_OPT_STRING, ARG(output), "OUT", .flags = RC_OPT_REQUIRED, .what = "output file",
+     .help = "the merged image; any format `render` writes (png, exr, tif, jpg, ...),\n"
+             "with the parts' encoding and quantization"},
+    {"--quiet", "-q", RC_OPT_FLAG, ARG(quiet), .help = "no summary on stderr"},
+};
+#undef ARG
+
+static const char *const merge_positional[] = {"part"};
+const rc_command_spec rc_merge_spec = {
+    .name = "merge",
+    .synopsis = "PART.exr... -o OUT [options]",
+    .summary = "Joins the parts of one frame (render --shard I/N or --region, written as .exr) into the image a\n"
+               "single render writes, bit for bit. Refuses parts that leave a pixel uncovered or cover one twice,\n"
+               "or that disagree on the scene or a setting, naming the part or the missing region.",
+    .epilogue = "Exit status: 0 written; 2 bad input or usage (nothing written); 3 memory failure.\n",
+    .min_positional = 1,
+    .max_positional = MAX_PARTS,
+    .positional_offset = offsetof(merge_args, parts),
+    .positional_names = merge_positional,
+    .options = merge_options,
+    .option_count = sizeof merge_options / sizeof *merge_options,
+};
+
+typedef struct {
+  const char *path;
+  rc_part_info info;
+  rc_image_reader *reader; /* open while the band being written meets the part */
+  float *rows;             /* one band's worth of the part's rows */
+} part;
+
+/* Opens a part and reads its header; the reader stays open. */
+static rc_status open_part(part *p) {
+  char err[512];
+  int w, h, c;
+  bool f32;
+  p->reader = rc_image_reader_open(p->path, &w, &h, &c, &f32, err, sizeof err);
+  if (!p->reader) {
+    rc_error("%s: cannot read the part: %s", p->path, err);
+    return RC_ERR_IO;
+  }
+  const char *missing;
+  if (!rc_part_read(p->reader, &p->info, &missing)) {
+    rc_error("%s: not a part of a vkraycast render: its header has no valid \"%s\" (render it with `vkraycast "
+             "render --shard I/N` or `--region` to a .exr file)",
+             p->path, missing);
+    return RC_ERR_INPUT;
+  }
+  if (!f32 || c != 3) {
+    rc_error("%s: the part holds %d channel(s)%s; a part is 3 channels of 32-bit float (write it as .exr)", p->path, c,
+             f32 ? "" : " not all 32-bit float");
+    return RC_ERR_INPUT;
+  }
+  const rc_region r = p->info.region;
+  if ((uint32_t)w != rc_region_width(r) || (uint32_t)h != rc_region_height(r)) {
+    rc_error("%s: the part is %d x %d pixels, but its header's region %u,%u,%u,%u is %u x %u", p->path, w, h, r.x0,
+             r.y0, r.x1, r.y1, rc_region_width(r), rc_region_height(r));
+    return RC_ERR_INPUT;
+  }
+  return RC_OK;
+}
+
+/* Every part against the first: the frame, the scene, the settings. */
+static rc_status check_agreement(const part *parts, size_t n) {
+  const rc_part_info *a = &parts[0].info;
+  bool warned = false;
+  for (size_t i = 1; i < n; i++) {
+    const rc_part_info *b = &parts[i].info;
+    char x[128], y[128];
+    if (b->width != a->width || b->height != a->height) {
+      rc_error("%s: a part of a %u x %u frame, but %s is of a %u x %u frame: parts of different renders",
+               parts[i].path, b->width, b->height, parts[0].path, a->width, a->height);
+      return RC_ERR_INPUT;
+    }
+    if (rc_part_settings_differ(a->settings, b->settings, x, sizeof x, y, sizeof y)) {
+      rc_error("%s: rendered with %s, but %s with %s: a merged image would not be any single render's",
+               parts[i].path, y, parts[0].path, x);
+      return RC_ERR_INPUT;
+    }
+    if (strcmp(a->scene_hash, b->scene_hash) != 0) {
+      rc_error("%s: its packed scene (hash %s) is not that of %s (hash %s): the scene file changed between the "
+               "renders, or they are of different scenes",
+               parts[i].path, b->scene_hash, parts[0].path, a->scene_hash);
+      return RC_ERR_INPUT;
+    }
+    if (!warned && strcmp(a->device, b->device) != 0) {
+      rc_warning("%s was rendered on %s, %s on %s: GPUs of different makes may round differently, so the merged "
+                 "image can differ from a single render in the last bits",
+                 parts[0].path, a->device, parts[i].path, b->device);
+      warned = true;
+    }
+  }
+  return RC_OK;
+}
+
+/* The regions cover the frame exactly once; else the parts that overlap, or the first
+ * uncovered region and, for shards, the missing ones. */
+static rc_status check_coverage(const part *parts, size_t n) {
+  rc_region *regions = rc_alloc(n, sizeof *regions, "the parts' regions");
+  if (!regions) return RC_ERR_OUT_OF_MEMORY;
+  for (size_t i = 0; i < n; i++) regions[i] = parts[i].info.region;
+  const uint32_t w = parts[0].info.width, h = parts[0].info.height;
+  size_t a = 0, b = 0;
+  rc_region gap = {0};
+  int verdict = rc_region_coverage(regions, n, w, h, &a, &b, &gap);
+  free(regions);
+  if (verdict == 0) return RC_OK;
+  if (verdict == 3) {
+    const rc_region r = parts[a].info.region;
+    rc_error("%s: its region %u,%u,%u,%u leaves the %u x %u frame", parts[a].path, r.x0, r.y0, r.x1, r.y1, w, h);
+  } else if (verdict == 1) {
+    const rc_region p = parts[a].info.region, q = parts[b].info.region;
+    rc_error("%s and %s both hold the pixels %u,%u,%u,%u (X0,Y0,X1,Y1): each pixel must come from one part%s",
+             parts[a].path, parts[b].path, p.x0 > q.x0 ? p.x0 : q.x0, p.y0 > q.y0 ? p.y0 : q.y0,
+             p.x1 < q.x1 ? p.x1 : q.x1, p.y1 < q.y1 ? p.y1 : q.y1,
+             parts[a].info.shard_count && parts[b].info.shard_count ? " (the same shard given twice, or shards of "
+                                                                        "different counts)"
+                                                                      : "");
+  } else {
+    rc_error("no part holds the pixels %u,%u,%u,%u (X0,Y0,X1,Y1) of the %u x %u frame", gap.x0, gap.y0, gap.x1, gap.y1,
+             w, h);
+    /* Shards of one count: name the missing ones, the way to render them again. */
+    uint32_t count = parts[0].info.shard_count;
+    bool shards = count > 0;
+    for (size_t i = 0; i < n; i++) shards = shards && parts[i].info.shard_count == count;
+    for (uint32_t k = 0; shards && k < count; k++) {
+      bool found = false;
+      for (size_t i = 0; i < n && !found; i++) found = parts[i].info.shard_index == k;
+      if (!found)
+        fprintf(stderr, "vkraycast: note: shard %u/%u is missing: render it again with `--shard %u/%u` (under "
+                        "Slurm: sbatch --array=%u ...; docs/cluster.md)\n",
+                k, count, k, count, k);
+    }
+  }
+  return RC_ERR_INPUT;
+}
+
+static void close_parts(part *parts, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    rc_image_reader_close(parts[i].reader);
+    parts[i].reader = NULL;
+    free(parts[i].rows);
+    parts[i].rows = NULL;
+  }
+}
+
+/* Band after band of the frame, each assembled from the parts that meet it; a part is
+ * open from the first band that meets it to its last. */
+static rc_status write_merged(part *parts, size_t n, rc_output *out) {
+  const uint32_t w = parts[0].info.width, h = parts[0].info.height;
+  float *band = rc_alloc((size_t)w * BAND_ROWS * 3, sizeof(float), "one band of the image");
+  if (!band) return RC_ERR_OUT_OF_MEMORY;
+  rc_status st = RC_OK;
+  char err[512];
+  for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += BAND_ROWS) {
+    uint32_t y1 = y0 + BAND_ROWS < h ? y0 + BAND_ROWS : h;
+    for (size_t i = 0; st == RC_OK && i < n; i++) {
+      part *p = &parts[i];
+      const rc_region r = p->info.region;
+      if (r.y1 <= y0 || r.y0 >= y1) continue;
+      uint32_t a = r.y0 > y0 ? r.y0 : y0, b = r.y1 < y1 ? r.y1 : y1, pw = rc_region_width(r);
+      if (!p->reader) { /* the first band that meets the part */
+        int pw_, ph_, c_;
+        bool f32_;
+        p->reader = rc_image_reader_open(p->path, &pw_, &ph_, &c_, &f32_, err, sizeof err);
+        if (!p->reader) {
+          rc_error("%s: cannot read the part: %s", p->path, err);
+          st = RC_ERR_IO;
+          break;
+        }
+      }
+      if (!p->rows) p->rows = rc_alloc((size_t)pw * BAND_ROWS * 3, sizeof(float), "one band of a part");
+      if (!p->rows) {
+        st = RC_ERR_OUT_OF_MEMORY;
+        break;
+      }
+      if (rc_image_reader_rows(p->reader, (int)(a - r.y0), (int)(b - r.y0), p->rows, err, sizeof err) != 0) {
+        rc_error("%s: cannot read rows %u to %u of the part: %s", p->path, a - r.y0, b - r.y0, err);
+        st = RC_ERR_IO;
+        break;
+      }
+      for (uint32_t y = a; y < b; y++)
+        memcpy(band + 3 * ((size_t)(y - y0) * w + r.x0), p->rows + 3 * (size_t)(y - a) * pw, 3 * pw * sizeof(float));
+      if (r.y1 <= y1) { /* the part's last rows: done with it */
+        rc_image_reader_close(p->reader);
+        p->reader = NULL;
+        free(p->rows);
+        p->rows = NULL;
+      }
+    }
+    if (st == RC_OK) st = rc_output_band(y0, y1 - y0, band, NULL, out);
+  }
+  free(band);
+  return st;
+}
+
+rc_status rc_cmd_merge(int argc, char **argv) {
+  merge_args *a = calloc(1, sizeof *a);
+  if (!a) return RC_ERR_OUT_OF_MEMORY;
+  rc_status st = rc_parse_command(&rc_merge_spec, argc, argv, a);
+  if (st != RC_OK) {
+    free(a);
+    return st == RC_DONE ? RC_OK : st;
+  }
+  size_t n = 0;
+  while (n < MAX_PARTS && a->parts[n]) n++;
+  part *parts = calloc(n, sizeof *parts);
+  rc_file_role *roles = calloc(n + 1, sizeof *roles);
+  if (!parts || !roles) st = RC_ERR_OUT_OF_MEMORY;
+  if (st == RC_OK && strcmp(a->output, "-") == 0) {
+    rc_usage_error(&rc_merge_spec, "-o -: images are not written to standard output; name a file");
+    st = RC_ERR_USAGE;
+  }
+  if (st == RC_OK && rc_check_output(a->output, "the image") != RC_OK) st = RC_ERR_IO;
+  for (size_t i = 0; st == RC_OK && i < n; i++) {
+    parts[i].path = a->parts[i];
+    roles[i] = (rc_file_role){a->parts[i], "a part", false};
+  }
+  roles[n] = (rc_file_role){a->output, "the image", true};
+  if (st == RC_OK) st = rc_check_distinct(roles, n + 1);
+  if (st == RC_OK) st = rc_output_check_format(a->output);
+  /* Every header first; the readers are closed until the pixels are needed, so that a
+   * frame of thousands of parts never holds thousands of files open. */
+  for (size_t i = 0; st == RC_OK && i < n; i++) {
+    st = open_part(&parts[i]);
+    rc_image_reader_close(parts[i].reader);
+    parts[i].reader = NULL;
+  }
+  if (st == RC_OK) st = check_agreement(parts, n);
+  if (st == RC_OK) st = check_coverage(parts, n);
+  rc_output *out = NULL;
+  if (st == RC_OK) {
+    /* The merged image says what a single render of the frame says. */
+    rc_part_info whole = parts[0].info;
+    whole.region = (rc_region){0, 0, whole.width, whole.height};
+    whole.shard_index = whole.shard_count = 0;
+    rc_image_meta meta[RC_PART_FIELDS];
+    char text[RC_PART_FIELDS][64], encoding[16], quantize[16];
+    int m = rc_part_meta(&whole, meta, text);
+    rc_part_setting(whole.settings, "encoding", encoding, sizeof encoding);
+    rc_part_setting(whole.settings, "quantize", quantize, sizeof quantize);
+    rc_output_install_signal_handlers();
+    st = rc_output_open(a->output, NULL, whole.width, whole.height,
+                        strcmp(encoding, "srgb") == 0 ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+                        strcmp(quantize, "truncate") == 0, meta, m, &out);
+  }
+  if (st == RC_OK) st = write_merged(parts, n, out);
+  rc_status cst = rc_output_close(out, st == RC_OK);
+  if (st == RC_OK) st = cst;
+  if (st == RC_OK && !a->quiet)
+    fprintf(stderr, "vkraycast: merged %zu part%s into %s (%u x %u)\n", n, n == 1 ? "" : "s", a->output,
+            parts[0].info.width, parts[0].info.height);
+  if (parts) close_parts(parts, n);
+  free(parts);
+  free(roles);
+  free(a);
+  return st;
+}

@@ -1,0 +1,582 @@
+/* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
+ * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli/cli.h"
+#include "cli/options.h"
+#include "gpu/gpu_render.h"
+#include "scene/bvh.h"
+#include "cli/output.h"
+#include "cli/part.h"
+#include "scene/precision_budget.h"
+#include "image/image_io.h"
+#include "ref/ref_render.h"
+#include "scene/scene_pack.h"
+#include "cli/stats.h"
+
+typedef struct {
+  const char *scene; /* the positional argument; "-": standard input */
+  const char *output, *stats_json, *aov;
+  const char *region_text, *shard_text; /* --region, --shard */
+  uint32_t width, height, spp, repeat, threads, perturb, tile, plan_budget;
+  int device, tile_budget_ms; /* -1: the default */
+  bool quiet, srgb, staging, allow_outside_paths;
+  /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
+  int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, reflection_depth, shadows,
+      scene_buffers, pipeline;
+  double offset_epsilon; /* 0: the scene's */
+  /* derived once parsed */
+  bool cpu, no_bvh, stats_stdout;
+  rc_region region_asked;
+  uint32_t shard_index, shard_count; /* count 0: no --shard */
+  rc_part_info part;                 /* what the image's header says (part.h) */
+  rc_gpu_options gpu;
+  rc_load_options load;
+} render_args;
+
+static const char *const off_on[] = {"off", "on", NULL};
+static const char *const backends[] = {"gpu", "cpu", NULL};
+static const char *const accels[] = {"bvh", "none", NULL};
+static const char *const quantizers[] = {"round", "truncate", NULL};
+static const char *const encodings[] = {"linear", "srgb", NULL};
+static const char *const buffer_kinds[] = {"texel", "storage", NULL};
+static const char *const pipelines[] = {"specialized", "generic", NULL};
+
+#define ARG(field) offsetof(render_args, field)
+static const rc_option render_options[] = {
+    {"--output", "-o", RC_OPT_STRING, ARG(output), "OUT", .flags = RC_OPT_REQUIRED, .what = "output file",
+     .help = "image to write; the extension picks the format (png, exr, tif, jpg, ...)"},
+    {"--width", NULL, RC_OPT_UINT, ARG(width), "W", 1, RC_MAX_IMAGE_SIDE, .help = "override the scene's image width"},
+    {"--height", NULL, RC_OPT_UINT, ARG(height), "H", 1, RC_MAX_IMAGE_SIDE, .help = "override the scene's image height"},
+    {"--spp", NULL, RC_OPT_UINT, ARG(spp), "N", 1, RC_MAX_SAMPLES_PER_PIXEL, .help = "override samples per pixel"},
+    {"--backend", NULL, RC_OPT_CHOICE, ARG(backend), "B", .choices = backends,
+     .help = "gpu (default: the Vulkan compute shader) or cpu (the reference renderer)"},
+    {"--precision", NULL, RC_OPT_CHOICE, ARG(precision), "P", .choices = rc_precision_names,
+     .help = "auto (default), f32 or f64 geometry and shading math. auto: f64 on cpu;\n"
+             "on gpu f32 unless the precision-budget pass finds the scene needs f64\n"
+             "and the device has shaderFloat64 (docs/accuracy.md)"},
+    {"--accel", NULL, RC_OPT_CHOICE, ARG(accel), "A", .choices = accels,
+     .help = "bvh (default) or none: brute force over every object, for comparison"},
+    {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
+     .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
+    {"--device", NULL, RC_OPT_INT, ARG(device), "N", 0, 1000,
+     .help = "Vulkan device index (see `vkraycast devices`); default: discrete >\n"
+             "integrated > virtual > CPU"},
+    {"--encoding", NULL, RC_OPT_CHOICE, ARG(encoding), "E", .choices = encodings,
+     .help = "8-bit outputs: linear (clamped; the default) or srgb (the transfer\n"
+             "curve); overrides the scene's image.encoding"},
+    {"--srgb", NULL, RC_OPT_FLAG, ARG(srgb), .help = "--encoding srgb (where both are given, --encoding rules)"},
+    {"--quantize", NULL, RC_OPT_CHOICE, ARG(quantize), "Q", .choices = quantizers,
+     .help = "8-bit outputs: round (JSON scenes' default) or truncate (.test scenes');\n"
+             "overrides the scene's image.quantize"},
+    {"--repeat", NULL, RC_OPT_UINT, ARG(repeat), "N", 1, 1000,
+     .help = "render N frames; statistics report the first and the median of the rest"},
+    {"--stats-json", NULL, RC_OPT_STRING, ARG(stats_json), "FILE",
+     .help = "write the statistics as one JSON object (- : standard output)"},
+    {"--aov", NULL, RC_OPT_STRING, ARG(aov), "FILE.exr",
+     .help = "also write the decision outputs of each pixel's first sample: colour,\n"
+             "hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)"},
+    {"--quiet", "-q", RC_OPT_FLAG, ARG(quiet), .help = "no progress or summary on stderr"},
+    {"--allow-outside-paths", NULL, RC_OPT_FLAG, ARG(allow_outside_paths),
+     .help = "let meshes (and the files a mesh names) lie outside the scene\n"
+             "file's folder; off by default, so an untrusted scene cannot read\n"
+             "other files into the image"},
+    {"--region", NULL, RC_OPT_STRING, ARG(region_text), "X0,Y0,X1,Y1",
+     .heading = "render farms (docs/cluster.md):",
+     .help = "render only columns [X0, X1) and rows [Y0, Y1) of the frame (pbrt's crop\n"
+             "window, in pixels); its pixels are bit-identical to the whole frame's"},
+    {"--shard", NULL, RC_OPT_STRING, ARG(shard_text), "I/N",
+     .help = "render shard I of N (0 <= I < N): full-width bands of rows balanced by\n"
+             "an estimate of their cost; write it as .exr and join the N parts with\n"
+             "`vkraycast merge`"},
+    {"--sphere", NULL, RC_OPT_CHOICE, ARG(sphere), "F", .choices = rc_sphere_formula_names,
+     .heading = "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):",
+     .help = "geometric (default) or algebraic ray/sphere formula"},
+    {"--triangle", NULL, RC_OPT_CHOICE, ARG(triangle), "F", .choices = rc_triangle_formula_names,
+     .help = "watertight (default), moller-trumbore or cramer ray/triangle test"},
+    {"--shadow-offset", NULL, RC_OPT_CHOICE, ARG(offset), "S", .choices = rc_offset_names,
+     .help = "error-bound (default), ulp or epsilon: where shadow/reflection rays start"},
+    {"--shadow-epsilon", NULL, RC_OPT_REAL, ARG(offset_epsilon), "E", 0, 3.4e38, .flags = RC_OPT_LO_OPEN | RC_OPT_F32,
+     .help = "the epsilon strategy's offset in scene units (default 1e-4)"},
+    {"--camera-relative", NULL, RC_OPT_CHOICE, ARG(camera_relative), "B", .choices = off_on,
+     .help = "on (default) or off: positions relative to the eye before f32 rounding"},
+    {"--reflection-depth", NULL, RC_OPT_INT, ARG(reflection_depth), "N", 0, RC_MAX_REFLECTION_DEPTH,
+     .help = "mirror bounces"},
+    {"--shadows", NULL, RC_OPT_CHOICE, ARG(shadows), "B", .choices = off_on,
+     .help = "on (default) or off: trace shadow rays"},
+    {"--scene-buffers", NULL, RC_OPT_CHOICE, ARG(scene_buffers), "K", .choices = buffer_kinds,
+     .heading = "tuning and testing:", .help = "texel (default) or storage: how the shader reads the scene arrays"},
+    {"--pipeline", NULL, RC_OPT_CHOICE, ARG(pipeline), "P", .choices = pipelines,
+     .help = "specialized (default: compiled for this scene's primitive kinds, light\n"
+             "count, shadows, specular model and bounces) or generic (one pipeline\n"
+             "for every scene; to measure what specializing buys)"},
+    {"--staging", NULL, RC_OPT_FLAG, ARG(staging),
+     .help = "upload and read back through staging buffers even on unified memory\n"
+             "(also VKRAYCAST_FORCE_STAGING=1)"},
+    {"--tile-budget-ms", NULL, RC_OPT_INT, ARG(tile_budget_ms), "T", 0, 60000,
+     .help = "the longest one dispatch (one submit) should run: tiles adapt to it;\n"
+             "0: no limit (default: none on a CPU device such as lavapipe, which\n"
+             "no watchdog resets; 100 elsewhere, as real GPUs reset after ~2 s)"},
+    {"--tile", NULL, RC_OPT_UINT, ARG(tile), "N", 8, 4096, .help = "fixed N x N tiles instead of adaptive ones"},
+    {"--perturb", NULL, RC_OPT_UINT, ARG(perturb), "SEED", 1, UINT32_MAX,
+     .help = "scale every packed position and radius by 1 + d, |d| <= 2^-22, d a hash\n"
+             "of SEED and the value (equal values move alike: meshes stay closed); its\n"
+             "renders give `compare --band` the conditioning band"},
+    {"--plan-budget", NULL, RC_OPT_UINT, ARG(plan_budget), "N", 1, UINT32_MAX,
+     .help = "loop budget the host plans batches with (default: the shader's, 49152\n"
+             "divided by the subgroup size on llvmpipe); larger values test the\n"
+             "shader's exhaustion flag"},
+};
+#undef ARG
+
+static const char *const render_positional[] = {"scene file (SCENE, or - for standard input)"};
+const rc_command_spec rc_render_spec = {
+    .name = "render",
+    .synopsis = "SCENE -o OUT [options]",
+    .summary = "Renders SCENE (.json, or .test; - reads it from standard input) to the image OUT.",
+    .epilogue = "Exit status: 0 written; 2 bad input or usage (nothing written); 3 device or memory failure.\n",
+    .min_positional = 1,
+    .max_positional = 1,
+    .positional_offset = offsetof(render_args, scene),
+    .positional_names = render_positional,
+    .options = render_options,
+    .option_count = sizeof render_options / sizeof *render_options,
+};
+
+static bool is_exr(const char *path) {
+  size_t n = strlen(path);
+  return n >= 4 && strcmp(path + n - 4, ".exr") == 0;
+}
+
+/* Every output is checked before anything renders: an existing special file or folder,
+ * a missing folder, or two roles naming one file (and, once the scene has loaded, a format
+ * the name does not give: rc_output_check_format, which loads the image module, so that a
+ * bad scene is refused without it). */
+static rc_status check_outputs(const render_args *a) {
+  if (strcmp(a->output, "-") == 0) {
+    rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
+                                    "keeps a failed run from leaving half an image); name a file");
+    return RC_ERR_USAGE;
+  }
+  if (a->aov && strcmp(a->aov, "-") == 0) {
+    rc_usage_error(&rc_render_spec, "--aov -: the AOV file is not written to standard output; name a .exr file");
+    return RC_ERR_USAGE;
+  }
+  if (rc_check_output(a->output, "the image") != RC_OK) return RC_ERR_IO;
+  if (a->aov && rc_check_output(a->aov, "the AOV file") != RC_OK) return RC_ERR_IO;
+  if (a->stats_json && !a->stats_stdout && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
+  const rc_file_role files[] = {{strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false},
+                                {a->output, "the image", true},
+                                {a->aov, "the AOV file", true},
+                                {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
+  if (rc_check_distinct(files, sizeof files / sizeof *files) != RC_OK) return RC_ERR_USAGE;
+  if (a->aov && !is_exr(a->aov)) {
+    rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
+    return RC_ERR_USAGE;
+  }
+  return RC_OK;
+}
+
+static rc_status parse_args(int argc, char **argv, render_args *a) {
+  memset(a, 0, sizeof *a);
+  a->device = a->tile_budget_ms = -1;
+  a->repeat = 1;
+  a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
+      a->camera_relative = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
+  rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
+  if (st != RC_OK) return st;
+  a->cpu = a->backend == 1;
+  a->no_bvh = a->accel == 1;
+  a->stats_stdout = a->stats_json && strcmp(a->stats_json, "-") == 0;
+  a->gpu.scene_buffers = a->scene_buffers == 1 ? RC_SCENE_BUFFERS_STORAGE : RC_SCENE_BUFFERS_TEXEL;
+  a->gpu.tile_size = a->tile;
+  a->gpu.tile_budget_ms = a->tile_budget_ms; /* -1: the device's default (gpu_render.c) */
+  a->gpu.plan_budget = a->plan_budget;
+  a->gpu.generic_pipeline = a->pipeline == 1;
+  const char *force = getenv("VKRAYCAST_FORCE_STAGING");
+  a->gpu.force_staging = a->staging || (force && force[0] && strcmp(force, "0") != 0);
+  a->gpu.aov = a->aov != NULL;
+  a->load.allow_outside_paths = a->allow_outside_paths;
+  const char *why = NULL;
+  char msg[300];
+  if (a->region_text && a->shard_text) {
+    rc_usage_error(&rc_render_spec, "--region and --shard: a shard is already a region of the frame; give one");
+    return RC_ERR_USAGE;
+  }
+  if (a->region_text && !rc_region_parse(a->region_text, &a->region_asked, &why)) {
+    snprintf(msg, sizeof msg, "--region %s: %s", a->region_text, why);
+    rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  if (a->shard_text && !rc_shard_parse(a->shard_text, &a->shard_index, &a->shard_count, &why)) {
+    snprintf(msg, sizeof msg, "--shard %s: %s", a->shard_text, why);
+    rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  if (a->shard_text && !is_exr(a->output)) {
+    snprintf(msg, sizeof msg,
+             "--shard %s -o %s: a shard is a part for `vkraycast merge`, which needs its float pixels and its "
+             "header: name it .exr",
+             a->shard_text, a->output);
+    rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  return check_outputs(a);
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Median of frames 2..N (the steady state), or the only frame. */
+static double steady(double *v, uint32_t n) {
+  if (n == 1) return v[0];
+  qsort(v + 1, n - 1, sizeof *v, cmp_double);
+  return v[1 + (n - 1) / 2];
+}
+
+/* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
+/* 8-bit output: the command line's choice, else the scene's. */
+static bool srgb_output(const render_args *a, const rc_scene *s) {
+  return a->encoding >= 0 ? a->encoding == 1 : a->srgb || s->srgb_8bit;
+}
+static bool truncate_output(const render_args *a, const rc_scene *s) {
+  return a->quantize < 0 ? s->truncate_8bit : a->quantize == 1;
+}
+
+static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
+  rc_image_meta meta[RC_PART_FIELDS];
+  char text[RC_PART_FIELDS][64];
+  int n = rc_part_meta(&a->part, meta, text);
+  const rc_region r = a->part.region;
+  return rc_output_open(a->output, a->aov, rc_region_width(r), rc_region_height(r),
+                        srgb_output(a, scene) ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR, truncate_output(a, scene),
+                        meta, n, out);
+}
+
+static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
+                               const rc_packed_scene *packed, rc_render_stats *rs, rc_output **out) {
+  rc_gpu_renderer *r = NULL;
+  rc_gpu_options opts = a->gpu;
+  opts.progress = !a->quiet && isatty(STDERR_FILENO);
+  rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
+  double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
+  if (!gpu_ms || !wall_ms) st = RC_ERR_OUT_OF_MEMORY;
+  for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
+    bool last = i + 1 == a->repeat;
+    if (last) st = open_output(a, scene, out);
+    if (st == RC_OK) st = rc_gpu_renderer_render(r, last ? rc_output_band : rc_output_discard, last ? *out : NULL, &rs->gpu);
+    gpu_ms[i] = rs->gpu.gpu_ms;
+    wall_ms[i] = rs->gpu.render_ms;
+  }
+  if (st == RC_OK) {
+    rs->first_frame_ms = wall_ms[0];
+    rs->render_ms = steady(gpu_ms, a->repeat);
+    rs->render_wall_ms = steady(wall_ms, a->repeat);
+    rs->rays_shadow = rs->gpu.shadow_rays;
+    rs->rays_reflection = rs->gpu.reflection_rays;
+  }
+  free(gpu_ms);
+  free(wall_ms);
+  rc_gpu_renderer_destroy(r);
+  return st;
+}
+
+static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uint32_t y);
+
+/* The CPU reference in bands of CPU_BAND_ROWS rows. */
+#define CPU_BAND_ROWS 32u
+
+static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
+                                   rc_render_stats *rs, rc_output **out) {
+  rc_ref_options opts = {.f64 = a->gpu.f64, .threads = a->threads};
+  const rc_region region = a->part.region;
+  uint32_t w = rc_region_width(region), h = rc_region_height(region);
+  uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
+  double *ms = calloc(a->repeat, sizeof *ms);
+  float *rgb = rc_alloc((size_t)w * band * 3, sizeof(float), "one band of the image");
+  gpu_aov *aov = a->aov ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
+  rc_status st = ms && rgb && (!a->aov || aov) ? RC_OK : RC_ERR_OUT_OF_MEMORY;
+  rc_ref_stats last_stats = {0};
+  for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
+    bool last = i + 1 == a->repeat;
+    rc_ref_stats fs = {0};
+    if (last) st = open_output(a, scene, out);
+    for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += band) {
+      uint32_t rows = h - y0 < band ? h - y0 : band;
+      rc_region part = {region.x0, region.y0 + y0, region.x1, region.y0 + y0 + rows};
+      st = rc_ref_render(packed, &opts, part, rgb, aov, &fs);
+      if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
+      if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, aov, *out);
+    }
+    ms[i] = fs.render_ms;
+    last_stats = fs;
+  }
+  if (st == RC_OK) {
+    rs->first_frame_ms = ms[0];
+    rs->render_ms = rs->render_wall_ms = steady(ms, a->repeat);
+    rs->rays_shadow = last_stats.shadow_rays;
+    rs->rays_reflection = last_stats.reflection_rays;
+    rs->threads = last_stats.threads;
+  }
+  free(ms);
+  free(rgb);
+  free(aov);
+  return st;
+}
+
+static void apply_quality_overrides(const render_args *a, rc_scene *s) {
+  rc_quality *q = &s->quality;
+  if (a->precision >= 0) q->precision = (uint32_t)a->precision;
+  if (a->sphere >= 0) q->sphere = (uint32_t)a->sphere;
+  if (a->triangle >= 0) q->triangle = (uint32_t)a->triangle;
+  if (a->offset >= 0) q->offset = (uint32_t)a->offset;
+  if (a->camera_relative >= 0) q->camera_relative = a->camera_relative == 1;
+  if (a->offset_epsilon > 0) q->offset_epsilon = a->offset_epsilon;
+  if (a->reflection_depth >= 0) s->reflection_depth = (uint32_t)a->reflection_depth;
+  if (a->shadows >= 0) q->shadows = a->shadows == 1;
+}
+
+/* The precision-budget findings, once, before rendering (precision_budget.h). */
+static void report_budget(const rc_scene *s, const rc_precision_report *b) {
+  if (b->needs_f64)
+    fprintf(stderr, "%s: warning: precision: %u object(s) need more than f32 arithmetic, first %s\n", s->path,
+            b->needs_f64, b->first_f64);
+  if (b->quantized)
+    fprintf(stderr,
+            "%s: warning: precision: rounding positions to f32 moves %u object(s) by more than %g of their size, "
+            "first %s; no shader precision restores this: bring the scene nearer the origin%s\n",
+            s->path, b->quantized, RC_BUDGET_QUANTIZATION, b->first_quantized,
+            s->quality.camera_relative ? "" : " or leave --camera-relative on");
+}
+
+/* --precision auto on the GPU: f32 unless the scene needs f64 and the device has it. */
+static bool gpu_precision(const rc_scene *s, const rc_precision_report *b, const rc_vk_ctx *ctx) {
+  if (s->quality.precision == RC_PRECISION_F64) return true;
+  if (s->quality.precision == RC_PRECISION_F32) {
+    if (b->needs_f64) fprintf(stderr, "%s: warning: precision: rendering in f32 as asked; the output is degraded\n", s->path);
+    return false;
+  }
+  if (!b->needs_f64) return false;
+  if (ctx->float64) {
+    fprintf(stderr, "%s: note: precision auto: rendering in f64\n", s->path);
+    return true;
+  }
+  fprintf(stderr, "%s: warning: precision auto: device %s has no shaderFloat64; rendering in f32, the output is "
+          "degraded (--backend cpu renders in f64)\n", s->path, ctx->props.deviceName);
+  return false;
+}
+
+/* An error about the shader's object number `o` (spheres, triangles, quadrics, planes,
+ * composites), with its place in the scene file; UINT32_MAX: the scene as a whole. */
+static void report_object(const rc_scene *s, size_t o, const char *what) {
+  size_t counts[] = {s->sphere_count, s->triangle_count, s->quadric_count, s->plane_count, s->csg_count};
+  uint32_t kinds[] = {RC_ORIGIN_SPHERE, RC_ORIGIN_TRIANGLE, RC_ORIGIN_QUADRIC, RC_ORIGIN_PLANE, RC_ORIGIN_CSG};
+  for (int k = 0; k < 5 && o != UINT32_MAX; k++) {
+    if (o < counts[k]) {
+      rc_scene_error(s, kinds[k], o, "%s", what);
+      return;
+    }
+    o -= counts[k];
+  }
+  fprintf(stderr, "%s: error: %s\n", s->path, what);
+}
+
+/* A sample that ran out of the GPU's loop budget on its own (a ray through a pile of
+ * overlapping objects): the object the shader was testing, with its place in the scene
+ * file, and the way out. Nothing has been written. */
+static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const char *device) {
+  char what[600];
+  snprintf(what, sizeof what,
+           "a ray through pixel (%u, %u) was testing this object when its sample ran out of the shader loop budget "
+           "on %s (%u pixels did: objects piled up along a ray, or --accel none); refusing to write a wrong "
+           "image: --backend cpu renders it",
+           g->budget_x, g->budget_y, device, g->budget_pixels);
+  report_object(s, g->budget_object, what);
+}
+
+/* A ray line that crossed a composite's mesh operand more often than its max_crossings, or
+ * an odd number of times: the composite, the pixel and the way out. Nothing has been written. */
+static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uint32_t y) {
+  char what[400];
+  snprintf(what, sizeof what,
+           "the line of a ray through pixel (%u, %u) crosses a mesh operand of this composite more often than its "
+           "\"max_crossings\" (default 8, at most %u), or an odd number of times (a hole the loader's edge check "
+           "cannot see); refusing to write a wrong image",
+           x, y, 2 * RC_CSG_MAX_INTERVALS);
+  report_object(s, object, what);
+}
+
+/* The pixels to render: --region, --shard's band of rows, or the frame; and what the
+ * image's header will say about them (part.h). */
+static rc_status resolve_part(render_args *a, const rc_scene *s, const rc_packed_scene *packed) {
+  const uint32_t w = s->width, h = s->height;
+  rc_part_info *p = &a->part;
+  p->width = w, p->height = h;
+  p->region = (rc_region){0, 0, w, h};
+  if (a->region_text) {
+    rc_region r = a->region_asked;
+    if (r.x1 > w || r.y1 > h) {
+      rc_error("--region %s: the frame is %u x %u pixels; a region lies within it (X1 <= %u, Y1 <= %u)",
+               a->region_text, w, h, w, h);
+      return RC_ERR_USAGE;
+    }
+    p->region = r;
+  }
+  if (a->shard_count) {
+    if (a->shard_count > h) {
+      rc_error("--shard %s: the frame has %u rows, and a shard is at least one row: at most %u shards", a->shard_text,
+               h, h);
+      return RC_ERR_USAGE;
+    }
+    double *cost = a->shard_count > 1 ? rc_alloc(h, sizeof *cost, "the shard cost estimate") : NULL;
+    if (a->shard_count > 1 && !cost) return RC_ERR_OUT_OF_MEMORY;
+    if (cost) rc_ref_row_costs(packed, cost);
+    rc_shard_rows(cost, h, a->shard_index, a->shard_count, &p->region.y0, &p->region.y1);
+    free(cost);
+    p->shard_index = a->shard_index, p->shard_count = a->shard_count;
+  }
+  snprintf(p->scene_hash, sizeof p->scene_hash, "%016llx", (unsigned long long)rc_packed_scene_hash(packed));
+  return RC_OK;
+}
+
+/* Every setting that changes a pixel and is not in the packed scene, for the header:
+ * parts that disagree on one are never merged. */
+static void part_settings(render_args *a, const rc_scene *s, const char *backend, const char *precision) {
+  const rc_quality *q = &s->quality;
+  snprintf(a->part.settings, sizeof a->part.settings,
+           "backend=%s precision=%s spp=%u accel=%s sphere=%s triangle=%s shadow_offset=%s shadow_epsilon=%.9g "
+           "camera_relative=%s reflection_depth=%u shadows=%s perturb=%u encoding=%s quantize=%s",
+           backend, precision, s->samples_per_pixel, a->no_bvh ? "none" : "bvh", rc_sphere_formula_names[q->sphere],
+           rc_triangle_formula_names[q->triangle], rc_offset_names[q->offset], q->offset_epsilon,
+           q->camera_relative ? "on" : "off", s->reflection_depth, q->shadows ? "on" : "off", a->perturb,
+           srgb_output(a, s) ? "srgb" : "linear", truncate_output(a, s) ? "truncate" : "round");
+}
+
+rc_status rc_cmd_render(int argc, char **argv) {
+  render_args a;
+  rc_status st = parse_args(argc, argv, &a);
+  if (st != RC_OK) return st == RC_DONE ? RC_OK : st;
+
+  rc_render_stats rs = {.version = rc_version_string(), .scene = strcmp(a.scene, "-") ? a.scene : RC_STDIN_NAME,
+                        .backend = "gpu", .repeat = a.repeat};
+  rc_scene scene;
+  double t0 = rc_now_ms();
+  rc_set_scene_path(a.scene);
+  st = rc_scene_load(a.scene, &a.load, &scene);
+  rs.parse_ms = rc_now_ms() - t0;
+  if (st == RC_OK) st = rc_output_check_format(a.output);
+  if (st != RC_OK) {
+    rc_scene_free(&scene);
+    return st;
+  }
+  if (a.width) scene.width = a.width;
+  if (a.height) scene.height = a.height;
+  if (a.spp) scene.samples_per_pixel = a.spp;
+  apply_quality_overrides(&a, &scene);
+
+  rc_packed_scene packed = {0};
+  rc_vk_ctx ctx = {0};
+  rc_output *out = NULL;
+  st = rc_scene_pack(&scene, &packed);
+  if (st == RC_OK && a.perturb) rc_packed_scene_perturb(&packed, a.perturb);
+  if (st == RC_OK) {
+    st = rc_bvh_build(&packed, !a.no_bvh, &rs.bvh);
+    /* The plan's traversal estimate uses the depth; 0 means brute force. */
+    a.gpu.bvh_depth = packed.bvh && packed.frame.bvh_node_count ? rs.bvh.depth + 1 : 0;
+  }
+  if (st == RC_OK) {
+    double t1 = rc_now_ms();
+    st = resolve_part(&a, &scene, &packed);
+    a.gpu.region = a.part.region;
+    rs.part_ms = rc_now_ms() - t1;
+  }
+  rs.region = a.part.region;
+  rs.shard_index = a.part.shard_index, rs.shard_count = a.part.shard_count;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  rs.samples_per_pixel = scene.samples_per_pixel;
+  rs.spheres = scene.sphere_count;
+  rs.triangles = scene.triangle_count;
+  rs.lights = scene.light_count;
+  rs.quadrics = scene.quadric_count;
+  rs.planes = scene.plane_count;
+  rs.composites = scene.csg_count;
+  rs.materials = scene.material_count;
+  rs.shadows = scene.quality.shadows;
+  rs.generic_pipeline = a.gpu.generic_pipeline;
+  rs.rays_primary = rc_region_pixels(a.part.region) * scene.samples_per_pixel;
+  rc_precision_report budget = {0};
+  if (st == RC_OK) {
+    rc_precision_budget(&packed, scene.quality.sphere == RC_SPHERE_ALGEBRAIC, &budget);
+    report_budget(&scene, &budget);
+  }
+  rs.budget_needs_f64 = budget.needs_f64;
+  rs.budget_quantized = budget.quantized;
+  rs.budget_ms = budget.ms;
+  rs.precision_requested = rc_precision_names[scene.quality.precision];
+  rs.sphere_formula = rc_sphere_formula_names[scene.quality.sphere];
+  rs.triangle_formula = rc_triangle_formula_names[scene.quality.triangle];
+  rs.shadow_offset = rc_offset_names[scene.quality.offset];
+  rs.camera_relative = scene.quality.camera_relative;
+  char driver[600] = "";
+  rc_output_install_signal_handlers();
+  if (st == RC_OK && a.cpu) {
+    rs.backend = "cpu";
+    rs.device = "CPU reference";
+    rs.device_type = "cpu";
+    rs.driver = "vkraycast ref";
+    /* The reference renders in f64 unless f32 is asked for: it is the accuracy yardstick. */
+    a.gpu.f64 = scene.quality.precision != RC_PRECISION_F32;
+    rs.precision = a.gpu.f64 ? "f64" : "f32";
+    part_settings(&a, &scene, rs.backend, rs.precision);
+    snprintf(a.part.device, sizeof a.part.device, "%s", rs.device);
+    st = render_frames_cpu(&a, &scene, &packed, &rs, &out);
+  } else if (st == RC_OK) {
+    rc_vk_options vo = {.device_index = a.device};
+    st = rc_vk_create(&vo, &ctx);
+    if (st == RC_OK) {
+      snprintf(driver, sizeof driver, "%s %s", ctx.driver.driverName[0] ? ctx.driver.driverName : "unknown driver",
+               ctx.driver.driverInfo);
+      rs.device = ctx.props.deviceName;
+      rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
+      rs.driver = driver;
+      a.gpu.f64 = gpu_precision(&scene, &budget, &ctx);
+      rs.precision = a.gpu.f64 ? "f64" : "f32";
+      part_settings(&a, &scene, rs.backend, rs.precision);
+      snprintf(a.part.device, sizeof a.part.device, "%s (%s)", rs.device, driver);
+      st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
+      if (rs.gpu.budget_refused) report_loop_budget(&scene, &rs.gpu, ctx.props.deviceName);
+      if (rs.gpu.crossing_object != UINT32_MAX)
+        report_crossings(&scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
+    }
+  }
+  rs.write_ms = rc_output_write_ms(out);
+  rs.cpu_ms = rc_cpu_ms();
+  if (st == RC_OK && a.stats_json && !a.stats_stdout) {
+    /* The statistics join the image's transaction: all of them land, or none. */
+    char *text = rc_stats_json(&rs);
+    st = text ? rc_output_attach(out, a.stats_json, text) : RC_ERR_OUT_OF_MEMORY;
+    free(text);
+  }
+  rc_status cst = rc_output_close(out, st == RC_OK);
+  if (st == RC_OK) st = cst;
+  if (st == RC_OK && a.stats_stdout) {
+    /* Standard output is not part of the files' transaction: it gets the statistics of a
+     * run whose files have landed. */
+    char *text = rc_stats_json(&rs);
+    st = text && fputs(text, stdout) >= 0 && fflush(stdout) == 0 ? RC_OK : RC_ERR_IO;
+    if (st != RC_OK) rc_error("cannot write the statistics to standard output");
+    free(text);
+  }
+  if (st == RC_OK && !a.quiet) rc_stats_print(&rs);
+  rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
+  rc_packed_scene_free(&packed);
+  rc_scene_free(&scene);
+  return st != RC_OK ? st : vst;
+}

@@ -1,0 +1,39 @@
+/* output.h: where a render's bands of rows go: the image file (and the AOV file) through
+ * OpenImageIO's scanline writers, into temporary files renamed into place only when the
+ * whole frame is written, every write checked and the file fsynced first (image_io.h).
+ * The temporaries are unnamed where Linux allows it (O_TMPFILE), so nothing can leave
+ * them behind; where they have names, a handler for every asynchronous terminating
+ * signal unlinks them before dying. SIGXFSZ (a file size limit) is ignored so that a
+ * full disk or a size limit becomes a write error. Either way an existing image is never
+ * left half overwritten. */
+#ifndef RC_OUTPUT_H
+#define RC_OUTPUT_H
+
+#include "image/image_io.h"
+#include "base/rc_base.h"
+#include "rc_shared.h"
+
+typedef struct rc_output rc_output;
+
+/* An image name whose extension OpenImageIO can write: RC_OK, RC_ERR_USAGE with the
+ * message, or RC_ERR_INSTALL when the image module cannot be loaded. Loads the module, so
+ * commands call it once their cheaper checks have passed, before anything is written. */
+rc_status rc_output_check_format(const char *path);
+
+/* meta: header attributes of both files (image_io.h). */
+rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
+                         rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, rc_output **out);
+/* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows). */
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output);
+/* A band function for frames that are not written (--repeat). */
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *unused);
+/* Adds the statistics file (its whole text) to the transaction: written now, renamed
+ * with the image. */
+rc_status rc_output_attach(rc_output *o, const char *path, const char *text);
+/* Renames the files into place (commit) or removes them; frees the output. */
+rc_status rc_output_close(rc_output *o, bool commit);
+double rc_output_write_ms(const rc_output *o);
+
+void rc_output_install_signal_handlers(void);
+
+#endif

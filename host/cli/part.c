@@ -1,0 +1,92 @@
+#include "cli/part.h"
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Attribute names: a prefix of our own, which OpenImageIO's EXR writer keeps. */
+#define NAME_FRAME "vkraycast:frame"
+#define NAME_REGION "vkraycast:region"
+#define NAME_SHARD "vkraycast:shard"
+#define NAME_SCENE "vkraycast:scene_hash"
+#define NAME_SETTINGS "vkraycast:settings"
+#define NAME_DEVICE "vkraycast:device"
+
+int rc_part_meta(const rc_part_info *info, rc_image_meta meta[RC_PART_FIELDS], char text[RC_PART_FIELDS][64]) {
+  int n = 0;
+  snprintf(text[n], sizeof text[n], "%" PRIu32 " %" PRIu32, info->width, info->height);
+  meta[n] = (rc_image_meta){NAME_FRAME, text[n]}, n++;
+  const rc_region r = info->region;
+  snprintf(text[n], sizeof text[n], "%" PRIu32 " %" PRIu32 " %" PRIu32 " %" PRIu32, r.x0, r.y0, r.x1, r.y1);
+  meta[n] = (rc_image_meta){NAME_REGION, text[n]}, n++;
+  if (info->shard_count) {
+    snprintf(text[n], sizeof text[n], "%" PRIu32 "/%" PRIu32, info->shard_index, info->shard_count);
+    meta[n] = (rc_image_meta){NAME_SHARD, text[n]}, n++;
+  }
+  meta[n++] = (rc_image_meta){NAME_SCENE, info->scene_hash};
+  meta[n++] = (rc_image_meta){NAME_SETTINGS, info->settings};
+  meta[n++] = (rc_image_meta){NAME_DEVICE, info->device};
+  return n;
+}
+
+bool rc_part_read(const rc_image_reader *r, rc_part_info *info, const char **missing) {
+  memset(info, 0, sizeof *info);
+  char v[64];
+  char tail;
+  *missing = NAME_FRAME;
+  if (!rc_image_reader_meta(r, NAME_FRAME, v, sizeof v) ||
+      sscanf(v, "%" SCNu32 " %" SCNu32 " %c", &info->width, &info->height, &tail) != 2)
+    return false;
+  *missing = NAME_REGION;
+  rc_region *g = &info->region;
+  if (!rc_image_reader_meta(r, NAME_REGION, v, sizeof v) ||
+      sscanf(v, "%" SCNu32 " %" SCNu32 " %" SCNu32 " %" SCNu32 " %c", &g->x0, &g->y0, &g->x1, &g->y1, &tail) != 4)
+    return false;
+  *missing = NAME_SHARD;
+  if (rc_image_reader_meta(r, NAME_SHARD, v, sizeof v) &&
+      sscanf(v, "%" SCNu32 "/%" SCNu32 " %c", &info->shard_index, &info->shard_count, &tail) != 2)
+    return false;
+  *missing = NAME_SCENE;
+  if (!rc_image_reader_meta(r, NAME_SCENE, info->scene_hash, sizeof info->scene_hash)) return false;
+  *missing = NAME_SETTINGS;
+  if (!rc_image_reader_meta(r, NAME_SETTINGS, info->settings, sizeof info->settings)) return false;
+  *missing = NAME_DEVICE;
+  if (!rc_image_reader_meta(r, NAME_DEVICE, info->device, sizeof info->device)) return false;
+  *missing = NULL;
+  return true;
+}
+
+/* The word of s that starts at *at (words are separated by single spaces). */
+static size_t word(const char *s, size_t at) {
+  size_t n = 0;
+  while (s[at + n] && s[at + n] != ' ') n++;
+  return n;
+}
+
+bool rc_part_settings_differ(const char *x, const char *y, char *a, size_t a_len, char *b, size_t b_len) {
+  size_t i = 0, j = 0;
+  while (x[i] || y[j]) {
+    size_t n = word(x, i), m = word(y, j);
+    if (n != m || memcmp(x + i, y + j, n) != 0) {
+      snprintf(a, a_len, "%.*s", (int)n, x + i);
+      snprintf(b, b_len, "%.*s", (int)m, y + j);
+      return true;
+    }
+    i += n + (x[i + n] == ' ');
+    j += m + (y[j + m] == ' ');
+  }
+  return false;
+}
+
+void rc_part_setting(const char *settings, const char *name, char *value, size_t len) {
+  size_t n = strlen(name);
+  value[0] = '\0';
+  for (size_t at = 0; settings[at];) {
+    size_t m = word(settings, at);
+    if (m > n && strncmp(settings + at, name, n) == 0 && settings[at + n] == '=') {
+      snprintf(value, len, "%.*s", (int)(m - n - 1), settings + at + n + 1);
+      return;
+    }
+    at += m + (settings[at + m] == ' ');
+  }
+}

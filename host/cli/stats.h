@@ -1,0 +1,43 @@
+/* stats.h: what a render reports: the human summary on stderr and --stats-json. */
+#ifndef RC_STATS_H
+#define RC_STATS_H
+
+#include "scene/bvh.h"
+#include "gpu/gpu_render.h"
+
+typedef struct rc_render_stats {
+  const char *version;   /* "0.1.0 (git abc123)" */
+  const char *scene;     /* the scene file as given ("<stdin>" for -) */
+  const char *device, *device_type, *driver;
+  const char *backend;   /* "gpu" or "cpu" */
+  const char *precision; /* "f32" or "f64": what ran */
+  const char *precision_requested; /* "auto", "f32" or "f64" */
+  const char *sphere_formula, *triangle_formula, *shadow_offset;
+  bool camera_relative;
+  uint32_t budget_needs_f64, budget_quantized; /* precision-budget findings (precision_budget.h) */
+  double budget_ms;
+  uint32_t threads;      /* cpu backend */
+  uint32_t width, height, samples_per_pixel; /* the frame's */
+  rc_region region;                          /* the pixels rendered (--region, --shard) */
+  uint32_t shard_index, shard_count;         /* count 0: no --shard */
+  double part_ms;                            /* choosing them (the shard cost estimate) */
+  size_t spheres, triangles, lights, quadrics, planes, composites, materials;
+  bool shadows;
+  bool generic_pipeline;
+  double parse_ms, pack_ms, write_ms;
+  double first_frame_ms; /* includes the JIT on lavapipe */
+  double render_ms;      /* GPU time of one frame: the first, or the median of the others with --repeat */
+  double render_wall_ms; /* wall time of that frame, including waits and readback */
+  double cpu_ms;         /* process CPU time, whole run */
+  uint32_t repeat;
+  uint64_t rays_primary, rays_shadow, rays_reflection;
+  rc_gpu_stats gpu;
+  rc_bvh_stats bvh; /* zero with --accel none */
+} rc_render_stats;
+
+double rc_stats_mrays_per_s(const rc_render_stats *s);
+void rc_stats_print(const rc_render_stats *s);
+/* The statistics as one JSON object and a newline (malloc'd; NULL when out of memory). */
+char *rc_stats_json(const rc_render_stats *s);
+
+#endif

@@ -1,0 +1,69 @@
+#include "compare/aov.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const rc_aov_channel_names[RC_AOV_CHANNELS] = {"R", "G", "B", "hit", "object", "t",
+                                                           "N.X", "N.Y", "N.Z", "shadow"};
+
+void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, float *out) {
+  for (size_t i = 0; i < count; i++) {
+    const gpu_aov *a = &aov[i];
+    const float v[RC_AOV_CHANNELS] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], a->hit,      a->object,
+                                      a->t,       a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits};
+    memcpy(out + i * RC_AOV_CHANNELS, v, sizeof v);
+  }
+}
+
+static int find(char names[][32], int count, const char *name) {
+  for (int i = 0; i < count; i++)
+    if (strcmp(names[i], name) == 0) return i;
+  return -1;
+}
+
+bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout) {
+  for (int i = 0; i < RC_AOV_CHANNELS; i++)
+    if (find(names, count, rc_aov_channel_names[i]) < 0) return false;
+  int *slots[RC_AOV_CHANNELS] = {&layout->r,  &layout->g,  &layout->b,  &layout->hit, &layout->object,
+                                 &layout->t,  &layout->nx, &layout->ny, &layout->nz,  &layout->shadow};
+  for (int i = 0; i < RC_AOV_CHANNELS; i++) *slots[i] = find(names, count, rc_aov_channel_names[i]);
+  return true;
+}
+
+bool rc_aov_same_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb, int c,
+                           size_t i) {
+  const float *x = a + i * c, *y = b + i * c;
+  return x[la->hit] == y[lb->hit] && x[la->object] == y[lb->object] && x[la->shadow] == y[lb->shadow];
+}
+
+void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb, int w,
+                              int h, int c, const unsigned char *band, rc_compare_result *r) {
+  r->decisions = true;
+  for (size_t i = 0; i < (size_t)w * h; i++) {
+    const float *x = a + i * c, *y = b + i * c;
+    r->a_hits += x[la->hit] != 0;
+    r->b_hits += y[lb->hit] != 0;
+    r->a_shadowed += x[la->shadow] != 0;
+    r->b_shadowed += y[lb->shadow] != 0;
+    if (band && band[i]) {
+      r->band_pixels++;
+      continue;
+    }
+    bool same_hit = x[la->hit] == y[lb->hit];
+    bool same_object = same_hit && x[la->object] == y[lb->object];
+    r->hit_mismatch += !same_hit;
+    r->object_mismatch += same_hit && !same_object;
+    r->shadow_mismatch += same_object && x[la->shadow] != y[lb->shadow];
+    if (!same_object || y[lb->hit] == 0) continue;
+    /* Depth relative to the reference's; the normal as the angle between the two. */
+    double tb = y[lb->t], dt = fabs((double)x[la->t] - tb) / (tb != 0 ? fabs(tb) : 1);
+    if (!(dt <= r->max_depth_rel)) r->max_depth_rel = isnan(dt) ? INFINITY : dt;
+    /* The angle as atan2(|a x b|, a . b): exact 0 for equal vectors (acos of a rounded
+     * cosine is not) and well conditioned near 0 and pi. */
+    double ax = x[la->nx], ay = x[la->ny], az = x[la->nz], bx = y[lb->nx], by = y[lb->ny], bz = y[lb->nz];
+    double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    double angle = atan2(sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz);
+    if (!(angle <= r->max_normal_angle)) r->max_normal_angle = isnan(angle) ? INFINITY : angle;
+  }
+}

@@ -1,0 +1,42 @@
+/* compare.h: how far apart two images are, in the vocabulary of OpenImageIO's idiff:
+ * mean, RMS and max absolute error (with where the max is), PSNR against a peak of 1,
+ * and how many pixels have a channel over the fail and warn thresholds. These colour
+ * metrics run over the channels marked as colour: every channel of an image, R, G and B
+ * of an AOV file (aov.h), whose other channels are not colours: for those it counts the
+ * pixels whose decisions differ (hit flag, object id, shadow bits) and measures depth
+ * and normals by their own relative metrics. */
+#ifndef RC_COMPARE_H
+#define RC_COMPARE_H
+
+#include "base/rc_base.h"
+
+typedef struct rc_compare_result {
+  int width, height, channels;
+  double mean, rms, max, psnr;
+  int max_x, max_y, max_channel; /* max_channel: an index among all channels */
+  double max_a, max_b; /* the two values at the max */
+  int colour_channels;   /* how many channels the colour metrics ran over */
+  uint64_t pixels, over; /* pixels with some colour channel over the fail threshold */
+  uint64_t warned;       /* ... over the warn threshold */
+  bool decisions;        /* both files are AOV files: the counts below are meaningful */
+  uint64_t hit_mismatch, object_mismatch, shadow_mismatch; /* outside the band */
+  uint64_t band_pixels;           /* left out: the conditioning band */
+  uint64_t a_hits, b_hits, a_shadowed, b_shadowed; /* pixels that hit; with any shadow bit */
+  double max_depth_rel;           /* |t_a - t_b| / |t_b| where both hit the same object */
+  double max_normal_angle;        /* radians, likewise */
+  uint64_t nan_a, nan_b;          /* non-finite colour values */
+} rc_compare_result;
+
+/* a and b: width * height * channels floats; colour[k]: channel k is a colour (NULL: all
+ * are). Non-finite values count as maximal error. */
+void rc_compare_images(const float *a, const float *b, int width, int height, int channels, const bool *colour,
+                       double fail, double warn, rc_compare_result *r);
+
+/* Per-pixel max absolute channel difference e as an RGB heat map, black -> red -> yellow
+ * -> white, logarithmic: e <= floor is black, e >= top is white (floor > 0). Logarithmic
+ * because GPU/CPU differences span orders of magnitude: rounding noise near 1e-6 and a
+ * few decision flips near 0.1 must both show. */
+void rc_compare_heat_map(const float *a, const float *b, int width, int height, int channels, const bool *colour,
+                         double floor, double top, float *rgb);
+
+#endif

@@ -1,0 +1,51 @@
+/* gpu_plan.h: how much work one dispatch may give a pixel. Every shader loop iteration is
+ * one step of the per-invocation loop budget (rc_budget.glsl); this module counts the
+ * worst-case steps of one sample exactly as the shader's loops are nested, and sizes the
+ * sample batch so that a dispatch never exceeds the budget. */
+#ifndef RC_GPU_PLAN_H
+#define RC_GPU_PLAN_H
+
+#include <vulkan/vulkan.h>
+
+#include "base/rc_base.h"
+#include "rc_shared.h"
+
+typedef struct rc_gpu_plan {
+  uint64_t steps_per_sample; /* worst case over all pixels */
+  uint32_t batch_samples;    /* samples per pixel per dispatch */
+  uint32_t budget;           /* the budget the plan was made for */
+} rc_gpu_plan;
+
+/* Worst-case loop steps of one sample by brute force, with N the objects' steps (1 per
+ * sphere or triangle; a quadric's clipped pieces and scan; a composite's count from the
+ * loader: gpu_plan.c, object_steps):
+ *   1 (sample loop) + (depth + 1) * [1 (bounce loop) + N (closest hit)
+ *                                   + L * (1 (light loop) + N (shadow ray))]. */
+uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
+
+/* Brute force (bvh_depth 0): the exact worst case; fails with RC_ERR_TOO_LARGE (message
+ * with the numbers) when even one sample exceeds the budget, as brute force over that
+ * many objects cannot render correctly on llvmpipe.
+ * BVH (bvh_depth = tree depth): no useful worst case exists, so the batch comes from an
+ * estimate of a traversal's steps, 4 x depth node visits + 2 leaves of 8 objects, and the
+ * shader's exhaustion flag catches what the estimate misses (the batch is halved and the
+ * work repeated; one sample over the budget is an error, never a wrong image). */
+rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan);
+
+/* The per-invocation loop budget on a device. llvmpipe (`capped`) caps the loop
+ * iterations of one SIMD vector, a subgroup of invocations run as lanes, at 65,535; with
+ * divergent nested loops the vector runs the union of its lanes' iterations, so only
+ * lanes x the per-lane count bounds it: RC_LOOP_BUDGET / subgroup size there. Other
+ * drivers have no such cap (docs/porting.md). */
+uint32_t rc_gpu_loop_budget(bool capped, uint32_t subgroup_size);
+
+/* The workgroup: 8 invocations wide (8 x 8 pixels share their rays' coherence) and
+ * max(64, subgroup size) in all, so that it holds whole subgroups (NVIDIA 32, AMD 64 or
+ * 32, Intel 8 to 32, Apple 32, llvmpipe 4 to 16) and no lane idles for want of a full one;
+ * 64 where the device's limits cannot take that many. */
+typedef struct rc_workgroup {
+  uint32_t x, y;
+} rc_workgroup;
+rc_workgroup rc_gpu_workgroup(uint32_t subgroup_size, const VkPhysicalDeviceLimits *limits);
+
+#endif

@@ -1,0 +1,705 @@
+#include "gpu/gpu_render.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/gpu_pipeline_cache.h"
+#include "gpu/gpu_shaders.h"
+#include "gpu/gpu_tiles.h"
+
+/* The tile buffers hold this many pixels: no tile exceeds it. */
+#define MAX_TILE_PIXELS (1u << 20)
+#define SCENE_ARRAYS 11 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
+                           quadrics, composites, CSG programs */
+
+struct rc_gpu_renderer {
+  rc_vk_ctx *ctx;
+  rc_gpu_options opts;
+  uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
+  gpu_frame frame;
+  rc_region region; /* the pixels rendered, within the frame */
+  bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
+  rc_buffer frame_buf;
+  rc_buffer arrays[SCENE_ARRAYS];
+  VkBufferView views[SCENE_ARRAYS];
+  uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
+  double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
+  rc_buffer accum, accum_readback;
+  rc_buffer status, status_readback;
+  rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
+  float *band_rgb;             /* one band of rows on the host */
+  gpu_aov *band_aov;
+  VkDescriptorSetLayout set_layout;
+  VkPipelineLayout pipeline_layout;
+  VkPipeline pipeline;
+  VkDescriptorPool descriptor_pool;
+  VkDescriptorSet set;
+  VkQueryPool queries;
+  VkCommandPool pool; /* holds `cmd` alone: reset as a whole before each recording */
+  VkCommandBuffer cmd;
+  VkFence fence;
+  bool staging;
+};
+
+static const uint32_t array_bindings[SCENE_ARRAYS] = {
+    RC_BINDING_SPHERES,   RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS, RC_BINDING_LIGHTS,
+    RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS, RC_BINDING_NORMALS,
+    RC_BINDING_QUADRICS,  RC_BINDING_CSG,       RC_BINDING_CSG_PROGRAM};
+static const char *const array_names[SCENE_ARRAYS] = {
+    "spheres",    "triangles", "materials", "lights", "BVH nodes", "BVH references", "transforms", "normals",
+    "quadrics", "composites", "CSG programs"};
+
+/* Within what every Vulkan device offers, so no device can refuse them (docs/porting.md). */
+_Static_assert(sizeof(gpu_frame) <= 16384, "gpu_frame must fit the guaranteed maxUniformBufferRange");
+_Static_assert(sizeof(gpu_push) <= 128, "gpu_push must fit the guaranteed maxPushConstantsSize");
+
+/* The shader's descriptors besides the scene arrays: the frame (a uniform buffer) and the
+ * accumulation, status and AOV storage buffers. */
+#define OUTPUT_STORAGE_BUFFERS 3u
+
+/* Whether the device can take the scene arrays as buffers of `kind`: NULL, or the first
+ * limit that stops it, with the numbers, in `why`. Texel views count against the sampled
+ * image limits (Vulkan 1.1, "Limits"); the arrays' sizes against the texel count or the
+ * storage range of one binding. */
+static const char *kind_blocked(const rc_vk_ctx *ctx, rc_scene_buffers kind, const VkDeviceSize sizes[SCENE_ARRAYS],
+                                char *why, size_t n) {
+  const VkPhysicalDeviceLimits *l = &ctx->props.limits;
+  bool texel = kind == RC_SCENE_BUFFERS_TEXEL;
+  uint32_t storage = OUTPUT_STORAGE_BUFFERS + (texel ? 0 : SCENE_ARRAYS);
+  if (texel) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
+    if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) {
+      snprintf(why, n, "the device has no RGBA32UI uniform texel buffers");
+      return why;
+    }
+    for (int i = 0; i < SCENE_ARRAYS; i++) {
+      if (sizes[i] / 16 > l->maxTexelBufferElements) {
+        snprintf(why, n, "the %s array needs %llu texels, more than maxTexelBufferElements (%u)", array_names[i],
+                 (unsigned long long)(sizes[i] / 16), l->maxTexelBufferElements);
+        return why;
+      }
+    }
+    uint32_t views = SCENE_ARRAYS;
+    if (views > l->maxPerStageDescriptorSampledImages || views > l->maxDescriptorSetSampledImages) {
+      snprintf(why, n, "%u texel buffers, more than maxPerStageDescriptorSampledImages (%u) or "
+               "maxDescriptorSetSampledImages (%u)", views, l->maxPerStageDescriptorSampledImages,
+               l->maxDescriptorSetSampledImages);
+      return why;
+    }
+  } else {
+    for (int i = 0; i < SCENE_ARRAYS; i++) {
+      if (sizes[i] > l->maxStorageBufferRange) {
+        snprintf(why, n, "the %s array is %llu bytes, more than maxStorageBufferRange (%u bytes)", array_names[i],
+                 (unsigned long long)sizes[i], l->maxStorageBufferRange);
+        return why;
+      }
+    }
+  }
+  if (storage > l->maxPerStageDescriptorStorageBuffers || storage > l->maxDescriptorSetStorageBuffers) {
+    snprintf(why, n, "%u storage buffers, more than maxPerStageDescriptorStorageBuffers (%u) or "
+             "maxDescriptorSetStorageBuffers (%u)", storage, l->maxPerStageDescriptorStorageBuffers,
+             l->maxDescriptorSetStorageBuffers);
+    return why;
+  }
+  if (RC_BINDING_COUNT > l->maxPerStageResources) {
+    snprintf(why, n, "%u descriptors, more than maxPerStageResources (%u)", RC_BINDING_COUNT, l->maxPerStageResources);
+    return why;
+  }
+  return NULL;
+}
+
+/* The buffer kind the device can take for this scene. Texel buffers (the default, faster
+ * on lavapipe) give way to storage buffers where they do not fit; an explicit
+ * --scene-buffers storage is kept or refused. A scene neither fits is refused before
+ * anything is allocated, with the limits and the numbers (docs/porting.md). */
+static rc_status choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers *kind, const VkDeviceSize sizes[SCENE_ARRAYS]) {
+  char texel_why[256], storage_why[256];
+  if (*kind == RC_SCENE_BUFFERS_TEXEL) {
+    if (!kind_blocked(ctx, RC_SCENE_BUFFERS_TEXEL, sizes, texel_why, sizeof texel_why)) return RC_OK;
+    if (!kind_blocked(ctx, RC_SCENE_BUFFERS_STORAGE, sizes, storage_why, sizeof storage_why)) {
+      rc_warning("texel buffers do not fit (%s); using storage buffers", texel_why);
+      *kind = RC_SCENE_BUFFERS_STORAGE;
+      return RC_OK;
+    }
+    rc_refuse_scene("scene too large for device %u (%s): as texel buffers %s; as storage buffers %s",
+                    ctx->device_index, ctx->props.deviceName, texel_why, storage_why);
+    return RC_ERR_TOO_LARGE;
+  }
+  if (!kind_blocked(ctx, RC_SCENE_BUFFERS_STORAGE, sizes, storage_why, sizeof storage_why)) return RC_OK;
+  rc_refuse_scene("--scene-buffers storage: device %u (%s) cannot take this scene: %s", ctx->device_index,
+                  ctx->props.deviceName, storage_why);
+  return RC_ERR_TOO_LARGE;
+}
+
+/* The tile buffers' capacity in pixels: no tile is larger, nor larger than the region. */
+static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
+  uint64_t cap = r->opts.tile_size ? (uint64_t)r->opts.tile_size * r->opts.tile_size : MAX_TILE_PIXELS;
+  uint64_t region = (uint64_t)rc_region_width(r->region) * rc_region_height(r->region);
+  return (uint32_t)(region < cap ? region : cap);
+}
+
+static void planner_init(const rc_gpu_renderer *r, rc_tile_planner *p) {
+  rc_tiles_init(p, rc_region_width(r->region), rc_region_height(r->region), r->opts.tile_size, r->tile_budget_ms,
+                max_tile_pixels(r));
+}
+
+static uint32_t max_band_rows(const rc_gpu_renderer *r) {
+  rc_tile_planner p;
+  planner_init(r, &p);
+  return rc_tiles_max_band_rows(&p);
+}
+
+/* The time limit of one dispatch: the user's --tile-budget-ms on any device; by default
+ * none on a CPU device (lavapipe: no watchdog resets it, and every dispatch has a fixed
+ * cost), RC_DEFAULT_TILE_BUDGET_MS elsewhere (Windows resets a GPU after 2 s, Linux
+ * drivers kill long dispatches). */
+static double resolve_tile_budget(const rc_vk_ctx *ctx, double wanted_ms) {
+  if (wanted_ms >= 0) return wanted_ms;
+  return ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0.0 : RC_DEFAULT_TILE_BUDGET_MS;
+}
+
+static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
+  rc_vk_ctx *ctx = r->ctx;
+  const gpu_frame *f = &s->frame;
+  /* Without a BVH the node and reference buffers still exist (one dummy element): every
+   * binding must be valid even where the specialized shader never reads it. */
+  static const gpu_bvh_node no_node;
+  static const uint32_t no_refs[4];
+  bool bvh = s->bvh_node_total > 0; /* the object tree, or a mesh operand's */
+  const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
+                                    bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs,
+                                    s->transforms, s->normals, s->quadrics, s->csg, s->csg_program};
+  /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
+  VkDeviceSize sizes[SCENE_ARRAYS] = {
+      (f->sphere_count + 1) * sizeof(gpu_sphere), (s->triangle_total + 1) * sizeof(gpu_triangle),
+      (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
+      bvh ? s->bvh_node_total * sizeof(gpu_bvh_node) : sizeof no_node,
+      bvh ? (s->bvh_prim_total + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
+      (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals),
+      (s->quadric_total + 1) * sizeof(gpu_quadric), (f->csg_count + 1) * sizeof(gpu_csg),
+      (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t)};
+  rc_status chosen = choose_buffers(ctx, &r->opts.scene_buffers, sizes);
+  if (chosen != RC_OK) return chosen;
+  /* Everything the render allocates on the device, against its largest device-local heap:
+   * refuse what cannot fit before allocating anything. */
+  VkDeviceSize need = sizeof(gpu_frame) + max_tile_pixels(r) * (16 + (r->opts.aov ? sizeof(gpu_aov) : 0));
+  for (int i = 0; i < SCENE_ARRAYS; i++) need += sizes[i];
+  VkDeviceSize heap = 0;
+  for (uint32_t i = 0; i < ctx->memory.memoryHeapCount; i++)
+    if ((ctx->memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) && ctx->memory.memoryHeaps[i].size > heap)
+      heap = ctx->memory.memoryHeaps[i].size;
+  if (heap && need > heap) {
+    rc_refuse_scene("scene too large for the device: it needs %.1f MiB of device memory, the largest device-local heap "
+             "has %.1f MiB",
+             (double)need / (1 << 20), (double)heap / (1 << 20));
+    return RC_ERR_TOO_LARGE;
+  }
+  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                               (texel ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);
+    if (st == RC_OK) st = rc_buffer_upload(ctx, &r->arrays[i], data[i], sizes[i], r->opts.force_staging);
+    if (st != RC_OK) return st;
+    if (texel) {
+      VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+                                   .buffer = r->arrays[i].buffer,
+                                   .format = VK_FORMAT_R32G32B32A32_UINT,
+                                   .range = VK_WHOLE_SIZE};
+      RC_VK_TRY(vkCreateBufferView(ctx->device, &vi, NULL, &r->views[i]));
+    }
+  }
+  rc_status st = rc_buffer_create(ctx, sizeof(gpu_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  RC_MEM_DEVICE, &r->frame_buf);
+  if (st == RC_OK) st = rc_buffer_upload(ctx, &r->frame_buf, f, sizeof *f, r->opts.force_staging);
+  return st;
+}
+
+/* The per-tile accumulation buffer and the status counters, with readback copies when
+ * they are not mapped directly. */
+static rc_status create_outputs(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  VkDeviceSize tile_pixels = max_tile_pixels(r);
+  VkDeviceSize accum_size = tile_pixels * 16;
+  VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                             VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkDeviceSize aov_size = r->opts.aov ? tile_pixels * sizeof(gpu_aov) : sizeof(gpu_aov);
+  size_t band = (size_t)rc_region_width(r->region) * max_band_rows(r);
+  r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
+  r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(gpu_aov), "one band of AOVs") : NULL;
+  if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_OUT_OF_MEMORY;
+  rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
+  if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(gpu_status), usage, RC_MEM_DEVICE, &r->status);
+  if (st == RC_OK) st = rc_buffer_create(ctx, aov_size, usage, RC_MEM_DEVICE, &r->aov);
+  if (st != RC_OK) return st;
+  r->staging = !rc_buffer_is_direct(&r->accum, r->opts.force_staging) ||
+               !rc_buffer_is_direct(&r->status, r->opts.force_staging);
+  if (r->staging) {
+    st = rc_buffer_create(ctx, accum_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->accum_readback);
+    if (st == RC_OK)
+      st = rc_buffer_create(ctx, sizeof(gpu_status), VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
+                            &r->status_readback);
+    if (st == RC_OK)
+      st = rc_buffer_create(ctx, aov_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->aov_readback);
+  }
+  return st;
+}
+
+static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
+  rc_vk_ctx *ctx = r->ctx;
+  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  VkDescriptorType array_type = texel ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  VkDescriptorSetLayoutBinding b[RC_BINDING_COUNT];
+  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
+    b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
+                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                          .descriptorCount = 1,
+                                          .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+  }
+  b[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  for (int i = 0; i < SCENE_ARRAYS; i++) b[array_bindings[i]].descriptorType = array_type;
+
+  VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                         .bindingCount = RC_BINDING_COUNT,
+                                         .pBindings = b};
+  RC_VK_TRY(vkCreateDescriptorSetLayout(ctx->device, &sli, NULL, &r->set_layout));
+  VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(gpu_push)};
+  VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                    .setLayoutCount = 1,
+                                    .pSetLayouts = &r->set_layout,
+                                    .pushConstantRangeCount = 1,
+                                    .pPushConstantRanges = &pcr};
+  RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
+
+  /* The module without quadric code where the scene has none (and the pipeline is not the
+   * generic one): lavapipe compiles the whole module before specializing it. */
+  bool quadrics = r->opts.generic_pipeline || r->frame.quadric_count || r->frame.csg_count;
+  rc_spirv code = rc_shader_raycast(texel, r->opts.f64, quadrics);
+  VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                  .codeSize = code.size,
+                                  .pCode = code.words};
+  VkShaderModule module;
+  RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
+  /* A bool specialization constant is 4 bytes (VkBool32); a float one is its 4 bytes. */
+  float epsilon = r->frame.offset_epsilon;
+  uint32_t epsilon_bits;
+  memcpy(&epsilon_bits, &epsilon, sizeof epsilon_bits);
+  /* The scene's features (rc_shared.h, RC_SPEC_KINDS...): what the scene lacks is
+   * compiled out. A generic pipeline reads them from the frame instead. */
+  const gpu_frame *f = &r->frame;
+  bool generic = r->opts.generic_pipeline;
+  uint32_t kinds = generic ? RC_KIND_ALL
+                           : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
+                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
+                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0);
+  const uint32_t spec_values[15] = {r->local_x,
+                                    r->local_y,
+                                    r->budget,
+                                    r->opts.aov ? VK_TRUE : VK_FALSE,
+                                    r->opts.bvh_depth ? VK_TRUE : VK_FALSE,
+                                    f->sphere_formula,
+                                    f->triangle_formula,
+                                    f->offset_strategy,
+                                    epsilon_bits,
+                                    kinds,
+                                    generic ? RC_LIGHTS_FROM_FRAME : f->light_count,
+                                    generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
+                                    generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
+                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth,
+                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel};
+  const VkSpecializationMapEntry entries[15] = {
+      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
+      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
+      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
+      {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
+      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 15, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                               .pData = spec_values};
+  VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+                                    .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                              .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                                              .module = module,
+                                              .pName = "main",
+                                              .pSpecializationInfo = &spec},
+                                    .layout = r->pipeline_layout};
+  rc_pipeline_cache cache;
+  rc_pipeline_cache_open(ctx, code, &cache);
+  *cache_hit = cache.loaded;
+  VkResult res = vkCreateComputePipelines(ctx->device, cache.cache, 1, &ci, NULL, &r->pipeline);
+  if (res == VK_SUCCESS) rc_pipeline_cache_close(ctx, &cache);
+  else if (cache.cache) vkDestroyPipelineCache(ctx->device, cache.cache, NULL);
+  vkDestroyShaderModule(ctx->device, module, NULL);
+  if (res == VK_SUCCESS && rc_fault("pipeline")) {
+    vkDestroyPipeline(ctx->device, r->pipeline, NULL);
+    r->pipeline = VK_NULL_HANDLE;
+    res = VK_ERROR_INITIALIZATION_FAILED;
+  }
+  if (res != VK_SUCCESS) {
+    rc_error("the device could not create the compute pipeline (%s); its driver may not support this shader",
+             rc_vk_result_str(res));
+    return RC_ERR_VULKAN;
+  }
+  return RC_OK;
+}
+
+static rc_status create_descriptors(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 3 + SCENE_ARRAYS},
+                                   {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, SCENE_ARRAYS}};
+  VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                   .maxSets = 1,
+                                   .poolSizeCount = texel ? 3 : 2,
+                                   .pPoolSizes = sizes};
+  RC_VK_TRY(vkCreateDescriptorPool(ctx->device, &pi, NULL, &r->descriptor_pool));
+  VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                    .descriptorPool = r->descriptor_pool,
+                                    .descriptorSetCount = 1,
+                                    .pSetLayouts = &r->set_layout};
+  RC_VK_TRY(vkAllocateDescriptorSets(ctx->device, &ai, &r->set));
+
+  VkDescriptorBufferInfo infos[RC_BINDING_COUNT] = {0};
+  VkWriteDescriptorSet w[RC_BINDING_COUNT];
+  const rc_buffer *bufs[RC_BINDING_COUNT] = {0};
+  bufs[RC_BINDING_FRAME] = &r->frame_buf;
+  bufs[RC_BINDING_ACCUM] = &r->accum;
+  bufs[RC_BINDING_STATUS] = &r->status;
+  bufs[RC_BINDING_AOV] = &r->aov;
+  for (int i = 0; i < SCENE_ARRAYS; i++) bufs[array_bindings[i]] = &r->arrays[i];
+  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
+    infos[i] = (VkDescriptorBufferInfo){.buffer = bufs[i]->buffer, .range = VK_WHOLE_SIZE};
+    w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = r->set,
+                                  .dstBinding = i,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  .pBufferInfo = &infos[i]};
+  }
+  w[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
+    VkWriteDescriptorSet *x = &w[array_bindings[i]];
+    if (texel) {
+      x->descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      x->pBufferInfo = NULL;
+      x->pTexelBufferView = &r->views[i];
+    }
+  }
+  vkUpdateDescriptorSets(ctx->device, RC_BINDING_COUNT, w, 0, NULL);
+
+  VkQueryPoolCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                              .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                              .queryCount = 2};
+  if (ctx->timestamp_bits) RC_VK_TRY(vkCreateQueryPool(ctx->device, &qi, NULL, &r->queries));
+  VkCommandPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                  .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
+                                  .queueFamilyIndex = ctx->queue_family};
+  RC_VK_TRY(vkCreateCommandPool(ctx->device, &pci, NULL, &r->pool));
+  VkCommandBufferAllocateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                    .commandPool = r->pool,
+                                    .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                    .commandBufferCount = 1};
+  RC_VK_TRY(vkAllocateCommandBuffers(ctx->device, &ci, &r->cmd));
+  VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  RC_VK_TRY(vkCreateFence(ctx->device, &fi, NULL, &r->fence));
+  return RC_OK;
+}
+
+rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
+                                 rc_gpu_renderer **out, rc_gpu_stats *stats) {
+  *out = NULL;
+  stats->crossing_object = UINT32_MAX; /* a refusal while setting up is no crossing */
+  rc_gpu_renderer *r = calloc(1, sizeof *r);
+  if (!r) return RC_ERR_VULKAN;
+  r->ctx = ctx;
+  r->opts = *opts;
+  r->frame = scene->frame;
+  r->region = opts->region;
+  if (r->region.x1 == 0) r->region = (rc_region){0, 0, r->frame.camera.width, r->frame.camera.height};
+  RC_ASSERT(r->region.x1 <= r->frame.camera.width && r->region.y1 <= r->frame.camera.height);
+  r->mesh_operands = scene->mesh_operand_count > 0;
+  r->budget = rc_gpu_loop_budget(ctx->llvmpipe, ctx->subgroup_size);
+  r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
+  stats->tile_budget_ms = r->tile_budget_ms;
+  stats->loop_budget = r->budget;
+  stats->subgroup_size = ctx->subgroup_size;
+  rc_workgroup group = rc_gpu_workgroup(ctx->subgroup_size, &ctx->props.limits);
+  r->local_x = group.x;
+  r->local_y = group.y;
+  stats->workgroup_x = r->local_x;
+  stats->workgroup_y = r->local_y;
+  rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget ? opts->plan_budget : r->budget,
+                                  &stats->plan);
+  if (st == RC_OK && opts->f64 && !ctx->float64) {
+    rc_error("--precision f64: device %u (%s) does not support shaderFloat64 and shaderInt64; use f32, or "
+             "--backend cpu for an f64 render",
+             ctx->device_index, ctx->props.deviceName);
+    st = RC_ERR_DEVICE;
+  }
+  double t0 = rc_now_ms();
+  if (st == RC_OK) st = upload_scene(r, scene);
+  double t1 = rc_now_ms();
+  if (st == RC_OK) st = create_outputs(r);
+  if (st == RC_OK) st = create_pipeline(r, &stats->pipeline_cache_hit);
+  double t2 = rc_now_ms();
+  if (st == RC_OK) st = create_descriptors(r);
+  stats->upload_ms = t1 - t0;
+  stats->pipeline_ms = t2 - t1;
+  stats->scene_buffers = r->opts.scene_buffers;
+  stats->staging = r->staging || opts->force_staging;
+  rc_mem_usage(ctx, &stats->memory_blocks, &stats->memory_bytes);
+  if (st != RC_OK) {
+    rc_gpu_renderer_destroy(r);
+    return st;
+  }
+  *out = r;
+  return RC_OK;
+}
+
+void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
+  if (!r) return;
+  rc_vk_ctx *ctx = r->ctx;
+  vkDeviceWaitIdle(ctx->device);
+  vkDestroyFence(ctx->device, r->fence, NULL);
+  vkDestroyCommandPool(ctx->device, r->pool, NULL); /* frees `cmd` */
+  vkDestroyQueryPool(ctx->device, r->queries, NULL);
+  vkDestroyDescriptorPool(ctx->device, r->descriptor_pool, NULL);
+  vkDestroyPipeline(ctx->device, r->pipeline, NULL);
+  vkDestroyPipelineLayout(ctx->device, r->pipeline_layout, NULL);
+  vkDestroyDescriptorSetLayout(ctx->device, r->set_layout, NULL);
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
+    vkDestroyBufferView(ctx->device, r->views[i], NULL);
+    rc_buffer_destroy(ctx, &r->arrays[i]);
+  }
+  rc_buffer_destroy(ctx, &r->frame_buf);
+  rc_buffer_destroy(ctx, &r->accum);
+  rc_buffer_destroy(ctx, &r->accum_readback);
+  rc_buffer_destroy(ctx, &r->status);
+  rc_buffer_destroy(ctx, &r->status_readback);
+  rc_buffer_destroy(ctx, &r->aov);
+  rc_buffer_destroy(ctx, &r->aov_readback);
+  free(r->band_rgb);
+  free(r->band_aov);
+  free(r);
+}
+
+static void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst, VkAccessFlags dst_access) {
+  VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = src_access,
+                        .dstAccessMask = dst_access};
+  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, NULL, 0, NULL);
+}
+
+static rc_status submit(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  RC_VK_TRY(vkEndCommandBuffer(r->cmd));
+  VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &r->cmd};
+  RC_VK_TRY(vkResetFences(ctx->device, 1, &r->fence));
+  VkResult res = vkQueueSubmit(ctx->queue, 1, &si, r->fence);
+  if (res == VK_SUCCESS) res = vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+  if (res == VK_SUCCESS && rc_fault("device-lost")) res = VK_ERROR_DEVICE_LOST;
+  if (res == VK_ERROR_DEVICE_LOST) {
+    rc_error("the Vulkan device was lost during rendering (a driver reset, often a dispatch that ran too "
+             "long); try a smaller tile size");
+    return RC_ERR_VULKAN;
+  }
+  RC_VK_TRY(res);
+  return RC_OK;
+}
+
+static rc_status begin(rc_gpu_renderer *r) {
+  RC_VK_TRY(vkResetCommandPool(r->ctx->device, r->pool, 0));
+  VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                 .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+  RC_VK_TRY(vkBeginCommandBuffer(r->cmd, &bi));
+  return RC_OK;
+}
+
+/* Copies `src` into its readback twin when staging, then makes it visible to the host. */
+static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_buffer *dst, VkDeviceSize size) {
+  if (r->staging) {
+    barrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferCopy region = {.size = size};
+    vkCmdCopyBuffer(r->cmd, src->buffer, dst->buffer, 1, &region);
+    barrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+  } else {
+    barrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+  }
+}
+
+/* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
+ * first batch), run the shader between two timestamps, and bring the status back. */
+static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *ms) {
+  rc_status st = begin(r);
+  if (st != RC_OK) return st;
+  VkCommandBuffer cmd = r->cmd;
+  /* Earlier transfers and dispatches (uploads, the previous batch) before this one. */
+  barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_ACCESS_TRANSFER_WRITE_BIT);
+  /* Only the tile's pixels: the buffer holds the largest tile, and clearing all of it cost
+   * small frames milliseconds on lavapipe. */
+  if (first) vkCmdFillBuffer(cmd, r->accum.buffer, 0, (VkDeviceSize)push->tile_width * push->tile_height * 16, 0);
+  vkCmdFillBuffer(cmd, r->status.buffer, 0, VK_WHOLE_SIZE, 0);
+  barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
+  if (r->queries) {
+    vkCmdResetQueryPool(cmd, r->queries, 0, 2);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r->queries, 0);
+  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
+  vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+  vkCmdDispatch(cmd, (push->tile_width + r->local_x - 1) / r->local_x, (push->tile_height + r->local_y - 1) / r->local_y, 1);
+  if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
+  record_readback(r, &r->status, &r->status_readback, sizeof(gpu_status));
+  double t0 = rc_now_ms();
+  st = submit(r);
+  double wall = rc_now_ms() - t0;
+  if (st != RC_OK) return st;
+  const rc_buffer *sb = r->staging ? &r->status_readback : &r->status;
+  st = rc_buffer_invalidate(r->ctx, sb);
+  if (st != RC_OK) return st;
+  memcpy(status, sb->memory.mapped, sizeof *status);
+  if (r->queries) {
+    uint64_t ts[2];
+    RC_VK_TRY(vkGetQueryPoolResults(r->ctx->device, r->queries, 0, 2, sizeof ts, ts, sizeof ts[0],
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    /* Only the low timestampValidBits count; the difference wraps modulo 2^bits. */
+    uint64_t mask = r->ctx->timestamp_bits >= 64 ? ~0ull : ((1ull << r->ctx->timestamp_bits) - 1);
+    uint64_t ticks = (ts[1] - ts[0]) & mask;
+    *ms = (double)ticks * r->ctx->props.limits.timestampPeriod * 1e-6;
+  } else {
+    *ms = wall;
+  }
+  /* Tests of the tile model inject a dispatch's time (no test may read a clock):
+   * VKRAYCAST_FAULT=dispatch-ms:OVERHEAD:PER_PIXEL_SAMPLE, in ms. */
+  const char *fake = rc_fault_arg("dispatch-ms");
+  double overhead, slope;
+  if (fake && sscanf(fake, "%lf:%lf", &overhead, &slope) == 2)
+    *ms = overhead + slope * (double)push->tile_width * push->tile_height * push->batch_samples;
+  return RC_OK;
+}
+
+/* Renders one tile (a piece of the current band): batches until every pixel has all its
+ * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
+ * with half the batch; exhaustion at one sample per batch is an error, never a silently
+ * wrong pixel. Every dispatch's time goes to the planner. */
+static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
+                             rc_tile_planner *planner, rc_gpu_stats *stats) {
+  gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
+                   .batch_samples = stats->plan.batch_samples};
+  bool first = true;
+  for (;;) {
+    gpu_status status;
+    double ms = 0;
+    rc_status st = dispatch(r, &push, first, &status, &ms);
+    if (st != RC_OK) return st;
+    first = false;
+    stats->dispatches++;
+    stats->gpu_ms += ms;
+    rc_tiles_observe(planner, (double)tw * th, push.batch_samples, ms);
+    if (ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
+    if (r->tile_budget_ms > 0 && ms > r->tile_budget_ms) stats->over_budget++;
+    stats->shadow_rays += status.shadow_rays;
+    stats->reflection_rays += status.reflection_rays;
+    if (status.crossing_object) {
+      /* A mesh operand crossed more often than its bound, or an odd number of times: no
+       * batch size helps, and the pixel would be wrong. Reported by the caller. */
+      stats->crossing_object = status.crossing_object - 1;
+      uint32_t at = status.crossing_pixel ? status.crossing_pixel - 1 : 0;
+      stats->crossing_x = at % r->frame.camera.width, stats->crossing_y = at / r->frame.camera.width;
+      return RC_ERR_TOO_LARGE;
+    }
+    if (status.exhausted_pixels) {
+      if (push.batch_samples == 1) {
+        /* Reported by the caller, which knows where the object came from. */
+        stats->budget_refused = true;
+        stats->budget_pixels = status.exhausted_pixels;
+        stats->budget_object = status.exhausted_object ? status.exhausted_object - 1 : UINT32_MAX;
+        uint32_t at = status.exhausted_pixel ? status.exhausted_pixel - 1 : 0;
+        stats->budget_x = at % r->frame.camera.width, stats->budget_y = at / r->frame.camera.width;
+        return RC_ERR_TOO_LARGE;
+      }
+      push.batch_samples /= 2;
+      stats->budget_retries++;
+    }
+    if (status.incomplete_pixels == 0) break;
+  }
+  double t0 = rc_now_ms();
+  rc_status st = RC_OK;
+  /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
+   * the status) already made accum and AOVs visible: no second submit, which costs a
+   * whole queue round trip on lavapipe. Staging copies them first. */
+  if (r->staging) {
+    st = begin(r);
+    if (st != RC_OK) return st;
+    record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
+    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
+    st = submit(r);
+  }
+  const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
+  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
+  if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
+  if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
+  if (st != RC_OK) return st;
+  /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
+  uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
+  if (r->band_aov) {
+    const gpu_aov *src = vb->memory.mapped;
+    for (uint32_t y = 0; y < th; y++)
+      memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
+  }
+  const float *acc = ab->memory.mapped;
+  for (uint32_t y = 0; y < th; y++) {
+    for (uint32_t x = 0; x < tw; x++) {
+      const float *a = acc + 4 * ((size_t)y * tw + x);
+      float *o = r->band_rgb + 3 * ((size_t)y * width + (bx + x));
+      RC_ASSERT(a[3] == (float)r->frame.samples_per_pixel);
+      for (int c = 0; c < 3; c++) o[c] = a[c] / a[3];
+    }
+  }
+  stats->readback_ms += rc_now_ms() - t0;
+  stats->tiles++;
+  return RC_OK;
+}
+
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {
+  stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
+  stats->shadow_rays = stats->reflection_rays = 0;
+  stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
+  stats->crossing_object = UINT32_MAX;
+  const rc_region reg = r->region;
+  const uint32_t w = rc_region_width(reg), h = rc_region_height(reg), batch = stats->plan.batch_samples;
+  const uint64_t total = (uint64_t)w * h;
+  uint64_t done = 0;
+  rc_tile_planner planner;
+  planner_init(r, &planner);
+  double t0 = rc_now_ms();
+  for (uint32_t y0 = 0; y0 < h;) {
+    uint32_t rows = rc_tiles_band_rows(&planner, y0, batch);
+    for (uint32_t x0 = 0; x0 < w;) {
+      uint32_t cols = rc_tiles_cols(&planner, rows, x0, batch);
+      rc_status st = render_tile(r, reg.x0 + x0, reg.y0 + y0, cols, rows, &planner, stats);
+      if (st != RC_OK) return st;
+      x0 += cols;
+      done += (uint64_t)cols * rows;
+      if (r->opts.progress) {
+        double el = (rc_now_ms() - t0) * 1e-3;
+        fprintf(stderr, "\rvkraycast: %5.1f%%, %u tiles, %.1f s elapsed, about %.1f s left ", 100.0 * (double)done / total,
+                stats->tiles, el, el * (double)(total - done) / (double)done);
+      }
+    }
+    rc_status st = band(y0, rows, r->band_rgb, r->band_aov, user);
+    if (st != RC_OK) return st;
+    y0 += rows;
+  }
+  if (r->opts.progress) fputc('\n', stderr);
+  stats->render_ms = rc_now_ms() - t0;
+  return RC_OK;
+}

@@ -1,0 +1,81 @@
+/* gpu_render.h: the GPU renderer: pipeline, descriptors, scene upload, tiled dispatch
+ * under the loop budget, timestamps and readback. The objects are created once and can
+ * render several frames (--repeat). */
+#ifndef RC_GPU_RENDER_H
+#define RC_GPU_RENDER_H
+
+#include "gpu/gpu_plan.h"
+#include "base/region.h"
+#include "scene/scene_pack.h"
+#include "gpu/vk_buffer.h"
+
+typedef enum {
+  RC_SCENE_BUFFERS_TEXEL,   /* uniform texel buffers (default: faster on llvmpipe) */
+  RC_SCENE_BUFFERS_STORAGE, /* std430 storage buffers */
+} rc_scene_buffers;
+
+typedef struct rc_gpu_options {
+  rc_scene_buffers scene_buffers;
+  bool force_staging;   /* upload and read back through staging buffers even if mappable */
+  uint32_t tile_size;   /* fixed tiles of this side; 0: tiles from tile_budget_ms (gpu_tiles.h) */
+  double tile_budget_ms;  /* the longest a dispatch (one submit) should run: real GPUs reset
+                             after ~2 s (Windows TDR) or kill long dispatches. Negative: the
+                             device's default (none on a CPU device, else
+                             RC_DEFAULT_TILE_BUDGET_MS); 0: no limit */
+  uint32_t plan_budget; /* 0: the device's budget (rc_gpu_loop_budget); larger values only in
+                           tests, to make the shader's exhaustion flag fire */
+  bool progress;        /* tiles done on stderr */
+  bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
+  bool aov;             /* record the decision outputs (gpu_aov) of each pixel's first sample */
+  uint32_t bvh_depth;   /* 0: brute force (no BVH in the scene); else traverse the BVH */
+  bool generic_pipeline; /* one pipeline for every scene (all primitive kinds, light count,
+                            shadows, specular model and bounces read from the frame), to
+                            measure what specializing to the scene buys */
+  rc_region region;     /* the pixels to render (region.h); all zero: the whole frame */
+} rc_gpu_options;
+
+#define RC_DEFAULT_TILE_BUDGET_MS 100.0
+
+typedef struct rc_gpu_stats {
+  double upload_ms;    /* scene buffers, wall */
+  double pipeline_ms;  /* shader module + pipeline creation, wall */
+  bool pipeline_cache_hit; /* a valid pipeline cache file was loaded (gpu_pipeline_cache.h) */
+  double gpu_ms;       /* sum of dispatch times from timestamp queries (wall if none) */
+  double render_ms;    /* the whole frame, wall: dispatches, waits, readback */
+  double readback_ms;  /* accumulation buffer to the host image, wall */
+  uint64_t shadow_rays, reflection_rays;
+  uint32_t dispatches, tiles;
+  double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
+  double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
+  uint32_t over_budget;    /* dispatches longer than tile_budget_ms */
+  uint32_t budget_retries; /* dispatches repeated with a smaller batch after exhaustion */
+  bool budget_refused;     /* a single sample ran out of the loop budget: nothing written */
+  uint32_t budget_pixels;  /* then: the pixels of the dispatch that ran out */
+  uint32_t budget_object;  /* an object a ray was testing then (UINT32_MAX: unknown) */
+  uint32_t budget_x, budget_y; /* and that ray's pixel */
+  uint32_t crossing_object;    /* UINT32_MAX, or as rc_ref_stats.crossing_object (ref_render.h) */
+  uint32_t crossing_x, crossing_y;
+  rc_gpu_plan plan;
+  uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
+  uint32_t subgroup_size;
+  uint32_t workgroup_x, workgroup_y; /* invocations per workgroup, chosen from the subgroup size */
+  bool staging;            /* uploads and readback went through staging buffers */
+  uint32_t memory_blocks;  /* device memory allocations (vk_memory.h) after set-up */
+  uint64_t memory_bytes;   /* and their bytes */
+  rc_scene_buffers scene_buffers;
+} rc_gpu_stats;
+
+typedef struct rc_gpu_renderer rc_gpu_renderer;
+
+rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
+                                 rc_gpu_renderer **out, rc_gpu_stats *stats);
+/* Receives the region's pixels in bands of rows, top to bottom: rgb (rows * width * 3
+ * floats, width the region's) and, when the renderer records AOVs, aov (rows * width
+ * records); NULL aov otherwise. y0 counts from the region's first row. */
+typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *user);
+
+/* Renders one frame, band by band: host memory is one band, whatever the image size. */
+rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats);
+void rc_gpu_renderer_destroy(rc_gpu_renderer *r);
+
+#endif
