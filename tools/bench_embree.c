@@ -57,8 +57,7 @@ static vec3 shade(bench *b, vec3 o, vec3 d, float t, vec3 ng, uint32_t mat, uint
     (*shadow_rays)++;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    struct RTCRay ray = {origin.x, origin.y, origin.z, 0, to_light.x, to_light.y, to_light.z, 0,
-                         t_max == RC_T_FAR ? INFINITY : t_max, 0xffffffffu, 0, 0};
+    struct RTCRay ray = {origin.x, origin.y, origin.z, 0, to_light.x, to_light.y, to_light.z, 0, t_max, 0xffffffffu, 0, 0};
     rtcOccluded1(b->scene, &ctx, &ray);
     if (ray.tfar < 0) continue; /* blocked */
     color = rcm_add_f(color, ref_light_contribution_f(&b->sc, m, n, l, v, ndl, irradiance));

@@ -18,8 +18,9 @@ mkdir -p build-fuzz/findings
 export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp
 cores=$(nproc)
 wall=$(( cores >= 3 ? seconds : (seconds * 3 + cores - 1) / cores ))
+targets=(json test mesh)
 run_one() {
-  local target=$1 corpus=build-fuzz/corpus-$1 log=build-fuzz/fuzz-$1.log
+  local target=$1 corpus=build-fuzz/corpus-$1
   mkdir -p "$corpus"
   cp -n tests/fuzz/corpus/$target/* "$corpus"/ 2>/dev/null || true
   # Mesh loading goes through assimp (C++): full (DWARF) allocation stacks there, since
@@ -28,25 +29,25 @@ run_one() {
   # bytes from a malformed STL). The C parsers keep the fast unwinder (50x the executions).
   local unwind=1
   [[ $target == mesh ]] && unwind=0
-  ASAN_OPTIONS=fast_unwind_on_malloc=$unwind build-fuzz/fuzz_$target "$corpus" -max_total_time="$wall" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-    -print_final_stats=1 -close_fd_mask=2 -artifact_prefix=build-fuzz/findings/$target- >"$log" 2>&1
+  ASAN_OPTIONS=fast_unwind_on_malloc=$unwind build-fuzz/fuzz_$target "$corpus" -max_total_time="$wall" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 -close_fd_mask=2 \
+    -artifact_prefix=build-fuzz/findings/$target- >"build-fuzz/fuzz-$target.log" 2>&1
 }
-pids=()
-for target in json test mesh; do
-  run_one $target &
-  pids+=($!)
+declare -A pid
+for target in "${targets[@]}"; do
+  run_one "$target" &
+  pid[$target]=$!
 done
-failed=0 i=0
-for target in json test mesh; do
-  log=build-fuzz/fuzz-$target.log corpus=build-fuzz/corpus-$target
-  if wait "${pids[$i]}"; then
+failed=0
+for target in "${targets[@]}"; do
+  log=build-fuzz/fuzz-$target.log
+  if wait "${pid[$target]}"; then
     result=ok
   else
     result="FAILED (see $log and build-fuzz/findings/)"
     failed=1
   fi
-  i=$((i + 1))
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-  echo "fuzz $target: ${runs:-?} executions in ${wall} s of wall time beside the other two, corpus $(ls "$corpus" | wc -l) inputs: $result"
+  echo "fuzz $target: ${runs:-?} executions in ${wall} s of wall time beside the other two, corpus $(ls "build-fuzz/corpus-$target" | wc -l) inputs: $result"
 done
 exit $failed

@@ -39,6 +39,8 @@ GLSL_MAP = {
     "scene_light_count": "frame light_count", "scene_shadows": "frame shadows",
     "inversesqrt": "rsqrt",
 }
+# What the shader's accessors stand for: arrays and fields of the scene, which are operands.
+SCENE_DATA = {v.split()[-1] for k, v in GLSL_MAP.items() if k.startswith(("load_", "scene_"))}
 C_MAP = {"R_ABS": "abs", "R_SQRT": "sqrt", "fabs": "abs", "fabsf": "abs", "sqrtf": "sqrt", "powf": "pow",
          "fminf": "min", "fmaxf": "max", "fmin": "min", "fmax": "max", "floorf": "floor", "ceilf": "ceil",
          "frame_": "frame"}
@@ -135,9 +137,7 @@ def reduce(body, c):
                 # a call: the function's name is an operation, not an operand
                 for w in mapped.split()[:-1]:
                     operands.append(w)
-                if mapped.split()[-1] in ("spheres", "triangles", "materials", "lights", "bvh_nodes",
-                                          "bvh_prims", "transforms", "normals", "quadrics", "csg",
-                                          "csg_program", "light_count", "shadows"):
+                if mapped.split()[-1] in SCENE_DATA:
                     operands.append(mapped.split()[-1])
                 else:
                     ops[mapped.split()[-1]] += 1

@@ -14,17 +14,17 @@ failed=0
 for scene in "$@"; do
   name=$(basename "$scene" .json) verdict=same
   for variant in "gpu f32" "gpu f64" "cpu f32" "cpu f64"; do
-    set -- $variant
+    read -r backend precision <<<"$variant"
+    out=$work/$name-$backend-$precision
     for build in old new; do
       bin=$old
       [[ $build == new ]] && bin=$new
-      "$bin" render "$scene" -o "$work/$name-$1-$2-$build.exr" --aov "$work/$name-$1-$2-$build.aov.exr" \
-        --backend "$1" --precision "$2" "${size[@]}" 2>/dev/null || verdict="$verdict; $1 $2 $build: render failed"
+      "$bin" render "$scene" -o "$out-$build.exr" --aov "$out-$build.aov.exr" --backend "$backend" \
+        --precision "$precision" "${size[@]}" 2>/dev/null || verdict="$verdict; $variant $build: render failed"
     done
-    "$new" compare "$work/$name-$1-$2-old.exr" "$work/$name-$1-$2-new.exr" --fail 0 >/dev/null 2>&1 ||
-      verdict="$verdict; $1 $2: colour differs"
-    "$new" compare "$work/$name-$1-$2-old.aov.exr" "$work/$name-$1-$2-new.aov.exr" --fail 0 --depth-tolerance 0 \
-      --normal-tolerance 0 >/dev/null 2>&1 || verdict="$verdict; $1 $2: AOVs differ"
+    "$new" compare "$out-old.exr" "$out-new.exr" --fail 0 >/dev/null 2>&1 || verdict="$verdict; $variant: colour differs"
+    "$new" compare "$out-old.aov.exr" "$out-new.aov.exr" --fail 0 --depth-tolerance 0 --normal-tolerance 0 \
+      >/dev/null 2>&1 || verdict="$verdict; $variant: AOVs differ"
   done
   [[ $verdict == same ]] || failed=1
   echo "$name: $verdict"

@@ -2,14 +2,12 @@
  * Loading, from any format, is scene_load.c's. */
 #include "scene/scene.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "math/rcm_mat3.h"
-#include "scene/json_locate.h"
 
 rc_status rc_scene_reserve_triangles(rc_scene *s, size_t extra) {
   if (s->triangle_count + extra <= s->triangle_capacity) return RC_OK;

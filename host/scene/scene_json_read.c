@@ -5,7 +5,6 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "math/rcm_mat3.h"
@@ -109,18 +108,27 @@ rc_status js_number_value(jctx *c, const cJSON *v, double *out) {
   return RC_OK;
 }
 
+/* Member `key` of `obj` as a finite number, with the key pushed onto the path (the caller
+ * pops it once the value passes its own check). Absent: *present is false and nothing is
+ * pushed; an error if required. */
+static rc_status member_number(jctx *c, const cJSON *obj, const char *key, bool required, bool *present,
+                               double *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  *present = v != NULL;
+  if (!v) return required ? js_fail(c, "missing field \"%s\"", key) : RC_OK;
+  js_push_key(c, key);
+  return js_number_value(c, v, out);
+}
+
 /* Member `key` of `obj`: a finite number in [lo, hi]; `def` when absent unless required. */
 rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def,
                             double lo, double hi, double *out) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-  if (!v) {
-    if (required) return js_fail(c, "missing field \"%s\"", key);
+  bool present;
+  TRY(member_number(c, obj, key, required, &present, out));
+  if (!present) {
     *out = def;
     return RC_OK;
   }
-  js_push_key(c, key);
-  rc_status st = js_number_value(c, v, out);
-  if (st != RC_OK) return st;
   if (*out < lo || *out > hi) return js_fail(c, "must be in [%g, %g]", lo, hi);
   js_pop(c);
   return RC_OK;
@@ -129,15 +137,12 @@ rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool require
 /* Like get_number, with an exclusive lower bound (radius > 0, view_height > 0). */
 rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool required,
                               double def, double *out) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-  if (!v) {
-    if (required) return js_fail(c, "missing field \"%s\"", key);
+  bool present;
+  TRY(member_number(c, obj, key, required, &present, out));
+  if (!present) {
     *out = def;
     return RC_OK;
   }
-  js_push_key(c, key);
-  rc_status st = js_number_value(c, v, out);
-  if (st != RC_OK) return st;
   if (!(*out > 0.0)) return js_fail(c, "must be greater than 0");
   js_pop(c);
   return RC_OK;
@@ -145,16 +150,13 @@ rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool requi
 
 rc_status js_get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def,
                           uint32_t lo, uint32_t hi, uint32_t *out) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-  if (!v) {
-    if (required) return js_fail(c, "missing field \"%s\"", key);
+  bool present;
+  double x;
+  TRY(member_number(c, obj, key, required, &present, &x));
+  if (!present) {
     *out = def;
     return RC_OK;
   }
-  js_push_key(c, key);
-  double x;
-  rc_status st = js_number_value(c, v, &x);
-  if (st != RC_OK) return st;
   if (x != floor(x)) return js_fail(c, "expected a whole number");
   if (x < lo || x > hi) return js_fail(c, "must be in [%u, %u]", lo, hi);
   *out = (uint32_t)x;
