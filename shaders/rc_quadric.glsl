@@ -8,10 +8,11 @@
 // normal to x, y, z), whether it was the leaf's exit, and whether it comes from a
 // subtracted solid (its outward normal is then reversed).
 
-// The interval stack: RC_CSG_STACK lists of up to 2 RC_CSG_MAX_INTERVALS ends, then one
-// scratch list that combine_intervals writes.
-real csg_t[(RC_CSG_STACK + 1u) * 2u * RC_CSG_MAX_INTERVALS];
-uint csg_code_of[(RC_CSG_STACK + 1u) * 2u * RC_CSG_MAX_INTERVALS];
+// The interval stack: RC_CSG_STACK lists (slots) of up to 2 RC_CSG_MAX_INTERVALS ends,
+// then one scratch slot that combine_intervals writes.
+#define RC_CSG_SLOT (2u * RC_CSG_MAX_INTERVALS)
+real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+uint csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 
 // The kinds of a quadric's inside {Q < 0} along a whole ray line (quadric_roots).
 #define RC_QR_NONE 0u    // nowhere
@@ -297,7 +298,7 @@ real intersect_quadric(uint index, rvec3 o, rvec3 d, real t_max, out uint code) 
 // Ends of the subtracted list get the flip bit. Zero-length intervals are dropped and
 // touching ones merged, so a tie never leaves a surface of no thickness.
 uint combine_intervals(uint op, uint a, uint na, uint b, uint nb) {
-  uint out_base = RC_CSG_STACK * 2u * RC_CSG_MAX_INTERVALS;
+  uint out_base = RC_CSG_STACK * RC_CSG_SLOT;
   uint i = 0u;
   uint j = 0u;
   uint n = 0u;
@@ -339,7 +340,6 @@ uint combine_intervals(uint op, uint a, uint na, uint b, uint nb) {
 real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
   code = 0u;
   gpu_csg c = load_csg(index);
-  uint slot_size = 2u * RC_CSG_MAX_INTERVALS;
   uint count[RC_CSG_STACK];
   uint sp = 0u;
   for (uint k = 0u; k < c.count; k++) {
@@ -350,20 +350,20 @@ real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
     if (op == RC_CSG_LEAF) {
       gpu_quadric q = load_quadric(operand);
       if (has_kind(RC_KIND_CSG_MESHES) && (q.flags & RC_QUADRIC_MESH) != 0u) {
-        count[sp] = mesh_intervals(index, q, o, d, false, sp * slot_size);
+        count[sp] = mesh_intervals(index, q, o, d, false, sp * RC_CSG_SLOT);
         if (crossing_blame != 0u) return real(RC_T_FAR);
       } else {
-        count[sp] = solid_intervals(operand, q, o, d, false, sp * slot_size);
+        count[sp] = solid_intervals(operand, q, o, d, false, sp * RC_CSG_SLOT);
       }
       sp++;
       continue;
     }
-    uint a = (sp - 2u) * slot_size;
-    uint n = combine_intervals(op, a, count[sp - 2u], (sp - 1u) * slot_size, count[sp - 1u]);
+    uint a = (sp - 2u) * RC_CSG_SLOT;
+    uint n = combine_intervals(op, a, count[sp - 2u], (sp - 1u) * RC_CSG_SLOT, count[sp - 1u]);
     for (uint i = 0u; i < n; i++) {
       if (!budget_step()) return real(RC_T_FAR);
-      csg_t[a + i] = csg_t[RC_CSG_STACK * slot_size + i];
-      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * slot_size + i];
+      csg_t[a + i] = csg_t[RC_CSG_STACK * RC_CSG_SLOT + i];
+      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * RC_CSG_SLOT + i];
     }
     count[sp - 2u] = n;
     sp--;

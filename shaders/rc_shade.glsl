@@ -170,14 +170,14 @@ real round_away(real c, real n) { return (n > 0.0) ? next_float(c, true) : ((n <
 // |n| . p_error, then one more float away so that rounding cannot land back inside it.
 rvec3 offset_error_bound(rvec3 p, rvec3 n, rvec3 p_error) {
   precise real dist = dot(abs(n), p_error);
-  precise rvec3 po = p + dist * n;
+  precise rvec3 po = p + n * dist;
   return rvec3(round_away(po.x, n.x), round_away(po.y, n.y), round_away(po.z, n.z));
 }
 
 // The origin of a shadow or reflection ray leaving the surface, by the chosen strategy.
 rvec3 spawn_origin(surface sf) {
   if (offset_strategy == RC_OFFSET_ULP) return offset_ray_origin(sf.p, sf.ng);
-  if (offset_strategy == RC_OFFSET_EPSILON) return sf.p + real(offset_epsilon) * sf.ng;
+  if (offset_strategy == RC_OFFSET_EPSILON) return sf.p + sf.ng * real(offset_epsilon);
   return offset_error_bound(sf.p, sf.ng, sf.p_error);
 }
 
@@ -186,7 +186,7 @@ rvec3 spawn_origin(surface sf) {
 real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
   real c;
   if (scene_specular_model() == RC_SPECULAR_PHONG) {
-    c = dot(v, 2.0 * dot(n, l) * n - l);
+    c = dot(v, n * (2.0 * dot(n, l)) - l);
   } else {
     c = dot(n, normalize(l + v));
   }

@@ -103,7 +103,8 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
     return REF(intersect_triangle)(o, sh, tri, t_max, bary);
   }
   if (kind == RC_HIT_QUADRIC) return REF(intersect_quadric)(sc, index, o, d, t_max, part);
-  return REF(intersect_csg)(sc, index, o, d, t_max, part);
+  if (kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
+  return (real)RC_T_FAR;
 }
 
 void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, uint32_t part, ref_hit *h) {

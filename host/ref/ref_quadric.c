@@ -9,10 +9,10 @@
 #define QR_ALL 1u
 #define QR_BETWEEN 2u
 #define QR_OUTSIDE 3u
-#define SLOT (2u * RC_CSG_MAX_INTERVALS)
+#define RC_CSG_SLOT (2u * RC_CSG_MAX_INTERVALS)
 
-static _Thread_local real csg_t[(RC_CSG_STACK + 1u) * SLOT];
-static _Thread_local uint32_t csg_code_of[(RC_CSG_STACK + 1u) * SLOT];
+static _Thread_local real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+static _Thread_local uint32_t csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 
 static real rmin(real a, real b) { return a < b ? a : b; }
 static real rmax(real a, real b) { return a > b ? a : b; }
@@ -227,7 +227,7 @@ real REF(intersect_plane)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
   const real far = (real)RC_T_FAR;
   real fz = RV(dot)(v3(q->axis_z), RV(sub)(o, v3(q->center)));
   real vz = RV(dot)(v3(q->axis_z), d);
-  bool facing = !(q->flags & RC_QUADRIC_ONE_SIDED) || vz < 0;
+  bool facing = ((q->flags & RC_QUADRIC_ONE_SIDED) == 0) || vz < 0;
   if (vz == 0 || !facing || R_ABS(fz) >= R_ABS(vz) * far) return far;
   real t = -fz / vz;
   return t > 0 && t <= t_max ? t : far;
@@ -249,7 +249,7 @@ real REF(intersect_quadric)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 
 }
 
 uint32_t REF(combine_intervals)(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb) {
-  const uint32_t out = RC_CSG_STACK * SLOT;
+  uint32_t out_base = RC_CSG_STACK * RC_CSG_SLOT;
   uint32_t i = 0, j = 0, n = 0;
   bool in_a = false, in_b = false, in_r = false;
   while (i < na || j < nb) {
@@ -270,12 +270,12 @@ uint32_t REF(combine_intervals)(uint32_t op, uint32_t a, uint32_t na, uint32_t b
     bool in_now = op == RC_CSG_UNION ? (in_a || in_b) : (op == RC_CSG_INTERSECTION ? (in_a && in_b) : (in_a && !in_b));
     if (in_now == in_r) continue;
     in_r = in_now;
-    if (n > 0 && csg_t[out + n - 1] == t) {
+    if (n > 0 && csg_t[out_base + n - 1] == t) {
       n--;
       continue;
     }
-    csg_t[out + n] = t;
-    csg_code_of[out + n] = code;
+    csg_t[out_base + n] = t;
+    csg_code_of[out_base + n] = code;
     n++;
   }
   return n;
@@ -293,19 +293,19 @@ real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, r
     if (op == RC_CSG_LEAF) {
       const gpu_quadric *q = &sc->quadrics[operand];
       if (q->flags & RC_QUADRIC_MESH) {
-        count[sp] = REF(mesh_intervals)(sc, index, q, o, d, false, sp * SLOT);
+        count[sp] = REF(mesh_intervals)(sc, index, q, o, d, false, sp * RC_CSG_SLOT);
         if (ref_crossing_blame != 0) return (real)RC_T_FAR;
       } else {
-        count[sp] = REF(solid_intervals)(operand, q, o, d, false, sp * SLOT);
+        count[sp] = REF(solid_intervals)(operand, q, o, d, false, sp * RC_CSG_SLOT);
       }
       sp++;
       continue;
     }
-    uint32_t a = (sp - 2) * SLOT;
-    uint32_t n = REF(combine_intervals)(op, a, count[sp - 2], (sp - 1) * SLOT, count[sp - 1]);
+    uint32_t a = (sp - 2) * RC_CSG_SLOT;
+    uint32_t n = REF(combine_intervals)(op, a, count[sp - 2], (sp - 1) * RC_CSG_SLOT, count[sp - 1]);
     for (uint32_t i = 0; i < n; i++) {
-      csg_t[a + i] = csg_t[RC_CSG_STACK * SLOT + i];
-      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * SLOT + i];
+      csg_t[a + i] = csg_t[RC_CSG_STACK * RC_CSG_SLOT + i];
+      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * RC_CSG_SLOT + i];
     }
     count[sp - 2] = n;
     sp--;
@@ -328,8 +328,7 @@ rvec3 REF(quadric_normal)(const gpu_quadric *q, uint32_t code, rvec3 p, rvec3 d)
 }
 
 rvec3 REF(mesh_normal)(gpu_triangle tri, uint32_t code, rvec3 d) {
-  rvec3 v0 = v3(tri.v0);
-  rvec3 g = RV(cross)(RV(sub)(v3(tri.v1), v0), RV(sub)(v3(tri.v2), v0));
+  rvec3 g = RV(cross)(RV(sub)(v3(tri.v1), v3(tri.v0)), RV(sub)(v3(tri.v2), v3(tri.v0)));
   bool leaving = (code & 2u) != 0;
   if ((RV(dot)(g, d) > 0) != leaving) g = RV(neg)(g);
   return (code & 1u) ? RV(neg)(g) : g;

@@ -199,9 +199,8 @@ bool REF(light_at)(gpu_light light, rvec3 p, rvec3 origin, rvec3 *l, rvec3 *irra
 
 rvec3 REF(light_contribution)(const ref_scene *sc, gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l,
                               rvec3 irradiance) {
-  rvec3 diffuse = RV(scale)(rvec3_from(m.diffuse), n_dot_l);
-  rvec3 specular = RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, n, l, v, m.shininess));
-  return RV(mul)(irradiance, RV(add)(diffuse, specular));
+  return RV(mul)(irradiance, RV(add)(RV(scale)(rvec3_from(m.diffuse), n_dot_l),
+                                    RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, n, l, v, m.shininess))));
 }
 
 rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
