@@ -378,60 +378,63 @@ TEST(failed_render_leaves_the_old_image) {
   CHECK(stat(path, &after) == 0 && after.st_size == before.st_size && after.st_mtime == before.st_mtime);
 }
 
+/* The example scenes (the .json files of scenes_dir), up to max of them: their file names. */
+static int example_scenes(char names[][256], int max) {
+  DIR *d = opendir(scenes_dir);
+  int count = 0;
+  struct dirent *e;
+  while (d && count < max && (e = readdir(d))) {
+    size_t n = strlen(e->d_name);
+    if (n >= 6 && n < 256 && strcmp(e->d_name + n - 5, ".json") == 0) snprintf(names[count++], 256, "%s", e->d_name);
+  }
+  if (d) closedir(d);
+  return count;
+}
+
 /* Every example scene renders validation-clean and shows more than its background. The
  * examples are trusted: mesh.json names a model of Debian's assimp-testmodels outside the
  * scenes folder. */
 TEST(every_example_scene_renders) {
-  DIR *d = opendir(scenes_dir);
-  if (!d) { CHECK(false); return; }
-  int count = 0;
-  struct dirent *e;
-  while ((e = readdir(d))) {
-    size_t n = strlen(e->d_name);
-    if (n < 6 || strcmp(e->d_name + n - 5, ".json") != 0) continue;
-    count++;
-    CHECK_EQ_INT(run("render %s/%s --allow-outside-paths -o %s/scene.exr --width 64 --height 48 --spp 1 --quiet", scenes_dir, e->d_name, tmp),
+  char names[64][256];
+  int count = example_scenes(names, 64);
+  for (int k = 0; k < count; k++) {
+    const char *name = names[k];
+    CHECK_EQ_INT(run("render %s/%s --allow-outside-paths -o %s/scene.exr --width 64 --height 48 --spp 1 --quiet", scenes_dir, name, tmp),
                  0);
     image im = load("scene.exr");
     int differ = 0;
     for (int i = 1; im.px && i < im.w * im.h; i++) differ += memcmp(im.px, im.px + 3 * i, 3 * sizeof(float)) != 0;
-    if (differ < 64 * 48 / 20) printf("  %s: only %d pixels differ from the first\n", e->d_name, differ);
+    if (differ < 64 * 48 / 20) printf("  %s: only %d pixels differ from the first\n", name, differ);
     CHECK(differ >= 64 * 48 / 20);
     free(im.px);
   }
-  closedir(d);
   CHECK(count >= 6);
 }
 
 /* The BVH and brute force, on every example scene: the same decisions and colours, bit
  * for bit (the tie rule makes the visiting order irrelevant). */
 TEST(bvh_and_brute_force_are_bit_identical) {
-  DIR *d = opendir(scenes_dir);
-  if (!d) { CHECK(false); return; }
-  int count = 0;
-  struct dirent *e;
-  while ((e = readdir(d))) {
-    size_t n = strlen(e->d_name);
-    if (n < 6 || strcmp(e->d_name + n - 5, ".json") != 0) continue;
-    count++;
+  char names[64][256];
+  int count = example_scenes(names, 64);
+  for (int k = 0; k < count; k++) {
+    const char *name = names[k];
     const char *size = "--width 96 --height 64 --quiet";
-    CHECK_EQ_INT(run("render %s/%s --allow-outside-paths -o %s/b.exr --aov %s/b.aov.exr %s", scenes_dir, e->d_name, tmp, tmp, size), 0);
-    int none = run("render %s/%s --allow-outside-paths -o %s/n.exr --aov %s/n.aov.exr --accel none %s 2>/dev/null", scenes_dir, e->d_name,
+    CHECK_EQ_INT(run("render %s/%s --allow-outside-paths -o %s/b.exr --aov %s/b.aov.exr %s", scenes_dir, name, tmp, tmp, size), 0);
+    int none = run("render %s/%s --allow-outside-paths -o %s/n.exr --aov %s/n.aov.exr --accel none %s 2>/dev/null", scenes_dir, name,
                    tmp, tmp, size);
     if (none == 2 && stderr_contains("scene too large for brute-force GPU rendering")) {
       /* Too big for brute force under the GPU's loop budget: compare on the CPU, which
        * has none. */
-      CHECK_EQ_INT(run("render %s/%s --allow-outside-paths -o %s/b.exr --aov %s/b.aov.exr --backend cpu %s", scenes_dir, e->d_name, tmp,
+      CHECK_EQ_INT(run("render %s/%s --allow-outside-paths -o %s/b.exr --aov %s/b.aov.exr --backend cpu %s", scenes_dir, name, tmp,
                        tmp, size),
                    0);
-      none = run("render %s/%s --allow-outside-paths -o %s/n.exr --aov %s/n.aov.exr --backend cpu --accel none %s", scenes_dir, e->d_name,
+      none = run("render %s/%s --allow-outside-paths -o %s/n.exr --aov %s/n.aov.exr --backend cpu --accel none %s", scenes_dir, name,
                  tmp, tmp, size);
     }
     CHECK_EQ_INT(none, 0);
     CHECK_EQ_INT(run("compare %s/b.aov.exr %s/n.aov.exr --fail 0 --depth-tolerance 0 --normal-tolerance 0 >/dev/null",
                    tmp, tmp), 0);
   }
-  closedir(d);
   CHECK(count >= 6);
 }
 
