@@ -8,17 +8,9 @@
 // normal to x, y, z), whether it was the leaf's exit, and whether it comes from a
 // subtracted solid (its outward normal is then reversed).
 
-// The interval stack: RC_CSG_STACK lists (slots) of up to 2 RC_CSG_MAX_INTERVALS ends,
-// then one scratch slot that combine_intervals writes.
-#define RC_CSG_SLOT (2u * RC_CSG_MAX_INTERVALS)
+// The interval stack (RC_CSG_SLOT, rc_shared.h).
 real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 uint csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
-
-// The kinds of a quadric's inside {Q < 0} along a whole ray line (quadric_roots).
-#define RC_QR_NONE 0u    // nowhere
-#define RC_QR_ALL 1u     // everywhere
-#define RC_QR_BETWEEN 2u // [t_lo, t_hi]
-#define RC_QR_OUTSIDE 3u // (-inf, t_lo] and [t_hi, inf)
 
 // 1 + the composite whose mesh operand a ray line crossed more often than its bound, or
 // an odd number of times (a hole): raycast.comp reports it and the render fails.

@@ -269,6 +269,14 @@ struct gpu_quadric {
  * its operands', an intersection one fewer) and rejects a tree beyond them. */
 #define RC_CSG_MAX_INTERVALS 8u
 #define RC_CSG_STACK 4u
+/* The interval stack (rc_quadric.glsl and its twin): RC_CSG_STACK slots of up to
+ * 2 RC_CSG_MAX_INTERVALS ends, then one scratch slot that combine_intervals writes. */
+#define RC_CSG_SLOT (2u * RC_CSG_MAX_INTERVALS)
+/* The kinds of a quadric's inside {Q < 0} along a whole ray line (quadric_roots). */
+#define RC_QR_NONE 0u    /* nowhere */
+#define RC_QR_ALL 1u     /* everywhere */
+#define RC_QR_BETWEEN 2u /* [t_lo, t_hi] */
+#define RC_QR_OUTSIDE 3u /* (-inf, t_lo] and [t_hi, inf) */
 struct gpu_csg {
   vec3 lo; uint first;
   vec3 hi; uint count;

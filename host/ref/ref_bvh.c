@@ -3,8 +3,6 @@
 #include "ref/ref_real.h"
 
 
-static real rmin(real a, real b) { return a < b ? a : b; }
-static real rmax(real a, real b) { return a > b ? a : b; }
 
 rvec3 REF(safe_inverse)(rvec3 d) {
   const real tiny = (real)1e-30;

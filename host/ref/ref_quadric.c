@@ -5,17 +5,9 @@
 
 #include "ref/ref_real.h"
 
-#define QR_NONE 0u
-#define QR_ALL 1u
-#define QR_BETWEEN 2u
-#define QR_OUTSIDE 3u
-#define RC_CSG_SLOT (2u * RC_CSG_MAX_INTERVALS)
-
 static _Thread_local real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 static _Thread_local uint32_t csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 
-static real rmin(real a, real b) { return a < b ? a : b; }
-static real rmax(real a, real b) { return a > b ? a : b; }
 static rvec3 v3(vec3 a) { return rvec3_from(a); }
 
 #if REF_F64 /* one definition for both builds */
@@ -51,12 +43,12 @@ uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, 
   real h = m + ld;
   real c = RV(dot)(f, mf) + 2 * lf + J;
   if (a == 0) {
-    if (h == 0) return c <= 0 ? QR_ALL : QR_NONE;
+    if (h == 0) return c <= 0 ? RC_QR_ALL : RC_QR_NONE;
     real root = R_ABS(c) >= R_ABS(2 * h) * (real)RC_T_FAR ? ((c > 0) == (h > 0) ? -(real)RC_T_FAR : (real)RC_T_FAR)
                                                           : -c / (2 * h);
     if (h > 0) *t_hi = root;
     else *t_lo = root;
-    return QR_BETWEEN;
+    return RC_QR_BETWEEN;
   }
   real disc;
   if (q->off.x == 0 && q->off.y == 0 && q->off.z == 0) {
@@ -68,7 +60,7 @@ uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, 
   } else {
     disc = h * h - a * c;
   }
-  if (disc < 0) return a > 0 ? QR_NONE : QR_ALL;
+  if (disc < 0) return a > 0 ? RC_QR_NONE : RC_QR_ALL;
   real sq = R_SQRT(disc);
   real qq = (h >= 0) ? -(h + sq) : -(h - sq);
   real r0 = 0, r1 = 0;
@@ -78,7 +70,7 @@ uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, 
   }
   *t_lo = rmin(r0, r1);
   *t_hi = rmax(r0, r1);
-  return a > 0 ? QR_BETWEEN : QR_OUTSIDE;
+  return a > 0 ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
 }
 
 void REF(box_slab)(real lo, real hi, real o, real d, uint32_t k, real *t_in, real *t_out, uint32_t *axis_in,
@@ -120,11 +112,11 @@ uint32_t REF(solid_intervals)(uint32_t leaf, const gpu_quadric *q, rvec3 o, rvec
   if (b_in > b_out) return 0;
   real t_lo, t_hi;
   uint32_t kind = REF(quadric_roots)(q, f, v, &t_lo, &t_hi);
-  if (kind == QR_NONE) return 0;
+  if (kind == RC_QR_NONE) return 0;
   uint32_t n = 0;
-  real lo0 = (kind == QR_BETWEEN) ? t_lo : -far;
-  real hi0 = (kind == QR_OUTSIDE) ? t_lo : ((kind == QR_BETWEEN) ? t_hi : far);
-  uint32_t pieces = (kind == QR_OUTSIDE) ? 2 : 1;
+  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -far;
+  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : far);
+  uint32_t pieces = (kind == RC_QR_OUTSIDE) ? 2 : 1;
   for (uint32_t k = 0; k < pieces; k++) {
     real lo = (k == 0) ? lo0 : t_hi;
     real hi = (k == 0) ? hi0 : far;
@@ -202,7 +194,7 @@ real REF(intersect_quadric_surface)(const gpu_quadric *q, rvec3 o, rvec3 d, real
   rvec3 v = REF(quadric_local)(q, d);
   real t_lo, t_hi;
   uint32_t kind = REF(quadric_roots)(q, f, v, &t_lo, &t_hi);
-  if (kind == QR_NONE || kind == QR_ALL) return far;
+  if (kind == RC_QR_NONE || kind == RC_QR_ALL) return far;
   real b_in, b_out;
   uint32_t a_in, a_out;
   REF(box_span)(v3(q->lo), v3(q->hi), f, v, &b_in, &b_out, &a_in, &a_out);

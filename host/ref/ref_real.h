@@ -33,5 +33,8 @@ static inline rvec3 rvec3_from(vec3 a) { return a; }
 #endif
 
 static inline real rv_get(rvec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }
+/* Min and max of two reals: the twins of the shader's scalar min and max. */
+static inline real rmin(real a, real b) { return a < b ? a : b; }
+static inline real rmax(real a, real b) { return a > b ? a : b; }
 
 #endif
