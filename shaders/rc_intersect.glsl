@@ -86,7 +86,7 @@ rvec3 transform_vector(gpu_transform m, rvec3 v) {
 // space with its direction renormalised, and t scaled back by the direction's length, so
 // t stays the packed-space t (and t_max keeps its meaning).
 real intersect_any_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
-  if (s.transform == RC_NO_TRANSFORM) return intersect_sphere(o, d, s, t_max, side);
+  if (!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) return intersect_sphere(o, d, s, t_max, side);
   gpu_transform m = load_transform(s.transform);
   rvec3 d_obj = transform_vector(m, d);
   real len = length(d_obj);

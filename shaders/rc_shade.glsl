@@ -46,14 +46,14 @@ rvec3 quadric_refine(gpu_quadric q, rvec3 p, inout rvec3 p_error) {
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
   rvec3 n;
-  if (h.kind == RC_HIT_SPHERE) {
+  if (has_kind(RC_KIND_SPHERES) && h.kind == RC_HIT_SPHERE) {
     gpu_sphere s = load_sphere(h.index);
     real r = real(s.radius);
     rvec3 oo = o;
     rvec3 dd = d;
     real t_obj = h.t;
     gpu_transform m;
-    if (s.transform != RC_NO_TRANSFORM) {
+    if (has_kind(RC_KIND_SPHERE_TRANSFORMS) && s.transform != RC_NO_TRANSFORM) {
       m = load_transform(s.transform);
       oo = transform_point(m, o);
       rvec3 d_obj = transform_vector(m, d);
@@ -72,7 +72,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       precise real sq = sqrt(max(r * r - dot(l, l), 0.0));
       n = normalize(l + h.side * sq * dd);
     }
-    if (s.transform == RC_NO_TRANSFORM && sphere_formula == RC_SPHERE_GEOMETRIC) {
+    if ((!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) && sphere_formula == RC_SPHERE_GEOMETRIC) {
       precise rvec3 rn = r * n;
       sf.p = rvec3(s.center) + rn;
       // pbrt bounds its re-projected sphere point by gamma(5)|p| in object space; here p is
@@ -80,7 +80,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       // normalize (not correctly rounded, docs/numerics.md §1): both terms, with headroom.
       sf.p_error = gamma_bound(10.0) * (abs(rvec3(s.center)) + abs(rn));
     } else {
-      if (s.transform != RC_NO_TRANSFORM) {
+      if (has_kind(RC_KIND_SPHERE_TRANSFORMS) && s.transform != RC_NO_TRANSFORM) {
         // Normals go back by the transpose of object_from_packed's linear part.
         n = normalize(rvec3(m.row0.xyz) * n.x + rvec3(m.row1.xyz) * n.y + rvec3(m.row2.xyz) * n.z);
       }
@@ -120,7 +120,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     sf.p_error = gamma_bound(7.0) * (abs(p0) + abs(p1) + abs(p2));
     n = normalize(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
     sf.material = tri.material;
-    if (tri.normals != RC_NO_NORMALS) {
+    if (has_kind(RC_KIND_VERTEX_NORMALS) && tri.normals != RC_NO_NORMALS) {
       gpu_vertex_normals vn = load_vertex_normals(tri.normals);
       rvec3 ng = (dot(n, d) > 0.0) ? -n : n;
       rvec3 ns = normalize(h.bary.x * rvec3(vn.n0) + h.bary.y * rvec3(vn.n1) + h.bary.z * rvec3(vn.n2));

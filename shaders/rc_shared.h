@@ -81,7 +81,9 @@ typedef struct gpu_csg gpu_csg;
 #define RC_KIND_CSG 8u
 #define RC_KIND_PLANES 16u /* frame.plane_count > 0: a plane loop after every traversal */
 #define RC_KIND_CSG_MESHES 32u /* a composite has a closed mesh operand (RC_QUADRIC_MESH) */
-#define RC_KIND_ALL 63u
+#define RC_KIND_SPHERE_TRANSFORMS 64u /* a sphere has a transform (an ellipsoid) */
+#define RC_KIND_VERTEX_NORMALS 128u   /* a triangle has vertex normals (smooth shading) */
+#define RC_KIND_ALL 255u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu

@@ -20,6 +20,7 @@ struct rc_gpu_renderer {
   gpu_frame frame;
   rc_region region; /* the pixels rendered, within the frame */
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
+  bool sphere_transforms, vertex_normals; /* RC_KIND_SPHERE_TRANSFORMS, RC_KIND_VERTEX_NORMALS */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];
@@ -293,7 +294,9 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   uint32_t kinds = generic ? RC_KIND_ALL
                            : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
                                  (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
-                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0);
+                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
+                                 (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
+                                 (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0);
   const uint32_t spec_values[15] = {r->local_x,
                                     r->local_y,
                                     r->budget,
@@ -420,6 +423,8 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   if (r->region.x1 == 0) r->region = (rc_region){0, 0, r->frame.camera.width, r->frame.camera.height};
   RC_ASSERT(r->region.x1 <= r->frame.camera.width && r->region.y1 <= r->frame.camera.height);
   r->mesh_operands = scene->mesh_operand_count > 0;
+  r->sphere_transforms = scene->transform_count > 0;
+  r->vertex_normals = scene->normal_count > 0;
   r->budget = rc_gpu_loop_budget(ctx->llvmpipe, ctx->subgroup_size);
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
   stats->tile_budget_ms = r->tile_budget_ms;

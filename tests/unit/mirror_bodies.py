@@ -37,6 +37,7 @@ GLSL_ONLY = [
     r"if\s*\(\s*!\s*budget_(?:step|steps|take)\s*\([^;{]*\)\s*\)\s*(?:\{[^{}]*\}|break;|return[^;]*;)",
     r"\bbudget_blame\s*=[^;]*;",
     r"\bhas_kind\s*\(\s*\w+\s*\)\s*&&",  # a specialization constant: the feature is compiled out
+    r"!\s*has_kind\s*\(\s*\w+\s*\)\s*\|\|",  # the same, where the feature's absence takes the common path
 ]
 # Statements only the reference has: its work counter (--stats of the CPU backend).
 C_ONLY = [r"\bref_work\s*(?:\+\+|\+=[^;]*);"]
