@@ -1,5 +1,6 @@
 /* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
  * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
+#include <limits.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,9 @@
 #include "gpu/gpu_render.h"
 #include "scene/bvh.h"
 #include "cli/output.h"
+
+/* --band-renders: at most this many perturbed re-renders in one run. */
+#define RC_MAX_BAND_RENDERS 8
 #include "cli/part.h"
 #include "scene/precision_budget.h"
 #include "image/image_io.h"
@@ -22,7 +26,7 @@ typedef struct {
   const char *scene; /* the positional argument; "-": standard input */
   const char *output, *stats_json, *aov;
   const char *region_text, *shard_text; /* --region, --shard */
-  uint32_t width, height, spp, repeat, threads, perturb, tile, plan_budget;
+  uint32_t width, height, spp, repeat, threads, perturb, band_renders, tile, plan_budget;
   int device, tile_budget_ms; /* -1: the default */
   bool quiet, srgb, staging, allow_outside_paths;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
@@ -36,6 +40,8 @@ typedef struct {
   rc_part_info part;                 /* what the image's header says (part.h) */
   rc_gpu_options gpu;
   rc_load_options load;
+  /* --band-renders: seed k's image and AOV file, k = 1..band_renders */
+  char band_paths[RC_MAX_BAND_RENDERS + 1][2][PATH_MAX];
 } render_args;
 
 static const char *const off_on[] = {"off", "on", NULL};
@@ -126,6 +132,10 @@ static const rc_option render_options[] = {
      .help = "scale every packed position and radius by 1 + d, |d| <= 2^-22, d a hash\n"
              "of SEED and the value (equal values move alike: meshes stay closed); its\n"
              "renders give `compare --band` the conditioning band"},
+    {"--band-renders", NULL, RC_OPT_UINT, ARG(band_renders), "N", 1, RC_MAX_BAND_RENDERS,
+     .help = "after OUT, render the conditioning band too: N re-renders with seeds\n"
+             "1..N of --perturb, written beside OUT (and --aov FILE) as NAME.bandK.EXT,\n"
+             "in this one process (for `compare --band`)"},
     {"--plan-budget", NULL, RC_OPT_UINT, ARG(plan_budget), "N", 1, UINT32_MAX,
      .help = "loop budget the host plans batches with (default: the shader's, 49152\n"
              "divided by the subgroup size on llvmpipe); larger values test the\n"
@@ -156,7 +166,16 @@ static bool is_exr(const char *path) {
  * a missing folder, or two roles naming one file (and, once the scene has loaded, a format
  * the name does not give: rc_output_check_format, which loads the image module, so that a
  * bad scene is refused without it). */
-static rc_status check_outputs(const render_args *a) {
+/* OUT with ".bandK" before the extension of its last component (x.exr: x.band2.exr). */
+static bool band_path(const char *path, uint32_t k, char *out, size_t cap) {
+  const char *slash = strrchr(path, '/');
+  const char *dot = strrchr(slash ? slash + 1 : path, '.');
+  size_t stem = dot ? (size_t)(dot - path) : strlen(path);
+  int len = snprintf(out, cap, "%.*s.band%u%s", (int)stem, path, k, dot ? dot : "");
+  return len > 0 && (size_t)len < cap;
+}
+
+static rc_status check_outputs(render_args *a) {
   if (strcmp(a->output, "-") == 0) {
     rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
                                     "keeps a failed run from leaving half an image); name a file");
@@ -169,11 +188,24 @@ static rc_status check_outputs(const render_args *a) {
   if (rc_check_output(a->output, "the image") != RC_OK) return RC_ERR_IO;
   if (a->aov && rc_check_output(a->aov, "the AOV file") != RC_OK) return RC_ERR_IO;
   if (a->stats_json && !a->stats_stdout && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
-  const rc_file_role files[] = {{strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false},
-                                {a->output, "the image", true},
-                                {a->aov, "the AOV file", true},
-                                {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
-  if (rc_check_distinct(files, sizeof files / sizeof *files) != RC_OK) return RC_ERR_USAGE;
+  rc_file_role files[4 + 2 * RC_MAX_BAND_RENDERS] = {
+      {strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false},
+      {a->output, "the image", true},
+      {a->aov, "the AOV file", true},
+      {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
+  size_t n = 4;
+  static const char *const band_roles[2] = {"a band image", "a band AOV file"};
+  for (uint32_t k = 1; k <= a->band_renders; k++) {
+    const char *base[2] = {a->output, a->aov};
+    for (int f = 0; f < 2 && base[f]; f++) {
+      if (!band_path(base[f], k, a->band_paths[k][f], sizeof a->band_paths[k][f])) {
+        rc_error("%s: too long a name for its band renders (--band-renders)", base[f]);
+        return RC_ERR_USAGE;
+      }
+      files[n++] = (rc_file_role){a->band_paths[k][f], band_roles[f], true};
+    }
+  }
+  if (rc_check_distinct(files, n) != RC_OK) return RC_ERR_USAGE;
   if (a->aov && !is_exr(a->aov)) {
     rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
     return RC_ERR_USAGE;
@@ -215,6 +247,10 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   if (a->shard_text && !rc_shard_parse(a->shard_text, &a->shard_index, &a->shard_count, &why)) {
     snprintf(msg, sizeof msg, "--shard %s: %s", a->shard_text, why);
     rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  if (a->band_renders && a->perturb) {
+    rc_usage_error(&rc_render_spec, "--band-renders and --perturb: the band renders take seeds 1..N themselves; give one");
     return RC_ERR_USAGE;
   }
   if (a->shard_text && !is_exr(a->output)) {
@@ -458,18 +494,18 @@ static void part_settings(render_args *a, const rc_scene *s, const char *backend
            srgb_output(a, s) ? "srgb" : "linear", truncate_output(a, s) ? "truncate" : "round");
 }
 
+static rc_status render_scene(render_args *a, rc_scene *scene, double parse_ms);
+
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
   if (st != RC_OK) return st == RC_DONE ? RC_OK : st;
 
-  rc_render_stats rs = {.version = rc_version_string(), .scene = strcmp(a.scene, "-") ? a.scene : RC_STDIN_NAME,
-                        .backend = "gpu", .repeat = a.repeat};
   rc_scene scene;
   double t0 = rc_now_ms();
   rc_set_scene_path(a.scene);
   st = rc_scene_load(a.scene, &a.load, &scene);
-  rs.parse_ms = rc_now_ms() - t0;
+  double parse_ms = rc_now_ms() - t0;
   if (st == RC_OK) st = rc_output_check_format(a.output);
   if (st != RC_OK) {
     rc_scene_free(&scene);
@@ -479,66 +515,85 @@ rc_status rc_cmd_render(int argc, char **argv) {
   if (a.height) scene.height = a.height;
   if (a.spp) scene.samples_per_pixel = a.spp;
   apply_quality_overrides(&a, &scene);
+  /* The frame asked for, then its conditioning band: seeds 1..N into files of their own,
+   * each run its own transaction, the statistics and the summary the first's alone. */
+  st = render_scene(&a, &scene, parse_ms);
+  render_args band = a;
+  band.stats_json = NULL, band.stats_stdout = false, band.quiet = true;
+  for (uint32_t k = 1; st == RC_OK && k <= a.band_renders; k++) {
+    band.perturb = k;
+    band.output = a.band_paths[k][0];
+    band.aov = a.aov ? a.band_paths[k][1] : NULL;
+    st = render_scene(&band, &scene, parse_ms);
+  }
+  rc_scene_free(&scene);
+  return st;
+}
 
+/* One render of the loaded scene into a's outputs, statistics and summary included. */
+static rc_status render_scene(render_args *a, rc_scene *scene, double parse_ms) {
+  rc_render_stats rs = {.version = rc_version_string(), .scene = strcmp(a->scene, "-") ? a->scene : RC_STDIN_NAME,
+                        .backend = "gpu", .repeat = a->repeat, .parse_ms = parse_ms};
+  rc_status st = RC_OK;
   rc_packed_scene packed = {0};
   rc_vk_ctx ctx = {0};
   rc_output *out = NULL;
-  st = rc_scene_pack(&scene, &packed);
-  if (st == RC_OK && a.perturb) rc_packed_scene_perturb(&packed, a.perturb);
+  st = rc_scene_pack(scene, &packed);
+  if (st == RC_OK && a->perturb) rc_packed_scene_perturb(&packed, a->perturb);
   if (st == RC_OK) {
-    st = rc_bvh_build(&packed, !a.no_bvh, &rs.bvh);
+    st = rc_bvh_build(&packed, !a->no_bvh, &rs.bvh);
     /* The plan's traversal estimate uses the depth; 0 means brute force. */
-    a.gpu.bvh_depth = packed.bvh && packed.frame.bvh_node_count ? rs.bvh.depth + 1 : 0;
+    a->gpu.bvh_depth = packed.bvh && packed.frame.bvh_node_count ? rs.bvh.depth + 1 : 0;
   }
   if (st == RC_OK) {
     double t1 = rc_now_ms();
-    st = resolve_part(&a, &scene, &packed);
-    a.gpu.region = a.part.region;
+    st = resolve_part(a, scene, &packed);
+    a->gpu.region = a->part.region;
     rs.part_ms = rc_now_ms() - t1;
   }
-  rs.region = a.part.region;
-  rs.shard_index = a.part.shard_index, rs.shard_count = a.part.shard_count;
-  rs.width = scene.width;
-  rs.height = scene.height;
-  rs.samples_per_pixel = scene.samples_per_pixel;
-  rs.spheres = scene.sphere_count;
-  rs.triangles = scene.triangle_count;
-  rs.lights = scene.light_count;
-  rs.quadrics = scene.quadric_count;
-  rs.planes = scene.plane_count;
-  rs.composites = scene.csg_count;
-  rs.materials = scene.material_count;
-  rs.shadows = scene.quality.shadows;
-  rs.generic_pipeline = a.gpu.generic_pipeline;
-  rs.rays_primary = rc_region_pixels(a.part.region) * scene.samples_per_pixel;
+  rs.region = a->part.region;
+  rs.shard_index = a->part.shard_index, rs.shard_count = a->part.shard_count;
+  rs.width = scene->width;
+  rs.height = scene->height;
+  rs.samples_per_pixel = scene->samples_per_pixel;
+  rs.spheres = scene->sphere_count;
+  rs.triangles = scene->triangle_count;
+  rs.lights = scene->light_count;
+  rs.quadrics = scene->quadric_count;
+  rs.planes = scene->plane_count;
+  rs.composites = scene->csg_count;
+  rs.materials = scene->material_count;
+  rs.shadows = scene->quality.shadows;
+  rs.generic_pipeline = a->gpu.generic_pipeline;
+  rs.rays_primary = rc_region_pixels(a->part.region) * scene->samples_per_pixel;
   rc_precision_report budget = {0};
   if (st == RC_OK) {
-    rc_precision_budget(&packed, scene.quality.sphere == RC_SPHERE_ALGEBRAIC, &budget);
-    report_budget(&scene, &budget);
+    rc_precision_budget(&packed, scene->quality.sphere == RC_SPHERE_ALGEBRAIC, &budget);
+    report_budget(scene, &budget);
   }
   rs.budget_needs_f64 = budget.needs_f64;
   rs.budget_quantized = budget.quantized;
   rs.budget_ms = budget.ms;
-  rs.precision_requested = rc_precision_names[scene.quality.precision];
-  rs.sphere_formula = rc_sphere_formula_names[scene.quality.sphere];
-  rs.triangle_formula = rc_triangle_formula_names[scene.quality.triangle];
-  rs.shadow_offset = rc_offset_names[scene.quality.offset];
-  rs.camera_relative = scene.quality.camera_relative;
+  rs.precision_requested = rc_precision_names[scene->quality.precision];
+  rs.sphere_formula = rc_sphere_formula_names[scene->quality.sphere];
+  rs.triangle_formula = rc_triangle_formula_names[scene->quality.triangle];
+  rs.shadow_offset = rc_offset_names[scene->quality.offset];
+  rs.camera_relative = scene->quality.camera_relative;
   char driver[600] = "";
   rc_output_install_signal_handlers();
-  if (st == RC_OK && a.cpu) {
+  if (st == RC_OK && a->cpu) {
     rs.backend = "cpu";
     rs.device = "CPU reference";
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
     /* The reference renders in f64 unless f32 is asked for: it is the accuracy yardstick. */
-    a.gpu.f64 = scene.quality.precision != RC_PRECISION_F32;
-    rs.precision = a.gpu.f64 ? "f64" : "f32";
-    part_settings(&a, &scene, rs.backend, rs.precision);
-    snprintf(a.part.device, sizeof a.part.device, "%s", rs.device);
-    st = render_frames_cpu(&a, &scene, &packed, &rs, &out);
+    a->gpu.f64 = scene->quality.precision != RC_PRECISION_F32;
+    rs.precision = a->gpu.f64 ? "f64" : "f32";
+    part_settings(a, scene, rs.backend, rs.precision);
+    snprintf(a->part.device, sizeof a->part.device, "%s", rs.device);
+    st = render_frames_cpu(a, scene, &packed, &rs, &out);
   } else if (st == RC_OK) {
-    rc_vk_options vo = {.device_index = a.device};
+    rc_vk_options vo = {.device_index = a->device};
     st = rc_vk_create(&vo, &ctx);
     if (st == RC_OK) {
       snprintf(driver, sizeof driver, "%s %s", ctx.driver.driverName[0] ? ctx.driver.driverName : "unknown driver",
@@ -546,27 +601,27 @@ rc_status rc_cmd_render(int argc, char **argv) {
       rs.device = ctx.props.deviceName;
       rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
       rs.driver = driver;
-      a.gpu.f64 = gpu_precision(&scene, &budget, &ctx);
-      rs.precision = a.gpu.f64 ? "f64" : "f32";
-      part_settings(&a, &scene, rs.backend, rs.precision);
-      snprintf(a.part.device, sizeof a.part.device, "%s (%s)", rs.device, driver);
-      st = render_frames(&a, &ctx, &scene, &packed, &rs, &out);
-      if (rs.gpu.budget_refused) report_loop_budget(&scene, &rs.gpu, ctx.props.deviceName);
+      a->gpu.f64 = gpu_precision(scene, &budget, &ctx);
+      rs.precision = a->gpu.f64 ? "f64" : "f32";
+      part_settings(a, scene, rs.backend, rs.precision);
+      snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
+      st = render_frames(a, &ctx, scene, &packed, &rs, &out);
+      if (rs.gpu.budget_refused) report_loop_budget(scene, &rs.gpu, ctx.props.deviceName);
       if (rs.gpu.crossing_object != UINT32_MAX)
-        report_crossings(&scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
+        report_crossings(scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
     }
   }
   rs.write_ms = rc_output_write_ms(out);
   rs.cpu_ms = rc_cpu_ms();
-  if (st == RC_OK && a.stats_json && !a.stats_stdout) {
+  if (st == RC_OK && a->stats_json && !a->stats_stdout) {
     /* The statistics join the image's transaction: all of them land, or none. */
     char *text = rc_stats_json(&rs);
-    st = text ? rc_output_attach(out, a.stats_json, text) : RC_ERR_OUT_OF_MEMORY;
+    st = text ? rc_output_attach(out, a->stats_json, text) : RC_ERR_OUT_OF_MEMORY;
     free(text);
   }
   rc_status cst = rc_output_close(out, st == RC_OK);
   if (st == RC_OK) st = cst;
-  if (st == RC_OK && a.stats_stdout) {
+  if (st == RC_OK && a->stats_stdout) {
     /* Standard output is not part of the files' transaction: it gets the statistics of a
      * run whose files have landed. */
     char *text = rc_stats_json(&rs);
@@ -574,9 +629,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
     if (st != RC_OK) rc_error("cannot write the statistics to standard output");
     free(text);
   }
-  if (st == RC_OK && !a.quiet) rc_stats_print(&rs);
+  if (st == RC_OK && !a->quiet) rc_stats_print(&rs);
   rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
   rc_packed_scene_free(&packed);
-  rc_scene_free(&scene);
   return st != RC_OK ? st : vst;
 }

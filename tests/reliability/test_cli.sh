@@ -133,6 +133,26 @@ mkdir -p "$work/lonely" && cp "$bin" "$work/lonely/vkraycast"
 check "a binary without its image module: exit 3, names the module, writes nothing" \
   "$([[ $? == 3 && ! -e $work/lonely.png ]] && grep -q 'cannot load the image module .*vkraycast-image.so' "$work/err" && echo ok || cat "$work/err")"
 
+# --band-renders: the frame and its conditioning band in one process, each band file
+# bit for bit the render that --perturb K alone makes.
+B=(--width 24 --height 16 --quiet --backend cpu)
+"$bin" render "$S" -o "$work/band.exr" --aov "$work/band.aov.exr" --band-renders 2 --stats-json "$work/band.json" "${B[@]}"
+got=$? why=ok
+[[ $got == 0 ]] || because "exit status $got"
+for k in 1 2; do
+  "$bin" render "$S" -o "$work/alone$k.exr" --aov "$work/alone$k.aov.exr" --perturb $k "${B[@]}"
+  "$bin" compare "$work/band.band$k.exr" "$work/alone$k.exr" --fail 0 >/dev/null 2>&1 || because "band $k image differs"
+  "$bin" compare "$work/band.aov.band$k.exr" "$work/alone$k.aov.exr" --fail 0 --depth-tolerance 0 \
+    --normal-tolerance 0 >/dev/null 2>&1 || because "band $k AOVs differ"
+done
+"$bin" compare "$work/band.band1.exr" "$work/band.exr" --fail 0 >/dev/null 2>&1 && because "band 1 equals the unperturbed frame"
+[[ ! -e $work/band.band3.exr && $(json_num repeat "$work/band.json") == 1 ]] || because "a third band, or no statistics"
+check "--band-renders 2: NAME.bandK.EXT equal to --perturb K renders" "$why"
+expect_exit2 "--band-renders with --perturb" "$work/bp.png" "--band-renders and --perturb" \
+  "$bin" render "$S" -o "$work/bp.png" --band-renders 2 --perturb 3 "${B[@]}"
+expect_exit2 "a band image naming the AOV file" "$work/clash.exr" "name the same file" \
+  "$bin" render "$S" -o "$work/clash.exr" --aov "$work/clash.band1.exr" --band-renders 1 "${B[@]}"
+
 # --version: the program, and what it was built and runs with.
 "$bin" --version >"$work/version.txt"
 check "--version names the loader and the shader compiler" \

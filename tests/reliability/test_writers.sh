@@ -13,7 +13,12 @@ bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 source "$(dirname "$0")/check.sh"
 temps() { find "$1" -maxdepth 1 \( -name '.vkraycast-*' -o -name '*.tmp*' \) | head -3; }
-render=(render "$scenes/showcase.json" --width 256 --height 192 --quiet)
+# The CPU reference renders: its frames stream into the same writers (rc_output_band) band by
+# band as the GPU's, and a process that needs no Vulkan instance and no shader compile makes
+# this test's ~80 renders cost their output code, which is what it tests. One GPU case
+# below runs the streamed GPU path into a failing writer.
+render=(render "$scenes/showcase.json" --width 256 --height 192 --quiet --backend cpu)
+small_cpu=(--width 16 --height 12 --quiet --backend cpu)
 # Runs the render with `limit` (a shell prefix) into DIR/out.EXT over a kept file.
 # expect_failure NAME DIR EXT LIMIT_CMD [extra render args...]
 expect_failure() {
@@ -33,7 +38,7 @@ formats=(png jpg bmp ppm exr tif hdr)
 for ext in "${formats[@]}"; do
   # The file this render writes, to size the limits; and a different one to keep.
   "$bin" "${render[@]}" -o "$work/full.$ext" || { check "$ext: reference render" "failed"; continue; }
-  "$bin" render "$scenes/shadows.json" -o "$work/keep.$ext" --width 16 --height 12 --quiet
+  "$bin" render "$scenes/shadows.json" -o "$work/keep.$ext" "${small_cpu[@]}"
   size=$(stat -c %s "$work/full.$ext")
   blocks=$(((size + 1023) / 1024))
   for limit in 1 $((blocks / 2)) $((blocks - 1)); do
@@ -47,6 +52,9 @@ for ext in "${formats[@]}"; do
   bash -c "ulimit -f $((blocks + 64)); exec \"\$@\"" _ "$bin" "${render[@]}" -o "$work/out.$ext"
   check "$ext with room: written" "$([[ $? == 0 ]] && "$bin" compare "$work/out.$ext" "$work/full.$ext" --fail 0 >/dev/null && echo ok || echo 'failed or differs')"
 done
+# The GPU backend into the same failing writer: its bands stream out between dispatches.
+cp "$work/keep.exr" "$work/out.exr"
+expect_failure "exr under ulimit -f 1, GPU backend" "$work" exr "ulimit -f 1" --backend gpu
 
 # A full filesystem: a tmpfs just large enough for the kept file, where one can be mounted
 # (root here and in CI; elsewhere the ulimit cases above cover the same code path).
@@ -84,7 +92,7 @@ fi
 
 # The AOV file fails where the image fits (a PNG of ~40 KB, an AOV EXR of ~1.5 MB): both
 # old files stay, nothing is left.
-"$bin" render "$scenes/shadows.json" -o "$work/keep_aov.exr" --width 16 --height 12 --quiet
+"$bin" render "$scenes/shadows.json" -o "$work/keep_aov.exr" "${small_cpu[@]}"
 cp "$work/keep.png" "$work/out.png" && cp "$work/keep_aov.exr" "$work/out.exr"
 expect_failure "AOV file fails after its image: image kept" "$work" png "ulimit -f 200" --aov "$work/out.exr"
 check "AOV file fails after its image: AOV kept" "$(cmp -s "$work/out.exr" "$work/keep_aov.exr" && echo ok || echo changed)"
