@@ -12,15 +12,15 @@
 #include "gpu/gpu_render.h"
 #include "scene/bvh.h"
 #include "cli/output.h"
-
-/* --band-renders: at most this many perturbed re-renders in one run. */
-#define RC_MAX_BAND_RENDERS 8
 #include "cli/part.h"
 #include "scene/precision_budget.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
 #include "cli/stats.h"
+
+/* --band-renders: at most this many perturbed re-renders in one run. */
+#define RC_MAX_BAND_RENDERS 8
 
 typedef struct {
   const char *scene; /* the positional argument; "-": standard input */
@@ -40,8 +40,6 @@ typedef struct {
   rc_part_info part;                 /* what the image's header says (part.h) */
   rc_gpu_options gpu;
   rc_load_options load;
-  /* --band-renders: seed k's image and AOV file, k = 1..band_renders */
-  char band_paths[RC_MAX_BAND_RENDERS + 1][2][PATH_MAX];
 } render_args;
 
 static const char *const off_on[] = {"off", "on", NULL};
@@ -162,10 +160,6 @@ static bool is_exr(const char *path) {
   return n >= 4 && strcmp(path + n - 4, ".exr") == 0;
 }
 
-/* Every output is checked before anything renders: an existing special file or folder,
- * a missing folder, or two roles naming one file (and, once the scene has loaded, a format
- * the name does not give: rc_output_check_format, which loads the image module, so that a
- * bad scene is refused without it). */
 /* OUT with ".bandK" before the extension of its last component (x.exr: x.band2.exr). */
 static bool band_path(const char *path, uint32_t k, char *out, size_t cap) {
   const char *slash = strrchr(path, '/');
@@ -175,7 +169,11 @@ static bool band_path(const char *path, uint32_t k, char *out, size_t cap) {
   return len > 0 && (size_t)len < cap;
 }
 
-static rc_status check_outputs(render_args *a) {
+/* Every output is checked before anything renders: an existing special file or folder,
+ * a missing folder, or two roles naming one file, band renders' files included (and, once
+ * the scene has loaded, a format the name does not give: rc_output_check_format, which
+ * loads the image module, so that a bad scene is refused without it). */
+static rc_status check_outputs(const render_args *a) {
   if (strcmp(a->output, "-") == 0) {
     rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
                                     "keeps a failed run from leaving half an image); name a file");
@@ -195,14 +193,16 @@ static rc_status check_outputs(render_args *a) {
       {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
   size_t n = 4;
   static const char *const band_roles[2] = {"a band image", "a band AOV file"};
+  const char *base[2] = {a->output, a->aov};
+  char band_names[2 * RC_MAX_BAND_RENDERS][PATH_MAX];
   for (uint32_t k = 1; k <= a->band_renders; k++) {
-    const char *base[2] = {a->output, a->aov};
     for (int f = 0; f < 2 && base[f]; f++) {
-      if (!band_path(base[f], k, a->band_paths[k][f], sizeof a->band_paths[k][f])) {
+      char *name = band_names[n - 4];
+      if (!band_path(base[f], k, name, PATH_MAX)) {
         rc_error("%s: too long a name for its band renders (--band-renders)", base[f]);
         return RC_ERR_USAGE;
       }
-      files[n++] = (rc_file_role){a->band_paths[k][f], band_roles[f], true};
+      files[n++] = (rc_file_role){name, band_roles[f], true};
     }
   }
   if (rc_check_distinct(files, n) != RC_OK) return RC_ERR_USAGE;
@@ -494,7 +494,7 @@ static void part_settings(render_args *a, const rc_scene *s, const char *backend
            srgb_output(a, s) ? "srgb" : "linear", truncate_output(a, s) ? "truncate" : "round");
 }
 
-static rc_status render_scene(render_args *a, rc_scene *scene, double parse_ms);
+static rc_status render_scene(render_args *a, const rc_scene *scene, double parse_ms, bool warn);
 
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
@@ -517,28 +517,31 @@ rc_status rc_cmd_render(int argc, char **argv) {
   apply_quality_overrides(&a, &scene);
   /* The frame asked for, then its conditioning band: seeds 1..N into files of their own,
    * each run its own transaction, the statistics and the summary the first's alone. */
-  st = render_scene(&a, &scene, parse_ms);
+  st = render_scene(&a, &scene, parse_ms, true);
   render_args band = a;
   band.stats_json = NULL, band.stats_stdout = false, band.quiet = true;
+  char image[PATH_MAX], aov[PATH_MAX]; /* their lengths were checked with the outputs */
   for (uint32_t k = 1; st == RC_OK && k <= a.band_renders; k++) {
     band.perturb = k;
-    band.output = a.band_paths[k][0];
-    band.aov = a.aov ? a.band_paths[k][1] : NULL;
-    st = render_scene(&band, &scene, parse_ms);
+    band_path(a.output, k, image, sizeof image);
+    band.output = image;
+    if (a.aov) band_path(a.aov, k, aov, sizeof aov);
+    band.aov = a.aov ? aov : NULL;
+    st = render_scene(&band, &scene, parse_ms, false);
   }
   rc_scene_free(&scene);
   return st;
 }
 
-/* One render of the loaded scene into a's outputs, statistics and summary included. */
-static rc_status render_scene(render_args *a, rc_scene *scene, double parse_ms) {
+/* One render of the loaded scene into a's outputs, statistics and summary included; `warn`:
+ * print the precision-budget warnings (once a run: band renders re-render the same scene). */
+static rc_status render_scene(render_args *a, const rc_scene *scene, double parse_ms, bool warn) {
   rc_render_stats rs = {.version = rc_version_string(), .scene = strcmp(a->scene, "-") ? a->scene : RC_STDIN_NAME,
                         .backend = "gpu", .repeat = a->repeat, .parse_ms = parse_ms};
-  rc_status st = RC_OK;
   rc_packed_scene packed = {0};
   rc_vk_ctx ctx = {0};
   rc_output *out = NULL;
-  st = rc_scene_pack(scene, &packed);
+  rc_status st = rc_scene_pack(scene, &packed);
   if (st == RC_OK && a->perturb) rc_packed_scene_perturb(&packed, a->perturb);
   if (st == RC_OK) {
     st = rc_bvh_build(&packed, !a->no_bvh, &rs.bvh);
@@ -569,7 +572,7 @@ static rc_status render_scene(render_args *a, rc_scene *scene, double parse_ms) 
   rc_precision_report budget = {0};
   if (st == RC_OK) {
     rc_precision_budget(&packed, scene->quality.sphere == RC_SPHERE_ALGEBRAIC, &budget);
-    report_budget(scene, &budget);
+    if (warn) report_budget(scene, &budget);
   }
   rs.budget_needs_f64 = budget.needs_f64;
   rs.budget_quantized = budget.quantized;
