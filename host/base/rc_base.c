@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -103,9 +104,26 @@ void *rc_alloc(size_t count, size_t size, const char *what) {
     rc_error("out of memory: %s needs more than SIZE_MAX bytes", what);
     return NULL;
   }
-  void *p = calloc(count ? count : 1, size ? size : 1);
-  if (!p) rc_error("out of memory: %s needs %zu bytes", what, count * size);
+  size_t bytes = count * size;
+  void *p = NULL;
+  if (bytes >= RC_HUGE_PAGE) {
+    if (posix_memalign(&p, RC_HUGE_PAGE, bytes) == 0) {
+      rc_advise_huge(p, bytes);
+      memset(p, 0, bytes);
+    } else {
+      p = NULL;
+    }
+  } else {
+    p = calloc(count ? count : 1, size ? size : 1);
+  }
+  if (!p) rc_error("out of memory: %s needs %zu bytes", what, bytes);
   return p;
+}
+
+void rc_advise_huge(void *p, size_t size) {
+  uintptr_t lo = ((uintptr_t)p + RC_HUGE_PAGE - 1) & ~(uintptr_t)(RC_HUGE_PAGE - 1);
+  uintptr_t hi = ((uintptr_t)p + size) & ~(uintptr_t)(RC_HUGE_PAGE - 1);
+  if (hi > lo) (void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE);
 }
 
 static const char *file_kind(mode_t m) {

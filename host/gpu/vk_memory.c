@@ -58,6 +58,9 @@ static rc_status new_block(rc_vk_ctx *ctx, VkDeviceSize size, uint32_t type, rc_
       free(b);
       RC_VK_TRY(r);
     }
+    /* A CPU device's memory is ordinary process memory, first touched by the shader or
+     * a fill: huge pages save it one fault per 4 KiB (rc_base.h). */
+    rc_advise_huge(b->mapped, (size_t)size);
   }
   b->next = ctx->blocks;
   ctx->blocks = b;
