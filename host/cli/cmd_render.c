@@ -494,7 +494,7 @@ static void part_settings(render_args *a, const rc_scene *s, const char *backend
            srgb_output(a, s) ? "srgb" : "linear", truncate_output(a, s) ? "truncate" : "round");
 }
 
-static rc_status render_scene(render_args *a, const rc_scene *scene, double parse_ms, bool warn);
+static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *ctx, double parse_ms, bool warn);
 
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
@@ -516,8 +516,10 @@ rc_status rc_cmd_render(int argc, char **argv) {
   if (a.spp) scene.samples_per_pixel = a.spp;
   apply_quality_overrides(&a, &scene);
   /* The frame asked for, then its conditioning band: seeds 1..N into files of their own,
-   * each run its own transaction, the statistics and the summary the first's alone. */
-  st = render_scene(&a, &scene, parse_ms, true);
+   * each run its own transaction, the statistics and the summary the first's alone. They
+   * share one Vulkan context: instance and device are created once a process. */
+  rc_vk_ctx ctx = {0};
+  st = render_scene(&a, &scene, &ctx, parse_ms, true);
   render_args band = a;
   band.stats_json = NULL, band.stats_stdout = false, band.quiet = true;
   char image[PATH_MAX], aov[PATH_MAX]; /* their lengths were checked with the outputs */
@@ -527,19 +529,20 @@ rc_status rc_cmd_render(int argc, char **argv) {
     band.output = image;
     if (a.aov) band_path(a.aov, k, aov, sizeof aov);
     band.aov = a.aov ? aov : NULL;
-    st = render_scene(&band, &scene, parse_ms, false);
+    st = render_scene(&band, &scene, &ctx, parse_ms, false);
   }
+  rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
   rc_scene_free(&scene);
-  return st;
+  return st != RC_OK ? st : vst;
 }
 
-/* One render of the loaded scene into a's outputs, statistics and summary included; `warn`:
- * print the precision-budget warnings (once a run: band renders re-render the same scene). */
-static rc_status render_scene(render_args *a, const rc_scene *scene, double parse_ms, bool warn) {
+/* One render of the loaded scene into a's outputs, statistics and summary included; `ctx`:
+ * the process's Vulkan context, created here on the first GPU render; `warn`: print the
+ * precision-budget warnings (once a run: band renders re-render the same scene). */
+static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *ctx, double parse_ms, bool warn) {
   rc_render_stats rs = {.version = rc_version_string(), .scene = strcmp(a->scene, "-") ? a->scene : RC_STDIN_NAME,
                         .backend = "gpu", .repeat = a->repeat, .parse_ms = parse_ms};
   rc_packed_scene packed = {0};
-  rc_vk_ctx ctx = {0};
   rc_output *out = NULL;
   rc_status st = rc_scene_pack(scene, &packed);
   if (st == RC_OK && a->perturb) rc_packed_scene_perturb(&packed, a->perturb);
@@ -597,19 +600,19 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, double pars
     st = render_frames_cpu(a, scene, &packed, &rs, &out);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a->device};
-    st = rc_vk_create(&vo, &ctx);
+    if (!ctx->instance) st = rc_vk_create(&vo, ctx);
     if (st == RC_OK) {
-      snprintf(driver, sizeof driver, "%s %s", ctx.driver.driverName[0] ? ctx.driver.driverName : "unknown driver",
-               ctx.driver.driverInfo);
-      rs.device = ctx.props.deviceName;
-      rs.device_type = rc_vk_device_type_str(ctx.props.deviceType);
+      snprintf(driver, sizeof driver, "%s %s", ctx->driver.driverName[0] ? ctx->driver.driverName : "unknown driver",
+               ctx->driver.driverInfo);
+      rs.device = ctx->props.deviceName;
+      rs.device_type = rc_vk_device_type_str(ctx->props.deviceType);
       rs.driver = driver;
-      a->gpu.f64 = gpu_precision(scene, &budget, &ctx);
+      a->gpu.f64 = gpu_precision(scene, &budget, ctx);
       rs.precision = a->gpu.f64 ? "f64" : "f32";
       part_settings(a, scene, rs.backend, rs.precision);
       snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
-      st = render_frames(a, &ctx, scene, &packed, &rs, &out);
-      if (rs.gpu.budget_refused) report_loop_budget(scene, &rs.gpu, ctx.props.deviceName);
+      st = render_frames(a, ctx, scene, &packed, &rs, &out);
+      if (rs.gpu.budget_refused) report_loop_budget(scene, &rs.gpu, ctx->props.deviceName);
       if (rs.gpu.crossing_object != UINT32_MAX)
         report_crossings(scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
     }
@@ -633,7 +636,6 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, double pars
     free(text);
   }
   if (st == RC_OK && !a->quiet) rc_stats_print(&rs);
-  rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
   rc_packed_scene_free(&packed);
-  return st != RC_OK ? st : vst;
+  return st;
 }
