@@ -11,6 +11,7 @@
 #include <vulkan/vulkan.h>
 
 #include "cli/cli.h"
+#include "cli/huge_pages.h"
 #include "cli/options.h"
 #include "vkraycast_build.h"
 #include "vkraycast_revision.h"
@@ -79,6 +80,7 @@ static int find_command(int argc, char **argv) {
 }
 
 int main(int argc, char **argv) {
+  rc_huge_pages_reexec(argv);
   if (argc < 2) {
     fputs(usage, stderr);
     return rc_status_exit_code(RC_ERR_USAGE);
