@@ -518,6 +518,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   /* The frame asked for, then its conditioning band: seeds 1..N into files of their own,
    * each run its own transaction, the statistics and the summary the first's alone. They
    * share one Vulkan context: instance and device are created once a process. */
+  rc_output_install_signal_handlers(); /* once a process: they guard every render's files */
   rc_vk_ctx ctx = {0};
   st = render_scene(&a, &scene, &ctx, parse_ms, true);
   render_args band = a;
@@ -586,7 +587,6 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   rs.shadow_offset = rc_offset_names[scene->quality.offset];
   rs.camera_relative = scene->quality.camera_relative;
   char driver[600] = "";
-  rc_output_install_signal_handlers();
   if (st == RC_OK && a->cpu) {
     rs.backend = "cpu";
     rs.device = "CPU reference";
