@@ -52,6 +52,28 @@ for ext in "${formats[@]}"; do
   bash -c "ulimit -f $((blocks + 64)); exec \"\$@\"" _ "$bin" "${render[@]}" -o "$work/out.$ext"
   check "$ext with room: written" "$([[ $? == 0 ]] && "$bin" compare "$work/out.$ext" "$work/full.$ext" --fail 0 >/dev/null && echo ok || echo 'failed or differs')"
 done
+# PNGs are written with the Sub filter on every row at zlib level 5 (image_io.cpp, for
+# speed at the old size): read back from the file's own bytes, not from the code.
+check "png: Sub filter on every row, zlib level 2-5" "$(python3 - "$work/full.png" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+at, idat, width, height = 8, b"", 0, 0
+while at < len(data):
+    n, kind = struct.unpack(">I4s", data[at:at + 8])
+    body = data[at + 8:at + 8 + n]
+    if kind == b"IHDR":
+        width, height, depth, color = struct.unpack(">IIBB", body[:10])
+        channels = {0: 1, 2: 3, 4: 2, 6: 4}[color]
+    elif kind == b"IDAT":
+        idat += body
+    at += 12 + n
+rows = zlib.decompress(idat)
+stride = 1 + width * channels
+filters = {rows[y * stride] for y in range(height)}
+level = idat[1] >> 6  # FLEVEL of the zlib header: 1 for levels 2-5
+print("ok" if len(rows) == stride * height and filters == {1} and level == 1 else f"filters {filters}, FLEVEL {level}")
+PY
+)"
 # The GPU backend into the same failing writer: its bands stream out between dispatches.
 cp "$work/keep.exr" "$work/out.exr"
 expect_failure "exr under ulimit -f 1, GPU backend" "$work" exr "ulimit -f 1" --backend gpu
