@@ -1,11 +1,31 @@
-// rc_scene_access.glsl: how the shader reads the scene arrays. Two kinds, one interface:
-// RGBA32UI uniform texel buffers (RC_SCENE_TEXEL_BUFFERS=1) or std430 storage buffers.
-// On Mesa 22 llvmpipe a storage-buffer load inside a loop becomes a per-lane scalar loop
-// while a texel fetch stays vectorised (docs/performance.md has our own
-// measurement); on discrete GPUs both are fast. Texels hold raw bits, so integers and
-// floats travel unchanged (a float view could flush the denormal bit patterns of small
-// integers).
+// rc_scene_access.glsl: how the shader reads the scene arrays. Three kinds, one interface:
+// RGBA32UI storage texel buffers read with imageLoad (RC_SCENE_TEXEL_IMAGES=1), RGBA32UI
+// uniform texel buffers read with texelFetch (RC_SCENE_TEXEL_BUFFERS=1), or std430 storage
+// buffers. On Mesa 22 llvmpipe a storage-buffer load inside a loop becomes a per-lane scalar
+// loop while both texel kinds stay vectorised, and a texelFetch from an RGBA32UI buffer is
+// an out-of-line call where an imageLoad is inline code, 5-8 % faster a frame
+// (docs/performance.md, finding 9); on discrete GPUs all three are fast. Texels hold raw
+// bits, so integers and floats travel unchanged (a float view could flush the denormal bit
+// patterns of small integers).
+#ifndef RC_SCENE_TEXEL_IMAGES
+#define RC_SCENE_TEXEL_IMAGES 0
+#endif
 #if RC_SCENE_TEXEL_BUFFERS
+#if RC_SCENE_TEXEL_IMAGES
+layout(binding = RC_BINDING_SPHERES, rgba32ui) readonly uniform uimageBuffer scene_spheres;
+layout(binding = RC_BINDING_TRIANGLES, rgba32ui) readonly uniform uimageBuffer scene_triangles;
+layout(binding = RC_BINDING_MATERIALS, rgba32ui) readonly uniform uimageBuffer scene_materials;
+layout(binding = RC_BINDING_LIGHTS, rgba32ui) readonly uniform uimageBuffer scene_lights;
+layout(binding = RC_BINDING_BVH_NODES, rgba32ui) readonly uniform uimageBuffer scene_bvh_nodes;
+layout(binding = RC_BINDING_BVH_PRIMS, rgba32ui) readonly uniform uimageBuffer scene_bvh_prims;
+layout(binding = RC_BINDING_TRANSFORMS, rgba32ui) readonly uniform uimageBuffer scene_transforms;
+layout(binding = RC_BINDING_NORMALS, rgba32ui) readonly uniform uimageBuffer scene_normals;
+layout(binding = RC_BINDING_QUADRICS, rgba32ui) readonly uniform uimageBuffer scene_quadrics;
+layout(binding = RC_BINDING_CSG, rgba32ui) readonly uniform uimageBuffer scene_csg;
+layout(binding = RC_BINDING_CSG_PROGRAM, rgba32ui) readonly uniform uimageBuffer scene_csg_program;
+
+#define texel(b, i) imageLoad(b, int(i))
+#else
 layout(binding = RC_BINDING_SPHERES) uniform usamplerBuffer scene_spheres;
 layout(binding = RC_BINDING_TRIANGLES) uniform usamplerBuffer scene_triangles;
 layout(binding = RC_BINDING_MATERIALS) uniform usamplerBuffer scene_materials;
@@ -19,6 +39,7 @@ layout(binding = RC_BINDING_CSG) uniform usamplerBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM) uniform usamplerBuffer scene_csg_program;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
+#endif
 
 gpu_sphere load_sphere(uint i) {
   uvec4 a = texel(scene_spheres, i * RC_TEXELS_PER_SPHERE);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmark: renders each scene on lavapipe with texel and with storage scene buffers,
+# Benchmark: renders each scene on lavapipe with each kind of scene buffers (image, texel, storage),
 # interleaved, ROUNDS rounds of `--repeat FRAMES`; reports the median over rounds of each
 # process's steady-state render time (GPU timestamps, the median of frames 2..FRAMES), the
 # wall time per frame, process CPU time, and Mrays/s (primary + shadow + reflection).
@@ -26,16 +26,16 @@ echo "| scene | objects | buffers | render ms (GPU) | wall ms/frame | CPU ms (pr
 echo "|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   name=$(basename "$s" .json)
-  for kind in texel storage; do : >"$work/$kind.txt"; done
+  for kind in image texel storage; do : >"$work/$kind.txt"; done
   for ((r = 0; r < rounds; r++)); do
-    for kind in texel storage; do
+    for kind in image texel storage; do
       build/vkraycast render "$s" -o "$work/out.exr" $size --repeat "$frames" --quiet --allow-outside-paths ${spp:+--spp "$spp"} \
         --scene-buffers "$kind" --stats-json "$work/st.json"
       echo "$(num render_ms "$work/st.json") $(num render_wall_ms "$work/st.json") $(num cpu_ms "$work/st.json") \
 $(num mrays_per_s "$work/st.json") $(( $(num spheres "$work/st.json") + $(num triangles "$work/st.json") + $(num quadrics "$work/st.json") + $(num composites "$work/st.json") ))" >>"$work/$kind.txt"
     done
   done
-  for kind in texel storage; do
+  for kind in image texel storage; do
     col() { awk -v c="$1" '{print $c}' "$work/$kind.txt" | median; }
     printf "| %s | %s | %s | %.1f | %.1f | %.0f | %.2f |\n" "$name" "$(col 5)" "$kind" "$(col 1)" "$(col 2)" "$(col 3)" "$(col 4)"
   done

@@ -47,7 +47,7 @@ static const char *const backends[] = {"gpu", "cpu", NULL};
 static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
 static const char *const encodings[] = {"linear", "srgb", NULL};
-static const char *const buffer_kinds[] = {"texel", "storage", NULL};
+static const char *const buffer_kinds[] = {"image", "texel", "storage", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
 #define ARG(field) offsetof(render_args, field)
@@ -113,7 +113,8 @@ static const rc_option render_options[] = {
     {"--shadows", NULL, RC_OPT_CHOICE, ARG(shadows), "B", .choices = off_on,
      .help = "on (default) or off: trace shadow rays"},
     {"--scene-buffers", NULL, RC_OPT_CHOICE, ARG(scene_buffers), "K", .choices = buffer_kinds,
-     .heading = "tuning and testing:", .help = "texel (default) or storage: how the shader reads the scene arrays"},
+     .heading = "tuning and testing:", .help = "image (default: storage texel buffers), texel (uniform texel\n"
+             "buffers) or storage: how the shader reads the scene arrays"},
     {"--pipeline", NULL, RC_OPT_CHOICE, ARG(pipeline), "P", .choices = pipelines,
      .help = "specialized (default: compiled for this scene's primitive kinds, light\n"
              "count, shadows, specular model and bounces) or generic (one pipeline\n"
@@ -224,7 +225,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->cpu = a->backend == 1;
   a->no_bvh = a->accel == 1;
   a->stats_stdout = a->stats_json && strcmp(a->stats_json, "-") == 0;
-  a->gpu.scene_buffers = a->scene_buffers == 1 ? RC_SCENE_BUFFERS_STORAGE : RC_SCENE_BUFFERS_TEXEL;
+  /* The choices are listed in rc_scene_buffers' order; the default is the first. */
+  a->gpu.scene_buffers = a->scene_buffers < 0 ? RC_SCENE_BUFFERS_IMAGE : (rc_scene_buffers)a->scene_buffers;
   a->gpu.tile_size = a->tile;
   a->gpu.tile_budget_ms = a->tile_budget_ms; /* -1: the device's default (gpu_render.c) */
   a->gpu.plan_budget = a->plan_budget;

@@ -59,20 +59,30 @@ _Static_assert(sizeof(gpu_push) <= 128, "gpu_push must fit the guaranteed maxPus
  * accumulation, status and AOV storage buffers. */
 #define OUTPUT_STORAGE_BUFFERS 3u
 
+/* The scene-array kinds, fastest on lavapipe first: the order a default render tries them in. */
+static const char *const kind_names[3] = {"storage texel buffers", "uniform texel buffers", "storage buffers"};
+
+static const VkDescriptorType kind_descriptor[3] = {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
+                                                    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
+                                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+
+static bool is_texel_kind(rc_scene_buffers kind) { return kind != RC_SCENE_BUFFERS_STORAGE; }
+
 /* Whether the device can take the scene arrays as buffers of `kind`: NULL, or the first
- * limit that stops it, with the numbers, in `why`. Texel views count against the sampled
- * image limits (Vulkan 1.1, "Limits"); the arrays' sizes against the texel count or the
- * storage range of one binding. */
+ * limit that stops it, with the numbers, in `why`. Uniform texel views count against the
+ * sampled image limits, storage texel views against the storage image limits (Vulkan 1.1,
+ * "Limits"); the arrays' sizes against the texel count or the storage range of one binding. */
 static const char *kind_blocked(const rc_vk_ctx *ctx, rc_scene_buffers kind, const VkDeviceSize sizes[SCENE_ARRAYS],
                                 char *why, size_t n) {
   const VkPhysicalDeviceLimits *l = &ctx->props.limits;
-  bool texel = kind == RC_SCENE_BUFFERS_TEXEL;
+  bool texel = is_texel_kind(kind), image = kind == RC_SCENE_BUFFERS_IMAGE;
   uint32_t storage = OUTPUT_STORAGE_BUFFERS + (texel ? 0 : SCENE_ARRAYS);
   if (texel) {
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
-    if (!(fp.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT)) {
-      snprintf(why, n, "the device has no RGBA32UI uniform texel buffers");
+    VkFormatFeatureFlags need = image ? VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT : VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT;
+    if (!(fp.bufferFeatures & need)) {
+      snprintf(why, n, "the device has no RGBA32UI %s", kind_names[kind]);
       return why;
     }
     for (int i = 0; i < SCENE_ARRAYS; i++) {
@@ -83,10 +93,12 @@ static const char *kind_blocked(const rc_vk_ctx *ctx, rc_scene_buffers kind, con
       }
     }
     uint32_t views = SCENE_ARRAYS;
-    if (views > l->maxPerStageDescriptorSampledImages || views > l->maxDescriptorSetSampledImages) {
-      snprintf(why, n, "%u texel buffers, more than maxPerStageDescriptorSampledImages (%u) or "
-               "maxDescriptorSetSampledImages (%u)", views, l->maxPerStageDescriptorSampledImages,
-               l->maxDescriptorSetSampledImages);
+    uint32_t stage = image ? l->maxPerStageDescriptorStorageImages : l->maxPerStageDescriptorSampledImages;
+    uint32_t set = image ? l->maxDescriptorSetStorageImages : l->maxDescriptorSetSampledImages;
+    const char *what = image ? "StorageImages" : "SampledImages";
+    if (views > stage || views > set) {
+      snprintf(why, n, "%u %s, more than maxPerStageDescriptor%s (%u) or maxDescriptorSet%s (%u)", views,
+               kind_names[kind], what, stage, what, set);
       return why;
     }
   } else {
@@ -111,26 +123,30 @@ static const char *kind_blocked(const rc_vk_ctx *ctx, rc_scene_buffers kind, con
   return NULL;
 }
 
-/* The buffer kind the device can take for this scene. Texel buffers (the default, faster
- * on lavapipe) give way to storage buffers where they do not fit; an explicit
- * --scene-buffers storage is kept or refused. A scene neither fits is refused before
- * anything is allocated, with the limits and the numbers (docs/porting.md). */
+/* The buffer kind the device can take for this scene: the one asked for, or the next that
+ * fits in the order image, texel, storage. Storage texel buffers (the default) give way
+ * silently to uniform texel buffers, which read the same texels; falling back to storage
+ * buffers (slower on lavapipe) is a warning; an explicit --scene-buffers storage is kept or
+ * refused. A scene no kind fits is refused before anything is allocated, with every kind's
+ * limit and numbers (docs/porting.md). */
 static rc_status choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers *kind, const VkDeviceSize sizes[SCENE_ARRAYS]) {
-  char texel_why[256], storage_why[256];
-  if (*kind == RC_SCENE_BUFFERS_TEXEL) {
-    if (!kind_blocked(ctx, RC_SCENE_BUFFERS_TEXEL, sizes, texel_why, sizeof texel_why)) return RC_OK;
-    if (!kind_blocked(ctx, RC_SCENE_BUFFERS_STORAGE, sizes, storage_why, sizeof storage_why)) {
-      rc_warning("texel buffers do not fit (%s); using storage buffers", texel_why);
-      *kind = RC_SCENE_BUFFERS_STORAGE;
-      return RC_OK;
-    }
-    rc_refuse_scene("scene too large for device %u (%s): as texel buffers %s; as storage buffers %s",
-                    ctx->device_index, ctx->props.deviceName, texel_why, storage_why);
-    return RC_ERR_TOO_LARGE;
+  char why[3][256];
+  for (rc_scene_buffers k = *kind; k <= RC_SCENE_BUFFERS_STORAGE; k++) {
+    if (kind_blocked(ctx, k, sizes, why[k], sizeof why[k])) continue;
+    if (k == RC_SCENE_BUFFERS_STORAGE && *kind != k)
+      rc_warning("texel buffers do not fit (%s); using storage buffers", why[k - 1]);
+    *kind = k;
+    return RC_OK;
   }
-  if (!kind_blocked(ctx, RC_SCENE_BUFFERS_STORAGE, sizes, storage_why, sizeof storage_why)) return RC_OK;
-  rc_refuse_scene("--scene-buffers storage: device %u (%s) cannot take this scene: %s", ctx->device_index,
-                  ctx->props.deviceName, storage_why);
+  if (*kind == RC_SCENE_BUFFERS_STORAGE) {
+    rc_refuse_scene("--scene-buffers storage: device %u (%s) cannot take this scene: %s", ctx->device_index,
+                    ctx->props.deviceName, why[RC_SCENE_BUFFERS_STORAGE]);
+  } else {
+    char all[800] = "";
+    for (rc_scene_buffers k = *kind; k <= RC_SCENE_BUFFERS_STORAGE; k++)
+      snprintf(all + strlen(all), sizeof all - strlen(all), "%sas %s %s", k == *kind ? "" : "; ", kind_names[k], why[k]);
+    rc_refuse_scene("scene too large for device %u (%s): %s", ctx->device_index, ctx->props.deviceName, all);
+  }
   return RC_ERR_TOO_LARGE;
 }
 
@@ -197,10 +213,12 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
              (double)need / (1 << 20), (double)heap / (1 << 20));
     return RC_ERR_TOO_LARGE;
   }
-  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  bool texel = is_texel_kind(r->opts.scene_buffers);
+  static const VkBufferUsageFlags kind_usage[3] = {VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
+                                                   VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
   for (int i = 0; i < SCENE_ARRAYS; i++) {
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                               (texel ? VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT | kind_usage[r->opts.scene_buffers];
     rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);
     if (st == RC_OK) st = rc_buffer_upload(ctx, &r->arrays[i], data[i], sizes[i], r->opts.force_staging);
     if (st != RC_OK) return st;
@@ -250,8 +268,7 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
 
 static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   rc_vk_ctx *ctx = r->ctx;
-  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
-  VkDescriptorType array_type = texel ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  VkDescriptorType array_type = kind_descriptor[r->opts.scene_buffers];
   VkDescriptorSetLayoutBinding b[RC_BINDING_COUNT];
   for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
     b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
@@ -277,7 +294,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   /* The module without quadric code where the scene has none (and the pipeline is not the
    * generic one): lavapipe compiles the whole module before specializing it. */
   bool quadrics = r->opts.generic_pipeline || r->frame.quadric_count || r->frame.csg_count;
-  rc_spirv code = rc_shader_raycast(texel, r->opts.f64, quadrics);
+  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, r->opts.f64, quadrics);
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                   .codeSize = code.size,
                                   .pCode = code.words};
@@ -349,10 +366,10 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
 
 static rc_status create_descriptors(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
-  bool texel = r->opts.scene_buffers == RC_SCENE_BUFFERS_TEXEL;
+  bool texel = is_texel_kind(r->opts.scene_buffers);
   VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 3 + SCENE_ARRAYS},
-                                   {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, SCENE_ARRAYS}};
+                                   {kind_descriptor[r->opts.scene_buffers], SCENE_ARRAYS}};
   VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                    .maxSets = 1,
                                    .poolSizeCount = texel ? 3 : 2,
@@ -385,7 +402,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
   for (int i = 0; i < SCENE_ARRAYS; i++) {
     VkWriteDescriptorSet *x = &w[array_bindings[i]];
     if (texel) {
-      x->descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      x->descriptorType = kind_descriptor[r->opts.scene_buffers];
       x->pBufferInfo = NULL;
       x->pTexelBufferView = &r->views[i];
     }

@@ -7,12 +7,9 @@
 #include "gpu/gpu_plan.h"
 #include "base/region.h"
 #include "scene/scene_pack.h"
+#include "gpu/gpu_shaders.h"
 #include "gpu/vk_buffer.h"
 
-typedef enum {
-  RC_SCENE_BUFFERS_TEXEL,   /* uniform texel buffers (default: faster on llvmpipe) */
-  RC_SCENE_BUFFERS_STORAGE, /* std430 storage buffers */
-} rc_scene_buffers;
 
 typedef struct rc_gpu_options {
   rc_scene_buffers scene_buffers;

@@ -12,9 +12,17 @@ typedef struct rc_spirv {
   size_t size; /* bytes */
 } rc_spirv;
 
-/* raycast.comp reading the scene arrays as texel or storage buffers, with f32 or f64
- * (RC_F64: needs shaderFloat64 and shaderInt64) geometry and shading math, with or without
- * the quadric and composite code (RC_QUADRICS). */
-rc_spirv rc_shader_raycast(bool texel_buffers, bool f64, bool quadrics);
+/* How the shader reads the scene arrays (shaders/rc_scene_access.glsl), in the order a
+ * default render tries them (host/gpu/gpu_render.c). */
+typedef enum {
+  RC_SCENE_BUFFERS_IMAGE,   /* storage texel buffers, imageLoad (default: inline loads on llvmpipe) */
+  RC_SCENE_BUFFERS_TEXEL,   /* uniform texel buffers, texelFetch */
+  RC_SCENE_BUFFERS_STORAGE, /* std430 storage buffers */
+} rc_scene_buffers;
+
+/* raycast.comp reading the scene arrays as `buffers`, with f32 or f64 (RC_F64: needs
+ * shaderFloat64 and shaderInt64) geometry and shading math, with or without the quadric
+ * and composite code (RC_QUADRICS). */
+rc_spirv rc_shader_raycast(rc_scene_buffers buffers, bool f64, bool quadrics);
 
 #endif

@@ -219,10 +219,12 @@ void rc_vk_apply_minimum_limits(VkPhysicalDeviceLimits *l, VkPhysicalDeviceFeatu
   AT_MOST(maxPerStageDescriptorUniformBuffers, 12u);
   AT_MOST(maxPerStageDescriptorStorageBuffers, 4u);
   AT_MOST(maxPerStageDescriptorSampledImages, 16u);
+  AT_MOST(maxPerStageDescriptorStorageImages, 4u);
   AT_MOST(maxPerStageResources, 128u);
   AT_MOST(maxDescriptorSetUniformBuffers, 72u);
   AT_MOST(maxDescriptorSetStorageBuffers, 24u);
   AT_MOST(maxDescriptorSetSampledImages, 96u);
+  AT_MOST(maxDescriptorSetStorageImages, 24u);
   AT_MOST(maxComputeSharedMemorySize, 16384u);
   AT_MOST(maxComputeWorkGroupInvocations, 128u);
   AT_MOST(maxComputeWorkGroupSize[0], 128u);

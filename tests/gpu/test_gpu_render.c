@@ -215,24 +215,32 @@ TEST(blinn_phong_and_phong_highlights_follow_their_formulas) {
   free(phong.px);
 }
 
-/* Texel buffers, storage buffers and the staging upload/readback path are three ways of
- * moving the same bytes: the images must be bit-identical. */
+/* Storage texel, uniform texel and storage buffers and the staging upload/readback path
+ * are four ways of moving the same bytes: the images must be bit-identical. */
 TEST(buffer_kinds_and_staging_path_give_identical_images) {
   const char *common = "--width 96 --height 60 --spp 2 --quiet";
-  CHECK_EQ_INT(run("render %s/showcase.json -o %s/texel.exr %s", scenes_dir, tmp, common), 0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/image.exr --stats-json %s/image.json %s", scenes_dir, tmp, tmp,
+                   common),
+               0);
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/texel.exr --scene-buffers texel %s", scenes_dir, tmp, common), 0);
   CHECK_EQ_INT(run("render %s/showcase.json -o %s/storage.exr --scene-buffers storage %s", scenes_dir, tmp, common), 0);
   CHECK_EQ_INT(run("render %s/showcase.json -o %s/staging.exr --staging --stats-json %s/staging.json %s", scenes_dir,
                    tmp, tmp, common),
                0);
-  image a = load("texel.exr"), b = load("storage.exr"), c = load("staging.exr");
+  image a = load("texel.exr"), b = load("storage.exr"), c = load("staging.exr"), d = load("image.exr");
   CHECK(identical(&a, &b));
   CHECK(identical(&a, &c));
+  CHECK(identical(&a, &d));
+  cJSON *image_stats = load_json("image.json"); /* the default kind, where the device has it */
+  CHECK(strcmp(cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(image_stats, "scene_buffers")), "image") == 0);
+  cJSON_Delete(image_stats);
   cJSON *stats = load_json("staging.json");
   CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(stats, "staging")));
   cJSON_Delete(stats);
   free(a.px);
   free(b.px);
   free(c.px);
+  free(d.px);
 }
 
 /* A scene that costs 1,207 loop steps per sample: 400 spheres no ray can reach (behind

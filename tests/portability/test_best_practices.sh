@@ -28,7 +28,8 @@ run() {
   check "$name" "$why"
 }
 
-run texel "$scenes/showcase.json" 1
+run image "$scenes/showcase.json" 1
+run texel "$scenes/showcase.json" 1 --scene-buffers texel
 run storage "$scenes/showcase.json" 1 --scene-buffers storage
 run staging "$scenes/showcase.json" 3 --staging
 run f64 "$scenes/showcase.json" 1 --precision f64

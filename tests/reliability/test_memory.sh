@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Memory per frame is bounded (issue 13, class 8): `render --repeat N` on a tiny image
 # must not grow the process's peak RSS with N. Generated over the paths a frame can take
-# (texel and storage buffers, staging with AOVs, f64, the CPU backend): peak RSS at 300
+# (the three kinds of scene buffers, staging with AOVs, f64, the CPU backend): peak RSS at 300
 # frames may exceed that at 1 frame by at most 16 MiB (a leak of 1 MiB a frame, as once
 # reported, would show 300).
 # Usage: test_memory.sh VKRAYCAST SCENES_DIR WORKDIR
@@ -29,7 +29,8 @@ while IFS='|' read -r name args; do
   fi
   check "$name: $one KiB at 1 frame, $many KiB at 300" "$why"
 done <<'CASES'
-gpu, texel buffers|
+gpu, storage texel buffers|
+gpu, uniform texel buffers|--scene-buffers texel
 gpu, storage buffers|--scene-buffers storage
 gpu, staging and AOVs|--staging --aov WORK/o.aov.exr
 gpu, f64|--precision f64

@@ -8,7 +8,7 @@ dump=$1 glslang=$2 shaders=$3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$dump" | sort >"$tmp/c.txt"
-reflect() { "$glslang" -V --target-env vulkan1.1 -I"$shaders" -DRC_SCENE_TEXEL_BUFFERS="$1" -q \
+reflect() { "$glslang" -V --target-env vulkan1.1 -I"$shaders" -DRC_SCENE_TEXEL_BUFFERS="$1" -DRC_SCENE_TEXEL_IMAGES="${2:-0}" -q \
   --reflect-all-block-variables -o "$tmp/x.spv" "$shaders/raycast.comp"; }
 {
   # Storage variant: member offsets and array strides of the scene arrays.
@@ -21,6 +21,8 @@ reflect() { "$glslang" -V --target-env vulkan1.1 -I"$shaders" -DRC_SCENE_TEXEL_B
   reflect 0 | sed -nE 's/^(scene_bvh_prims|scene_csg_program): offset 0,.*arrayStride ([0-9]+),.*/\1 stride \2/p'
   # Texel variant: the scene arrays' bindings (texel buffers are not blocks there).
   reflect 1 | sed -nE 's/^(scene_[a-z_]+): offset -1, .* binding ([0-9]+),.*/\1 binding \2/p'
+  # Storage texel (image) variant: the same bindings.
+  reflect 1 1 | sed -nE 's/^(scene_[a-z_]+): offset -1, .* binding ([0-9]+),.*/\1 binding \2/p'
 } | sort -u >"$tmp/glsl.txt"
 if ! diff -u "$tmp/c.txt" "$tmp/glsl.txt"; then
   echo "FAIL: C layout (-) differs from glslang reflection (+)" >&2
