@@ -47,7 +47,6 @@ static const char *const backends[] = {"gpu", "cpu", NULL};
 static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
 static const char *const encodings[] = {"linear", "srgb", NULL};
-static const char *const buffer_kinds[] = {"image", "texel", "storage", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
 #define ARG(field) offsetof(render_args, field)
@@ -112,7 +111,7 @@ static const rc_option render_options[] = {
      .help = "mirror bounces"},
     {"--shadows", NULL, RC_OPT_CHOICE, ARG(shadows), "B", .choices = off_on,
      .help = "on (default) or off: trace shadow rays"},
-    {"--scene-buffers", NULL, RC_OPT_CHOICE, ARG(scene_buffers), "K", .choices = buffer_kinds,
+    {"--scene-buffers", NULL, RC_OPT_CHOICE, ARG(scene_buffers), "K", .choices = rc_scene_buffer_names,
      .heading = "tuning and testing:", .help = "image (default: storage texel buffers), texel (uniform texel\n"
              "buffers) or storage: how the shader reads the scene arrays"},
     {"--pipeline", NULL, RC_OPT_CHOICE, ARG(pipeline), "P", .choices = pipelines,

@@ -12,10 +12,6 @@ double rc_stats_mrays_per_s(const rc_render_stats *s) {
   return s->render_ms > 0 ? rays / (s->render_ms * 1e3) : 0.0;
 }
 
-static const char *scene_buffer_name(rc_scene_buffers kind) {
-  return kind == RC_SCENE_BUFFERS_IMAGE ? "image" : kind == RC_SCENE_BUFFERS_TEXEL ? "texel" : "storage";
-}
-
 void rc_stats_print(const rc_render_stats *s) {
   fprintf(stderr, "vkraycast: device %s (%s, %s)\n", s->device, s->device_type, s->driver);
   fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles + %zu quadrics + %zu planes + %zu composites, "
@@ -24,7 +20,7 @@ void rc_stats_print(const rc_render_stats *s) {
           s->composites, s->lights, s->backend, s->precision);
   if (strcmp(s->backend, "gpu") == 0)
     fprintf(stderr, "vkraycast: %s buffers%s; %u tiles, %u dispatches, %u samples per batch\n",
-            scene_buffer_name(s->gpu.scene_buffers), s->gpu.staging ? ", staging" : "",
+            rc_scene_buffer_names[s->gpu.scene_buffers], s->gpu.staging ? ", staging" : "",
             s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples);
   else
     fprintf(stderr, "vkraycast: %u threads\n", s->threads);
@@ -46,7 +42,6 @@ void rc_stats_print(const rc_render_stats *s) {
 }
 
 static void add_gpu_fields(cJSON *o, const rc_render_stats *s);
-
 
 char *rc_stats_json(const rc_render_stats *s) {
   cJSON *o = cJSON_CreateObject();
@@ -116,7 +111,7 @@ char *rc_stats_json(const rc_render_stats *s) {
 
 static void add_gpu_fields(cJSON *o, const rc_render_stats *s) {
   cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
-  cJSON_AddStringToObject(o, "scene_buffers", scene_buffer_name(s->gpu.scene_buffers));
+  cJSON_AddStringToObject(o, "scene_buffers", rc_scene_buffer_names[s->gpu.scene_buffers]);
   cJSON_AddBoolToObject(o, "staging", s->gpu.staging);
   cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
   cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);

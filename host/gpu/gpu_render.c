@@ -65,6 +65,9 @@ static const char *const kind_names[3] = {"storage texel buffers", "uniform texe
 static const VkDescriptorType kind_descriptor[3] = {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
                                                     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
                                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+static const VkBufferUsageFlags kind_usage[3] = {VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
+                                                 VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
 
 static bool is_texel_kind(rc_scene_buffers kind) { return kind != RC_SCENE_BUFFERS_STORAGE; }
 
@@ -214,9 +217,6 @@ static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
     return RC_ERR_TOO_LARGE;
   }
   bool texel = is_texel_kind(r->opts.scene_buffers);
-  static const VkBufferUsageFlags kind_usage[3] = {VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
-                                                   VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
-                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
   for (int i = 0; i < SCENE_ARRAYS; i++) {
     VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT | kind_usage[r->opts.scene_buffers];
     rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);

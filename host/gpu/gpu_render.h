@@ -10,7 +10,6 @@
 #include "gpu/gpu_shaders.h"
 #include "gpu/vk_buffer.h"
 
-
 typedef struct rc_gpu_options {
   rc_scene_buffers scene_buffers;
   bool force_staging;   /* upload and read back through staging buffers even if mappable */

@@ -16,12 +16,16 @@
 
 #define SPIRV(array) ((rc_spirv){array, sizeof array})
 
+const char *const rc_scene_buffer_names[] = {"image", "texel", "storage", NULL};
+
 rc_spirv rc_shader_raycast(rc_scene_buffers buffers, bool f64, bool quadrics) {
-  bool texel_buffers = buffers == RC_SCENE_BUFFERS_TEXEL;
-  if (buffers == RC_SCENE_BUFFERS_IMAGE && quadrics) return f64 ? SPIRV(rc_spv_raycast_image_f64) : SPIRV(rc_spv_raycast_image);
-  if (buffers == RC_SCENE_BUFFERS_IMAGE) return f64 ? SPIRV(rc_spv_raycast_image_f64_plain) : SPIRV(rc_spv_raycast_image_plain);
-  if (texel_buffers && quadrics) return f64 ? SPIRV(rc_spv_raycast_texel_f64) : SPIRV(rc_spv_raycast_texel);
-  if (texel_buffers) return f64 ? SPIRV(rc_spv_raycast_texel_f64_plain) : SPIRV(rc_spv_raycast_texel_plain);
-  if (quadrics) return f64 ? SPIRV(rc_spv_raycast_storage_f64) : SPIRV(rc_spv_raycast_storage);
-  return f64 ? SPIRV(rc_spv_raycast_storage_f64_plain) : SPIRV(rc_spv_raycast_storage_plain);
+  /* [buffers][f64][quadrics], as CMakeLists.txt names the variants. */
+  static const rc_spirv modules[3][2][2] = {
+      {{SPIRV(rc_spv_raycast_image_plain), SPIRV(rc_spv_raycast_image)},
+       {SPIRV(rc_spv_raycast_image_f64_plain), SPIRV(rc_spv_raycast_image_f64)}},
+      {{SPIRV(rc_spv_raycast_texel_plain), SPIRV(rc_spv_raycast_texel)},
+       {SPIRV(rc_spv_raycast_texel_f64_plain), SPIRV(rc_spv_raycast_texel_f64)}},
+      {{SPIRV(rc_spv_raycast_storage_plain), SPIRV(rc_spv_raycast_storage)},
+       {SPIRV(rc_spv_raycast_storage_f64_plain), SPIRV(rc_spv_raycast_storage_f64)}}};
+  return modules[buffers][f64][quadrics];
 }

@@ -19,6 +19,8 @@ typedef enum {
   RC_SCENE_BUFFERS_TEXEL,   /* uniform texel buffers, texelFetch */
   RC_SCENE_BUFFERS_STORAGE, /* std430 storage buffers */
 } rc_scene_buffers;
+/* Their names on the command line and in the statistics, in that order; NULL-terminated. */
+extern const char *const rc_scene_buffer_names[];
 
 /* raycast.comp reading the scene arrays as `buffers`, with f32 or f64 (RC_F64: needs
  * shaderFloat64 and shaderInt64) geometry and shading math, with or without the quadric
