@@ -253,10 +253,10 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     spec.attribute("oiio:ColorSpace", w->fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
     spec.attribute("Software", "vkraycast");
     if (format == "png") {
-      // libpng's default adaptive filtering with zlib level 6 spent 27 ms of the
-      // showcase's first frame; the Sub filter alone at level 5 writes files of the same
-      // size (93.9 against 96.3 KB there, within 1-7 % on every example scene) in 40 %
-      // of the time (docs/performance.md, "Writing the image").
+      // libpng's default adaptive filtering at zlib level 6 took 27.5 ms to encode the
+      // showcase; the Sub filter alone at level 5 writes files no larger than 1 % above
+      // the default's (93.9 against 96.3 KB there; shadows and transforms measured too)
+      // in 35-40 % of the time (docs/performance.md, "Writing the image").
       spec.attribute("png:compressionLevel", png_compression_level);
       spec.attribute("png:filter", png_filter_sub);
     }
