@@ -85,7 +85,10 @@ void main() {
   if (gl_LocalInvocationIndex == 0u) group_exhausted = false;
   barrier();
 
-  uvec2 local = gl_GlobalInvocationID.xy;
+  // Rows of workgroups in the order host/gpu/gpu_tiles.h explains: spread over the tile
+  // so that each of llvmpipe's threads gets an even share of the image.
+  uint row = (gl_WorkGroupID.y * push.row_stride) % gl_NumWorkGroups.y;
+  uvec2 local = uvec2(gl_WorkGroupID.x, row) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
   bool inside = local.x < push.tile_width && local.y < push.tile_height;
   uvec2 pixel = uvec2(push.tile_x, push.tile_y) + local;
   uint slot = local.y * push.tile_width + local.x;

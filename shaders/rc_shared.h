@@ -343,7 +343,9 @@ struct gpu_bvh_node {
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct gpu_push {
   uint tile_x; uint tile_y; uint tile_width; uint tile_height;
-  uint batch_samples; uint pad0; uint pad1; uint pad2;
+  uint batch_samples;
+  uint row_stride; /* workgroup row i renders block row (i * row_stride) mod rows (gpu_tiles.h) */
+  uint pad1; uint pad2;
 };
 
 #define RC_TEXELS_PER_SPHERE 2
@@ -433,7 +435,7 @@ RC_ASSERT_LAYOUT(gpu_aov, normal, 16);
 RC_ASSERT_SIZE(gpu_aov, 32);
 
 RC_ASSERT_LAYOUT(gpu_push, tile_x, 0); RC_ASSERT_LAYOUT(gpu_push, tile_width, 8);
-RC_ASSERT_LAYOUT(gpu_push, batch_samples, 16);
+RC_ASSERT_LAYOUT(gpu_push, batch_samples, 16); RC_ASSERT_LAYOUT(gpu_push, row_stride, 20);
 RC_ASSERT_SIZE(gpu_push, 32);
 #endif
 

@@ -132,7 +132,7 @@ int main(void) {
   OFF("push.tile_width", gpu_push, tile_width);
   OFF("push.tile_height", gpu_push, tile_height);
   OFF("push.batch_samples", gpu_push, batch_samples);
-  OFF("push.pad0", gpu_push, pad0);
+  OFF("push.row_stride", gpu_push, row_stride);
   OFF("push.pad1", gpu_push, pad1);
   OFF("push.pad2", gpu_push, pad2);
   printf("Push size %zu\n", sizeof(gpu_push));

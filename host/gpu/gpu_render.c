@@ -615,7 +615,8 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
-                   .batch_samples = stats->plan.batch_samples};
+                   .batch_samples = stats->plan.batch_samples,
+                   .row_stride = rc_tiles_row_stride((th + r->local_y - 1) / r->local_y)};
   bool first = true;
   for (;;) {
     gpu_status status;

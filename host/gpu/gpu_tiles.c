@@ -95,3 +95,22 @@ void rc_tiles_observe(rc_tile_planner *p, double pixels, uint32_t batch, double 
   if (!(slope > 0)) return;
   p->slope_ms = slope > p->slope_ms ? slope : 0.75 * p->slope_ms + 0.25 * slope;
 }
+
+static uint32_t gcd_u(uint32_t a, uint32_t b) {
+  while (b) {
+    uint32_t t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+uint32_t rc_tiles_row_stride(uint32_t rows) {
+  if (rows <= 2) return 1;
+  double golden = (double)rows * 0.6180339887498949;
+  uint32_t limit = (uint32_t)(UINT32_MAX / rows); /* stride * rows must not wrap */
+  uint32_t s = golden < limit ? (uint32_t)golden : limit;
+  if (s < 1) s = 1;
+  while (s > 1 && gcd_u(s, rows) != 1) s--;
+  return s;
+}

@@ -56,4 +56,17 @@ void rc_tiles_observe(rc_tile_planner *p, double pixels, uint32_t batch, double 
 /* The model's predicted time of a dispatch (what the planner aims with). */
 double rc_tiles_predict_ms(const rc_tile_planner *p, double pixels, uint32_t batch);
 
+/* The order in which a dispatch visits its tile's rows of workgroups: workgroup row i
+ * renders pixel-block row (i * stride) mod rows (raycast.comp). Mesa's llvmpipe (22.3,
+ * lp_cs_tpool.c) hands each of its T threads one contiguous 1/T of a dispatch's
+ * workgroups, which in dispatch order is a horizontal strip of the image; a strip of sky
+ * finishes long before a strip of reflective floor, and its thread then sits idle
+ * (docs/performance.md, finding 10). A stride near rows / phi (the golden ratio) spreads
+ * every contiguous run of rows evenly over the tile, whatever T is (Kronecker's
+ * sequence), while each thread still walks whole rows left to right, which keeps
+ * neighbouring workgroups' BVH nodes in its cache. The stride is coprime with `rows`, so
+ * the order is a permutation, and stride x rows < 2^32, so the shader's 32-bit product
+ * cannot wrap. A real GPU schedules workgroups dynamically and is indifferent to it. */
+uint32_t rc_tiles_row_stride(uint32_t rows);
+
 #endif

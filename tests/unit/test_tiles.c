@@ -4,6 +4,7 @@
 #include "gpu/gpu_tiles.h"
 #include "rc_test.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #define MAX_PIXELS (1u << 20)
@@ -177,6 +178,83 @@ TEST(noise_never_makes_a_negative_model) {
   CHECK(rc_tiles_cols(&p, 1, 0, 1) >= 8);
 }
 
+/* How a dispatch of `rows` x `cols` workgroups, its rows visited in `stride` order
+ * (raycast.comp), falls to T threads as Mesa 22.3's lp_cs_tpool.c splits it: each thread
+ * takes one contiguous run of iterations (workgroups in dispatch order, x fastest), the
+ * last total % T one by one. An image row is costly (`hot`, else 1) inside the fraction
+ * [hot_lo, hot_hi) of the rows: a band of floor and mirrors, say. Returns the busiest
+ * thread's cost over the idlest one's, and in *deviation the largest difference, in rows,
+ * between a thread's costly workgroups and its fair share of them. */
+static double thread_split(uint32_t rows, uint32_t cols, uint32_t threads, uint32_t stride, double hot_lo,
+                           double hot_hi, double hot, double *deviation) {
+  double cost[64] = {0}, hot_groups[64] = {0}, groups[64] = {0};
+  uint32_t total = rows * cols, per = total / threads, hot_rows = 0;
+  for (uint32_t row = 0; row < rows; row++) {
+    double y = (row + 0.5) / rows;
+    hot_rows += y >= hot_lo && y < hot_hi;
+  }
+  for (uint32_t i = 0; i < total; i++) {
+    uint32_t t = i < per * threads ? i / per : (i - per * threads) % threads;
+    uint32_t row = (uint32_t)(((uint64_t)(i / cols) * stride) % rows);
+    double y = (row + 0.5) / rows;
+    bool is_hot = y >= hot_lo && y < hot_hi;
+    cost[t] += is_hot ? hot : 1.0;
+    hot_groups[t] += is_hot;
+    groups[t]++;
+  }
+  double lo = cost[0], hi = cost[0];
+  *deviation = 0;
+  for (uint32_t t = 0; t < threads; t++) {
+    if (cost[t] < lo) lo = cost[t];
+    if (cost[t] > hi) hi = cost[t];
+    double off = fabs(hot_groups[t] - groups[t] * hot_rows / rows) / cols;
+    if (off > *deviation) *deviation = off;
+  }
+  return hi / lo;
+}
+
+TEST(row_order_is_a_permutation_that_cannot_wrap) {
+  const uint32_t rows[] = {1, 2, 3, 4, 5, 12, 50, 96, 97, 128, 1000, 65535, 65536, 1u << 20, 4000000000u};
+  for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+    uint32_t n = rows[k], s = rc_tiles_row_stride(n);
+    CHECK(s >= 1);
+    CHECK((uint64_t)s * (n - 1) <= UINT32_MAX);
+    if (n > 100000) continue;
+    unsigned char *hit = calloc(n, 1);
+    for (uint32_t i = 0; i < n; i++) hit[(i * s) % n]++;
+    bool once = true;
+    for (uint32_t i = 0; i < n; i++) once = once && hit[i] == 1;
+    CHECK(once);
+    free(hit);
+  }
+}
+
+TEST(row_order_balances_llvmpipes_threads) {
+  /* The showcase at 640x400 (50 rows of 8x8 workgroups, 80 columns): sky above, floor
+   * and mirrors below at about 3 times the cost. In dispatch order one thread takes all
+   * the floor and 3 times as long as the other; in stride order they are within 5 %. */
+  double dev;
+  CHECK(thread_split(50, 80, 2, 1, 0.5, 1.0, 3.0, &dev) > 2.9);
+  CHECK(dev > 12);
+  CHECK(thread_split(50, 80, 2, rc_tiles_row_stride(50), 0.5, 1.0, 3.0, &dev) < 1.05);
+  /* Any frame height, thread count and costly band: each thread's share of the costly
+   * rows is fair to within 1 + log2(rows) / 2 rows (the discrepancy of Kronecker's
+   * sequence grows as log n); dispatch order misses by up to all of them. Whole rows are
+   * the unit, so with few rows a thread the time ratio can still be 1.5. */
+  const uint32_t heights[] = {16, 50, 96, 128, 135, 256, 1000, 2048};
+  const double bands[][2] = {{0.5, 1.0}, {0.0, 0.3}, {0.4, 0.6}, {0.7, 0.8}, {0.1, 0.15}};
+  for (size_t h = 0; h < sizeof heights / sizeof heights[0]; h++)
+    for (uint32_t threads = 2; threads <= 32; threads *= 2)
+      for (size_t b = 0; b < sizeof bands / sizeof bands[0]; b++) {
+        uint32_t n = heights[h];
+        if (n < 2 * threads) continue;
+        thread_split(n, 7, threads, rc_tiles_row_stride(n), bands[b][0], bands[b][1], 3.0, &dev);
+        CHECK(dev <= 1 + log2(n) / 2);
+      }
+  thread_split(1000, 7, 4, 1, 0.0, 0.3, 3.0, &dev);
+  CHECK(dev > 100);
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(no_budget_takes_the_fewest_dispatches);
@@ -187,5 +265,7 @@ int main(void) {
   RUN(an_overhead_above_the_budget_keeps_tiles_useful);
   RUN(the_two_point_fit_recovers_the_device);
   RUN(noise_never_makes_a_negative_model);
+  RUN(row_order_is_a_permutation_that_cannot_wrap);
+  RUN(row_order_balances_llvmpipes_threads);
   TEST_MAIN_END
 }
