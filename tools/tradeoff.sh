@@ -39,6 +39,7 @@ variants=(
   "V6-f64|--precision f64")
 num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 csv=$out/accuracy.csv
+mkdir -p "$out/images" # the plot's folder: an OUTDIR outside docs/ starts empty
 spps=(1 4 16 64)
 points=$((${#scenes[@]} * ${#variants[@]} * ${#spps[@]}))
 # One tile per frame (lavapipe's default, made explicit for other devices): every
