@@ -67,7 +67,11 @@ static uint32_t new_node(builder *b) {
   return b->node_count++;
 }
 
-/* Chooses a split of refs[first, first+count): the SAH-best bin boundary, or -1 for a leaf. */
+/* Chooses a split of refs[first, first+count): the SAH-best bin boundary, or -1 for a leaf.
+ * One pass bins the objects along all three axes: the references point all over the info
+ * array, and reading each object once a level instead of three times took the 1M-triangle
+ * mesh's build from 1,827 to 1,658 ms (medians of 3; no change at 100k). The tree is the
+ * same, byte for byte. */
 static int choose_split(builder *b, uint32_t first, uint32_t count, const box *bounds, int *axis_out, float *pos_out) {
   box cb = empty_box();
   for (uint32_t i = first; i < first + count; i++) grow_point(&cb, b->info[b->refs[i]].centroid);
@@ -75,42 +79,51 @@ static int choose_split(builder *b, uint32_t first, uint32_t count, const box *b
   int best_axis = -1;
   float best_pos = 0;
   double parent_area = area(bounds);
+  float lo[3], extent[3];
+  bool usable[3];
+  box bin_box[3][BINS];
+  uint32_t bin_count[3][BINS] = {{0}};
   for (int axis = 0; axis < 3; axis++) {
-    float lo = cb.lo[axis], extent = cb.hi[axis] - cb.lo[axis];
-    if (!(extent > 0)) continue;
-    box bin_box[BINS];
-    uint32_t bin_count[BINS] = {0};
-    for (int i = 0; i < BINS; i++) bin_box[i] = empty_box();
-    for (uint32_t i = first; i < first + count; i++) {
-      const prim_info *p = &b->info[b->refs[i]];
-      int bin = (int)((p->centroid[axis] - lo) / extent * BINS);
+    lo[axis] = cb.lo[axis];
+    extent[axis] = cb.hi[axis] - cb.lo[axis];
+    usable[axis] = extent[axis] > 0;
+    for (int i = 0; i < BINS; i++) bin_box[axis][i] = empty_box();
+  }
+  for (uint32_t i = first; i < first + count; i++) {
+    const prim_info *p = &b->info[b->refs[i]];
+    for (int axis = 0; axis < 3; axis++) {
+      if (!usable[axis]) continue;
+      int bin = (int)((p->centroid[axis] - lo[axis]) / extent[axis] * BINS);
       if (bin >= BINS) bin = BINS - 1;
       if (bin < 0) bin = 0;
-      bin_count[bin]++;
-      grow(&bin_box[bin], &p->bounds);
+      bin_count[axis][bin]++;
+      grow(&bin_box[axis][bin], &p->bounds);
     }
+  }
+  for (int axis = 0; axis < 3; axis++) {
+    if (!usable[axis]) continue;
     /* Sweep: area and count of everything left / right of each boundary. */
     double left_area[BINS];
     uint32_t left_count[BINS];
     box acc = empty_box();
     uint32_t n = 0;
     for (int i = 0; i < BINS - 1; i++) {
-      grow(&acc, &bin_box[i]);
-      n += bin_count[i];
+      grow(&acc, &bin_box[axis][i]);
+      n += bin_count[axis][i];
       left_area[i] = area(&acc);
       left_count[i] = n;
     }
     acc = empty_box();
     n = 0;
     for (int i = BINS - 1; i > 0; i--) {
-      grow(&acc, &bin_box[i]);
-      n += bin_count[i];
+      grow(&acc, &bin_box[axis][i]);
+      n += bin_count[axis][i];
       if (left_count[i - 1] == 0 || n == 0) continue;
       double cost = 1.0 + (left_area[i - 1] * left_count[i - 1] + area(&acc) * n) / parent_area;
       if (cost < best) {
         best = cost;
         best_axis = axis;
-        best_pos = lo + extent * (float)i / BINS;
+        best_pos = lo[axis] + extent[axis] * (float)i / BINS;
       }
     }
   }
