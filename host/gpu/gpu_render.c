@@ -556,6 +556,10 @@ static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_b
 
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
  * first batch), run the shader between two timestamps, and bring the status back. */
+/* Workgroups along one side of a tile: the dispatch's size, which the row order
+ * (push.row_stride) must be a permutation of. */
+static uint32_t group_count(uint32_t pixels, uint32_t local) { return (pixels + local - 1) / local; }
+
 static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *ms) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
@@ -577,7 +581,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
   vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
-  vkCmdDispatch(cmd, (push->tile_width + r->local_x - 1) / r->local_x, (push->tile_height + r->local_y - 1) / r->local_y, 1);
+  vkCmdDispatch(cmd, group_count(push->tile_width, r->local_x), group_count(push->tile_height, r->local_y), 1);
   if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
   record_readback(r, &r->status, &r->status_readback, sizeof(gpu_status));
   double t0 = rc_now_ms();
@@ -616,7 +620,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples,
-                   .row_stride = rc_tiles_row_stride((th + r->local_y - 1) / r->local_y)};
+                   .row_stride = rc_tiles_row_stride(group_count(th, r->local_y))};
   bool first = true;
   for (;;) {
     gpu_status status;

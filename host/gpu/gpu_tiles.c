@@ -109,8 +109,7 @@ uint32_t rc_tiles_row_stride(uint32_t rows) {
   if (rows <= 2) return 1;
   double golden = (double)rows * 0.6180339887498949;
   uint32_t limit = (uint32_t)(UINT32_MAX / rows); /* stride * rows must not wrap */
-  uint32_t s = golden < limit ? (uint32_t)golden : limit;
-  if (s < 1) s = 1;
+  uint32_t s = golden < limit ? (uint32_t)golden : limit; /* both >= 1 for rows > 2 */
   while (s > 1 && gcd_u(s, rows) != 1) s--;
   return s;
 }
