@@ -37,6 +37,12 @@ layout(std430, binding = RC_BINDING_STATUS) buffer Status { gpu_status status; }
 layout(std430, binding = RC_BINDING_AOV) writeonly buffer Aov { gpu_aov aov[]; };
 layout(push_constant) uniform Push { gpu_push push; };
 
+// Where each kind's object numbers begin (rc_intersect.glsl's object_kind), read from the
+// frame once, at the top of main(). Read where they are used, inside the BVH's leaf loop,
+// llvmpipe fetched them as per-lane gathers on every object tested (finding 11).
+uint first_triangle_object;
+uint first_quadric_object;
+uint first_csg_object;
 uint shadow_rays = 0u;
 uint reflection_rays = 0u;
 // Whether the ray being traced left a surface (shadow and reflection rays): only those can
@@ -82,6 +88,9 @@ uint scene_reflection_depth() {
 shared bool group_exhausted;
 
 void main() {
+  first_triangle_object = frame.sphere_count;
+  first_quadric_object = first_triangle_object + frame.triangle_count;
+  first_csg_object = first_quadric_object + frame.quadric_count;
   if (gl_LocalInvocationIndex == 0u) group_exhausted = false;
   barrier();
 

@@ -17,10 +17,10 @@ rvec3 safe_inverse(rvec3 d) {
 real intersect_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   precise rvec3 t0 = (lo - o) * inv_d;
   precise rvec3 t1 = (hi - o) * inv_d;
-  rvec3 near = min(t0, t1);
-  rvec3 far = max(t0, t1);
-  real t_enter = max(max(near.x, near.y), max(near.z, 0.0));
-  real t_exit = min(min(far.x, far.y), far.z) * real(RC_BOX_FAR_SCALE);
+  real t_enter = select_max(select_max(select_min(t0.x, t1.x), select_min(t0.y, t1.y)),
+                            select_max(select_min(t0.z, t1.z), 0.0));
+  real t_exit = select_min(select_min(select_max(t0.x, t1.x), select_max(t0.y, t1.y)), select_max(t0.z, t1.z)) *
+                real(RC_BOX_FAR_SCALE);
   return (t_enter <= t_exit && t_enter <= t_max) ? t_enter : real(RC_T_FAR);
 }
 
@@ -51,36 +51,38 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   ray_shear sh = ray_shear_for(d);
   rvec3 inv_d = safe_inverse(d);
   uint node = 0u;
-  while (node < frame.bvh_node_count) {
+  uint node_count = frame.bvh_node_count;
+  while (node < node_count) {
     // "While-while" (Aila & Laine, "Understanding the Efficiency of Ray Traversal on
     // GPUs", HPG 2009): walk boxes until this ray holds a leaf, then test it. A SIMD
     // vector runs the union of its lanes' work, and alternating one box and one leaf per
     // iteration made nearly every iteration pay for a leaf test some lane needed.
-    gpu_bvh_node n;
+    // The walk has one exit, its condition (budget included): each break or return out
+    // of a loop costs llvmpipe mask bookkeeping on every iteration (finding 11).
     uint leaf = 0u;
-    while (node < frame.bvh_node_count) {
-      if (!budget_step()) return false;
-      n = load_bvh_node(node);
+    uint skip = 0u;
+    while (node < node_count && leaf == 0u && budget_steps < loop_budget) {
+      budget_steps++;
+      gpu_bvh_node n = load_bvh_node(node);
       real limit = any ? t_max : h.t;
-      if (intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) >= real(RC_T_FAR)) {
-        node = n.skip;
-      } else if (n.leaf == 0u) {
-        node++;
-      } else {
-        leaf = n.leaf;
-        break;
-      }
+      bool enters = intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) < real(RC_T_FAR);
+      // An entered inner node continues at its first child, the next node; a missed box
+      // continues past its subtree, and so does an entered leaf once it is tested.
+      node = (enters && n.leaf == 0u) ? node + 1u : n.skip;
+      leaf = enters ? n.leaf : 0u;
     }
-    if (leaf == 0u) break;
+    if (leaf == 0u) {
+      if (node < node_count) budget_exhausted = true;  // stopped by the budget
+      break;
+    }
     uint count = leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
     if (!budget_take(count)) {
       budget_blame = 1u + load_bvh_prim(leaf >> RC_BVH_LEAF_SHIFT);
       return false;
     }
     if (test_leaf(leaf >> RC_BVH_LEAF_SHIFT, count, o, d, sh, any, t_max, h)) return true;
-    node = n.skip;
   }
-  return h.kind != RC_HIT_NONE;
+  return !budget_exhausted && h.kind != RC_HIT_NONE;
 }
 
 // The infinite planes, the last frame.plane_count standalone quadrics, have no box and no

@@ -47,7 +47,7 @@ real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
   if (q == 0.0) return real(RC_T_FAR);  // origin exactly at the tangent point
   precise real c = dot(f, f) - r * r;
   precise real t0 = c / q;
-  return first_root(min(t0, q), max(t0, q), t_max, side);
+  return first_root(select_min(t0, q), select_max(q, t0), t_max, side);
 }
 
 // The textbook quadratic a t^2 + b t + c = 0, a = d.d, b = 2 f.d, c = f.f - r^2: the fast
@@ -96,14 +96,12 @@ real intersect_any_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real s
 
 // The kind of object `object` (RC_HIT_*) and its index in its own array.
 uint object_kind(uint object, out uint index) {
-  uint first_quadric = frame.sphere_count + frame.triangle_count;
-  uint first_csg = first_quadric + frame.quadric_count;
-  index = (object < frame.sphere_count) ? object
-          : (object < first_quadric) ? object - frame.sphere_count
-          : (object < first_csg) ? object - first_quadric : object - first_csg;
-  return (object < frame.sphere_count) ? RC_HIT_SPHERE
-         : (object < first_quadric) ? RC_HIT_TRIANGLE
-         : (object < first_csg) ? RC_HIT_QUADRIC : RC_HIT_CSG;
+  index = (object < first_triangle_object) ? object
+          : (object < first_quadric_object) ? object - first_triangle_object
+          : (object < first_csg_object) ? object - first_quadric_object : object - first_csg_object;
+  return (object < first_triangle_object) ? RC_HIT_SPHERE
+         : (object < first_quadric_object) ? RC_HIT_TRIANGLE
+         : (object < first_csg_object) ? RC_HIT_QUADRIC : RC_HIT_CSG;
 }
 
 // The ray against object `object`; t as above. Kinds the scene lacks are compiled out

@@ -16,3 +16,17 @@
 #define RC_UNIT_ROUNDOFF 5.9604644775390625e-8
 #define RC_SMALLEST_NORMAL 1.17549435e-38
 #endif
+
+// min and max as the selects `a < b ? a : b` and `a > b ? a : b`, host/ref/ref_real.h's rmin
+// and rmax, for operands that are never NaN (slab distances, root pairs, error bounds).
+// GLSL's min() and max() must return the other operand when one is NaN, and llvmpipe pays
+// a NaN compare and a masked move for each (finding 11, docs/performance.md). `precise`
+// keeps NIR from folding the select back into fmin and fmax.
+real select_min(real a, real b) {
+  precise bool less = a < b;
+  return less ? a : b;
+}
+real select_max(real a, real b) {
+  precise bool greater = a > b;
+  return greater ? a : b;
+}

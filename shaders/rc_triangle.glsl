@@ -65,16 +65,22 @@ sheared_triangle shear_triangle(rvec3 o, ray_shear sh, gpu_triangle tri) {
   return st;
 }
 
+// The largest magnitude of a's components (host/ref/ref_triangle.c's rmax3 of fabs).
+real max3_abs(rvec3 a) {
+  rvec3 m = abs(a);
+  return select_max(select_max(m.x, m.y), m.z);
+}
+
 // pbrt-v4's conservative bound on the rounding error of t (shapes.cpp, IntersectTriangle).
 real triangle_t_error(sheared_triangle st, real det) {
-  real max_zt = max(max(abs(st.z.x), abs(st.z.y)), abs(st.z.z));
-  real max_xt = max(max(abs(st.x.x), abs(st.x.y)), abs(st.x.z));
-  real max_yt = max(max(abs(st.y.x), abs(st.y.y)), abs(st.y.z));
+  real max_zt = max3_abs(st.z);
+  real max_xt = max3_abs(st.x);
+  real max_yt = max3_abs(st.y);
   real delta_z = gamma_bound(3.0) * max_zt;
   real delta_x = gamma_bound(5.0) * (max_xt + max_zt);
   real delta_y = gamma_bound(5.0) * (max_yt + max_zt);
   real delta_e = 2.0 * (gamma_bound(2.0) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-  real max_e = max(max(abs(st.e.x), abs(st.e.y)), abs(st.e.z));
+  real max_e = max3_abs(st.e);
   return 3.0 * (gamma_bound(3.0) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / abs(det);
 }
 
