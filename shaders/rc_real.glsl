@@ -20,13 +20,6 @@
 // min and max as the selects `a < b ? a : b` and `a > b ? a : b`, host/ref/ref_real.h's rmin
 // and rmax, for operands that are never NaN (slab distances, root pairs, error bounds).
 // GLSL's min() and max() must return the other operand when one is NaN, and llvmpipe pays
-// a NaN compare and a masked move for each (finding 11, docs/performance.md). `precise`
-// keeps NIR from folding the select back into fmin and fmax.
-real select_min(real a, real b) {
-  precise bool less = a < b;
-  return less ? a : b;
-}
-real select_max(real a, real b) {
-  precise bool greater = a > b;
-  return greater ? a : b;
-}
+// a NaN compare and a masked move for each (finding 11, docs/performance.md).
+real select_min(real a, real b) { return a < b ? a : b; }
+real select_max(real a, real b) { return a > b ? a : b; }
