@@ -203,7 +203,7 @@ uint mesh_intervals(uint csg, gpu_quadric q, rvec3 o, rvec3 d, bool flip, uint b
       real t = triangle_crossing(o, sh, load_triangle(tri));
       if (t >= real(RC_T_FAR)) continue;
       if (n == q.mesh_crossings) {
-        crossing_blame = 1u + frame.sphere_count + frame.triangle_count + frame.quadric_count + csg;
+        crossing_blame = 1u + first_csg_object + csg;
         return 0u;
       }
       if (!budget_take(n)) return 0u;
@@ -219,7 +219,7 @@ uint mesh_intervals(uint csg, gpu_quadric q, rvec3 o, rvec3 d, bool flip, uint b
     node = b.skip;
   }
   if ((n & 1u) != 0u) {
-    crossing_blame = 1u + frame.sphere_count + frame.triangle_count + frame.quadric_count + csg;
+    crossing_blame = 1u + first_csg_object + csg;
     return 0u;
   }
   if (!budget_take(n)) return 0u;
