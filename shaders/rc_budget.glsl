@@ -1,6 +1,7 @@
 // rc_budget.glsl: the per-invocation loop budget (host/gpu/gpu_plan.h). llvmpipe ends every loop
 // after 65,535 iterations summed over the whole invocation, silently; so every loop here
-// calls budget_step() once per iteration and breaks when it returns false. Every loop
+// calls budget_step() once per iteration and breaks when it returns false (the BVH's box
+// walk takes the same step inline and tests it in its loop condition, rc_bvh.glsl). Every loop
 // means every loop: llvmpipe does not unroll even a two-iteration loop, and an uncounted
 // one once let it cut samples silently (rc_bvh.glsl). The host sizes
 // each dispatch so that the worst case stays under loop_budget (host/gpu/gpu_plan.c); if an
