@@ -47,7 +47,7 @@ real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
   if (q == 0.0) return real(RC_T_FAR);  // origin exactly at the tangent point
   precise real c = dot(f, f) - r * r;
   precise real t0 = c / q;
-  return first_root(select_min(t0, q), select_max(q, t0), t_max, side);
+  return first_root(select_min(t0, q), select_max(t0, q), t_max, side);
 }
 
 // The textbook quadratic a t^2 + b t + c = 0, a = d.d, b = 2 f.d, c = f.f - r^2: the fast

@@ -43,6 +43,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   V ref_permute_##S(V a, const int k[3]);                                                       \
   typedef struct ref_sheared_##S { V x, y, z, e; } ref_sheared_##S;                             \
   ref_sheared_##S ref_shear_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);       \
+  R ref_max3_abs_##S(V a);                                                                      \
   R ref_triangle_t_error_##S(const ref_sheared_##S *st, R det);                                 \
   R ref_enclosing_det_##S(V e);                                                                 \
   R ref_triangle_t_##S(const ref_sheared_##S *st, R det);                                       \

@@ -4,8 +4,6 @@
 
 #include "ref/ref_real.h"
 
-static real rmax3(real a, real b, real c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
-
 real REF(gamma_bound)(real n) { return (n * RC_UNIT_ROUNDOFF) / (1 - n * RC_UNIT_ROUNDOFF); }
 
 ref_shear REF(ray_shear_for)(rvec3 d) {
@@ -42,15 +40,20 @@ ref_sheared REF(shear_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri) 
   return st;
 }
 
+real REF(max3_abs)(rvec3 a) {
+  rvec3 m = RV(abs)(a);
+  return rmax(rmax(m.x, m.y), m.z);
+}
+
 real REF(triangle_t_error)(const ref_sheared *st, real det) {
-  real max_zt = rmax3(R_ABS(st->z.x), R_ABS(st->z.y), R_ABS(st->z.z));
-  real max_xt = rmax3(R_ABS(st->x.x), R_ABS(st->x.y), R_ABS(st->x.z));
-  real max_yt = rmax3(R_ABS(st->y.x), R_ABS(st->y.y), R_ABS(st->y.z));
+  real max_zt = REF(max3_abs)(st->z);
+  real max_xt = REF(max3_abs)(st->x);
+  real max_yt = REF(max3_abs)(st->y);
   real delta_z = REF(gamma_bound)(3) * max_zt;
   real delta_x = REF(gamma_bound)(5) * (max_xt + max_zt);
   real delta_y = REF(gamma_bound)(5) * (max_yt + max_zt);
   real delta_e = 2 * (REF(gamma_bound)(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-  real max_e = rmax3(R_ABS(st->e.x), R_ABS(st->e.y), R_ABS(st->e.z));
+  real max_e = REF(max3_abs)(st->e);
   return 3 * (REF(gamma_bound)(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / R_ABS(det);
 }
 

@@ -60,6 +60,7 @@ GLSL_MAP = {
     "load_transform": "transforms", "load_vertex_normals": "normals", "load_quadric": "quadrics",
     "load_csg": "csg", "load_csg_instruction": "csg_program",
     "inversesqrt": "rsqrt", "RC_OFFSET_BITS": "bits_of", "RC_OFFSET_FROM_BITS": "from_bits",
+    "select_min": "min", "select_max": "max",  # rc_real.glsl's selects: the reference's rmin, rmax
     "pixel": "px py",
 }
 SCENE_DATA = {v for k, v in GLSL_MAP.items() if k.startswith("load_")}
