@@ -60,7 +60,6 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
     // The walk has one exit, its condition (budget included): each break or return out
     // of a loop costs llvmpipe mask bookkeeping on every iteration (finding 11).
     uint leaf = 0u;
-    uint skip = 0u;
     while (node < node_count && leaf == 0u && budget_steps < loop_budget) {
       budget_steps++;
       gpu_bvh_node n = load_bvh_node(node);

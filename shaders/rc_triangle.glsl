@@ -65,7 +65,7 @@ sheared_triangle shear_triangle(rvec3 o, ray_shear sh, gpu_triangle tri) {
   return st;
 }
 
-// The largest magnitude of a's components (host/ref/ref_triangle.c's rmax3 of fabs).
+// The largest magnitude of a's components.
 real max3_abs(rvec3 a) {
   rvec3 m = abs(a);
   return select_max(select_max(m.x, m.y), m.z);

@@ -554,12 +554,12 @@ static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_b
   }
 }
 
-/* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
- * first batch), run the shader between two timestamps, and bring the status back. */
 /* Workgroups along one side of a tile: the dispatch's size, which the row order
  * (push.row_stride) must be a permutation of. */
 static uint32_t group_count(uint32_t pixels, uint32_t local) { return (pixels + local - 1) / local; }
 
+/* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
+ * first batch), run the shader between two timestamps, and bring the status back. */
 static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *ms) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
