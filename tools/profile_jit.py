@@ -10,8 +10,10 @@ fetch as an out-of-line helper, the shader as one function) and per loop (backwa
 jumps) of the largest function, with the operations that name a loop's work (vsqrtps: a
 sphere test; vdivps: triangle and box slopes; calls: texel fetches).
 
-Usage: tools/profile_jit.py [--top N] -- vkraycast render SCENE -o OUT [options]
-(run it with --repeat 4 or more so that the steady state outweighs start-up).
+Usage: tools/profile_jit.py [--top N] [--annotate K] -- vkraycast render SCENE -o OUT [options]
+(run it with --repeat 4 or more so that the steady state outweighs start-up). --annotate K
+prints the K-th hottest innermost loop (1 = hottest) instruction by instruction with its
+samples: what finding 11 in docs/performance.md was read from.
 Needs perf (Debian linux-perf), objdump and permission to read the process's memory
 (root, or ptrace_scope 0).
 """
@@ -90,9 +92,13 @@ def describe(insns):
 
 def main():
     argv = sys.argv[1:]
-    top = 12
-    if argv[:1] == ["--top"]:
-        top, argv = int(argv[1]), argv[2:]
+    top, annotate = 12, 0
+    while argv[:1] in (["--top"], ["--annotate"]):
+        if argv[0] == "--top":
+            top = int(argv[1])
+        else:
+            annotate = int(argv[1])
+        argv = argv[2:]
     if argv[:1] == ["--"]:
         argv = argv[1:]
     if not argv:
@@ -123,15 +129,20 @@ def main():
         watcher.join()
     if proc.returncode != 0:
         sys.exit(f"profile_jit: the command failed (exit {proc.returncode}):\n{err}")
-    ips = collections.Counter()
-    script = subprocess.run(["perf", "script", "-i", data, "-F", "ip"], capture_output=True, text=True).stdout
-    for line in script.split():
-        ips[int(line, 16)] += 1
+    ips, dsos = collections.Counter(), collections.Counter()
+    script = subprocess.run(["perf", "script", "-i", data, "-F", "ip,dso"], capture_output=True, text=True).stdout
+    for line in script.splitlines():
+        fields = line.split()
+        if fields:
+            ips[int(fields[0], 16)] += 1
+            dsos[os.path.basename(fields[1].strip("()")) if len(fields) > 1 else "?"] += 1
     total = sum(ips.values())
     regions = [(lo, hi, disassemble(lo, name)) for lo, (hi, name) in sorted(dumps.items())]
     in_jit = sum(n for ip, n in ips.items() if any(lo <= ip < hi for lo, hi, _ in regions))
     print(f"samples: {total}; in JIT code: {in_jit} ({100.0 * in_jit / max(total, 1):.1f} %), "
           f"{len(regions)} region(s), {sum(hi - lo for lo, hi, _ in regions)} bytes")
+    # Outside the JIT code: the driver, the kernel, the host (BVH build, parsing, writing).
+    print("elsewhere: " + ", ".join(f"{d} {100.0 * n / max(total, 1):.1f} %" for d, n in dsos.most_common(6)))
     funcs = []
     for _, _, insns in regions:
         for f in split_functions(insns):
@@ -169,6 +180,14 @@ def main():
             print(f"| {'. ' * len(stack)}{body[j][0]:#x}..{body[i][0]:#x} | {i - j + 1} | {n} | "
                   f"{100.0 * n / max(total, 1):.1f} % | {describe(body[j : i + 1])} |")
         stack.append((j, i))
+    if annotate:
+        inner = [(j, i) for j, i in loops if not any(j <= j2 and i2 <= i and (j2, i2) != (j, i) for j2, i2 in loops)]
+        inner.sort(key=lambda x: -sum(ips.get(a, 0) for a, _ in body[x[0] : x[1] + 1]))
+        if annotate <= len(inner):
+            j, i = inner[annotate - 1]
+            print(f"\ninnermost loop {annotate} by samples, {body[j][0]:#x}..{body[i][0]:#x}:")
+            for a, text in body[j : i + 1]:
+                print(f"{ips.get(a, 0):6d}  {a:#x}  {text}")
 
 
 if __name__ == "__main__":
