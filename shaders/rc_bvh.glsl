@@ -91,9 +91,8 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
 #if RC_QUADRICS
   if (!has_kind(RC_KIND_PLANES)) return false;  // compiled out where the scene has none
   uint first = frame.quadric_count - frame.plane_count;  // in the quadric array
-  uint object_base = frame.sphere_count + frame.triangle_count;
   if (!budget_take(frame.plane_count)) {
-    budget_blame = 1u + object_base + first;
+    budget_blame = 1u + first_quadric_object + first;
     return false;
   }
   // intersect_plane itself, not intersect_object: a SIMD shader inlines everything, and
@@ -103,7 +102,7 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   for (uint k = first; k < frame.quadric_count; k++) {
     real t = intersect_plane(load_quadric(k), o, d, any ? t_max : h.t);
     if (any && t < real(RC_T_FAR)) return true;
-    consider_hit(object_base + k, t, 0.0, rvec3(0.0), csg_code(k, 0u, false, false), h);
+    consider_hit(first_quadric_object + k, t, 0.0, rvec3(0.0), csg_code(k, 0u, false, false), h);
   }
 #endif
   return false;

@@ -65,11 +65,11 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
 bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
   const gpu_frame *f = sc->frame;
   if (f->plane_count == 0) return false;
-  uint32_t first = f->quadric_count - f->plane_count, object_base = f->sphere_count + f->triangle_count;
+  uint32_t first = f->quadric_count - f->plane_count, first_quadric_object = f->sphere_count + f->triangle_count;
   for (uint32_t k = first; k < f->quadric_count; k++) {
     real t = REF(intersect_plane)(&sc->quadrics[k], o, d, any ? t_max : h->t);
     if (any && t < (real)RC_T_FAR) return true;
-    REF(consider_hit)(sc, object_base + k, t, 0, RV(make)(0, 0, 0), REF(csg_code)(k, 0, false, false), h);
+    REF(consider_hit)(sc, first_quadric_object + k, t, 0, RV(make)(0, 0, 0), REF(csg_code)(k, 0, false, false), h);
   }
   return false;
 }
