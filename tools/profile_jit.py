@@ -129,20 +129,25 @@ def main():
         watcher.join()
     if proc.returncode != 0:
         sys.exit(f"profile_jit: the command failed (exit {proc.returncode}):\n{err}")
-    ips, dsos = collections.Counter(), collections.Counter()
+    ips, dso_of = collections.Counter(), {}
     script = subprocess.run(["perf", "script", "-i", data, "-F", "ip,dso"], capture_output=True, text=True).stdout
     for line in script.splitlines():
         fields = line.split()
         if fields:
-            ips[int(fields[0], 16)] += 1
-            dsos[os.path.basename(fields[1].strip("()")) if len(fields) > 1 else "?"] += 1
+            ip = int(fields[0], 16)
+            ips[ip] += 1
+            dso_of[ip] = os.path.basename(fields[1].strip("()")) if len(fields) > 1 else "?"
     total = sum(ips.values())
     regions = [(lo, hi, disassemble(lo, name)) for lo, (hi, name) in sorted(dumps.items())]
-    in_jit = sum(n for ip, n in ips.items() if any(lo <= ip < hi for lo, hi, _ in regions))
+    elsewhere = collections.Counter()
+    for ip, n in ips.items():
+        if not any(lo <= ip < hi for lo, hi, _ in regions):
+            elsewhere[dso_of[ip]] += n
+    in_jit = total - sum(elsewhere.values())
     print(f"samples: {total}; in JIT code: {in_jit} ({100.0 * in_jit / max(total, 1):.1f} %), "
           f"{len(regions)} region(s), {sum(hi - lo for lo, hi, _ in regions)} bytes")
     # Outside the JIT code: the driver, the kernel, the host (BVH build, parsing, writing).
-    print("elsewhere: " + ", ".join(f"{d} {100.0 * n / max(total, 1):.1f} %" for d, n in dsos.most_common(6)))
+    print("elsewhere: " + ", ".join(f"{d} {100.0 * n / max(total, 1):.1f} %" for d, n in elsewhere.most_common(6)))
     funcs = []
     for _, _, insns in regions:
         for f in split_functions(insns):
@@ -183,7 +188,9 @@ def main():
     if annotate:
         inner = [(j, i) for j, i in loops if not any(j <= j2 and i2 <= i and (j2, i2) != (j, i) for j2, i2 in loops)]
         inner.sort(key=lambda x: -sum(ips.get(a, 0) for a, _ in body[x[0] : x[1] + 1]))
-        if annotate <= len(inner):
+        if annotate > len(inner):
+            print(f"\n--annotate {annotate}: the shader has {len(inner)} innermost loops")
+        else:
             j, i = inner[annotate - 1]
             print(f"\ninnermost loop {annotate} by samples, {body[j][0]:#x}..{body[i][0]:#x}:")
             for a, text in body[j : i + 1]:
