@@ -8,20 +8,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* SAH bins per axis. Bins split a node's centroid bounds evenly, and a split that bins
- * cannot place is never tried: a floor under a mesh (every benchmark scene,
- * tools/mesh_scene.sh) has its centroids at the mesh's lowest point, and with 16 bins the
- * mesh's lowest triangles shared the floor's bin near the root, so their boxes were as
- * wide as the floor at the levels every ray walks. The top BINS_FINE_LEVELS levels (at
- * most 15 nodes), where large and small objects are still together, get a quarter of
- * their objects' count in bins, clamped to [BINS_MIN, BINS_MAX]; deeper nodes are
- * compact and keep 16. Box steps per ray counted in the CPU reference (1024x768, 1 spp,
+/* SAH bins per axis: a quarter of the node's objects, clamped to [BINS_MIN, BINS_MAX].
+ * Bins split a node's centroid bounds evenly, and a split that bins cannot place is never
+ * tried: a floor under a mesh (every benchmark scene, tools/mesh_scene.sh) has its
+ * centroids at the mesh's lowest point, and with a fixed 16 bins the mesh's lowest
+ * triangles shared the floor's bin, so their boxes were as wide as the floor at the
+ * levels every ray walks. Box steps per ray counted in the CPU reference (1024x768, 1 spp,
  * primary and shadow rays), 16 bins -> this rule: mesh 1k 13.82 -> 12.23, 100k 23.00 ->
- * 21.21, 1M 29.61 -> 26.16, spider 11.02 -> 8.82, 2CylinderEngine
- * 16.26 -> 12.59, mesh.json 20.06 -> 18.40, Wuson 12.72 -> 11.01; the sphere grid and
- * the other example scenes unchanged. The same rule at every level gained at most 0.2
- * more steps and cost the 1M mesh's build 17 % (docs/performance.md, finding 12). */
-#define BINS_FINE_LEVELS 4u
+ * 21.06, 1M 29.61 -> 26.04, Wuson 12.72 -> 10.99, spider 11.02 -> 8.82, 2CylinderEngine
+ * 16.26 -> 12.38; the sphere grid and every example scene but mesh.json (20.06 -> 18.22)
+ * unchanged. A node of under 64 objects keeps 16 bins, so small trees are what they
+ * were, and the build time did not move (docs/performance.md, finding 12). */
 #define BINS_MIN 16
 #define BINS_MAX 1024
 
@@ -96,11 +93,8 @@ static uint32_t new_node(builder *b) {
  * array, and reading each object once a level instead of three times took the 1M-triangle
  * mesh's build from 1,827 to 1,658 ms (medians of 3; no change at 100k). The tree is the
  * same, byte for byte. */
-static int choose_split(builder *b, uint32_t first, uint32_t count, uint32_t depth, const box *bounds, int *axis_out,
-                        float *pos_out) {
-  const int bins = depth >= BINS_FINE_LEVELS || count / 4 < BINS_MIN ? BINS_MIN
-                   : count / 4 > BINS_MAX                              ? BINS_MAX
-                                                                       : (int)(count / 4);
+static int choose_split(builder *b, uint32_t first, uint32_t count, const box *bounds, int *axis_out, float *pos_out) {
+  const int bins = count / 4 < BINS_MIN ? BINS_MIN : count / 4 > BINS_MAX ? BINS_MAX : (int)(count / 4);
   box cb = empty_box();
   for (uint32_t i = first; i < first + count; i++) grow_point(&cb, b->info[b->refs[i]].centroid);
   double best = (double)count; /* cost of a leaf, relative to one object test */
@@ -188,7 +182,7 @@ static uint32_t build(builder *b, uint32_t first, uint32_t count, uint32_t depth
   uint32_t mid = first;
   if (count <= 1) {
     mid = first;
-  } else if (!must_halve && choose_split(b, first, count, depth, &bounds, &axis, &pos) >= 0) {
+  } else if (!must_halve && choose_split(b, first, count, &bounds, &axis, &pos) >= 0) {
     uint32_t i = first, j = first + count;
     while (i < j) {
       if (b->info[b->refs[i]].centroid[axis] < pos) {
