@@ -13,7 +13,8 @@ rvec3 safe_inverse(rvec3 d) {
 
 // Entry distance of the ray into the box [lo, hi] if it enters before t_max, else
 // RC_T_FAR. The far distance is scaled up by RC_BOX_FAR_SCALE so rounding never culls a
-// touched box.
+// touched box, and t_max by RC_BOX_NEAR_SCALE so rounding never culls an object that
+// ties with the hit t_max came from.
 real intersect_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   precise rvec3 t0 = (lo - o) * inv_d;
   precise rvec3 t1 = (hi - o) * inv_d;
@@ -21,7 +22,7 @@ real intersect_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
                             select_max(select_min(t0.z, t1.z), 0.0));
   real t_exit = select_min(select_min(select_max(t0.x, t1.x), select_max(t0.y, t1.y)), select_max(t0.z, t1.z)) *
                 real(RC_BOX_FAR_SCALE);
-  return (t_enter <= t_exit && t_enter <= t_max) ? t_enter : real(RC_T_FAR);
+  return (t_enter <= t_exit && t_enter <= t_max * real(RC_BOX_NEAR_SCALE)) ? t_enter : real(RC_T_FAR);
 }
 
 // Tests the objects of one leaf; true when `any` and one of them blocks. The caller has

@@ -108,6 +108,15 @@ typedef struct gpu_csg gpu_csg;
 /* pbrt's conservative slab test: the far distance grows by 1 + 2 gamma(3) (f32) so that
  * rounding in the box test never culls a box the ray touches (Ize, JCGT 2(2), 2013). */
 #define RC_BOX_FAR_SCALE 1.0000003576278687
+/* The near cull: a box is skipped only when it is entered beyond the nearest hit so far
+ * (or a shadow ray's t_max) times 1 + 2^-19, so that every object that can tie with or
+ * undercut that hit after rounding is still tested and the tie rule sees it: the BVH
+ * then picks what brute force picks (docs/numerics.md §4, tests/reliability/test_ties.sh).
+ * Coplanar neighbours, where ties happen, get t from depths of one sign with at most
+ * gamma(9) relative error, the slab entry has gamma(3), and (1 + gamma(3)) / (1 - gamma(9))
+ * < 1 + 13 u in f32 (u = 2^-24); 2^-19 is 32 u. Exact in f32 and f64; RC_T_FAR times it
+ * stays finite. */
+#define RC_BOX_NEAR_SCALE 1.0000019073486328
 
 /* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
  * in total (tests/gpu/test_gpu_render.c renders a scene past it), where an "invocation"

@@ -15,7 +15,7 @@ real REF(intersect_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   rvec3 t1 = RV(mul)(RV(sub)(hi, o), inv_d);
   real t_enter = rmax(rmax(rmin(t0.x, t1.x), rmin(t0.y, t1.y)), rmax(rmin(t0.z, t1.z), 0));
   real t_exit = rmin(rmin(rmax(t0.x, t1.x), rmax(t0.y, t1.y)), rmax(t0.z, t1.z)) * (real)RC_BOX_FAR_SCALE;
-  return (t_enter <= t_exit && t_enter <= t_max) ? t_enter : (real)RC_T_FAR;
+  return (t_enter <= t_exit && t_enter <= t_max * (real)RC_BOX_NEAR_SCALE) ? t_enter : (real)RC_T_FAR;
 }
 
 bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o, rvec3 d, const ref_shear *sh, bool any,
