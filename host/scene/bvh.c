@@ -8,7 +8,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define BINS 16
+/* SAH bins per axis. Bins split a node's centroid bounds evenly, and a split that bins
+ * cannot place is never tried: a floor under a mesh (every benchmark scene,
+ * tools/mesh_scene.sh) has its centroids at the mesh's lowest point, and with 16 bins the
+ * mesh's lowest triangles shared the floor's bin near the root, so their boxes were as
+ * wide as the floor at the levels every ray walks. The top BINS_FINE_LEVELS levels (at
+ * most 15 nodes), where large and small objects are still together, get a quarter of
+ * their objects' count in bins, clamped to [BINS_MIN, BINS_MAX]; deeper nodes are
+ * compact and keep 16. Box steps per ray counted in the CPU reference (1024x768, 1 spp,
+ * f32, primary and shadow rays), 16 bins -> this rule: mesh 1k 13.82 -> 12.23, 100k
+ * 23.00 -> 21.21, 1M 29.61 -> 26.16, spider 11.02 -> 8.82, 2CylinderEngine 16.29 ->
+ * 12.62, mesh.json 20.06 -> 18.40, Wuson 12.72 -> 11.01; the sphere grid and
+ * the other example scenes unchanged. The same rule at every level gained at most 0.2
+ * more steps and cost the 1M mesh's build 17 % (docs/performance.md, finding 12). */
+#define BINS_FINE_LEVELS 4u
+#define BINS_MIN 16
+#define BINS_MAX 1024
 
 typedef struct {
   float lo[3], hi[3];
@@ -26,9 +41,18 @@ typedef struct {
   uint32_t left, right;  /* interior (count 0) */
 } build_node;
 
+/* choose_split's working arrays, one set per build (96 KiB: off the stack). */
+typedef struct {
+  box bounds[3][BINS_MAX];
+  uint32_t count[3][BINS_MAX];
+  double left_area[BINS_MAX];
+  uint32_t left_count[BINS_MAX];
+} bin_scratch;
+
 typedef struct {
   prim_info *info;
   uint32_t *refs;
+  bin_scratch *bins;
   build_node *nodes;
   uint32_t node_count, node_cap;
   uint32_t depth, leaves, max_leaf;
@@ -72,7 +96,11 @@ static uint32_t new_node(builder *b) {
  * array, and reading each object once a level instead of three times took the 1M-triangle
  * mesh's build from 1,827 to 1,658 ms (medians of 3; no change at 100k). The tree is the
  * same, byte for byte. */
-static int choose_split(builder *b, uint32_t first, uint32_t count, const box *bounds, int *axis_out, float *pos_out) {
+static int choose_split(builder *b, uint32_t first, uint32_t count, uint32_t depth, const box *bounds, int *axis_out,
+                        float *pos_out) {
+  const int bins = depth >= BINS_FINE_LEVELS || count / 4 < BINS_MIN ? BINS_MIN
+                   : count / 4 > BINS_MAX                              ? BINS_MAX
+                                                                       : (int)(count / 4);
   box cb = empty_box();
   for (uint32_t i = first; i < first + count; i++) grow_point(&cb, b->info[b->refs[i]].centroid);
   double best = (double)count; /* cost of a leaf, relative to one object test */
@@ -81,20 +109,23 @@ static int choose_split(builder *b, uint32_t first, uint32_t count, const box *b
   double parent_area = area(bounds);
   float lo[3], extent[3];
   bool usable[3];
-  box bin_box[3][BINS];
-  uint32_t bin_count[3][BINS] = {{0}};
+  box(*bin_box)[BINS_MAX] = b->bins->bounds;
+  uint32_t(*bin_count)[BINS_MAX] = b->bins->count;
   for (int axis = 0; axis < 3; axis++) {
     lo[axis] = cb.lo[axis];
     extent[axis] = cb.hi[axis] - cb.lo[axis];
     usable[axis] = extent[axis] > 0;
-    for (int i = 0; i < BINS; i++) bin_box[axis][i] = empty_box();
+    for (int i = 0; i < bins; i++) {
+      bin_box[axis][i] = empty_box();
+      bin_count[axis][i] = 0;
+    }
   }
   for (uint32_t i = first; i < first + count; i++) {
     const prim_info *p = &b->info[b->refs[i]];
     for (int axis = 0; axis < 3; axis++) {
       if (!usable[axis]) continue;
-      int bin = (int)((p->centroid[axis] - lo[axis]) / extent[axis] * BINS);
-      if (bin >= BINS) bin = BINS - 1;
+      int bin = (int)((p->centroid[axis] - lo[axis]) / extent[axis] * bins);
+      if (bin >= bins) bin = bins - 1;
       if (bin < 0) bin = 0;
       bin_count[axis][bin]++;
       grow(&bin_box[axis][bin], &p->bounds);
@@ -103,11 +134,11 @@ static int choose_split(builder *b, uint32_t first, uint32_t count, const box *b
   for (int axis = 0; axis < 3; axis++) {
     if (!usable[axis]) continue;
     /* Sweep: area and count of everything left / right of each boundary. */
-    double left_area[BINS];
-    uint32_t left_count[BINS];
+    double *left_area = b->bins->left_area;
+    uint32_t *left_count = b->bins->left_count;
     box acc = empty_box();
     uint32_t n = 0;
-    for (int i = 0; i < BINS - 1; i++) {
+    for (int i = 0; i < bins - 1; i++) {
       grow(&acc, &bin_box[axis][i]);
       n += bin_count[axis][i];
       left_area[i] = area(&acc);
@@ -115,7 +146,7 @@ static int choose_split(builder *b, uint32_t first, uint32_t count, const box *b
     }
     acc = empty_box();
     n = 0;
-    for (int i = BINS - 1; i > 0; i--) {
+    for (int i = bins - 1; i > 0; i--) {
       grow(&acc, &bin_box[axis][i]);
       n += bin_count[axis][i];
       if (left_count[i - 1] == 0 || n == 0) continue;
@@ -123,7 +154,7 @@ static int choose_split(builder *b, uint32_t first, uint32_t count, const box *b
       if (cost < best) {
         best = cost;
         best_axis = axis;
-        best_pos = lo[axis] + extent[axis] * (float)i / BINS;
+        best_pos = lo[axis] + extent[axis] * (float)i / (float)bins;
       }
     }
   }
@@ -157,7 +188,7 @@ static uint32_t build(builder *b, uint32_t first, uint32_t count, uint32_t depth
   uint32_t mid = first;
   if (count <= 1) {
     mid = first;
-  } else if (!must_halve && choose_split(b, first, count, &bounds, &axis, &pos) >= 0) {
+  } else if (!must_halve && choose_split(b, first, count, depth, &bounds, &axis, &pos) >= 0) {
     uint32_t i = first, j = first + count;
     while (i < j) {
       if (b->info[b->refs[i]].centroid[axis] < pos) {
@@ -384,8 +415,10 @@ static void object_boxes(const rc_packed_scene *p, prim_info *info) {
  * the references written are base + ref. */
 static rc_status append_tree(rc_packed_scene *p, prim_info *info, uint32_t *refs, uint32_t m, uint32_t base,
                              builder *b) {
-  *b = (builder){.info = info, .refs = refs};
-  uint32_t root = build(b, 0, m, 0);
+  *b = (builder){.info = info, .refs = refs, .bins = malloc(sizeof(bin_scratch))};
+  uint32_t root = b->bins ? build(b, 0, m, 0) : UINT32_MAX;
+  free(b->bins);
+  b->bins = NULL;
   if (root == UINT32_MAX) {
     free(b->nodes);
     return RC_ERR_OUT_OF_MEMORY;

@@ -5,8 +5,9 @@
  * stack (rc_bvh.glsl, ref/ref_bvh.c).
  *
  * Build: top-down binned SAH (Wald, "On fast Construction of SAH-based Bounding Volume
- * Hierarchies", RT 2007): 16 centroid bins per axis, all three axes tried, cost = 1 per
- * node visit + 1 per object test weighted by the children's surface areas; a node
+ * Hierarchies", RT 2007): 16 to 1024 centroid bins per axis (a quarter of the node's
+ * objects, bvh.c says why), all three axes tried, cost = 1 per node visit + 1 per object
+ * test weighted by the children's surface areas; a node
  * becomes a leaf when splitting costs more than testing its objects (at most 8), and
  * below RC_BVH_MAX_DEPTH - log2(n) levels the split falls back to halving by count so
  * that the tree depth (and the build's recursion) stays bounded. */
