@@ -181,13 +181,16 @@ static char *sphere_scene(int rows, bool floor) {
 /* The tree's surface-area cost (MacDonald and Booth 1990) in absolute area units: each
  * node's box area for its visit, times its object count at a leaf. Divided by a box's
  * area, it is the expected box and object tests of a ray that enters that box. */
+static double node_area(const gpu_bvh_node *n) {
+  double dx = (double)n->hi.x - n->lo.x, dy = (double)n->hi.y - n->lo.y, dz = (double)n->hi.z - n->lo.z;
+  return 2 * (dx * dy + dy * dz + dz * dx);
+}
+
 static double tree_cost(const rc_packed_scene *p) {
   double cost = 0;
   for (uint32_t i = 0; i < p->frame.bvh_node_count; i++) {
     const gpu_bvh_node *n = &p->bvh_nodes[i];
-    double dx = (double)n->hi.x - n->lo.x, dy = (double)n->hi.y - n->lo.y, dz = (double)n->hi.z - n->lo.z;
-    double area = 2 * (dx * dy + dy * dz + dz * dx);
-    cost += n->leaf ? area * (double)(n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u)) : area;
+    cost += n->leaf ? node_area(n) * (double)(n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u)) : node_area(n);
   }
   return cost;
 }
@@ -202,9 +205,7 @@ static double build_cost(int rows, bool floor, double *root_area) {
     if (rc_scene_pack(&s, &p) == RC_OK) {
       if (rc_bvh_build(&p, true, &stats) == RC_OK) {
         cost = tree_cost(&p);
-        const gpu_bvh_node *r = &p.bvh_nodes[0];
-        double dx = (double)r->hi.x - r->lo.x, dy = (double)r->hi.y - r->lo.y, dz = (double)r->hi.z - r->lo.z;
-        *root_area = 2 * (dx * dy + dy * dz + dz * dx);
+        *root_area = node_area(&p.bvh_nodes[0]);
       }
       rc_packed_scene_free(&p);
     }
