@@ -333,9 +333,22 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
     vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
     ctx->memory_priority = prio.memoryPriority;
   }
-  const char *dev_ext[2];
+  /* Pageable device-local memory (which needs the priorities) lets the driver move the
+   * lowest-priority allocations out of VRAM under pressure rather than fail; NVIDIA's best
+   * practices ask for it wherever the driver offers it (seen on an H100, docs/porting.md). */
+  VkPhysicalDevicePageableDeviceLocalMemoryFeaturesEXT pageable = {
+      .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PAGEABLE_DEVICE_LOCAL_MEMORY_FEATURES_EXT};
+  const char *pageable_ext = VK_EXT_PAGEABLE_DEVICE_LOCAL_MEMORY_EXTENSION_NAME;
+  if (ctx->memory_priority && has_extension(ctx->physical, pageable_ext)) {
+    VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &pageable};
+    vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
+    ctx->pageable_memory = pageable.pageableDeviceLocalMemory;
+  }
+  if (ctx->pageable_memory) prio.pNext = &pageable;
+  const char *dev_ext[3];
   uint32_t dev_ext_count = 0;
   if (ctx->memory_priority) dev_ext[dev_ext_count++] = prio_ext;
+  if (ctx->pageable_memory) dev_ext[dev_ext_count++] = pageable_ext;
   /* The specification requires it enabled wherever a device lists it (MoltenVK). */
   if (has_extension(ctx->physical, "VK_KHR_portability_subset")) dev_ext[dev_ext_count++] = "VK_KHR_portability_subset";
   VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
@@ -346,6 +359,9 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
                              .pQueueCreateInfos = &q,
                              .pEnabledFeatures = &enabled};
   RC_VK_TRY(vkCreateDevice(ctx->physical, &info, NULL, &ctx->device));
+  if (ctx->pageable_memory)
+    ctx->set_memory_priority =
+        (PFN_vkSetDeviceMemoryPriorityEXT)vkGetDeviceProcAddr(ctx->device, "vkSetDeviceMemoryPriorityEXT");
   vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
   VkCommandPoolCreateInfo pool = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
                                   .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,

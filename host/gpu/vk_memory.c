@@ -42,6 +42,10 @@ static rc_status new_block(rc_vk_ctx *ctx, VkDeviceSize size, uint32_t type, rc_
   *why = r;
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) return RC_ERR_OUT_OF_MEMORY;
   RC_VK_TRY(r);
+  /* With pageable device-local memory the driver pages by the priority set through
+   * vkSetDeviceMemoryPriorityEXT (NVIDIA's best practices check that it was set before
+   * the memory is bound); the same value as at allocation. */
+  if (ctx->set_memory_priority) ctx->set_memory_priority(ctx->device, memory, priority(use));
   struct rc_mem_block *b = calloc(1, sizeof *b);
   if (!b) {
     vkFreeMemory(ctx->device, memory, NULL);

@@ -80,13 +80,19 @@ done
 # assertion flaky): the adaptive model gets its dispatch times injected
 # (VKRAYCAST_FAULT=dispatch-ms:OVERHEAD:PER_PIXEL_SAMPLE), and lavapipe's default is
 # checked by counts. The planner itself is unit-tested in tests/unit/test_tiles.c.
-# 1. lavapipe (a CPU device, no watchdog) by default: one tile, the fewest dispatches.
+# 1. lavapipe (a CPU device, no watchdog) by default: one tile, the fewest dispatches. A
+# GPU (tests configured for one, docs/porting.md) gets the 100 ms budget; how it splits
+# the frame then follows its measured times, which no test asserts.
 "$bin" render "$scenes/showcase.json" -o "$work/one.exr" --width 640 --height 400 --quiet --stats-json "$work/one.json"
 t=$(num tiles "$work/one.json") d=$(num dispatches "$work/one.json") b=$(num batch_samples "$work/one.json")
 spp=$(num samples_per_pixel "$work/one.json") budget=$(num tile_budget_ms "$work/one.json")
-check "CPU device: no time budget by default" "$( [[ $budget == 0 ]] && echo ok || echo "tile_budget_ms $budget")"
-check "CPU device: one tile" "$( ((t == 1)) && echo ok || echo "$t tiles")"
-check "CPU device: one dispatch per batch" "$( ((d == (spp + b - 1) / b)) && echo ok || echo "$d dispatches for $spp spp in batches of $b")"
+if [[ $(sed -n 's/.*"device_type":[[:space:]]*"\([^"]*\)".*/\1/p' "$work/one.json") == cpu ]]; then
+  check "CPU device: no time budget by default" "$( [[ $budget == 0 ]] && echo ok || echo "tile_budget_ms $budget")"
+  check "CPU device: one tile" "$( ((t == 1)) && echo ok || echo "$t tiles")"
+  check "CPU device: one dispatch per batch" "$( ((d == (spp + b - 1) / b)) && echo ok || echo "$d dispatches for $spp spp in batches of $b")"
+else
+  check "GPU: a 100 ms budget by default" "$( [[ $budget == 100 ]] && echo ok || echo "tile_budget_ms $budget")"
+fi
 # 2. An explicit budget rules on any device: 40 ms against an injected 8 ms per dispatch
 # plus 0.5 us per pixel-sample (the whole frame: 8 + 128 ms x samples).
 VKRAYCAST_FAULT=dispatch-ms:8:0.0005 "$bin" render "$scenes/showcase.json" -o "$work/adaptive.exr" --width 640 \
