@@ -28,9 +28,9 @@ typedef struct {
   const char *region_text, *shard_text; /* --region, --shard */
   uint32_t width, height, spp, repeat, threads, perturb, band_renders, tile, plan_budget;
   int device, tile_budget_ms; /* -1: the default */
-  bool quiet, srgb, staging, allow_outside_paths;
+  bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
-  int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, reflection_depth, shadows,
+  int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
       scene_buffers, pipeline;
   double offset_epsilon; /* 0: the scene's */
   /* derived once parsed */
@@ -66,6 +66,9 @@ static const rc_option render_options[] = {
      .help = "bvh (default) or none: brute force over every object, for comparison"},
     {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
      .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
+    {"--flush-subnormals", NULL, RC_OPT_FLAG, ARG(flush_subnormals),
+     .help = "cpu backend: flush subnormal floats to zero, as GPUs may in f32\n"
+             "(docs/numerics.md §1)"},
     {"--device", NULL, RC_OPT_INT, ARG(device), "N", 0, 1000,
      .help = "Vulkan device index (see `vkraycast devices`); default: discrete >\n"
              "integrated > virtual > CPU"},
@@ -107,6 +110,8 @@ static const rc_option render_options[] = {
      .help = "the epsilon strategy's offset in scene units (default 1e-4)"},
     {"--camera-relative", NULL, RC_OPT_CHOICE, ARG(camera_relative), "B", .choices = off_on,
      .help = "on (default) or off: positions relative to the eye before f32 rounding"},
+    {"--rescale", NULL, RC_OPT_CHOICE, ARG(rescale), "B", .choices = off_on,
+     .help = "on (default) or off: pack a scene far from unit size in power-of-two units"},
     {"--reflection-depth", NULL, RC_OPT_INT, ARG(reflection_depth), "N", 0, RC_MAX_REFLECTION_DEPTH,
      .help = "mirror bounces"},
     {"--shadows", NULL, RC_OPT_CHOICE, ARG(shadows), "B", .choices = off_on,
@@ -218,7 +223,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->device = a->tile_budget_ms = -1;
   a->repeat = 1;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
-      a->camera_relative = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
+      a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -248,6 +253,11 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   if (a->shard_text && !rc_shard_parse(a->shard_text, &a->shard_index, &a->shard_count, &why)) {
     snprintf(msg, sizeof msg, "--shard %s: %s", a->shard_text, why);
     rc_usage_error(&rc_render_spec, msg);
+    return RC_ERR_USAGE;
+  }
+  if (a->flush_subnormals && (!a->cpu || !rc_ref_can_flush_subnormals())) {
+    rc_usage_error(&rc_render_spec, a->cpu ? "--flush-subnormals: this CPU has no flush-to-zero mode the reference knows"
+                                           : "--flush-subnormals is for --backend cpu: a GPU's mode is its own");
     return RC_ERR_USAGE;
   }
   if (a->band_renders && a->perturb) {
@@ -286,14 +296,17 @@ static bool truncate_output(const render_args *a, const rc_scene *s) {
   return a->quantize < 0 ? s->truncate_8bit : a->quantize == 1;
 }
 
-static rc_status open_output(const render_args *a, const rc_scene *scene, rc_output **out) {
+static rc_status open_output(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
+                             rc_output **out) {
   rc_image_meta meta[RC_PART_FIELDS];
   char text[RC_PART_FIELDS][64];
   int n = rc_part_meta(&a->part, meta, text);
   const rc_region r = a->part.region;
-  return rc_output_open(a->output, a->aov, rc_region_width(r), rc_region_height(r),
+  rc_status st = rc_output_open(a->output, a->aov, rc_region_width(r), rc_region_height(r),
                         srgb_output(a, scene) ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR, truncate_output(a, scene),
                         meta, n, out);
+  if (st == RC_OK) rc_output_set_length_unit(*out, 1.0 / packed->scale);
+  return st;
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -306,7 +319,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   if (!gpu_ms || !wall_ms) st = RC_ERR_OUT_OF_MEMORY;
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
     bool last = i + 1 == a->repeat;
-    if (last) st = open_output(a, scene, out);
+    if (last) st = open_output(a, scene, packed, out);
     if (st == RC_OK) st = rc_gpu_renderer_render(r, last ? rc_output_band : rc_output_discard, last ? *out : NULL, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
     wall_ms[i] = rs->gpu.render_ms;
@@ -331,7 +344,7 @@ static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uin
 
 static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
                                    rc_render_stats *rs, rc_output **out) {
-  rc_ref_options opts = {.f64 = a->gpu.f64, .threads = a->threads};
+  rc_ref_options opts = {.f64 = a->gpu.f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals};
   const rc_region region = a->part.region;
   uint32_t w = rc_region_width(region), h = rc_region_height(region);
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
@@ -343,7 +356,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
     bool last = i + 1 == a->repeat;
     rc_ref_stats fs = {0};
-    if (last) st = open_output(a, scene, out);
+    if (last) st = open_output(a, scene, packed, out);
     for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += band) {
       uint32_t rows = h - y0 < band ? h - y0 : band;
       rc_region part = {region.x0, region.y0 + y0, region.x1, region.y0 + y0 + rows};
@@ -374,6 +387,7 @@ static void apply_quality_overrides(const render_args *a, rc_scene *s) {
   if (a->triangle >= 0) q->triangle = (uint32_t)a->triangle;
   if (a->offset >= 0) q->offset = (uint32_t)a->offset;
   if (a->camera_relative >= 0) q->camera_relative = a->camera_relative == 1;
+  if (a->rescale >= 0) q->rescale = a->rescale == 1;
   if (a->offset_epsilon > 0) q->offset_epsilon = a->offset_epsilon;
   if (a->reflection_depth >= 0) s->reflection_depth = (uint32_t)a->reflection_depth;
   if (a->shadows >= 0) q->shadows = a->shadows == 1;
@@ -587,6 +601,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   rs.triangle_formula = rc_triangle_formula_names[scene->quality.triangle];
   rs.shadow_offset = rc_offset_names[scene->quality.offset];
   rs.camera_relative = scene->quality.camera_relative;
+  rs.packing_scale = packed.scale;
   char driver[600] = "";
   if (st == RC_OK && a->cpu) {
     rs.backend = "cpu";

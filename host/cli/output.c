@@ -38,6 +38,7 @@ struct rc_output {
   rc_image_writer *image, *aov, *stats;
   const char *image_path, *aov_path, *stats_path;
   uint32_t width;
+  double length_unit; /* the AOV depth's scene units per packed unit */
   float *aov_band; /* rows * width * RC_AOV_CHANNELS */
   uint32_t aov_band_rows;
   double write_ms;
@@ -62,7 +63,7 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
                          rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, rc_output **out) {
   rc_output *o = calloc(1, sizeof *o);
   if (!o) return RC_ERR_OUT_OF_MEMORY;
-  o->image_path = image_path, o->aov_path = aov_path, o->width = width;
+  o->image_path = image_path, o->aov_path = aov_path, o->width = width, o->length_unit = 1;
   char err[512];
   o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, meta, meta_count, err,
                                   sizeof err);
@@ -103,6 +104,8 @@ rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const 
   return RC_OK;
 }
 
+void rc_output_set_length_unit(rc_output *o, double unit) { o->length_unit = unit; }
+
 rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output) {
   (void)y0; /* bands arrive in order */
   rc_output *o = output;
@@ -119,7 +122,7 @@ rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu
       o->aov_band_rows = o->aov_band ? rows : 0;
       if (!o->aov_band) return RC_ERR_OUT_OF_MEMORY;
     }
-    rc_aov_pack(rgb, aov, (size_t)rows * o->width, o->aov_band);
+    rc_aov_pack(rgb, aov, (size_t)rows * o->width, o->length_unit, o->aov_band);
     if (rc_image_writer_rows(o->aov, (int)rows, o->aov_band, err, sizeof err) != 0) {
       rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
       return RC_ERR_IO;

@@ -23,6 +23,9 @@ rc_status rc_output_check_format(const char *path);
 /* meta: header attributes of both files (image_io.h). */
 rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
                          rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, rc_output **out);
+/* Scene units per packed unit (1 / rc_packed_scene.scale): the AOV depth is written in
+ * scene units. */
+void rc_output_set_length_unit(rc_output *o, double unit);
 /* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows). */
 rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output);
 /* A band function for frames that are not written (--repeat). */

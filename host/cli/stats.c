@@ -58,6 +58,7 @@ char *rc_stats_json(const rc_render_stats *s) {
   cJSON_AddStringToObject(o, "triangle_intersection", s->triangle_formula);
   cJSON_AddStringToObject(o, "shadow_offset", s->shadow_offset);
   cJSON_AddBoolToObject(o, "camera_relative", s->camera_relative);
+  cJSON_AddNumberToObject(o, "packing_scale", s->packing_scale);
   cJSON_AddNumberToObject(o, "budget_needs_f64", s->budget_needs_f64);
   cJSON_AddNumberToObject(o, "budget_quantized", s->budget_quantized);
   cJSON_AddNumberToObject(o, "budget_ms", s->budget_ms);

@@ -14,6 +14,7 @@ typedef struct rc_render_stats {
   const char *precision_requested; /* "auto", "f32" or "f64" */
   const char *sphere_formula, *triangle_formula, *shadow_offset;
   bool camera_relative;
+  double packing_scale; /* packed units per scene unit (scene_pack.h) */
   uint32_t budget_needs_f64, budget_quantized; /* precision-budget findings (precision_budget.h) */
   double budget_ms;
   uint32_t threads;      /* cpu backend */

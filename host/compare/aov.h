@@ -10,8 +10,9 @@
 #define RC_AOV_MAX_CHANNELS 64
 extern const char *const rc_aov_channel_names[RC_AOV_CHANNELS]; /* R G B hit object t N.X N.Y N.Z shadow */
 
-/* Interleaves count pixels of colour and records into the AOV channel layout. */
-void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, float *out);
+/* Interleaves count pixels of colour and records into the AOV channel layout; the depth t
+ * times length_unit (scene units per packed unit, scene_pack.h). */
+void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, double length_unit, float *out);
 /* Where the decision channels of a file are (files may reorder channels: OpenEXR stores
  * them sorted by name). */
 typedef struct rc_aov_layout { int r, g, b, hit, object, t, nx, ny, nz, shadow; } rc_aov_layout;

@@ -7,6 +7,9 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <unistd.h>
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
 
 #include "ref/ref_shader.h"
 
@@ -26,6 +29,7 @@ typedef struct {
   rc_region region;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays, reflection_rays;
+  bool flush_subnormals;
   atomic_uint crossing_object; /* 1 + the composite of the first crossing failure, 0: none */
   uint32_t crossing_x, crossing_y;
 } job;
@@ -53,8 +57,36 @@ static void render_pixel(job *j, uint32_t x, uint32_t y) {
   }
 }
 
+/* The floating-point control word's flush bits: returns the old word, sets flush on or off. */
+#if defined(__x86_64__) || defined(__i386__)
+bool rc_ref_can_flush_subnormals(void) { return true; }
+static uint64_t set_flush(bool on) {
+  unsigned csr = _mm_getcsr();
+  const unsigned bits = 0x8000u /* FTZ */ | 0x0040u /* DAZ */;
+  _mm_setcsr(on ? csr | bits : csr & ~bits);
+  return csr;
+}
+static void restore_flush(uint64_t word) { _mm_setcsr((unsigned)word); }
+#elif defined(__aarch64__)
+bool rc_ref_can_flush_subnormals(void) { return true; }
+static uint64_t set_flush(bool on) {
+  uint64_t fpcr;
+  __asm__ volatile("mrs %0, fpcr" : "=r"(fpcr));
+  uint64_t word = on ? fpcr | (1ull << 24) /* FZ */ : fpcr & ~(1ull << 24);
+  __asm__ volatile("msr fpcr, %0" : : "r"(word));
+  return fpcr;
+}
+static void restore_flush(uint64_t word) { __asm__ volatile("msr fpcr, %0" : : "r"(word)); }
+#else
+bool rc_ref_can_flush_subnormals(void) { return false; }
+static uint64_t set_flush(bool on) { (void)on; return 0; }
+static void restore_flush(uint64_t word) { (void)word; }
+#endif
+
 static void *worker(void *arg) {
   job *j = arg;
+  /* Restored on the way out: with no thread started this is the caller's thread. */
+  uint64_t control = set_flush(j->flush_subnormals);
   ref_shadow_rays = ref_reflection_rays = 0;
   ref_aov_enabled = j->aov != NULL;
   const rc_region r = j->region;
@@ -66,6 +98,7 @@ static void *worker(void *arg) {
   }
   atomic_fetch_add(&j->shadow_rays, ref_shadow_rays);
   atomic_fetch_add(&j->reflection_rays, ref_reflection_rays);
+  restore_flush(control);
   return NULL;
 }
 
@@ -87,7 +120,8 @@ static ref_scene scene_of(const rc_packed_scene *p) {
 
 rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
                         gpu_aov *aov, rc_ref_stats *stats) {
-  job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = opts->f64, .rgb = rgb, .aov = aov, .region = region};
+  job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = opts->f64, .rgb = rgb, .aov = aov, .region = region,
+           .flush_subnormals = opts->flush_subnormals};
   atomic_init(&j.next_row, 0);
   atomic_init(&j.shadow_rays, 0);
   atomic_init(&j.reflection_rays, 0);

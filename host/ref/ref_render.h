@@ -11,7 +11,13 @@
 typedef struct rc_ref_options {
   bool f64;
   uint32_t threads; /* 0: all cores */
+  /* Flush subnormal inputs and results to zero (x86 FTZ + DAZ, arm64 FZ), as a GPU may in
+   * f32 (docs/numerics.md §1): f64 flushes too, at 2^-1022, where no scene reaches. */
+  bool flush_subnormals;
 } rc_ref_options;
+
+/* Whether this CPU has the mode rc_ref_options.flush_subnormals sets. */
+bool rc_ref_can_flush_subnormals(void);
 
 typedef struct rc_ref_stats {
   double render_ms, cpu_ms;

@@ -33,6 +33,7 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
   double t0 = rc_now_ms();
   *r = (rc_precision_report){0};
   const dvec3 eye = rcm_to_d(p->frame.camera.eye);
+  const double u = 1.0 / p->scale; /* the messages give lengths in scene units */
   for (size_t i = 0; i < p->frame.sphere_count; i++) {
     const gpu_sphere *s = &p->spheres[i];
     if (s->transform != RC_NO_TRANSFORM) continue; /* ellipsoids: object space, scale 1 by construction */
@@ -41,21 +42,21 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
     double reach = rcm_length_d(rcm_to_d(s->center)) + rad; /* the largest |p| the sphere's math sees */
     if (rad < RC_BUDGET_TINY_RADIUS || reach > RC_BUDGET_FAR_COORDINATE) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
-           "sphere %zu: radius %g at |p| %g leaves the f32 range once squared", i, rad, reach);
+           "sphere %zu: radius %g at |p| %g leaves the f32 range once squared", i, rad * u, reach * u);
       continue;
     }
     double height = fabs(dist - rad);
     if (height > 0 && rad / height > RC_BUDGET_HUGE_SPHERE) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
-           "sphere %zu: the eye is %g above a sphere of radius %g (ratio %.3g)", i, height, rad, rad / height);
+           "sphere %zu: the eye is %g above a sphere of radius %g (ratio %.3g)", i, height * u, rad * u, rad / height);
     } else if (dist / rad > (algebraic ? RC_BUDGET_FAR_SPHERE_ALGEBRAIC : RC_BUDGET_FAR_SPHERE)) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "sphere %zu%s: distance %g over radius %g (ratio %.3g)",
-           i, algebraic ? " (algebraic formula)" : "", dist, rad, dist / rad);
+           i, algebraic ? " (algebraic formula)" : "", dist * u, rad * u, dist / rad);
     }
     double centre = rcm_max_abs_comp_f(s->center), q = 0.5 * ulp_f32(centre) / rad;
     if (q > RC_BUDGET_QUANTIZATION)
       note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
-           "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, centre, q);
+           "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, centre * u, q);
   }
   /* Triangles, standalone and of composites' mesh operands alike. */
   for (size_t i = 0; i < p->triangle_total; i++) {
@@ -69,7 +70,7 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
     double reach = fmax(rcm_max_abs_comp_f(t->v0), fmax(rcm_max_abs_comp_f(t->v1), rcm_max_abs_comp_f(t->v2)));
     if (reach > RC_BUDGET_FAR_COORDINATE) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "triangle %zu: |p| %g leaves the f32 range once squared",
-           i, reach);
+           i, reach * u);
       continue;
     }
     /* The eye's height over the triangle's plane, as for huge spheres: the hit point and
@@ -84,10 +85,11 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
     double q = altitude > 0 ? 0.5 * ulp_f32(reach) / altitude : INFINITY;
     if (height > 0 && reach / height > RC_BUDGET_HUGE_SPHERE)
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
-           "triangle %zu: the eye is %g above a triangle reaching |p| %g (ratio %.3g)", i, height, reach, reach / height);
+           "triangle %zu: the eye is %g above a triangle reaching |p| %g (ratio %.3g)", i, height * u, reach * u,
+           reach / height);
     else if (q > RC_BUDGET_QUANTIZATION)
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
-           "triangle %zu: altitude %g at |p| %g, %.3g of it per f32 ulp", i, altitude, reach, 2 * q);
+           "triangle %zu: altitude %g at |p| %g, %.3g of it per f32 ulp", i, altitude * u, reach * u, 2 * q);
   }
   /* Quadrics (standalone and composite leaves): their math runs on p - centre in their own
    * frame, the sphere's geometric form generalized, so the far-sphere rule applies with
@@ -104,7 +106,7 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       double reach = rcm_max_abs_comp_f(q->center);
       if (reach > RC_BUDGET_FAR_COORDINATE)
         note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "plane %u: %g from the eye leaves the f32 range once squared",
-             i - (p->frame.quadric_count - p->frame.plane_count), reach);
+             i - (p->frame.quadric_count - p->frame.plane_count), reach * u);
       continue;
     }
     if (q->flags & RC_QUADRIC_MESH) continue; /* a mesh operand: its triangles were judged above */
@@ -124,10 +126,10 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
     size_t k = i < p->frame.quadric_count ? i : i - p->frame.quadric_count;
     if (reach > RC_BUDGET_FAR_COORDINATE || size < RC_BUDGET_TINY_RADIUS) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "%s %zu: size %g at |p| %g leaves the f32 range once squared",
-           what, k, size, reach);
+           what, k, size * u, reach * u);
     } else if (dist / size > RC_BUDGET_FAR_SPHERE) {
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "%s %zu: distance %g over size %g (ratio %.3g)", what, k,
-           dist, size, dist / size);
+           dist * u, size * u, dist / size);
     }
     double qz = 0.5 * ulp_f32(rcm_max_abs_comp_f(q->center)) / size;
     if (qz > RC_BUDGET_QUANTIZATION)

@@ -13,6 +13,8 @@
  * passes 6 % of r, and contact shadows between such spheres are lost (S21 at D = 1e3). */
 #define RC_BUDGET_FAR_SPHERE 1.0e5
 #define RC_BUDGET_FAR_SPHERE_ALGEBRAIC 1.0e2 /* |C| / r, textbook form: f32 loses the sphere from ~1e3 */
+/* The two range limits are in packed units: a scene tiny or huge as a whole was packed in
+ * power-of-two units first (scene_pack.c), so they catch only one that spans both. */
 #define RC_BUDGET_TINY_RADIUS 1.0e-18    /* r^2 (and |l|^2 beside it) near the f32 normal range, 1.2e-38 */
 #define RC_BUDGET_FAR_COORDINATE 1.0e18  /* |f|^2 near the f32 range, 3.4e38 */
 #define RC_BUDGET_QUANTIZATION 1.0e-2    /* half an f32 ulp of |p| over the feature size */

@@ -99,6 +99,7 @@ rc_quality rc_quality_default(void) {
                       .offset = RC_OFFSET_ERROR_BOUND,
                       .offset_epsilon = RC_OFFSET_EPSILON_DEFAULT,
                       .camera_relative = true,
+                      .rescale = true,
                       .shadows = true};
 }
 

@@ -98,6 +98,7 @@ typedef struct rc_quality {
   uint32_t offset;        /* RC_OFFSET_*: where shadow and reflection rays start */
   double offset_epsilon;  /* RC_OFFSET_EPSILON's distance, scene units */
   bool camera_relative;   /* pack positions relative to the eye (in f64) before rounding to f32 */
+  bool rescale;           /* pack in power-of-two units when the scene's size leaves [2^-20, 2^20] */
   bool shadows;           /* trace shadow rays (off: every light reaches every surface facing it) */
 } rc_quality;
 /* Names as written in scenes and on the command line, indexed by the constants. */

@@ -274,7 +274,7 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(js_expect_object(c, q));
     static const char *const qfields[] = {"reflection_depth", "precision", "sphere_intersection",
                                           "triangle_intersection", "shadow_offset", "shadow_epsilon",
-                                          "camera_relative", "shadows", NULL};
+                                          "camera_relative", "rescale", "shadows", NULL};
     TRY(js_check_members(c, q, qfields));
     rc_quality *k = &s->quality;
     TRY(js_get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
@@ -284,6 +284,7 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
     TRY(js_get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
     TRY(js_get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
     TRY(js_get_bool(c, q, "camera_relative", k->camera_relative, &k->camera_relative));
+    TRY(js_get_bool(c, q, "rescale", k->rescale, &k->rescale));
     TRY(js_get_bool(c, q, "shadows", k->shadows, &k->shadows));
     js_pop(c);
   }

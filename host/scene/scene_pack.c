@@ -3,13 +3,59 @@
 #include "math/rcm_mat3.h"
 #include "scene/name_table.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static vec3 to_packed(const rc_packed_scene *p, dvec3 world) {
-  return rcm_to_f(rcm_sub_d(world, p->origin));
+  return rcm_to_f(rcm_scale_d(rcm_sub_d(world, p->origin), p->scale));
+}
+
+/* The largest distance from the packed origin that the scene's positions and sizes reach
+ * (an infinity norm), in scene units: what the packing unit is chosen by. */
+static double scene_size(const rc_scene *s, dvec3 origin) {
+  double size = s->camera.projection == RC_PROJECTION_PARALLEL ? s->camera.view_height : 0;
+#define REACH(point, extra) (size = fmax(size, rcm_max_abs_comp_d(rcm_sub_d((point), origin)) + (extra)))
+  for (size_t i = 0; i < s->sphere_count; i++) {
+    const rc_sphere_def *d = &s->spheres[i];
+    if (d->transformed) REACH(rc_affine_point(&d->world_from_object, d->center), 0);
+    else REACH(d->center, d->radius);
+  }
+  for (size_t i = 0; i < s->triangle_count; i++)
+    for (int k = 0; k < 3; k++) REACH(s->triangles[i].v[k], 0);
+  for (size_t i = 0; i < s->csg_triangle_count; i++)
+    for (int k = 0; k < 3; k++) REACH(s->csg_triangles[i].v[k], 0);
+  for (size_t i = 0; i < s->light_count; i++)
+    if (s->lights[i].type == RC_LIGHT_POINT) REACH(s->lights[i].position, 0);
+  for (size_t i = 0; i < s->quadric_count; i++)
+    REACH(s->quadrics[i].center, fmax(rcm_max_abs_comp_d(s->quadrics[i].lo), rcm_max_abs_comp_d(s->quadrics[i].hi)));
+  for (size_t i = 0; i < s->csg_count; i++) {
+    REACH(s->csgs[i].lo, 0);
+    REACH(s->csgs[i].hi, 0);
+  }
+  /* A plane's packed centre is its point nearest the eye. */
+  for (size_t i = 0; i < s->plane_count; i++)
+    size = fmax(size, fabs(rcm_dot_d(rcm_sub_d(s->camera.eye, s->planes[i].center), s->planes[i].axis[2])));
+#undef REACH
+  return isfinite(size) ? size : 0;
+}
+
+/* docs/numerics.md §1: packing units. The renderers square lengths (r^2, |f|^2, c2 r^2), and
+ * a GPU may flush f32 results below 2^-126 to zero (an NVIDIA H100 does: a sphere of radius
+ * 1e-19 then rendered NaN in every pixel, docs/porting.md); squares overflow above 2^128.
+ * A scene whose size leaves [2^-20, 2^20] is packed in units of a power of two near its
+ * size instead, so its squares land near 1. A power of two scales every value exactly, and
+ * every product, quotient and square root of the renderers with it: the image is the
+ * image of the unscaled arithmetic wherever that stayed in range (tests/rescale/). The
+ * exponent stays within 60, where the light's attenuation constant c0 s^2 is still normal. */
+static double packing_scale(const rc_scene *s, dvec3 origin) {
+  double size = scene_size(s, origin);
+  if (!s->quality.rescale || size == 0 || (size >= 0x1p-20 && size < 0x1p20)) return 1;
+  int e = ilogb(size);
+  e = e < -60 ? -60 : e > 60 ? 60 : e;
+  return ldexp(1, -e);
 }
 
 /* docs/design.md §1: w points from the scene back to the eye, u to the right, v up; the image
@@ -20,8 +66,9 @@ static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
   dvec3 u = rcm_normalize_d(rcm_cross_d(c->up, w));
   dvec3 v = rcm_cross_d(w, u);
   double aspect = (double)s->width / (double)s->height;
+  /* A parallel window is a length (packed units); a perspective one a slope at focal 1. */
   double half_h = c->projection == RC_PROJECTION_PERSPECTIVE ? tan(c->fov_y_deg * M_PI / 360.0)
-                                                             : 0.5 * c->view_height;
+                                                             : 0.5 * c->view_height * p->scale;
   gpu_camera *g = &p->frame.camera;
   g->eye = to_packed(p, c->eye);
   g->u = rcm_to_f(u);
@@ -38,6 +85,12 @@ static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
 }
 
 static bool finite3(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+
+/* Finite in f32 in packed units and, times `unit` (scene units per packed unit, of the
+ * value's dimension), in scene units too: packing units fix a scene's numerics, never
+ * which scenes are accepted (docs/scene-format.md). */
+static bool fits(vec3 a, double unit) { return finite3(a) && rcm_max_abs_comp_f(a) * unit <= FLT_MAX; }
+static bool fits1(float a, double unit) { return isfinite(a) && fabs(a) * unit <= FLT_MAX; }
 
 /* The composite whose program uses leaf `leaf` (rc_scene.csg_leaves). */
 static size_t csg_of_leaf(const rc_scene *s, size_t leaf) {
@@ -65,30 +118,33 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
   const char *field = NULL;
   uint32_t kind = 0;
   size_t index = 0;
+  const double u = 1.0 / p->scale;
 #define BAD(k, i, f) (kind = (k), index = (i), field = (f))
   for (size_t i = 0; i < s->sphere_count && !field; i++) {
     const rc_sphere_def *d = &s->spheres[i];
     dvec3 world = d->transformed ? rc_affine_point(&d->world_from_object, d->center) : d->center;
-    if (!finite3(p->spheres[i].center) || !finite3(to_packed(p, world)))
+    float r = p->spheres[i].radius;
+    if (!fits(p->spheres[i].center, u) || !fits(to_packed(p, world), u))
       BAD(RC_ORIGIN_SPHERE, i, "its centre (relative to the eye, transformed)");
-    else if (!isfinite(p->spheres[i].radius * p->spheres[i].radius)) BAD(RC_ORIGIN_SPHERE, i, "its radius squared");
+    else if (!fits1(r * r, u * u))
+      BAD(RC_ORIGIN_SPHERE, i, "its radius squared");
   }
   for (size_t i = 0; i < p->triangle_total && !field; i++)
-    if (!finite3(p->triangles[i].v0) || !finite3(p->triangles[i].v1) || !finite3(p->triangles[i].v2)) {
+    if (!fits(p->triangles[i].v0, u) || !fits(p->triangles[i].v1, u) || !fits(p->triangles[i].v2, u)) {
       if (i < s->triangle_count) BAD(RC_ORIGIN_TRIANGLE, i, "a vertex (relative to the eye, transformed)");
       else BAD(RC_ORIGIN_CSG, csg_of_mesh_triangle(s, i - s->triangle_count), "a vertex of a mesh operand (relative to the eye, transformed)");
     }
   size_t standalone = s->quadric_count + s->plane_count;
   for (size_t i = 0; i < standalone + s->csg_leaf_count && !field; i++) {
     const gpu_quadric *q = &p->quadrics[i];
-    bool bad = !finite3(q->center) || !finite3(q->diag) || !finite3(q->off) || !finite3(q->linear) ||
-               !isfinite(q->constant) || !finite3(q->lo) || !finite3(q->hi);
+    bool bad = !fits(q->center, u) || !finite3(q->diag) || !finite3(q->off) || !fits(q->linear, u) ||
+               !fits1(q->constant, u * u) || !fits(q->lo, u) || !fits(q->hi, u);
     if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size or coefficients");
     else if (bad && i < standalone) BAD(RC_ORIGIN_PLANE, i - s->quadric_count, "its point nearest the eye (relative to the eye)");
     else if (bad) BAD(RC_ORIGIN_CSG, csg_of_leaf(s, i - standalone), "an operand's centre (relative to the eye), size or coefficients");
   }
   for (size_t i = 0; i < s->light_count && !field; i++) {
-    if (!finite3(p->lights[i].position)) BAD(RC_ORIGIN_LIGHT, i, "its position (relative to the eye)");
+    if (!fits(p->lights[i].position, u)) BAD(RC_ORIGIN_LIGHT, i, "its position (relative to the eye)");
     else if (!finite3(p->lights[i].intensity)) BAD(RC_ORIGIN_LIGHT, i, "its intensity");
   }
   for (size_t i = 0; i < s->material_count && !field; i++)
@@ -102,10 +158,11 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
   return RC_ERR_INPUT;
 }
 
-/* object_from_packed = inverse(world_from_object) composed with packed -> world (+origin),
- * in f64, rounded to f32. Returns false for a transform that is singular, or becomes so
- * or infinite in f32 (a scale beyond 1e38 or below 1e-38). */
-static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *out) {
+/* object_from_packed = inverse(world_from_object) composed with packed -> world (+origin,
+ * / scale), in f64, rounded to f32; object space is measured in packed units too (its
+ * points times scale), so only the translation scales. Returns false for a transform that
+ * is singular, or becomes so or infinite in f32 (a scale beyond 1e38 or below 1e-38). */
+static bool object_from_packed(const rc_affine *w, dvec3 origin, double scale, gpu_transform *out) {
   const double(*a)[4] = w->m;
   double lin[3][3] = {{a[0][0], a[0][1], a[0][2]}, {a[1][0], a[1][1], a[1][2]}, {a[2][0], a[2][1], a[2][2]}};
   double inv[3][3];
@@ -114,7 +171,7 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *
   double shift[3] = {origin.x - a[0][3], origin.y - a[1][3], origin.z - a[2][3]};
   vec4 *rows[3] = {&out->row0, &out->row1, &out->row2};
   for (int i = 0; i < 3; i++) {
-    double tr = inv[i][0] * shift[0] + inv[i][1] * shift[1] + inv[i][2] * shift[2];
+    double tr = (inv[i][0] * shift[0] + inv[i][1] * shift[1] + inv[i][2] * shift[2]) * scale;
     *rows[i] = (vec4){(float)inv[i][0], (float)inv[i][1], (float)inv[i][2], (float)tr};
   }
   const vec4 *r = &out->row0, *q = &out->row1, *t = &out->row2;
@@ -127,20 +184,23 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, gpu_transform *
 }
 
 /* A quadric's frame stays in f64 up to here: the centre is made camera-relative before
- * rounding, the coefficients and the clip box are already centre-relative. */
+ * rounding, the coefficients and the clip box are already centre-relative. In packed units
+ * (x' = s x) the equation is multiplied through by s^2: the second-order coefficients stay,
+ * the linear ones scale by s and the constant by s^2. */
 static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, gpu_quadric *g) {
+  double s = p->scale;
   *g = (gpu_quadric){.center = to_packed(p, q->center),
                      .material = q->material,
                      .axis_x = rcm_to_f(q->axis[0]),
                      .axis_y = rcm_to_f(q->axis[1]),
                      .axis_z = rcm_to_f(q->axis[2]),
-                     .constant = (float)q->constant,
+                     .constant = (float)(q->constant * s * s),
                      .flags = (q->solid ? RC_QUADRIC_SOLID : 0u) | (q->one_sided ? RC_QUADRIC_ONE_SIDED : 0u),
                      .diag = rcm_to_f(q->diag),
                      .off = rcm_to_f(q->off),
-                     .linear = rcm_to_f(q->linear),
-                     .lo = rcm_to_f(q->lo),
-                     .hi = rcm_to_f(q->hi)};
+                     .linear = rcm_to_f(rcm_scale_d(q->linear, s)),
+                     .lo = rcm_to_f(rcm_scale_d(q->lo, s)),
+                     .hi = rcm_to_f(rcm_scale_d(q->hi, s))};
 }
 
 /* A plane is packed centred on its point nearest the eye, found in f64: relative to the
@@ -160,13 +220,14 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   /* Camera-relative packing is the default; without it the packed space is world space,
    * kept only to measure what the floating origin buys (docs/accuracy.md). */
   p->origin = s->quality.camera_relative ? s->camera.eye : rcm_make_d(0, 0, 0);
+  p->scale = packing_scale(s, p->origin);
   pack_camera(s, p);
 
   gpu_frame *f = &p->frame;
   f->sphere_formula = s->quality.sphere;
   f->triangle_formula = s->quality.triangle;
   f->offset_strategy = s->quality.offset;
-  f->offset_epsilon = (float)s->quality.offset_epsilon;
+  f->offset_epsilon = (float)(s->quality.offset_epsilon * p->scale);
   f->background = rcm_to_f(s->background);
   f->ambient_light = rcm_to_f(s->ambient_light);
   f->specular_model = s->specular_model;
@@ -223,14 +284,14 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   }
   for (size_t i = 0; i < s->sphere_count; i++) {
     const rc_sphere_def *d = &s->spheres[i];
-    p->spheres[i].radius = (float)d->radius;
+    p->spheres[i].radius = (float)(d->radius * p->scale);
     p->spheres[i].material = d->material;
     p->spheres[i].transform = RC_NO_TRANSFORM;
     if (!d->transformed) {
       p->spheres[i].center = to_packed(p, d->center);
     } else {
-      p->spheres[i].center = rcm_to_f(d->center); /* object space */
-      if (!object_from_packed(&d->world_from_object, p->origin, &p->transforms[p->transform_count])) {
+      p->spheres[i].center = rcm_to_f(rcm_scale_d(d->center, p->scale)); /* object space */
+      if (!object_from_packed(&d->world_from_object, p->origin, p->scale, &p->transforms[p->transform_count])) {
         rc_scene_error(s, RC_ORIGIN_SPHERE, i, "its transform is singular, or is once inverted in f32 (a scale of "
                        "0, or beyond 1e38 or below 1e-38)");
         rc_packed_scene_free(p);
@@ -273,8 +334,13 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->light_count; i++) {
     const rc_light_def *l = &s->lights[i];
     p->lights[i].type = l->type;
-    p->lights[i].intensity = rcm_to_f(l->intensity);
-    p->lights[i].attenuation = rcm_to_f(l->type == RC_LIGHT_POINT ? l->attenuation : rcm_make_d(1, 0, 0));
+    /* A point light's I / (c0 + c1 r + c2 r^2) with r' = s r: I and c0 times s^2, c1 times s. */
+    bool point = l->type == RC_LIGHT_POINT;
+    double s2 = point ? p->scale * p->scale : 1;
+    p->lights[i].intensity = rcm_to_f(rcm_scale_d(l->intensity, s2));
+    p->lights[i].attenuation = rcm_to_f(point ? rcm_make_d(l->attenuation.x * s2, l->attenuation.y * p->scale,
+                                                           l->attenuation.z)
+                                              : rcm_make_d(1, 0, 0));
     p->lights[i].position = l->type == RC_LIGHT_POINT ? to_packed(p, l->position)
                                                       : rcm_to_f(rcm_normalize_d(l->direction));
   }
@@ -384,6 +450,7 @@ uint64_t rc_packed_scene_hash(const rc_packed_scene *p) {
     size_t bytes;
   } parts[] = {{f, sizeof *f},
                {&p->origin, sizeof p->origin},
+               {&p->scale, sizeof p->scale},
                {p->spheres, f->sphere_count * sizeof *p->spheres},
                {p->triangles, p->triangle_total * sizeof *p->triangles},
                {p->materials, f->material_count * sizeof *p->materials},

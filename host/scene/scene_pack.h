@@ -37,6 +37,7 @@ typedef struct rc_packed_scene {
   rc_mesh_operand *mesh_operands;
   uint32_t mesh_operand_count;
   dvec3 origin; /* world position of the packed space's origin (the eye) */
+  double scale; /* packed units per scene unit: a power of two, 1 unless rescaled (scene_pack.c) */
 } rc_packed_scene;
 
 rc_status rc_scene_pack(const rc_scene *scene, rc_packed_scene *packed);
