@@ -69,7 +69,7 @@ static rc_status numbers(const ctx *c, int first, int count, double *out) {
 }
 
 static rc_status whole(const ctx *c, int arg, long lo, long hi, long *out) {
-  double v;
+  double v = 0;
   rc_status st = number(c, arg, &v);
   if (st != RC_OK) return st;
   if (v != floor(v) || v < lo || v > hi) return fail(c, arg, "expected a whole number in [%ld, %ld]", lo, hi);
@@ -179,7 +179,7 @@ static rc_status command(state *g, ctx *c) {
   } while (0)
   if (!strcmp(cmd, "size")) {
     ARGS(2);
-    long w, h;
+    long w = 0, h = 0;
     TRY(whole(c, 1, 1, RC_MAX_IMAGE_SIDE, &w));
     TRY(whole(c, 2, 1, RC_MAX_IMAGE_SIDE, &h));
     s->width = (uint32_t)w, s->height = (uint32_t)h, g->have_size = true;

@@ -151,7 +151,7 @@ rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool requi
 rc_status js_get_uint(jctx *c, const cJSON *obj, const char *key, bool required, uint32_t def,
                           uint32_t lo, uint32_t hi, uint32_t *out) {
   bool present;
-  double x;
+  double x = 0; /* set whenever present (GCC -O2 cannot tell) */
   TRY(member_number(c, obj, key, required, &present, &x));
   if (!present) {
     *out = def;
@@ -298,7 +298,7 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
       if (!cJSON_IsArray(row) || cJSON_GetArraySize(row) != 4) return js_fail(c, "expected a row of 4 numbers");
       for (int j = 0; j < 4; j++) {
         js_push_index(c, (size_t)j);
-        double x;
+        double x = 0;
         TRY(js_number_value(c, cJSON_GetArrayItem(row, j), &x));
         if (i < 3) out->m[i][j] = x;
         else if (x != (j == 3 ? 1.0 : 0.0)) return js_fail(c, "the last row must be [0, 0, 0, 1] (affine transforms only)");
