@@ -339,16 +339,17 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
   VkPhysicalDevicePageableDeviceLocalMemoryFeaturesEXT pageable = {
       .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PAGEABLE_DEVICE_LOCAL_MEMORY_FEATURES_EXT};
   const char *pageable_ext = VK_EXT_PAGEABLE_DEVICE_LOCAL_MEMORY_EXTENSION_NAME;
+  bool pageable_memory = false;
   if (ctx->memory_priority && has_extension(ctx->physical, pageable_ext)) {
     VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &pageable};
     vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
-    ctx->pageable_memory = pageable.pageableDeviceLocalMemory;
+    pageable_memory = pageable.pageableDeviceLocalMemory;
   }
-  if (ctx->pageable_memory) prio.pNext = &pageable;
+  if (pageable_memory) prio.pNext = &pageable;
   const char *dev_ext[3];
   uint32_t dev_ext_count = 0;
   if (ctx->memory_priority) dev_ext[dev_ext_count++] = prio_ext;
-  if (ctx->pageable_memory) dev_ext[dev_ext_count++] = pageable_ext;
+  if (pageable_memory) dev_ext[dev_ext_count++] = pageable_ext;
   /* The specification requires it enabled wherever a device lists it (MoltenVK). */
   if (has_extension(ctx->physical, "VK_KHR_portability_subset")) dev_ext[dev_ext_count++] = "VK_KHR_portability_subset";
   VkDeviceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
@@ -359,7 +360,7 @@ rc_status rc_vk_create(const rc_vk_options *opts, rc_vk_ctx *ctx) {
                              .pQueueCreateInfos = &q,
                              .pEnabledFeatures = &enabled};
   RC_VK_TRY(vkCreateDevice(ctx->physical, &info, NULL, &ctx->device));
-  if (ctx->pageable_memory)
+  if (pageable_memory)
     ctx->set_memory_priority =
         (PFN_vkSetDeviceMemoryPriorityEXT)vkGetDeviceProcAddr(ctx->device, "vkSetDeviceMemoryPriorityEXT");
   vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);

@@ -26,8 +26,9 @@ typedef struct rc_vk_ctx {
   uint32_t subgroup_size;
   bool llvmpipe;           /* Mesa's CPU driver, with its loop-iteration cap */
   bool memory_priority;      /* VK_EXT_memory_priority enabled */
-  bool pageable_memory;      /* VK_EXT_pageable_device_local_memory enabled */
-  PFN_vkSetDeviceMemoryPriorityEXT set_memory_priority; /* its entry point, where enabled */
+  /* vkSetDeviceMemoryPriorityEXT where VK_EXT_pageable_device_local_memory is enabled,
+   * else NULL */
+  PFN_vkSetDeviceMemoryPriorityEXT set_memory_priority;
   bool minimum_limits;       /* VKRAYCAST_DEVICE_LIMITS=minimum (see below) */
   struct rc_mem_block *blocks; /* device memory (vk_memory.h) */
   bool validation;

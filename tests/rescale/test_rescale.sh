@@ -15,12 +15,10 @@
 set -u
 bin=$1 scenes=$2 extremes=$3 work=$4
 rm -rf "$work" && mkdir -p "$work" && cp -r "$scenes/meshes" "$work/" || exit 1
-failed=0
-fail() { echo "FAIL: $*"; failed=1; }
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+source "$(dirname "$0")/../reliability/check.sh"
 
 for name in transforms csg_meshes room quadrics hyperboloids parallel csg showcase; do
-  python3 - "$scenes/$name.json" "$work/$name.json" <<'EOF' || { fail "$name: cannot make the variant"; continue; }
+  python3 - "$scenes/$name.json" "$work/$name.json" <<'EOF' || { check "$name: the variant" "cannot be made"; continue; }
 import json, sys
 scene = json.load(open(sys.argv[1]))
 for light in scene.get("lights", []):
@@ -36,45 +34,52 @@ EOF
     for r in on off; do
       "$bin" render "$work/$name.json" -o "$work/$name.$backend.$r.exr" --aov "$work/$name.$backend.$r.aov.exr" \
         --backend $backend --rescale $r --width 160 --height 100 --quiet --stats-json "$work/$name.$backend.$r.json" \
-        2> "$work/$name.$backend.$r.stderr" || fail "$name $backend --rescale $r: exit $? ($(cat "$work/$name.$backend.$r.stderr"))"
+        2> "$work/$name.$backend.$r.stderr"
+      rc=$?
+      check "$name $backend --rescale $r renders" "$([[ $rc == 0 ]] && echo ok || cat "$work/$name.$backend.$r.stderr")"
     done
-    scale=$(num packing_scale "$work/$name.$backend.on.json")
-    [[ $scale == 4.76837158203125e-07 ]] || fail "$name $backend: packed at $scale, not 2^-21"
-    [[ $(num packing_scale "$work/$name.$backend.off.json") == 1 ]] || fail "$name $backend: --rescale off packed at a scale"
+    scale=$(json_num packing_scale "$work/$name.$backend.on.json")
+    check "$name $backend: packed at 2^-21" "$([[ $scale == 4.76837158203125e-07 ]] && echo ok || echo "packed at $scale")"
+    scale=$(json_num packing_scale "$work/$name.$backend.off.json")
+    check "$name $backend: --rescale off packs at 1" "$([[ $scale == 1 ]] && echo ok || echo "packed at $scale")"
     # f32 on the GPU: the arithmetic the rescaling is for.
-    [[ $backend == cpu ]] || grep -q '"precision":[[:space:]]*"f32"' "$work/$name.$backend.on.json" ||
-      fail "$name: the GPU did not render in f32 ($(cat "$work/$name.$backend.on.stderr"))"
+    [[ $backend == cpu ]] || check "$name: the GPU renders in f32" "$([[ $(json_str precision "$work/$name.$backend.on.json") == f32 ]] &&
+      echo ok || cat "$work/$name.$backend.on.stderr")"
     "$bin" compare "$work/$name.$backend.on.exr" "$work/$name.$backend.off.exr" --json > "$work/c.json" 2>/dev/null
     "$bin" compare "$work/$name.$backend.on.aov.exr" "$work/$name.$backend.off.aov.exr" --json > "$work/a.json" 2>/dev/null
-    e=$(num max_error "$work/c.json") d=$(num max_depth_rel_error "$work/a.json") n=$(num max_normal_angle "$work/a.json")
-    h=$(( $(num hit_mismatch "$work/a.json") + $(num object_mismatch "$work/a.json") + $(num shadow_mismatch "$work/a.json") ))
+    e=$(json_num max_error "$work/c.json") d=$(json_num max_depth_rel_error "$work/a.json")
+    n=$(json_num max_normal_angle "$work/a.json")
+    h=$(( $(json_num hit_mismatch "$work/a.json") + $(json_num object_mismatch "$work/a.json") + $(json_num shadow_mismatch "$work/a.json") ))
     echo "$name $backend: on/off max_error $e, depth $d, normal $n, decisions $h"
-    [[ $e == 0 && $d == 0 && $n == 0 && $h == 0 ]] ||
-      fail "$name $backend: rescaled render differs (colour $e, depth $d, normal $n, decisions $h)"
+    check "$name $backend: the same bits rescaled" "$([[ $e == 0 && $d == 0 && $n == 0 && $h == 0 ]] && echo ok ||
+      echo "colour $e, depth $d, normal $n, decisions $h")"
   done
 done
 
 s04=$extremes/S04_r1e-20_D1e-19.json
-"$bin" render "$s04" -o "$work/s04.f64.exr" --aov "$work/s04.f64.aov.exr" --backend cpu --quiet || fail "S04 f64: exit $?"
+"$bin" render "$s04" -o "$work/s04.f64.exr" --aov "$work/s04.f64.aov.exr" --backend cpu --quiet
+rc=$?
+check "S04 f64 renders" "$([[ $rc == 0 ]] && echo ok || echo "exit status $rc")"
 for r in off on; do
   "$bin" render "$s04" -o "$work/s04.ftz.$r.exr" --aov "$work/s04.ftz.$r.aov.exr" --backend cpu --precision f32 \
-    --flush-subnormals --rescale $r --quiet 2>/dev/null || fail "S04 flushed, --rescale $r: exit $?"
+    --flush-subnormals --rescale $r --quiet 2>/dev/null
+  rc=$?
+  check "S04 flushed, --rescale $r renders" "$([[ $rc == 0 ]] && echo ok || echo "exit status $rc")"
   "$bin" compare "$work/s04.ftz.$r.exr" "$work/s04.f64.exr" --json > "$work/c.json" 2>/dev/null
   "$bin" compare "$work/s04.ftz.$r.aov.exr" "$work/s04.f64.aov.exr" --json > "$work/a.json" 2>/dev/null
-  nf=$(num nonfinite_a "$work/c.json") e=$(num max_error "$work/c.json")
-  h=$(( $(num hit_mismatch "$work/a.json") + $(num object_mismatch "$work/a.json") + $(num shadow_mismatch "$work/a.json") ))
+  nf=$(json_num nonfinite_a "$work/c.json") e=$(json_num max_error "$work/c.json")
+  h=$(( $(json_num hit_mismatch "$work/a.json") + $(json_num object_mismatch "$work/a.json") + $(json_num shadow_mismatch "$work/a.json") ))
   echo "S04 r = 1e-20, f32 flushing subnormals, --rescale $r: non-finite $nf, max_error $e, decisions $h"
   if [[ $r == off ]]; then
     # The mode under test must reproduce the defect, or this test proves nothing.
-    (( nf > 0 )) || fail "without rescaling the flushed f32 render has no non-finite value: the flush mode did nothing"
+    check "S04 flushed unscaled has non-finite values" "$( ((nf > 0)) && echo ok || echo "none: the flush mode did nothing")"
   else
-    [[ $nf == 0 ]] || fail "rescaled, $nf non-finite values"
-    awk -v e="$e" 'BEGIN { exit !(e <= 2 / 255) }' || fail "rescaled, max error $e over 2/255"
-    [[ $h == 0 ]] || fail "rescaled, $h decisions differ from f64"
+    check "S04 flushed rescaled: no non-finite value" "$([[ $nf == 0 ]] && echo ok || echo "$nf")"
+    check "S04 flushed rescaled: within 2/255 of f64" "$(awk -v e="$e" 'BEGIN { exit !(e <= 2 / 255) }' && echo ok || echo "max error $e")"
+    check "S04 flushed rescaled: decisions of f64" "$([[ $h == 0 ]] && echo ok || echo "$h differ")"
   fi
 done
 # A GPU's float modes are its own: the option is refused there, with the usage status.
-"$bin" render "$s04" -o "$work/x.exr" --flush-subnormals 2> "$work/x.stderr"
-[[ $? == 2 ]] && grep -q "flush-subnormals is for --backend cpu" "$work/x.stderr" || fail "--flush-subnormals on the GPU was not refused"
-[[ ! -e $work/x.exr ]] || fail "a refused render wrote its output"
-exit $failed
+expect_exit2 "--flush-subnormals on the GPU" "$work/x.exr" "flush-subnormals is for --backend cpu" \
+  "$bin" render "$s04" -o "$work/x.exr" --flush-subnormals
+finish
