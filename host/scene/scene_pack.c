@@ -13,6 +13,15 @@ static vec3 to_packed(const rc_packed_scene *p, dvec3 world) {
   return rcm_to_f(rcm_scale_d(rcm_sub_d(world, p->origin), p->scale));
 }
 
+/* A plane is packed centred on its point nearest the eye, found in f64: relative to the
+ * eye the centre is then the plane's signed distance times its unit normal, and a primary
+ * ray's t = -f.z / v.z takes one rounding of each input and one division (however far the
+ * point the scene named lies from the eye). */
+static dvec3 plane_point_nearest_eye(const rc_scene *s, const rc_quadric_def *q) {
+  dvec3 n = q->axis[2];
+  return rcm_sub_d(s->camera.eye, rcm_scale_d(n, rcm_dot_d(rcm_sub_d(s->camera.eye, q->center), n)));
+}
+
 /* The largest distance from the packed origin that the scene's positions and sizes reach
  * (an infinity norm), in scene units: what the packing unit is chosen by. */
 static double scene_size(const rc_scene *s, dvec3 origin) {
@@ -35,9 +44,7 @@ static double scene_size(const rc_scene *s, dvec3 origin) {
     REACH(s->csgs[i].lo, 0);
     REACH(s->csgs[i].hi, 0);
   }
-  /* A plane's packed centre is its point nearest the eye. */
-  for (size_t i = 0; i < s->plane_count; i++)
-    size = fmax(size, fabs(rcm_dot_d(rcm_sub_d(s->camera.eye, s->planes[i].center), s->planes[i].axis[2])));
+  for (size_t i = 0; i < s->plane_count; i++) REACH(plane_point_nearest_eye(s, &s->planes[i]), 0);
 #undef REACH
   return isfinite(size) ? size : 0;
 }
@@ -203,14 +210,9 @@ static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, gpu_
                      .hi = rcm_to_f(rcm_scale_d(q->hi, s))};
 }
 
-/* A plane is packed centred on its point nearest the eye, found in f64: relative to the
- * eye the centre is then the plane's signed distance times its unit normal, and a primary
- * ray's t = -f.z / v.z takes one rounding of each input and one division (however far the
- * point the scene named lies from the eye). */
 static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_quadric_def *q, gpu_quadric *g) {
   rc_quadric_def moved = *q;
-  dvec3 n = q->axis[2];
-  moved.center = rcm_sub_d(s->camera.eye, rcm_scale_d(n, rcm_dot_d(rcm_sub_d(s->camera.eye, q->center), n)));
+  moved.center = plane_point_nearest_eye(s, q);
   pack_quadric(p, &moved, g);
   g->flags |= RC_QUADRIC_UNBOUNDED;
 }

@@ -86,7 +86,7 @@ done
 "$bin" render "$scenes/showcase.json" -o "$work/one.exr" --width 640 --height 400 --quiet --stats-json "$work/one.json"
 t=$(num tiles "$work/one.json") d=$(num dispatches "$work/one.json") b=$(num batch_samples "$work/one.json")
 spp=$(num samples_per_pixel "$work/one.json") budget=$(num tile_budget_ms "$work/one.json")
-if [[ $(sed -n 's/.*"device_type":[[:space:]]*"\([^"]*\)".*/\1/p' "$work/one.json") == cpu ]]; then
+if [[ $(json_str device_type "$work/one.json") == cpu ]]; then
   check "CPU device: no time budget by default" "$( [[ $budget == 0 ]] && echo ok || echo "tile_budget_ms $budget")"
   check "CPU device: one tile" "$( ((t == 1)) && echo ok || echo "$t tiles")"
   check "CPU device: one dispatch per batch" "$( ((d == (spp + b - 1) / b)) && echo ok || echo "$d dispatches for $spp spp in batches of $b")"
