@@ -1,5 +1,7 @@
 #include "cli/part.h"
 
+#include "compare/compare_header.h"
+
 #include <inttypes.h>
 #include <stdio.h>
 #include <string.h>
@@ -56,37 +58,15 @@ bool rc_part_read(const rc_image_reader *r, rc_part_info *info, const char **mis
   return true;
 }
 
-/* The word of s that starts at *at (words are separated by single spaces). */
-static size_t word(const char *s, size_t at) {
-  size_t n = 0;
-  while (s[at + n] && s[at + n] != ' ') n++;
-  return n;
-}
-
+/* Both through compare/compare_header.c, which reads settings strings for compare too. */
 bool rc_part_settings_differ(const char *x, const char *y, char *a, size_t a_len, char *b, size_t b_len) {
-  size_t i = 0, j = 0;
-  while (x[i] || y[j]) {
-    size_t n = word(x, i), m = word(y, j);
-    if (n != m || memcmp(x + i, y + j, n) != 0) {
-      snprintf(a, a_len, "%.*s", (int)n, x + i);
-      snprintf(b, b_len, "%.*s", (int)m, y + j);
-      return true;
-    }
-    i += n + (x[i + n] == ' ');
-    j += m + (y[j + m] == ' ');
-  }
-  return false;
+  rc_setting_difference d;
+  if (rc_settings_differences(x, y, &d, 1) == 0) return false;
+  snprintf(a, a_len, "%s%s%s", d.a[0] ? d.name : "", d.a[0] ? "=" : "", d.a);
+  snprintf(b, b_len, "%s%s%s", d.b[0] ? d.name : "", d.b[0] ? "=" : "", d.b);
+  return true;
 }
 
 void rc_part_setting(const char *settings, const char *name, char *value, size_t len) {
-  size_t n = strlen(name);
-  value[0] = '\0';
-  for (size_t at = 0; settings[at];) {
-    size_t m = word(settings, at);
-    if (m > n && strncmp(settings + at, name, n) == 0 && settings[at + n] == '=') {
-      snprintf(value, len, "%.*s", (int)(m - n - 1), settings + at + n + 1);
-      return;
-    }
-    at += m + (settings[at + m] == ' ');
-  }
+  rc_settings_value(settings, name, value, len);
 }

@@ -10,6 +10,13 @@
 
 #include "base/rc_base.h"
 
+#define RC_COMPARE_TOP 16
+/* One pixel's largest colour difference: where, which channel, how much. */
+typedef struct rc_compare_pixel {
+  int x, y, channel;
+  double error;
+} rc_compare_pixel;
+
 typedef struct rc_compare_result {
   int width, height, channels;
   double mean, rms, max, psnr;
@@ -25,18 +32,23 @@ typedef struct rc_compare_result {
   double max_depth_rel;           /* |t_a - t_b| / |t_b| where both hit the same object */
   double max_normal_angle;        /* radians, likewise */
   uint64_t nan_a, nan_b;          /* non-finite colour values */
+  /* Colour values non-finite in one file and not the same in the other (NaN against a
+   * number, +Inf against -Inf or a number): no error has a size there, so PSNR is NaN. */
+  uint64_t nonfinite_mismatch;
+  int top_count;                  /* the worst pixels, worst first (RC_COMPARE_TOP at most) */
+  rc_compare_pixel top[RC_COMPARE_TOP];
 } rc_compare_result;
 
 /* a and b: width * height * channels floats; colour[k]: channel k is a colour (NULL: all
- * are). Non-finite values count as maximal error. */
+ * are). Equal values differ by 0, infinities included (+Inf against +Inf, NaN against
+ * NaN); a non-finite value against anything else counts as an infinite error and as a
+ * nonfinite_mismatch. */
 void rc_compare_images(const float *a, const float *b, int width, int height, int channels, const bool *colour,
                        double fail, double warn, rc_compare_result *r);
 
-/* Per-pixel max absolute channel difference e as an RGB heat map, black -> red -> yellow
- * -> white, logarithmic: e <= floor is black, e >= top is white (floor > 0). Logarithmic
- * because GPU/CPU differences span orders of magnitude: rounding noise near 1e-6 and a
- * few decision flips near 0.1 must both show. */
-void rc_compare_heat_map(const float *a, const float *b, int width, int height, int channels, const bool *colour,
-                         double floor, double top, float *rgb);
+/* The largest absolute difference over the colour channels of pixel p: +Inf where one
+ * side is non-finite and the two differ, 0 where they are equal. */
+double rc_compare_pixel_error(const float *a, const float *b, int channels, const bool *colour, size_t p,
+                              int *channel);
 
 #endif

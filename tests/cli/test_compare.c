@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "compare/aov.h"
+#include "compare/heat_map.h"
 #include "image/image_io.h"
 #include "rc_test.h"
 #include "rc_cli_test.h"
@@ -29,17 +30,24 @@ static void make_pair(void) {
   B[4][6] = (float)sin(NORMAL_ANGLE), B[4][8] = (float)cos(NORMAL_ANGLE); /* pixel 4: normal tilted */
 }
 
-static void write_exr(const char *name, const float (*px)[C], int channels, const char *const *names) {
+/* With meta: the header `vkraycast render` writes (scene hash, settings). */
+static void write_exr_meta(const char *name, const float (*px)[C], int channels, const char *const *names,
+                           const rc_image_meta *meta, int meta_count) {
   char path[300], err[256];
   snprintf(path, sizeof path, "%s/%s", tmp, name);
   float rows[W * H * C];
   for (int i = 0; i < W * H; i++)
     for (int k = 0; k < channels; k++) rows[i * channels + k] = px[i][k];
-  rc_image_writer *w = rc_image_writer_open(path, W, H, channels, names, RC_ENCODING_LINEAR, false, NULL, 0, err, sizeof err);
+  rc_image_writer *w =
+      rc_image_writer_open(path, W, H, channels, names, RC_ENCODING_LINEAR, false, meta, meta_count, err, sizeof err);
   CHECK(w != NULL);
   if (!w) return;
   CHECK_EQ_INT(rc_image_writer_rows(w, H, rows, err, sizeof err), 0);
   CHECK_EQ_INT(rc_image_writer_close(w, 1, err, sizeof err), 0);
+}
+
+static void write_exr(const char *name, const float (*px)[C], int channels, const char *const *names) {
+  write_exr_meta(name, px, channels, names, NULL, 0);
 }
 
 static const cJSON *item(const cJSON *o, const char *key) { return cJSON_GetObjectItemCaseSensitive(o, key); }
@@ -151,6 +159,197 @@ TEST(heat_map_before_verdict) {
   CHECK(stderr_contains("not written to standard output"));
 }
 
+/* The check of one id in --json's list. */
+static const cJSON *check_of(const cJSON *j, const char *id) {
+  const cJSON *c;
+  cJSON_ArrayForEach(c, item(j, "checks")) if (strcmp(json_string(c, "check"), id) == 0) return c;
+  return NULL;
+}
+
+/* A preset applies the documented limits as shares of the image's pixels; options beside
+ * it override them; the verdict line names each failing check with both numbers. */
+TEST(presets_and_named_checks) {
+  /* gpu-vs-cpu: 0.5 % of 8 pixels over 1e-3 is 0 pixels; pixel 2 is off by 0.2. */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --preset gpu-vs-cpu --json > %s/p.json", tmp, tmp, tmp), 1);
+  cJSON *j = load_json("p.json");
+  CHECK(j != NULL);
+  CHECK(strcmp(json_string(j, "preset"), "gpu-vs-cpu") == 0);
+  CHECK_NEAR(json_number(j, "threshold"), 1e-3, 0);
+  const cJSON *over = check_of(j, "pixels_over_fail"), *dec = check_of(j, "decisions");
+  CHECK(over != NULL && dec != NULL);
+  if (over && dec) {
+    CHECK_EQ_INT(json_number(over, "measured"), 1);
+    CHECK_EQ_INT(json_number(over, "allowed"), 0);
+    CHECK(!cJSON_IsTrue(item(over, "ok")));
+    CHECK(strcmp(json_string(over, "allowed_text"), "0.5 % = 0") == 0);
+    CHECK_EQ_INT(json_number(dec, "measured"), 2); /* pixel 2's object, pixel 3's shadow */
+    CHECK(strcmp(json_string(dec, "level"), "fail") == 0);
+  }
+  cJSON_Delete(j);
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --preset gpu-vs-cpu > %s/out.txt", tmp, tmp, tmp), 1);
+  CHECK(stdout_has("FAIL: pixels over --fail 0.001: 1 (12.5 %), allowed 0.5 % = 0; pixels whose first-sample "
+                   "decisions differ: 2 (hit 0, object 1, shadow 1), allowed 0.2 % = 0\n"));
+  CHECK(stdout_has("    FAIL pixels over --fail 0.001"));
+  /* Overrides: 12.5 % allowed, 2 decisions allowed (a count replaces the preset's share). */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --preset gpu-vs-cpu --fail-percent 12.5 --decisions 2 "
+                   "--warn 1 > %s/out.txt", tmp, tmp, tmp), 0);
+  CHECK(stdout_has("PASS\n"));
+  CHECK(stdout_has("allowed 12.5 % = 1\n"));
+  /* --decisions-percent: 25 % of 8 pixels allows both. */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 1 --warn 1 --decisions-percent 25 > %s/out.txt", tmp,
+                   tmp, tmp), 0);
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 1 --warn 1 --decisions-percent 24 > %s/out.txt", tmp,
+                   tmp, tmp), 1);
+  CHECK(stdout_has("allowed 24 % = 1\n"));
+  /* same-backend: bit-identical or FAIL; same-precision's PSNR floor is a check of its own. */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/a.aov.exr --preset same-backend > %s/out.txt", tmp, tmp, tmp), 0);
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --preset same-precision --json > %s/p.json", tmp, tmp, tmp), 1);
+  j = load_json("p.json");
+  const cJSON *psnr = check_of(j, "psnr");
+  CHECK(psnr != NULL && !cJSON_IsTrue(item(psnr, "ok")));
+  if (psnr) CHECK_NEAR(json_number(psnr, "allowed"), 80, 0);
+  cJSON_Delete(j);
+  /* A warning names its check too. */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 1 --decisions 9 > %s/out.txt", tmp, tmp, tmp), 0);
+  CHECK(stdout_has("WARNING: pixels over --warn 1e-06: 2 (25 %), allowed 0 % = 0\n"));
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --preset nearest > %s/out.txt", tmp, tmp, tmp), 2);
+  CHECK(stderr_contains("expected one of same-backend, same-precision, gpu-vs-cpu, f32-vs-f64"));
+}
+
+/* An error past --fail where the first-sample decisions agree is explained. */
+TEST(first_sample_note) {
+  static float c[W * H][C];
+  memcpy(c, A, sizeof c);
+  c[5][0] += 0.05f; /* pixel 5: colour only, decisions as in A */
+  write_exr("c.aov.exr", (const float (*)[C])c, C, rc_aov_channel_names);
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/a.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
+  CHECK(stdout_has("note: 1 of the 1 pixels over --fail 0.001 make the same first-sample decisions"));
+  CHECK(stdout_has("Render both with --spp 1"));
+  /* Where the decisions differ there is no such note. */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 0.1 --decisions 9 > %s/out.txt", tmp, tmp, tmp), 1);
+  CHECK(!stdout_has("note: "));
+}
+
+/* +Inf equals +Inf; NaN equals NaN; NaN against a number is reported as such and makes
+ * PSNR undefined (never 999 or infinite). */
+TEST(non_finite_values) {
+  static float x[W * H][C], y[W * H][C];
+  memcpy(x, A, sizeof x);
+  memcpy(y, A, sizeof y);
+  x[0][0] = y[0][0] = INFINITY;
+  x[1][1] = y[1][1] = NAN;
+  write_exr("inf_a.exr", (const float (*)[C])x, 3, NULL);
+  write_exr("inf_b.exr", (const float (*)[C])y, 3, NULL);
+  CHECK_EQ_INT(run("compare %s/inf_a.exr %s/inf_b.exr --fail 0 --warn 0 --json > %s/n.json", tmp, tmp, tmp), 0);
+  cJSON *j = load_json("n.json");
+  CHECK_EQ_INT(json_number(j, "max_error"), 0);
+  CHECK_EQ_INT(json_number(j, "nonfinite_mismatch"), 0);
+  CHECK_EQ_INT(json_number(j, "psnr"), 999); /* identical: JSON's spelling of infinity */
+  cJSON_Delete(j);
+  y[2][2] = NAN;  /* against 0.75 */
+  y[3][0] = -INFINITY; /* against 0.25 */
+  write_exr("inf_b.exr", (const float (*)[C])y, 3, NULL);
+  CHECK_EQ_INT(run("compare %s/inf_a.exr %s/inf_b.exr --fail 1 --json > %s/n.json", tmp, tmp, tmp), 1);
+  j = load_json("n.json");
+  CHECK_EQ_INT(json_number(j, "nonfinite_mismatch"), 2);
+  CHECK(cJSON_IsNull(item(j, "psnr")));
+  const cJSON *nf = check_of(j, "nonfinite");
+  CHECK(nf != NULL && !cJSON_IsTrue(item(nf, "ok")));
+  cJSON_Delete(j);
+  CHECK_EQ_INT(run("compare %s/inf_a.exr %s/inf_b.exr --fail 1 > %s/out.txt", tmp, tmp, tmp), 1);
+  CHECK(stdout_has("PSNR undefined"));
+  CHECK(stdout_has("note: PSNR is undefined: 2 colour values are NaN or infinite in one file"));
+  CHECK(!stdout_has("999") && !stdout_has("inf dB"));
+}
+
+/* The headers `render` writes: the same scene or not, every setting that differs. */
+TEST(header_aware) {
+  const rc_image_meta gpu[] = {{"vkraycast:scene_hash", "00000000000000aa"},
+                               {"vkraycast:settings", "backend=gpu precision=f32 spp=4 shadows=on"}};
+  const rc_image_meta cpu[] = {{"vkraycast:scene_hash", "00000000000000aa"},
+                               {"vkraycast:settings", "backend=cpu precision=f64 spp=4 shadows=on"}};
+  const rc_image_meta other[] = {{"vkraycast:scene_hash", "00000000000000bb"},
+                                 {"vkraycast:settings", "backend=gpu precision=f32 spp=4"}};
+  write_exr_meta("h_gpu.exr", (const float (*)[C])A, 3, NULL, gpu, 2);
+  write_exr_meta("h_cpu.exr", (const float (*)[C])A, 3, NULL, cpu, 2);
+  write_exr_meta("h_other.exr", (const float (*)[C])A, 3, NULL, other, 2);
+  CHECK_EQ_INT(run("compare %s/h_gpu.exr %s/h_cpu.exr --require-same-scene > %s/out.txt", tmp, tmp, tmp), 0);
+  CHECK(stdout_has("headers: the same scene (00000000000000aa); settings differ (A / B): backend gpu / cpu, "
+                   "precision f32 / f64\n"));
+  CHECK_EQ_INT(run("compare %s/h_gpu.exr %s/h_other.exr > %s/out.txt", tmp, tmp, tmp), 0);
+  CHECK(stdout_has("DIFFERENT SCENES (A 00000000000000aa, B 00000000000000bb)"));
+  CHECK(stdout_has("shadows on / (none)"));
+  CHECK_EQ_INT(run("compare %s/h_gpu.exr %s/h_other.exr --json > %s/h.json", tmp, tmp, tmp), 0);
+  cJSON *j = load_json("h.json");
+  const cJSON *h = item(j, "headers");
+  CHECK(cJSON_IsFalse(item(h, "same_scene")));
+  CHECK_EQ_INT(cJSON_GetArraySize(item(h, "settings_differ")), 1);
+  cJSON_Delete(j);
+  CHECK_EQ_INT(run("compare %s/h_gpu.exr %s/h_other.exr --require-same-scene > %s/out.txt", tmp, tmp, tmp), 2);
+  CHECK(stderr_contains("different scenes (--require-same-scene)"));
+  CHECK(!stdout_has("PASS"));
+  CHECK_EQ_INT(run("compare %s/h_gpu.exr %s/a.exr --require-same-scene > %s/out.txt", tmp, tmp, tmp), 2);
+  CHECK(stderr_contains("a.exr: no vkraycast header"));
+}
+
+static float *read_png(const char *name, int *w, int *h) {
+  char path[300], err[256];
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  int c = 0;
+  float *px = NULL;
+  if (rc_image_read(path, w, h, &c, &px, err, sizeof err) != 0 || c != 3) {
+    printf("  cannot read %s: %s\n", path, err);
+    free(px);
+    return NULL;
+  }
+  return px;
+}
+
+/* The heat map: the fixed scale's colour per pixel over the reference in grey, the
+ * worst pixel enlarged, and a legend that depends on the scale alone. */
+TEST(heat_map_readable) {
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --decisions 9 --fail 1e-3 --diff %s/h1.png > %s/out.txt", tmp,
+                   tmp, tmp, tmp), 1);
+  CHECK(stdout_has("log scale 1e-06 .. 1 over B in grey"));
+  CHECK(stdout_has("1 pixel over it ringed"));
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/a.aov.exr --fail 1e-3 --diff %s/h2.png > %s/out.txt", tmp, tmp, tmp, tmp),
+               0);
+  int w = 0, h = 0, w2 = 0, h2 = 0;
+  float *p1 = read_png("h1.png", &w, &h), *p2 = read_png("h2.png", &w2, &h2);
+  CHECK(p1 && p2);
+  if (!p1 || !p2) goto done;
+  CHECK_EQ_INT(w, RC_HEAT_MIN_WIDTH);
+  CHECK_EQ_INT(h, H + RC_HEAT_LEGEND);
+  /* Pixel 2 (x 2, y 0) is off by 0.2: its colour on the scale 1e-6 .. 1, opaque. */
+  float want[3];
+  rc_heat_colour((log10(0.45 - 0.25) + 6) / 6, want);
+  for (int k = 0; k < 3; k++) CHECK_NEAR(p1[3 * 2 + k], want[k], 1.0 / 255);
+  /* Enlarged: its neighbour below (not over the threshold itself) takes its colour. */
+  for (int k = 0; k < 3; k++) CHECK_NEAR(p1[3 * (w + 2) + k], want[k], 1.0 / 255);
+  /* Identical pixels show the reference in grey (B's 0.25, 0.5, 0.75 averages to 0.5). */
+  float grey = (float)(0.08 + 0.30 * sqrt(0.5));
+  for (int k = 0; k < 3; k++) CHECK_NEAR(p2[3 * 1 + k], grey, 1.0 / 255);
+  /* The legend depends on the scale and the --fail mark alone: identical in both maps. */
+  CHECK(memcmp(p1 + 3 * (size_t)w * H, p2 + 3 * (size_t)w * H, sizeof(float) * 3 * (size_t)w * RC_HEAT_LEGEND) == 0);
+  /* The bar starts at the scale's first colour. */
+  float first[3];
+  rc_heat_colour(0, first);
+  for (int k = 0; k < 3; k++) CHECK_NEAR(p1[3 * ((size_t)(H + 15) * w + 10) + k], first[k], 1.0 / 255);
+  /* Another scale moves pixel 2 on it. */
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --decisions 9 --fail 1 --scale 1e-3,1e-1 --diff %s/h3.png "
+                   "> %s/out.txt", tmp, tmp, tmp, tmp), 0);
+  free(p2);
+  p2 = read_png("h3.png", &w2, &h2);
+  rc_heat_colour(1, want); /* 0.2 is past the top, 1e-1 */
+  for (int k = 0; p2 && k < 3; k++) CHECK_NEAR(p2[3 * 2 + k], want[k], 1.0 / 255);
+  CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --scale 1,0.5 --diff %s/h4.png > %s/out.txt", tmp, tmp, tmp,
+                   tmp), 2);
+  CHECK(stderr_contains("--scale: expected LO,HI with 0 < LO < HI"));
+done:
+  free(p1);
+  free(p2);
+}
+
 int main(int argc, char **argv) {
   if (argc != 2) {
     fprintf(stderr, "usage: test_compare VKRAYCAST\n");
@@ -170,6 +369,11 @@ int main(int argc, char **argv) {
   RUN(text_report_names_channels);
   RUN(plain_images_use_every_channel);
   RUN(heat_map_before_verdict);
+  RUN(presets_and_named_checks);
+  RUN(first_sample_note);
+  RUN(non_finite_values);
+  RUN(header_aware);
+  RUN(heat_map_readable);
   char cleanup[300];
   snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
   if (!getenv("KEEP") && system(cleanup) != 0) printf("could not remove %s\n", tmp);
