@@ -2,6 +2,7 @@
  *   vkraycast render SCENE -o OUT [options]   render a scene to an image (cmd_render.c)
  *   vkraycast merge PARTS... -o OUT           join the parts of a frame (cmd_merge.c)
  *   vkraycast compare A B [options]           metrics between two images (cmd_compare.c)
+ *   vkraycast tradeoff SCENE... --out DIR     speed against accuracy on the user's scenes (cmd_tradeoff.c)
  *   vkraycast devices                         list the Vulkan devices (cmd_devices.c)
  * Exit status: 0 ok, 1 images differ (compare), 2 bad input or usage, 3 device failure.
  * The command-line conventions are in docs/cli.md. */
@@ -25,6 +26,9 @@ static const char usage[] =
     "                        image, bit for bit the single render's\n"
     "  compare A B           compare two images (or AOV files): error metrics, heat map, exit 1 if beyond\n"
     "                        thresholds\n"
+    "  tradeoff SCENE... --out DIR\n"
+    "                        measure what accuracy costs on your scenes: variants x spp, timed and\n"
+    "                        compared with the CPU f64 reference; a CSV and a plot\n"
     "  devices               list Vulkan devices\n"
     "\n"
     "  vkraycast <command> --help   options of a command\n"
@@ -38,6 +42,7 @@ static const struct {
     {"render", rc_cmd_render, &rc_render_spec},
     {"merge", rc_cmd_merge, &rc_merge_spec},
     {"compare", rc_cmd_compare, &rc_compare_spec},
+    {"tradeoff", rc_cmd_tradeoff, &rc_tradeoff_spec},
     {"devices", rc_cmd_devices, &rc_devices_spec},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof *commands)
@@ -95,7 +100,7 @@ int main(int argc, char **argv) {
   }
   int at = find_command(argc, argv);
   if (at < 0) {
-    rc_error("no command given (render, merge, compare or devices)");
+    rc_error("no command given (render, merge, compare, tradeoff or devices)");
     fputs(usage, stderr);
     return rc_status_exit_code(RC_ERR_USAGE);
   }
