@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -51,8 +52,9 @@ static const char *const pipelines[] = {"specialized", "generic", NULL};
 
 #define ARG(field) offsetof(render_args, field)
 static const rc_option render_options[] = {
-    {"--output", "-o", RC_OPT_STRING, ARG(output), "OUT", .flags = RC_OPT_REQUIRED, .what = "output file",
-     .help = "image to write; the extension picks the format (png, exr, tif, jpg, ...)"},
+    {"--output", "-o", RC_OPT_STRING, ARG(output), "OUT",
+     .help = "image to write; the extension picks the format (png, exr, tif, jpg, ...);\n"
+             "required, except for a .test scene with an `output` command"},
     {"--width", NULL, RC_OPT_UINT, ARG(width), "W", 1, RC_MAX_IMAGE_SIDE, .help = "override the scene's image width"},
     {"--height", NULL, RC_OPT_UINT, ARG(height), "H", 1, RC_MAX_IMAGE_SIDE, .help = "override the scene's image height"},
     {"--spp", NULL, RC_OPT_UINT, ARG(spp), "N", 1, RC_MAX_SAMPLES_PER_PIXEL, .help = "override samples per pixel"},
@@ -215,8 +217,16 @@ static rc_status check_outputs(const render_args *a) {
     rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
     return RC_ERR_USAGE;
   }
-  return RC_OK;
+  /* Before the scene and its meshes are read: a name no format writes costs nothing. */
+  return rc_output_check_format(a->output);
 }
+
+static bool has_extension(const char *path, const char *ext) {
+  size_t n = strlen(path), m = strlen(ext);
+  return n > m && strcasecmp(path + n - m, ext) == 0;
+}
+
+static rc_status check_output_args(const render_args *a);
 
 static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
@@ -264,12 +274,25 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
     rc_usage_error(&rc_render_spec, "--band-renders and --perturb: the band renders take seeds 1..N themselves; give one");
     return RC_ERR_USAGE;
   }
+  if (!a->output) {
+    /* A .test scene may name its image (its `output` command): read once it is loaded. */
+    if (strcmp(a->scene, "-") == 0 || has_extension(a->scene, ".test")) return RC_OK;
+    rc_usage_error(&rc_render_spec, "no output file given (-o OUT)");
+    return RC_ERR_USAGE;
+  }
+  return check_output_args(a);
+}
+
+/* The outputs, every one checked before the scene is read (or, for a .test scene's own
+ * `output`, before anything else is). */
+static rc_status check_output_args(const render_args *a) {
   if (a->shard_text && !is_exr(a->output)) {
+    char msg[PATH_MAX + 200];
     snprintf(msg, sizeof msg,
              "--shard %s -o %s: a shard is a part for `vkraycast merge`, which needs its float pixels and its "
              "header: name it .exr",
              a->shard_text, a->output);
-    rc_usage_error(&rc_render_spec, msg);
+    rc_usage_error(&rc_render_spec, "%s", msg);
     return RC_ERR_USAGE;
   }
   return check_outputs(a);
@@ -521,7 +544,15 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_set_scene_path(a.scene);
   st = rc_scene_load(a.scene, &a.load, &scene);
   double parse_ms = rc_now_ms() - t0;
-  if (st == RC_OK) st = rc_output_check_format(a.output);
+  if (st == RC_OK && !a.output) {
+    if (scene.output_name[0]) {
+      a.output = scene.output_name;
+      st = check_output_args(&a);
+    } else {
+      rc_usage_error(&rc_render_spec, "no output file given (-o OUT), and %s has no `output` command", a.scene);
+      st = RC_ERR_USAGE;
+    }
+  }
   if (st != RC_OK) {
     rc_scene_free(&scene);
     return st;

@@ -147,6 +147,7 @@ typedef struct rc_scene {
   size_t csg_triangle_count, csg_triangle_capacity;
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
   bool srgb_8bit;              /* 8-bit outputs sRGB-encoded (JSON image.encoding); else linear */
+  char output_name[256];       /* a .test scene's `output` file name ("" when none): a bare name, no folder */
   rc_origin *origins;          /* in file order */
   size_t origin_count, origin_capacity;
 } rc_scene;

@@ -189,7 +189,18 @@ static rc_status command(state *g, ctx *c) {
     TRY(whole(c, 1, 1, RC_MAX_REFLECTION_DEPTH + 1, &d));
     s->reflection_depth = (uint32_t)d - 1;
   } else if (!strcmp(cmd, "output")) {
-    ARGS(1); /* the output name is the command line's business */
+    ARGS(1);
+    /* Honoured when the command line names no -o. A bare file name written in the current
+     * folder, as the course's programs did: an untrusted scene must not name /etc/... */
+    const char *name = c->tok[1];
+    size_t len = strcspn(name, " \t\r\n");
+    if (len >= sizeof s->output_name || strchr(name, '/') || name[0] == '.' || name[0] == '-')
+      return fail(c, 1, "an output file name without a folder, not starting with '.' or '-', at most %zu bytes "
+                        "(-o on the command line can name any path)", sizeof s->output_name - 1);
+    for (size_t i = 0; i < len; i++)
+      if ((unsigned char)name[i] < 0x20 || name[i] == 0x7f) return fail(c, 1, "a control character in the file name");
+    memcpy(s->output_name, name, len);
+    s->output_name[len] = '\0';
   } else if (!strcmp(cmd, "camera")) {
     ARGS(10);
     TRY(numbers(c, 1, 10, v));

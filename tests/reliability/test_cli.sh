@@ -64,6 +64,18 @@ check "missing -o: exit 2, three lines" \
   "$([[ $? == 2 && $(wc -l <"$work/err") == 3 ]] && grep -q 'no output file given (-o OUT)' "$work/err" &&
      grep -q '^usage: vkraycast render SCENE -o OUT \[options\]$' "$work/err" && echo ok || cat "$work/err")"
 
+# A .test scene's `output` command names the image when -o does not, in the current
+# folder; -o wins over it.
+mkdir -p "$work/course"
+printf 'size 24 16\noutput course.png\ncamera 0 0 5 0 0 0 0 1 0 45\nambient .2 .2 .2\nsphere 0 0 0 1\n' \
+  >"$work/course/scene.test"
+(cd "$work/course" && "$bin" render scene.test --quiet 2>"$work/err")
+check ".test output command honoured" "$([[ -s $work/course/course.png ]] && echo ok || cat "$work/err")"
+(cd "$work/course" && "$bin" render scene.test -o other.png --quiet 2>"$work/err")
+check "-o wins over the .test output command" \
+  "$([[ -s $work/course/other.png && $(find "$work/course" -newer "$work/course/course.png" -name course.png | wc -l) == 0 ]] &&
+     echo ok || cat "$work/err")"
+
 # --stats-json - writes the statistics to standard output; -o - is refused before reading.
 "$bin" render "$S" -o "$work/s.png" --stats-json - "${small[@]}" >"$work/stats.json"
 check "--stats-json - is JSON on stdout" \
@@ -119,13 +131,18 @@ check "image.encoding srgb + quantize truncate = --srgb --quantize truncate, and
 same "--encoding linear --quantize round override the scene's image settings" "$work/e_back.png"
 
 # OpenImageIO (and its ~260 libraries) is loaded at the first image, not before
-# (host/image/image_module.h): --help, --version and a refused scene never load it, a
-# render does, and a binary whose module is missing says so and exits 3.
+# (host/image/image_module.h): --help, --version and a refused command line never load
+# it; a render does, first of all to check that its output names a format it writes,
+# before the scene and its meshes are read (so a refused scene loads it too); and a
+# binary whose module is missing says so and exits 3.
 loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c 'file=libOpenImageIO\.so' || true; }
 sed 's/"radius": *[0-9.]*/"radius": -1/' "$S" >"$work/bad_radius.json"
-check "--version, --help and a refused scene do not load OpenImageIO" \
+check "--version, --help and a refused command line do not load OpenImageIO" \
   "$(n=$(( $(loads_oiio "$bin" --version) + $(loads_oiio "$bin" render --help) +
-          $(loads_oiio "$bin" render "$work/bad_radius.json" -o "$work/x.png") )); [[ $n == 0 ]] && echo ok || echo "$n loads")"
+          $(loads_oiio "$bin" render "$work/bad_radius.json" -o "$work/x.png" --spp 0) )); [[ $n == 0 ]] && echo ok || echo "$n loads")"
+"$bin" render "$work/bad_radius.json" -o "$work/x.foo" 2>"$work/err"
+check "the output's format is checked before the scene is read" \
+  "$([[ $? == 2 ]] && grep -q 'x.foo: no image format' "$work/err" && ! grep -q radius "$work/err" && echo ok || cat "$work/err")"
 check "a render loads OpenImageIO" \
   "$([[ $(loads_oiio "$bin" render "$S" -o "$work/oiio.png" "${small[@]}") -ge 1 ]] && echo ok || echo "not loaded")"
 mkdir -p "$work/lonely" && cp "$bin" "$work/lonely/vkraycast"
