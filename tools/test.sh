@@ -29,11 +29,13 @@ cmake --build build-asan -j"$(nproc)" >&2
 # - parse_scale (parsing time; the fuzzers and strict_input run the parsers here) and
 #   memory_per_frame (peak RSS, which ASan's own allocator decides);
 # - slurm (the Slurm scripts; `merge` runs the same render and merge code here);
+# - doc_commands (the docs' commands as written; compare, tradeoff and merge run the
+#   same code here in their own tests);
 # - minimum_device, extreme_min_f64 and subgroup_width_4 (a driver's limits and subgroup
 #   width; best_practices runs the allocator and every buffer path here, unit_plan the
 #   plan for each width).
 skip='extreme_S(0[2-9]|1[0-9]|2[0-3])|extreme_min|minimum_device|subgroup_width|gpu_vs_cpu|parse_scale'
-skip+='|memory_per_frame|slurm|gpu_render_bvh_vs_brute_force'
+skip+='|memory_per_frame|slurm|doc_commands|gpu_render_bvh_vs_brute_force'
 skip+='|shapes_(transformed_ellipsoid|rotated_cylinder_axis|rotated_cylinder_matrix|hyperboloid_two_sheets|plane_closed_form|mesh_crossings_bound)'
 (cd build-asan && ctest --output-on-failure --timeout 1800 -j"$(nproc)" -E "$skip" "$@")
 if [ -x tools/fuzz.sh ]; then tools/fuzz.sh; fi
