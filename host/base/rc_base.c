@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -362,6 +363,9 @@ size_t rc_edit_distance(const char *a, const char *b) {
 }
 
 const char *rc_nearest(const char *word, const char *const *candidates, size_t count) {
+  /* The same name in another case ("Plane", "POINT"): always the one meant. */
+  for (size_t i = 0; i < count; i++)
+    if (candidates[i] && strcasecmp(candidates[i], word) == 0) return candidates[i];
   size_t limit = strlen(word) / 3;
   if (limit < 1) limit = 1;
   if (limit > 3) limit = 3;

@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 /* Help layout: options in a column of this width, their text after it. */
 #define HELP_COLUMN 26
@@ -66,6 +67,12 @@ static void unknown_option(const rc_command_spec *s, const char *arg, size_t len
     rc_usage_error(s, "unknown option %s", word);
 }
 
+/* A choice of exactly off and on (in that order, so that the index is the truth value). */
+static bool is_off_on(const rc_option *o) {
+  return o->choices && o->choices[0] && o->choices[1] && !o->choices[2] && strcmp(o->choices[0], "off") == 0 &&
+         strcmp(o->choices[1], "on") == 0;
+}
+
 static rc_status store(const rc_command_spec *s, const rc_option *o, const char *v, void *args) {
   char *field = (char *)args + o->offset;
   const char *name = display_name(o);
@@ -97,6 +104,15 @@ static rc_status store(const rc_command_spec *s, const rc_option *o, const char 
         *(int *)field = i;
         return RC_OK;
       }
+    if (is_off_on(o)) {
+      /* A switch takes the spellings scripts and other tools use, as on and off. */
+      static const char *const yes[] = {"yes", "true", "1"}, *const no[] = {"no", "false", "0"};
+      for (int i = 0; i < 3; i++)
+        if (strcasecmp(v, yes[i]) == 0 || strcasecmp(v, no[i]) == 0) {
+          *(int *)field = strcasecmp(v, yes[i]) == 0 ? 1 : 0;
+          return RC_OK;
+        }
+    }
     {
       char list[200] = "";
       for (int i = 0; o->choices[i]; i++)
@@ -219,6 +235,28 @@ bool rc_option_takes_value(const rc_command_spec *const *specs, size_t count, co
   return false;
 }
 
+/* "values: 1 to 1024; default 1" for numbers and choices, from the table the parser
+ * reads (the default where the table holds it), so that the help cannot drift. */
+static bool values_text(const rc_option *o, char *out, size_t cap) {
+  int n = 0;
+  if (o->kind == RC_OPT_UINT || o->kind == RC_OPT_INT)
+    n = snprintf(out, cap, "values: %.0f to %.0f", o->lo, o->hi);
+  else if (o->kind == RC_OPT_REAL && isfinite(o->hi))
+    n = snprintf(out, cap, "values: %g %s to %g", o->lo, (o->flags & RC_OPT_LO_OPEN) ? "(excluded)" : "", o->hi);
+  else if (o->kind == RC_OPT_REAL)
+    n = snprintf(out, cap, "values: from %g%s", o->lo, (o->flags & RC_OPT_LO_OPEN) ? " (excluded)" : "");
+  else if (o->kind == RC_OPT_CHOICE) {
+    n = snprintf(out, cap, "values:");
+    for (int i = 0; o->choices[i] && n < (int)cap; i++)
+      n += snprintf(out + n, cap - (size_t)n, "%s%s", i ? " | " : " ", o->choices[i]);
+    if (is_off_on(o) && n < (int)cap) n += snprintf(out + n, cap - (size_t)n, " (also yes | no, true | false, 1 | 0)");
+  } else {
+    return false;
+  }
+  if (o->def && n < (int)cap) snprintf(out + n, cap - (size_t)n, "; default %s", o->def);
+  return true;
+}
+
 void rc_print_help(const rc_command_spec *s, FILE *f) {
   print_usage_line(s, f);
   if (s->summary) fprintf(f, "\n%s\n", s->summary);
@@ -241,6 +279,8 @@ void rc_print_help(const rc_command_spec *s, FILE *f) {
       n = 0;
       line = nl ? nl + 1 : NULL;
     }
+    char values[256];
+    if (values_text(o, values, sizeof values)) fprintf(f, "%*s%s\n", HELP_COLUMN, "", values);
   }
   if (s->epilogue) fprintf(f, "\n%s", s->epilogue);
 }

@@ -44,6 +44,7 @@ typedef struct {
   const char *heading;         /* non-NULL: a section of the help starts at this option */
   unsigned flags;              /* RC_OPT_REQUIRED, RC_OPT_LO_OPEN, RC_OPT_F32 */
   const char *what;            /* RC_OPT_REQUIRED: "output file", for "no output file given" */
+  const char *def;             /* the default, as --help shows it ("1", "the scene's"); NULL: none to show */
 } rc_option;
 
 enum { RC_OPT_REQUIRED = 1u, RC_OPT_LO_OPEN = 2u, RC_OPT_F32 = 4u };

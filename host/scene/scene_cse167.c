@@ -327,6 +327,12 @@ static rc_status command(state *g, ctx *c) {
     if (v[0] < 0) return fail(c, 1, "must not be negative");
     g->mat.shininess = v[0] + 0.0;
   } else {
+    static const char *const known[] = {
+        "size", "maxdepth", "output", "camera", "sphere", "maxverts", "maxvertnorms", "vertex", "vertexnormal",
+        "tri", "trinormal", "translate", "rotate", "scale", "pushTransform", "popTransform", "directional", "point",
+        "attenuation", "ambient", "diffuse", "specular", "emission", "shininess"};
+    const char *near = rc_nearest(cmd, known, sizeof known / sizeof *known);
+    if (near) return fail(c, 0, "unknown command (did you mean %s?)", near);
     return fail(c, 0, "unknown command");
   }
   return RC_OK;

@@ -93,6 +93,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
   if (!mats) return RC_OK;
   js_push_key(c, "materials");
   TRY(js_expect_object(c, mats));
+  c->material_defs = mats;
   size_t n = (size_t)cJSON_GetArraySize(mats);
   s->materials = rc_alloc(n, sizeof *s->materials, "materials");
   if (!s->materials) return RC_ERR_OUT_OF_MEMORY;
@@ -294,6 +295,40 @@ static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
   return RC_OK;
 }
 
+/* A syntax error at `off` (where cJSON stopped), pointing at the offending token: for the
+ * mistakes people make most, at their own place with what JSON wants instead. */
+static void report_syntax_error(const char *path, const char *text, size_t len, size_t off) {
+  int line, col;
+  size_t before = off;
+  while (before > 0 && strchr(" \t\r\n", text[before - 1])) before--;
+  if (before > 0 && text[before - 1] == ',' && (text[off] == ']' || text[off] == '}')) {
+    /* A trailing comma: cJSON stops at the bracket, maybe lines later; the comma is it. */
+    rc_json_line_col(text, len, before - 1, &line, &col);
+    fprintf(stderr, "%s:%d:%d: error: JSON syntax: a comma before '%c' (JSON allows none after the last %s)\n",
+            path, line, col, text[off], text[off] == ']' ? "element" : "member");
+    return;
+  }
+  /* cJSON stops one character into a bad token ('x', //, an unquoted key): back to its
+   * start, so that the column is the token's. */
+  size_t stop = off > 64 ? off - 64 : 0;
+  while (off > stop && !strchr(" \t\r\n{}[],:\"", text[off - 1])) off--;
+  rc_json_line_col(text, len, off, &line, &col);
+  before = off;
+  while (before > 0 && strchr(" \t\r\n", text[before - 1])) before--;
+  const char *hint = "";
+  if (text[off] == '\'') hint = " (JSON strings take double quotes)";
+  else if (text[off] == '/' && off + 1 < len && (text[off + 1] == '/' || text[off + 1] == '*'))
+    hint = " (JSON has no comments)";
+  else if (strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_", text[off]) && before > 0 &&
+           (text[before - 1] == '{' || text[before - 1] == ','))
+    hint = " (a key needs double quotes)";
+  /* The token and what follows it on its line, not the lines after. */
+  size_t n = strcspn(text + off, "\r\n");
+  char snippet[64];
+  rc_json_quote(text + off, n ? n : 1, 12, snippet, sizeof snippet);
+  fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected %s%s\n", path, line, col, snippet, hint);
+}
+
 rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, const rc_load_options *options,
                               rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
@@ -329,9 +364,7 @@ rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, co
                 "string" : "object", oline, ocol);
       }
     } else {
-      char snippet[64];
-      rc_json_quote(text + off, len - off, 12, snippet, sizeof snippet);
-      fprintf(stderr, "%s:%d:%d: error: JSON syntax: unexpected %s\n", path, line, col, snippet);
+      report_syntax_error(path, text, len, off);
     }
     return RC_ERR_INPUT;
   }

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "math/rcm_mat3.h"
@@ -212,8 +213,11 @@ rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *co
     }
   }
   char list[256] = "";
-  for (uint32_t i = 0; names[i]; i++)
+  size_t count = 0;
+  for (uint32_t i = 0; names[i]; i++, count++)
     snprintf(list + strlen(list), sizeof list - strlen(list), "%s\"%s\"", i ? ", " : "", names[i]);
+  const char *near = rc_nearest(v->valuestring, names, count);
+  if (near) return js_fail(c, "expected one of %s; did you mean \"%s\"?", list, near);
   return js_fail(c, "expected one of %s", list);
 }
 
@@ -246,8 +250,20 @@ rc_status js_get_material_ref(jctx *c, const cJSON *obj, uint32_t *out) {
   if (!v) return js_fail(c, "missing field \"material\"");
   js_push_key(c, "material");
   if (!cJSON_IsString(v)) return js_fail(c, "expected a material name, got %s", js_type_name(v));
-  if (!rc_name_table_find(&c->materials, v->valuestring, strlen(v->valuestring), out))
-    return js_fail(c, "unknown material");
+  if (!rc_name_table_find(&c->materials, v->valuestring, strlen(v->valuestring), out)) {
+    /* The nearest defined name, on this error path only (a scene may define 200,000). */
+    size_t n = 0;
+    for (const cJSON *m = c->material_defs ? c->material_defs->child : NULL; m; m = m->next) n++;
+    const char **names = n ? malloc(n * sizeof *names) : NULL;
+    size_t k = 0;
+    for (const cJSON *m = names ? c->material_defs->child : NULL; m; m = m->next) names[k++] = m->string;
+    const char *near = names ? rc_nearest(v->valuestring, names, k) : NULL;
+    rc_status st = near ? js_fail(c, "unknown material; did you mean \"%s\"?", near)
+                 : n    ? js_fail(c, "unknown material; the scene defines %zu under \"materials\"", n)
+                        : js_fail(c, "unknown material: the scene has no \"materials\"");
+    free(names);
+    return st;
+  }
   js_pop(c);
   return RC_OK;
 }

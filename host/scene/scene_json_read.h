@@ -20,6 +20,7 @@ typedef struct {
   rc_json_step path[RC_JSON_MAX_DEPTH];
   size_t depth;
   rc_name_table materials; /* material name -> index into rc_scene.materials */
+  const cJSON *material_defs; /* the "materials" object: names for did-you-mean */
   bool allow_outside_paths; /* rc_load_options */
   size_t lc_off;            /* js_note_origin's line counter: where it stopped */
   int lc_line, lc_col;
