@@ -374,8 +374,12 @@ static bool read_stats(const char *path, rc_tradeoff_row *row) {
   const cJSON *wall = cJSON_GetObjectItemCaseSensitive(j, "render_wall_ms");
   const cJSON *cpu = cJSON_GetObjectItemCaseSensitive(j, "cpu_ms");
   const cJSON *prec = cJSON_GetObjectItemCaseSensitive(j, "precision");
-  bool ok = cJSON_IsNumber(ms) && cJSON_IsNumber(wall) && cJSON_IsNumber(cpu);
-  if (ok) row->render_ms = ms->valuedouble, row->wall_ms = wall->valuedouble, row->cpu_ms = cpu->valuedouble;
+  const cJSON *rays = cJSON_GetObjectItemCaseSensitive(j, "mrays_per_s");
+  bool ok = cJSON_IsNumber(ms) && cJSON_IsNumber(wall) && cJSON_IsNumber(cpu) && cJSON_IsNumber(rays);
+  if (ok) {
+    row->render_ms = ms->valuedouble, row->wall_ms = wall->valuedouble, row->cpu_ms = cpu->valuedouble;
+    row->mrays_per_s = rays->valuedouble;
+  }
   snprintf(row->precision, sizeof row->precision, "%s", cJSON_IsString(prec) ? prec->valuestring : "?");
   cJSON_Delete(j);
   return ok;
@@ -443,7 +447,7 @@ static rc_status run_point(const sweep *s, size_t i, rc_tradeoff_row *row) {
   snprintf(row->scene, sizeof row->scene, "%s", s->scene_names[scene]);
   snprintf(row->variant, sizeof row->variant, "%s", var->name);
   row->spp = s->spps[k];
-  row->psnr = row->rms = row->max_error = NAN;
+  row->psnr = row->rms = row->max_error = row->mrays_per_s = NAN;
   char ref_colour[PATH_MAX], ref_image[PATH_MAX], ref_aov[PATH_MAX], unused[PATH_MAX];
   rc_status st = reference(s, scene, s->a.reference_spp, false, ref_colour, unused, sizeof ref_colour);
   if (st == RC_OK) st = reference(s, scene, row->spp, true, ref_image, ref_aov, sizeof ref_image);

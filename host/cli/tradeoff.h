@@ -24,6 +24,7 @@ typedef struct rc_tradeoff_row {
   char scene[128], variant[64], precision[8], status[96];
   unsigned spp;
   double render_ms, wall_ms, cpu_ms;            /* steady state: medians of frames 2..N */
+  double mrays_per_s;                           /* primary + shadow + reflection rays over render_ms */
   double mismatch_pct, hit_pct, object_pct, shadow_pct; /* first-sample decisions vs CPU f64, % of pixels */
   double psnr, rms, max_error;                  /* colour vs the many-sample CPU f64 render */
 } rc_tradeoff_row;

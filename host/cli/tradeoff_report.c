@@ -13,7 +13,7 @@
 #include "image/image_io.h"
 
 const char rc_tradeoff_csv_header[] =
-    "scene,variant,spp,precision,render_ms,wall_ms,cpu_ms,decision_mismatch_pct,hit_mismatch_pct,"
+    "scene,variant,spp,precision,render_ms,wall_ms,cpu_ms,mrays_per_s,decision_mismatch_pct,hit_mismatch_pct,"
     "object_mismatch_pct,shadow_mismatch_pct,psnr_db,rms_error,max_error,status";
 
 /* CSV has no infinity: identical images (PSNR infinite) are written "inf", as strtod
@@ -29,8 +29,8 @@ static void number(FILE *f, double v) {
 
 void rc_tradeoff_write_row(FILE *f, const rc_tradeoff_row *r) {
   fprintf(f, "%s,%s,%u,%s", r->scene, r->variant, r->spp, r->precision[0] ? r->precision : "");
-  const double v[] = {r->render_ms, r->wall_ms,    r->cpu_ms, r->mismatch_pct, r->hit_pct,
-                      r->object_pct, r->shadow_pct, r->psnr,   r->rms,          r->max_error};
+  const double v[] = {r->render_ms,  r->wall_ms, r->cpu_ms, r->mrays_per_s, r->mismatch_pct, r->hit_pct,
+                      r->object_pct, r->shadow_pct, r->psnr, r->rms,         r->max_error};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) number(f, v[i]);
   /* The status is free text: commas would split it. */
   fputc(',', f);
@@ -54,8 +54,8 @@ bool rc_tradeoff_parse_row(const char *line, rc_tradeoff_row *r) {
   field(&p, text, sizeof text);
   r->spp = (unsigned)strtoul(text, NULL, 10);
   field(&p, r->precision, sizeof r->precision);
-  double *v[] = {&r->render_ms, &r->wall_ms,    &r->cpu_ms, &r->mismatch_pct, &r->hit_pct,
-                 &r->object_pct, &r->shadow_pct, &r->psnr,   &r->rms,          &r->max_error};
+  double *v[] = {&r->render_ms,  &r->wall_ms, &r->cpu_ms, &r->mrays_per_s, &r->mismatch_pct, &r->hit_pct,
+                 &r->object_pct, &r->shadow_pct, &r->psnr, &r->rms,         &r->max_error};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) {
     field(&p, text, sizeof text);
     *v[i] = text[0] ? strtod(text, NULL) : NAN;

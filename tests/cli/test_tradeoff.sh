@@ -30,19 +30,19 @@ check "runs from the user's folder, writes only into --out" "$why"
 why=ok
 rows=$(tail -n +2 results/tradeoff.csv | wc -l)
 [[ $rows == 6 ]] || because "$rows rows, expected 6 (1 scene x 3 variants x 2 spp)"
-bad=$(tail -n +2 results/tradeoff.csv | awk -F, '$15 != "ok"' | head -3)
+bad=$(tail -n +2 results/tradeoff.csv | awk -F, '$16 != "ok"' | head -3)
 [[ -z $bad ]] || because "points not measured: $bad"
 # The columns: precision as the variant asked, times positive.
-awk -F, 'NR > 1 && (($2 == "f64") != ($4 == "f64") || !($5 > 0) || !($7 > 0)) { exit 1 }' results/tradeoff.csv ||
+awk -F, 'NR > 1 && (($2 == "f64") != ($4 == "f64") || !($5 > 0) || !($7 > 0) || !($8 > 0)) { exit 1 }' results/tradeoff.csv ||
   because "precision or times wrong: $(cat results/tradeoff.csv)"
 check "one measured row per point" "$why"
 
 why=ok
 # f64 renders the reference's arithmetic: no decision differs.
-f64=$(awk -F, '$2 == "f64" { s += $8 } END { print s + 0 }' results/tradeoff.csv)
+f64=$(awk -F, '$2 == "f64" { s += $9 } END { print s + 0 }' results/tradeoff.csv)
 [[ $f64 == 0 ]] || because "f64 decisions differ on $f64 % of pixels"
 # More samples, nearer the many-sample reference: PSNR grows from 1 to 4 spp.
-awk -F, '$2 == "default" { p[$3] = $12 } END { exit !(p[4] > p[1] + 3) }' results/tradeoff.csv ||
+awk -F, '$2 == "default" { p[$3] = $13 } END { exit !(p[4] > p[1] + 3) }' results/tradeoff.csv ||
   because "PSNR does not grow with spp: $(grep default results/tradeoff.csv)"
 check "values: f64 exact in decisions, colour converges with spp" "$why"
 
@@ -64,7 +64,7 @@ why=ok
   because "custom variants: exit $?: $(cat err.txt)"
 [[ $(tail -n +2 custom/tradeoff.csv | cut -d, -f2 | tr '\n' ' ') == "nobvh bvh " ]] || because "$(cat custom/tradeoff.csv)"
 # Brute force and the BVH make the same decisions (the BVH's tie rule), so the same error.
-[[ $(tail -n +2 custom/tradeoff.csv | cut -d, -f8,12 | sort -u | wc -l) == 1 ]] ||
+[[ $(tail -n +2 custom/tradeoff.csv | cut -d, -f9,13 | sort -u | wc -l) == 1 ]] ||
   because "brute force and BVH differ: $(cat custom/tradeoff.csv)"
 check "variants of the user's own" "$why"
 
@@ -77,7 +77,7 @@ for ((i = n - 1; i >= 0; i--)); do
 done
 "$bin" tradeoff my/scene.json --out farm --variants default,f64 --gather "${small[@]}" -q >/dev/null 2>>err.txt ||
   because "--gather: exit $?: $(cat err.txt)"
-[[ $(cut -d, -f1-4,8-11 farm/tradeoff.csv) == $(grep -v ',fast,' results/tradeoff.csv | cut -d, -f1-4,8-11) ]] ||
+[[ $(cut -d, -f1-4,9-12 farm/tradeoff.csv) == $(grep -v ',fast,' results/tradeoff.csv | cut -d, -f1-4,9-12) ]] ||
   because "points gathered differ from one run's: $(cat farm/tradeoff.csv)"
 rm farm/points/2.csv
 "$bin" tradeoff my/scene.json --out farm --variants default,f64 --gather "${small[@]}" -q >/dev/null 2>err.txt
