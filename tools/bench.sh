@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Benchmark: renders each scene on lavapipe with each kind of scene buffers (image, texel, storage),
-# interleaved, ROUNDS rounds of `--repeat FRAMES`; reports the median over rounds of each
-# process's steady-state render time (GPU timestamps, the median of frames 2..FRAMES), the
-# wall time per frame, process CPU time, and Mrays/s (primary + shadow + reflection).
+# Benchmark of the scene-buffer kinds (image, texel, storage): a thin user of
+# `vkraycast tradeoff`, whose variants here are the three kinds. ROUNDS rounds, each one
+# tradeoff run over every scene and kind (kinds interleaved per scene, each render its
+# own process with --repeat FRAMES); reports the median over rounds of each render's
+# steady-state time (GPU timestamps, the median of frames 2..FRAMES), the wall time per
+# frame, process CPU time and Mrays/s (primary + shadow + reflection).
 # Usage: tools/bench.sh [SCENE...]   (default: scenes/*.json and 4/16-sphere grids)
 # Env: ROUNDS (3), FRAMES (6), SIZE ("--width 320 --height 200"), SPP (1).
 set -euo pipefail
@@ -17,26 +19,21 @@ if ((${#scenes[@]} == 0)); then
   for n in 4 16; do tools/gen_sphere_grid.sh $n >"$work/grid$n.json"; done
   scenes=(scenes/*.json "$work/grid4.json" "$work/grid16.json")
 fi
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2"; }
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
-
+for ((r = 0; r < rounds; r++)); do
+  build/vkraycast tradeoff "${scenes[@]}" --out "$work/round$r" --spp-list "${spp:-scene}" --repeat "$frames" \
+    --reference-spp 1 --quiet --render-args="$size --allow-outside-paths" \
+    --variant 'image: --scene-buffers image' --variant 'texel: --scene-buffers texel' \
+    --variant 'storage: --scene-buffers storage' >/dev/null
+done
 echo "device: $(build/vkraycast devices | sed -n 2p | cut -c7-46 | sed 's/ *$//'), $(nproc) cores; ${size:-scene size} ${spp:+--spp $spp}; $rounds rounds x --repeat $frames"
 echo
-echo "| scene | objects | buffers | render ms (GPU) | wall ms/frame | CPU ms (process) | Mrays/s |"
-echo "|---|---|---|---|---|---|---|"
-for s in "${scenes[@]}"; do
-  name=$(basename "$s" .json)
-  for kind in image texel storage; do : >"$work/$kind.txt"; done
-  for ((r = 0; r < rounds; r++)); do
-    for kind in image texel storage; do
-      build/vkraycast render "$s" -o "$work/out.exr" $size --repeat "$frames" --quiet --allow-outside-paths ${spp:+--spp "$spp"} \
-        --scene-buffers "$kind" --stats-json "$work/st.json"
-      echo "$(num render_ms "$work/st.json") $(num render_wall_ms "$work/st.json") $(num cpu_ms "$work/st.json") \
-$(num mrays_per_s "$work/st.json") $(( $(num spheres "$work/st.json") + $(num triangles "$work/st.json") + $(num quadrics "$work/st.json") + $(num composites "$work/st.json") ))" >>"$work/$kind.txt"
-    done
-  done
-  for kind in image texel storage; do
-    col() { awk -v c="$1" '{print $c}' "$work/$kind.txt" | median; }
-    printf "| %s | %s | %s | %.1f | %.1f | %.0f | %.2f |\n" "$name" "$(col 5)" "$kind" "$(col 1)" "$(col 2)" "$(col 3)" "$(col 4)"
-  done
-done
+echo "| scene | buffers | render ms (GPU) | wall ms/frame | CPU ms (process) | Mrays/s |"
+echo "|---|---|---|---|---|---|"
+# Median over the rounds of each (scene, kind): columns render_ms, wall_ms, cpu_ms, mrays_per_s.
+cat "$work"/round*/tradeoff.csv | awk -F, '$1 != "scene" && $NF == "ok" { k = $1 "," $2; n[k]++
+    for (c = 5; c <= 8; c++) v[k, c, n[k]] = $c; order[k] = ++seen[k] == 1 ? ++keys : order[k]; name[order[k]] = k }
+  function median(k, c,    i, j, t, a, m) { m = n[k]; for (i = 1; i <= m; i++) a[i] = v[k, c, i]
+    for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+    return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2 }
+  END { for (i = 1; i <= keys; i++) { k = name[i]; split(k, p, ",")
+    printf "| %s | %s | %.1f | %.1f | %.0f | %.2f |\n", p[1], p[2], median(k, 5), median(k, 6), median(k, 7), median(k, 8) } }'

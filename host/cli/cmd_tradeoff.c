@@ -68,7 +68,8 @@ static const rc_option tradeoff_options[] = {
     {"--width", NULL, RC_OPT_UINT, ARG(width), "W", 1, 16384, .help = "render at this width (default: each scene's)"},
     {"--height", NULL, RC_OPT_UINT, ARG(height), "H", 1, 16384, .help = "render at this height (default: each scene's)"},
     {"--spp-list", NULL, RC_OPT_STRING, ARG(spp_list), "N,N,...",
-     .help = "samples per pixel to measure each variant at (default 1,4,16)"},
+     .help = "samples per pixel to measure each variant at (default 1,4,16); scene:\n"
+             "each scene's own"},
     {"--repeat", NULL, RC_OPT_UINT, ARG(repeat), "N", 2, 100,
      .help = "frames per render; times are the median of frames 2..N (default 3)"},
     {"--reference-spp", NULL, RC_OPT_UINT, ARG(reference_spp), "N", 1, 1024,
@@ -135,10 +136,13 @@ static rc_status parse_spps(sweep *s) {
     char *end;
     errno = 0;
     unsigned long v = strtoul(p, &end, 10);
-    if (end == p || errno || v < 1 || v > RC_MAX_SAMPLES_PER_PIXEL || (*end && *end != ',') ||
+    if (strncmp(p, "scene", 5) == 0 && (p[5] == ',' || !p[5])) v = 0, end = (char *)p + 5; /* each scene's own */
+    else if (v < 1) end = (char *)p;
+    if (end == p || errno || v > RC_MAX_SAMPLES_PER_PIXEL || (*end && *end != ',') ||
         s->spp_count == RC_TRADEOFF_MAX_SPPS) {
-      rc_usage_error(&rc_tradeoff_spec, "--spp-list: expected up to %d numbers in [1, %d] separated by commas, got '%s'",
-                     RC_TRADEOFF_MAX_SPPS, RC_MAX_SAMPLES_PER_PIXEL, s->a.spp_list);
+      rc_usage_error(&rc_tradeoff_spec,
+                     "--spp-list: expected up to %d numbers in [1, %d] (or scene: each scene's own) separated by "
+                     "commas, got '%s'", RC_TRADEOFF_MAX_SPPS, RC_MAX_SAMPLES_PER_PIXEL, s->a.spp_list);
       return RC_ERR_USAGE;
     }
     s->spps[s->spp_count++] = (unsigned)v;
@@ -300,7 +304,7 @@ static int run_render(const sweep *s, const char *scene, const char *out, const 
   argv[n++] = (char *)out;
   argv[n++] = "--quiet";
   snprintf(buf_spp, sizeof buf_spp, "%u", spp);
-  argv[n++] = "--spp", argv[n++] = buf_spp;
+  if (spp) argv[n++] = "--spp", argv[n++] = buf_spp; /* 0: the scene's own */
   if (s->a.width) snprintf(buf_w, sizeof buf_w, "%u", s->a.width), argv[n++] = "--width", argv[n++] = buf_w;
   if (s->a.height) snprintf(buf_h, sizeof buf_h, "%u", s->a.height), argv[n++] = "--height", argv[n++] = buf_h;
   if (aov) argv[n++] = "--aov", argv[n++] = (char *)aov;

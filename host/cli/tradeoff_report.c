@@ -28,7 +28,9 @@ static void number(FILE *f, double v) {
 }
 
 void rc_tradeoff_write_row(FILE *f, const rc_tradeoff_row *r) {
-  fprintf(f, "%s,%s,%u,%s", r->scene, r->variant, r->spp, r->precision[0] ? r->precision : "");
+  char spp[16] = "scene"; /* 0: each scene's own */
+  if (r->spp) snprintf(spp, sizeof spp, "%u", r->spp);
+  fprintf(f, "%s,%s,%s,%s", r->scene, r->variant, spp, r->precision[0] ? r->precision : "");
   const double v[] = {r->render_ms,  r->wall_ms, r->cpu_ms, r->mrays_per_s, r->mismatch_pct, r->hit_pct,
                       r->object_pct, r->shadow_pct, r->psnr, r->rms,         r->max_error};
   for (size_t i = 0; i < sizeof v / sizeof *v; i++) number(f, v[i]);
@@ -52,6 +54,7 @@ bool rc_tradeoff_parse_row(const char *line, rc_tradeoff_row *r) {
   field(&p, r->scene, sizeof r->scene);
   field(&p, r->variant, sizeof r->variant);
   field(&p, text, sizeof text);
+  bool own = strcmp(text, "scene") == 0;
   r->spp = (unsigned)strtoul(text, NULL, 10);
   field(&p, r->precision, sizeof r->precision);
   double *v[] = {&r->render_ms,  &r->wall_ms, &r->cpu_ms, &r->mrays_per_s, &r->mismatch_pct, &r->hit_pct,
@@ -61,7 +64,14 @@ bool rc_tradeoff_parse_row(const char *line, rc_tradeoff_row *r) {
     *v[i] = text[0] ? strtod(text, NULL) : NAN;
   }
   field(&p, r->status, sizeof r->status);
-  return r->scene[0] && r->variant[0] && r->spp > 0 && r->status[0];
+  return r->scene[0] && r->variant[0] && (r->spp > 0 || own) && r->status[0];
+}
+
+/* "16", or "scene" for 0: each scene's own. */
+static const char *spp_text(unsigned spp, char buf[16]) {
+  if (!spp) return "scene";
+  snprintf(buf, 16, "%u", spp);
+  return buf;
 }
 
 /* One (variant, spp) over every scene. */
@@ -143,7 +153,10 @@ static int write_summary(const char *dir, const summary *s, size_t m) {
   fputs("variant,spp,render_ms_sum,wall_ms_sum,cpu_ms_sum,decision_mismatch_pct_mean,hit_mismatch_pct_mean,"
         "object_mismatch_pct_mean,shadow_mismatch_pct_mean,psnr_db_of_mean_mse,pareto,failed_points\n", f);
   for (size_t k = 0; k < m; k++) {
-    fprintf(f, "%s,%u", s[k].variant, s[k].spp);
+    if (s[k].spp)
+      fprintf(f, "%s,%u", s[k].variant, s[k].spp);
+    else
+      fprintf(f, "%s,scene", s[k].variant);
     const double v[] = {s[k].ms, s[k].wall_ms, s[k].cpu_ms, s[k].mismatch, s[k].hit, s[k].object, s[k].shadow,
                         s[k].psnr};
     for (size_t i = 0; i < sizeof v / sizeof *v; i++) number(f, v[i]);
@@ -154,15 +167,17 @@ static int write_summary(const char *dir, const summary *s, size_t m) {
 }
 
 static void print_table(const summary *s, size_t m, const rc_tradeoff_summary_info *info, FILE *out) {
+  char buf[16];
   fprintf(out, "| variant | spp | time ms (sum of %zu scene%s) | decisions differ %% (mean: hit / object / shadow) | "
                "PSNR dB vs %u spp | Pareto |\n|---|---|---|---|---|---|\n",
           info->scene_count, info->scene_count == 1 ? "" : "s", info->reference_spp);
   for (size_t k = 0; k < m; k++) {
     if (s[k].failed) {
-      fprintf(out, "| %s | %u | %zu point(s) failed | | | |\n", s[k].variant, s[k].spp, s[k].failed);
+      fprintf(out, "| %s | %s | %zu point(s) failed | | | |\n", s[k].variant, spp_text(s[k].spp, buf), s[k].failed);
       continue;
     }
-    fprintf(out, "| %s | %u | %.1f | %.4g (%.3g / %.3g / %.3g) | ", s[k].variant, s[k].spp, s[k].ms, s[k].mismatch,
+    fprintf(out, "| %s | %s | %.1f | %.4g (%.3g / %.3g / %.3g) | ", s[k].variant, spp_text(s[k].spp, buf), s[k].ms,
+            s[k].mismatch,
             s[k].hit, s[k].object, s[k].shadow);
     if (isinf(s[k].psnr))
       fputs("exact", out);
@@ -318,8 +333,9 @@ static int write_svg(const char *dir, const summary *s, size_t m, const rc_trade
       marker(f, (int)v, x, y, c);
       /* spp beside the point, shifted per variant so that labels of coinciding points
        * do not cover one another. */
-      fprintf(f, "<text x='%.1f' y='%.1f' font-size='10' fill='%s'>%u</text>\n", x + 6, y - 6 - 9.0 * (double)(v % 4),
-              c, s[k].spp);
+      char buf[16];
+      fprintf(f, "<text x='%.1f' y='%.1f' font-size='10' fill='%s'>%s</text>\n", x + 6, y - 6 - 9.0 * (double)(v % 4),
+              c, spp_text(s[k].spp, buf));
       if (s[k].pareto)
         fprintf(f, "<circle cx='%.1f' cy='%.1f' r='9' fill='none' stroke='black' stroke-width='1.5'/>\n", x, y);
     }
