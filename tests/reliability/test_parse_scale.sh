@@ -27,7 +27,8 @@ expect_counts "$n JSON materials, each used once" "$work/materials.json" $n $n 0
 "$gen" json-dup $n "$work/dup.json"
 expect_refusal "a repeated material at line $((n + 2))" "$work/dup.json" "dup.json:$((n + 2)):11: error: materials.m0: material defined twice" --backend cpu
 "$gen" json-unknown $n "$work/unknown.json"
-expect_refusal "an unknown material after $n" "$work/unknown.json" "unknown.json:$((n + 5)):71: error: objects[0].material: unknown material (\"m$n\")" --backend cpu
+# The nearest of the n names is suggested (m0..m199999: "m20000" is one edit from "m200000").
+expect_refusal "an unknown material after $n" "$work/unknown.json" "unknown.json:$((n + 5)):71: error: objects[0].material: unknown material; did you mean \"m$((n / 10))\"? (\"m$n\")" --backend cpu
 "$gen" test-materials $n "$work/materials.test"
 expect_counts "$n .test material states" "$work/materials.test" $n $n 0
 "$gen" test-shared $n "$work/shared.test"
