@@ -62,6 +62,9 @@ static rc_status open_part(part *p) {
   char err[512];
   int w, h, c;
   bool f32;
+  /* Opened without blocking and refused unless a regular file, as render's inputs are: a
+   * FIFO part would hang the image library's open. */
+  if (rc_check_input(p->path, "part", NULL) != RC_OK) return RC_ERR_IO;
   p->reader = rc_image_reader_open(p->path, &w, &h, &c, &f32, err, sizeof err);
   if (!p->reader) {
     rc_error("%s: cannot read the part: %s", p->path, err);

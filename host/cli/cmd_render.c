@@ -212,6 +212,9 @@ static rc_status check_outputs(const render_args *a) {
         rc_error("%s: too long a name for its band renders (--band-renders)", base[f]);
         return RC_ERR_USAGE;
       }
+      /* Checked like OUT itself, before any work: a folder or a device named NAME.bandK.EXT
+       * would otherwise fail the band render after OUT had landed. */
+      if (rc_check_output(name, band_roles[f]) != RC_OK) return RC_ERR_IO;
       files[n++] = (rc_file_role){name, band_roles[f], true};
     }
   }

@@ -14,6 +14,7 @@
 #include "cli/cli.h"
 #include "cli/huge_pages.h"
 #include "cli/options.h"
+#include "cli/safe_streams.h"
 #include "vkraycast_build.h"
 #include "vkraycast_revision.h"
 
@@ -86,6 +87,7 @@ static int find_command(int argc, char **argv) {
 
 int main(int argc, char **argv) {
   rc_huge_pages_reexec(argv);
+  rc_safe_streams_install();
   if (argc < 2) {
     fputs(usage, stderr);
     return rc_status_exit_code(RC_ERR_USAGE);

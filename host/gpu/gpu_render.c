@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "gpu/gpu_pipeline_cache.h"
 #include "gpu/gpu_shaders.h"
@@ -718,8 +719,10 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
       done += (uint64_t)cols * rows;
       if (r->opts.progress) {
         double el = (rc_now_ms() - t0) * 1e-3;
-        fprintf(stderr, "\rvkraycast: %5.1f%%, %u tiles, %.1f s elapsed, about %.1f s left ", 100.0 * (double)done / total,
-                stats->tiles, el, el * (double)(total - done) / (double)done);
+        /* Straight to the descriptor: its carriage return redraws the line, and the
+         * filtered stderr (cli/safe_streams.h) would spell it out. */
+        dprintf(STDERR_FILENO, "\rvkraycast: %5.1f%%, %u tiles, %.1f s elapsed, about %.1f s left ",
+                100.0 * (double)done / total, stats->tiles, el, el * (double)(total - done) / (double)done);
       }
     }
     rc_status st = band(y0, rows, r->band_rgb, r->band_aov, user);

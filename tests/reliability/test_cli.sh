@@ -76,6 +76,28 @@ check "-o wins over the .test output command" \
   "$([[ -s $work/course/other.png && $(find "$work/course" -newer "$work/course/course.png" -name course.png | wc -l) == 0 ]] &&
      echo ok || cat "$work/err")"
 
+# Control characters from the user's input never reach the terminal raw (the filtered
+# streams of host/cli/safe_streams.h): ESC, CR, BEL, DEL and SOH in a material name, an
+# unknown key, a scene path and an option value, each must come out spelled \xNN.
+for code in 1b 0d 07 7f 01; do
+  c=$(printf "\\x$code")
+  printf '{ "image": {"width": 8, "height": 8}, "camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  "materials": {"m\\u00%sx": {"diffuse": [1,1,1]}},
+  "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "n\\u00%sx"}]}\n' "$code" "$code" \
+    >"$work/ctl.json"
+  printf '{ "image": {"width": 8, "height": 8, "k\\u00%sy": 1} }\n' "$code" >"$work/ctl_key.json"
+  for role in material key path option; do
+    case $role in
+      material) "$bin" render "$work/ctl.json" -o "$work/ctl.png" 2>"$work/err" ;;
+      key) "$bin" render "$work/ctl_key.json" -o "$work/ctl.png" 2>"$work/err" ;;
+      path) "$bin" render "$work/no${c}such.json" -o "$work/ctl.png" 2>"$work/err" ;;
+      option) "$bin" render "$S" -o "$work/ctl.png" --backend "g${c}pu" 2>"$work/err" ;;
+    esac
+    check "control character 0x$code in a $role is escaped" \
+      "$(! grep -q "$c" "$work/err" && grep -qF "\\x$code" "$work/err" && echo ok || cat -v "$work/err")"
+  done
+done
+
 # --stats-json - writes the statistics to standard output; -o - is refused before reading.
 "$bin" render "$S" -o "$work/s.png" --stats-json - "${small[@]}" >"$work/stats.json"
 check "--stats-json - is JSON on stdout" \

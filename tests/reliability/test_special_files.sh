@@ -2,8 +2,8 @@
 # Nothing blocks or spins on special files (issue 13, class 3). Generated: every kind of
 # non-regular file (a FIFO with no writer, /dev/zero, /dev/full, a socket, a directory) in
 # every role a path plays (scene, mesh named by a scene, a file a mesh names, both inputs
-# of compare, image,
-# AOV and statistics outputs). Each case must end within 10 s with exit status 2, a
+# of compare, a part of merge, image, AOV and statistics outputs, and the band renders'
+# image and AOV outputs). Each case must end within 10 s with exit status 2, a
 # message naming the path and what it is, and no output file; and /dev/null must still
 # be the device afterwards (an output renames over its path).
 # Usage: test_special_files.sh VKRAYCAST SCENES_DIR WORKDIR
@@ -57,6 +57,24 @@ for kind in "${!kinds[@]}"; do
   run_case "AOV output is $kind" "$p" "$kind" -- "$bin" render "$scenes/shadows.json" -o "$work/o.png" --aov "$p" --quiet
   run_case "statistics output is $kind" "$p" "$kind" -- "$bin" render "$scenes/shadows.json" -o "$work/o.png" \
     --stats-json "$p" --quiet
+  # A part of merge, and the outputs of --band-renders (NAME.bandK.EXT beside OUT): the
+  # frame itself must not have been written when a band output is refused.
+  "$bin" render "$scenes/shadows.json" --shard 0/2 -o "$work/part0.exr" --width 16 --height 12 --quiet
+  run_case "merge part is $kind" "$p" "$kind" -- "$bin" merge "$work/part0.exr" "$p" -o "$work/o.png"
+  for f in image aov; do
+    rm -f "$work/b.png" "$work/b.aov.exr" "$work"/b.band*
+    band=$work/b.band2.png
+    [[ $f == aov ]] && band=$work/b.aov.band2.exr
+    ln -s "$p" "$band"
+    timeout 10 "$bin" render "$scenes/shadows.json" -o "$work/b.png" --aov "$work/b.aov.exr" --band-renders 3 \
+      --width 16 --height 12 --quiet >"$work/out" 2>"$work/err"
+    got=$? why=ok
+    [[ $got == 2 ]] || why="exit status $got, expected 2"
+    grep -q "${words[$kind]}" "$work/err" || why="$why; stderr: $(head -c 200 "$work/err")"
+    [[ ! -e $work/b.png && ! -e $work/b.aov.exr && ! -e $work/b.band1.png ]] || why="$why; outputs written before the refusal"
+    rm -f "$band"
+    check "band $f output is $kind" "$why"
+  done
 done
 check "/dev/null is still a character device" "$([[ -c /dev/null ]] && echo ok || echo 'it was replaced')"
 finish
