@@ -92,7 +92,7 @@ expect_merge_refusal "other spp" "rendered with spp=16, but" "$p-0.exr" "$work/g
 expect_merge_refusal "other backend" "rendered with backend=cpu, but" "$p-0.exr" "$work/cpu-f32-1-1.exr" "$p-2.exr"
 expect_merge_refusal "other precision" "rendered with precision=f64, but" "$p-0.exr" "$work/gpu-f64-1-1.exr" "$p-2.exr"
 expect_merge_refusal "a PNG part" "a part is 3 channels of 32-bit float" "$p-0.exr" "$work/gpu-f32-1-whole.png" "$p-2.exr"
-expect_merge_refusal "a missing part" "cannot read the part" "$p-0.exr" "$work/nothing.exr" "$p-2.exr"
+expect_merge_refusal "a missing part" "nothing.exr: error: cannot open part: No such file or directory" "$p-0.exr" "$work/nothing.exr" "$p-2.exr"
 # A shard of a changed scene (a light moved): its packed scene differs.
 sed 's/"position": \[-4, 6, 5\]/"position": [-4, 6, 5.5]/' "$scene" >"$work/moved.json"
 moved=$work/moved.json
