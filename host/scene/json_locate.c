@@ -81,6 +81,11 @@ static bool key_equals(const cursor *c, size_t a, size_t b, const char *key) {
 size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, size_t depth) {
   cursor c = {text, len, 0};
   skip_ws(&c);
+  return rc_json_locate_from(text, len, c.pos, path, depth);
+}
+
+size_t rc_json_locate_from(const char *text, size_t len, size_t start, const rc_json_step *path, size_t depth) {
+  cursor c = {text, len, start};
   for (size_t d = 0; d < depth; d++) {
     size_t here = c.pos;
     if (c.pos >= len) return here;

@@ -14,6 +14,9 @@ typedef struct rc_json_step {
 
 /* Offset of the value at `path` (or of the deepest prefix that exists). */
 size_t rc_json_locate(const char *text, size_t len, const rc_json_step *path, size_t depth);
+/* The same from the value at `start`, `path` relative to it: a place inside one object
+ * of a long array costs that object, not the array before it. */
+size_t rc_json_locate_from(const char *text, size_t len, size_t start, const rc_json_step *path, size_t depth);
 /* Offset of the element or member value after the one at `offset` in the same array or
  * object (member: skip its key), or len when it was the last: walking a long array costs
  * its length once, where rc_json_locate per element would cost its square. */

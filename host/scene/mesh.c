@@ -178,6 +178,48 @@ static const struct aiScene *import_with_watchdog(const char *file, off_t bytes,
   return job.scene;
 }
 
+/* Imports kept while a scene loads: a scene that places one mesh file many times (8,000
+ * copies of a part) imports it once. Keyed by the path and the policy's folder, checked
+ * against the file's identity (device, inode, size, modification time), the oldest
+ * released first; rc_mesh_cache_clear releases them all when the scene is loaded. */
+#define MESH_CACHE 8
+static struct cached_import {
+  char path[4200], root[4200];
+  struct stat id;
+  const struct aiScene *scene;
+} cache[MESH_CACHE];
+static unsigned cache_next;
+
+static bool same_file(const struct stat *a, const struct stat *b) {
+  return a->st_dev == b->st_dev && a->st_ino == b->st_ino && a->st_size == b->st_size &&
+         a->st_mtim.tv_sec == b->st_mtim.tv_sec && a->st_mtim.tv_nsec == b->st_mtim.tv_nsec;
+}
+
+static const struct aiScene *cache_find(const char *file, const char *root, const struct stat *id) {
+  for (unsigned i = 0; i < MESH_CACHE; i++)
+    if (cache[i].scene && strcmp(cache[i].path, file) == 0 && strcmp(cache[i].root, root ? root : "") == 0 &&
+        same_file(&cache[i].id, id))
+      return cache[i].scene;
+  return NULL;
+}
+
+static void cache_add(const char *file, const char *root, const struct stat *id, const struct aiScene *ai) {
+  struct cached_import *c = &cache[cache_next++ % MESH_CACHE];
+  if (c->scene) aiReleaseImport(c->scene);
+  snprintf(c->path, sizeof c->path, "%s", file);
+  snprintf(c->root, sizeof c->root, "%s", root ? root : "");
+  c->id = *id;
+  c->scene = ai;
+}
+
+void rc_mesh_cache_clear(void) {
+  for (unsigned i = 0; i < MESH_CACHE; i++) {
+    if (cache[i].scene) aiReleaseImport(cache[i].scene);
+    cache[i].scene = NULL;
+  }
+  cache_next = 0;
+}
+
 rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *world_from_object, int material,
                        rc_scene *s, const char *where) {
   /* Triangulate n-gons; flatten the node hierarchy into the vertices; drop points and
@@ -193,16 +235,23 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
       fprintf(stderr, "%s: cannot load mesh %s (looked for %s): %s\n", where, file, resolved, why);
     return RC_ERR_IO;
   }
-  file_policy policy = {.root = root};
-  const struct aiScene *ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
-  if (policy.refused[0]) {
-    fprintf(stderr, "%s: cannot load mesh %s: refused to open %s\n", where, file, policy.refused);
-    if (ai) aiReleaseImport(ai);
-    return RC_ERR_IO;
-  }
+  struct stat id;
+  bool known = stat(file, &id) == 0;
+  const struct aiScene *ai = known ? cache_find(file, root, &id) : NULL;
   if (!ai) {
-    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, aiGetErrorString());
-    return RC_ERR_IO;
+    file_policy policy = {.root = root};
+    ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
+    if (policy.refused[0]) {
+      fprintf(stderr, "%s: cannot load mesh %s: refused to open %s\n", where, file, policy.refused);
+      if (ai) aiReleaseImport(ai);
+      return RC_ERR_IO;
+    }
+    if (!ai) {
+      fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, aiGetErrorString());
+      return RC_ERR_IO;
+    }
+    /* Kept for the next object that names the file; released by the cache. */
+    if (known) cache_add(file, root, &id, ai);
   }
   rc_status st = RC_OK;
   uint32_t first_material = 0;
@@ -248,7 +297,7 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
       if (st == RC_OK) st = rc_scene_add_triangle(s, &d);
     }
   }
-  aiReleaseImport(ai);
+  if (!known) aiReleaseImport(ai);
   /* Zero-area faces are a property of the mesh file: the warning names it. */
   size_t skipped = s->degenerate_triangles - degenerate_before;
   if (st == RC_OK && skipped)

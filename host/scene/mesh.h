@@ -15,4 +15,8 @@
 rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *world_from_object, int material,
                        rc_scene *scene, const char *where);
 
+/* Releases the imports rc_mesh_load keeps while a scene loads (a file placed many times
+ * is imported once); rc_scene_load calls it when the scene is loaded. */
+void rc_mesh_cache_clear(void);
+
 #endif

@@ -192,6 +192,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   for (const cJSON *o = objs->child; o; o = o->next, i++) {
     js_push_index(c, i);
     off = i == 0 ? js_offset(c) : rc_json_next_value(c->text, c->len, off, false);
+    c->base_off = off, c->base_depth = c->depth, c->base_index = i;
     size_t before[RC_ORIGIN_KINDS];
     rc_scene_counts(s, before);
     TRY(js_expect_object(c, o));

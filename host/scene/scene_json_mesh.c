@@ -133,9 +133,11 @@ rc_status js_load_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m,
   if (nf < 0 || np < 0 || (size_t)nf >= sizeof folder || (size_t)np >= sizeof path) return js_fail(c, "path too long");
   if (!c->allow_outside_paths && !rc_path_within(folder, path))
     return js_fail(c, "lies outside the scene's folder %s (--allow-outside-paths allows it)", folder);
-  size_t off = rc_json_locate(c->text, c->len, c->path, c->depth);
+  /* Found from the object, counted on from the last place: linear in the file however
+   * many meshes it names. */
+  size_t off = js_offset_near(c);
   int line, col;
-  rc_json_line_col(c->text, c->len, off, &line, &col);
+  js_line_col(c, off, &line, &col);
   char where[4400];
   char fpath[256];
   js_format_path(c, fpath, sizeof fpath);

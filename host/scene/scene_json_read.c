@@ -223,15 +223,43 @@ rc_status js_get_enum(jctx *c, const cJSON *obj, const char *key, const char *co
 
 size_t js_offset(const jctx *c) { return rc_json_locate(c->text, c->len, c->path, c->depth); }
 
-rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KINDS], size_t off, const char *what,
-                         uint32_t item) {
-  if (off < c->lc_off || c->lc_line == 0) c->lc_off = 0, c->lc_line = 1, c->lc_col = 1;
+size_t js_offset_near(const jctx *c) {
+  bool inside = c->base_depth > 0 && c->depth >= c->base_depth && !c->path[c->base_depth - 1].key &&
+                c->path[c->base_depth - 1].index == c->base_index;
+  if (!inside) return js_offset(c);
+  return rc_json_locate_from(c->text, c->len, c->base_off, c->path + c->base_depth, c->depth - c->base_depth);
+}
+
+void js_line_col(jctx *c, size_t off, int *line, int *col) {
+  if (c->lc_line == 0) c->lc_off = 0, c->lc_line = 1, c->lc_col = 1;
+  if (off < c->lc_off) {
+    /* Back a little (an object's own place after a mesh file inside it): uncount the
+     * lines between; the column from the line's start only when a line was crossed. */
+    bool crossed = false;
+    for (size_t i = off; i < c->lc_off; i++)
+      if (c->text[i] == '\n') c->lc_line--, crossed = true;
+    if (crossed) {
+      size_t b = off;
+      while (b > 0 && c->text[b - 1] != '\n') b--;
+      c->lc_col = (int)(off - b) + 1;
+    } else {
+      c->lc_col -= (int)(c->lc_off - off);
+    }
+    c->lc_off = off;
+  }
   for (size_t i = c->lc_off; i < off && i < c->len; i++) {
     if (c->text[i] == '\n') c->lc_line++, c->lc_col = 1;
     else c->lc_col++;
   }
   c->lc_off = off;
-  return rc_scene_note_origin(s, before, c->lc_line, c->lc_col, what, item);
+  *line = c->lc_line, *col = c->lc_col;
+}
+
+rc_status js_note_origin(jctx *c, rc_scene *s, const size_t before[RC_ORIGIN_KINDS], size_t off, const char *what,
+                         uint32_t item) {
+  int line, col;
+  js_line_col(c, off, &line, &col);
+  return rc_scene_note_origin(s, before, line, col, what, item);
 }
 
 rc_status js_get_bool(jctx *c, const cJSON *obj, const char *key, bool def, bool *out) {

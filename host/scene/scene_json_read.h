@@ -22,8 +22,11 @@ typedef struct {
   rc_name_table materials; /* material name -> index into rc_scene.materials */
   const cJSON *material_defs; /* the "materials" object: names for did-you-mean */
   bool allow_outside_paths; /* rc_load_options */
-  size_t lc_off;            /* js_note_origin's line counter: where it stopped */
+  size_t lc_off;            /* js_line_col's counter: where it stopped */
   int lc_line, lc_col;
+  /* The object being parsed (objects[base_index], at base_off, the path base_depth deep):
+   * places inside it are found from it (js_offset_near), not from the file's start. */
+  size_t base_off, base_depth, base_index;
 } jctx;
 
 #define TRY(expr)                 \
@@ -67,6 +70,11 @@ void js_affine_identity(rc_affine *a);
 void js_affine_multiply(rc_affine *a, const rc_affine *b);
 /* Offset in the text of the value at the current path (rc_json_locate). */
 size_t js_offset(const jctx *c);
+/* js_offset, found from the current object where the path lies inside it. */
+size_t js_offset_near(const jctx *c);
+/* Line and column of an offset, counted on from the last offset asked for when it is
+ * not before it: walking a file's places in order costs the file once. */
+void js_line_col(jctx *c, size_t off, int *line, int *col);
 /* Records that what was added to the scene since `before` comes from the value at `off`
  * (an element of array `what`, or with item UINT32_MAX a member of object `what`). Lines
  * are counted on from the previous call, so values noted in file order cost the file once. */

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "scene/json_locate.h"
+#include "scene/mesh.h"
 #include "scene/scene.h"
 
 /* Scene files larger than this are refused before reading (a mesh belongs in a mesh file). */
@@ -45,6 +46,7 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
   }
   bool test = format == FORMAT_TEST || (format == FORMAT_BY_CONTENT && !starts_like_json(text, len));
   st = test ? rc_scene_parse_test(name, text, len, scene) : rc_scene_parse_json(name, text, len, options, scene);
+  rc_mesh_cache_clear();
   free(text);
   size_t inline_skipped = scene->degenerate_triangles - scene->degenerate_in_meshes;
   if (st == RC_OK && inline_skipped)
