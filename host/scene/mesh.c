@@ -1,4 +1,5 @@
 #include "scene/mesh.h"
+#include "scene/mesh_check.h"
 
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
@@ -122,6 +123,9 @@ static void file_close(struct aiFileIO *io, struct aiFile *f) {
   free(f);
 }
 
+/* assimp's own validation runs first (aiProcess_ValidateDataStructure): a face index past
+ * the vertex array (a PLY face naming vertex 2,000,000,000) is refused there, where the
+ * later steps would read out of bounds and crash. */
 /* assimp 5.2.4 can loop forever on a malformed file (fuzz_mesh found a 171-byte ASCII PLY
  * that spins in fread at end of file). The import runs on a helper thread; if it has not
  * finished after 20 s + 1 s per MiB, the process reports the file and exits with status 2
@@ -137,7 +141,7 @@ typedef struct {
 
 static void *import_thread(void *arg) {
   import_job *j = arg;
-  const struct aiScene *s = aiImportFileEx(j->file, aiProcess_Triangulate | aiProcess_PreTransformVertices |
+  const struct aiScene *s = aiImportFileEx(j->file, aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                                         aiProcess_SortByPType | aiProcess_JoinIdenticalVertices,
                                            &j->io);
   pthread_mutex_lock(&j->lock);
@@ -234,6 +238,12 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
     else
       fprintf(stderr, "%s: cannot load mesh %s (looked for %s): %s\n", where, file, resolved, why);
     return RC_ERR_IO;
+  }
+  char why_not[300];
+  const char *refused = rc_mesh_check(file, bytes, why_not, sizeof why_not);
+  if (refused) {
+    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, refused);
+    return RC_ERR_INPUT;
   }
   struct stat id;
   bool known = stat(file, &id) == 0;
