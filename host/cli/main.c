@@ -14,6 +14,7 @@
 #include "cli/cli.h"
 #include "cli/huge_pages.h"
 #include "cli/options.h"
+#include "cli/output.h"
 #include "cli/safe_streams.h"
 #include "vkraycast_build.h"
 #include "vkraycast_revision.h"
@@ -88,6 +89,9 @@ static int find_command(int argc, char **argv) {
 int main(int argc, char **argv) {
   rc_huge_pages_reexec(argv);
   rc_safe_streams_install();
+  /* Before any thread starts, so that every one inherits the blocked signals and only
+   * the signal thread takes them (cli/output.h). */
+  rc_output_install_signal_handlers();
   if (argc < 2) {
     fputs(usage, stderr);
     return rc_status_exit_code(RC_ERR_USAGE);

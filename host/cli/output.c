@@ -1,6 +1,9 @@
 #include "cli/output.h"
 
+#include <errno.h>
+#include <pthread.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,29 +11,68 @@
 
 #include "compare/aov.h"
 
-/* Temporary files the signal handler must unlink; written before any signal can need
- * them, read only by the handler (unlink() is async-signal-safe). */
-static char pending[3][4096];
+/* Temporary files and the old files' backups (hard links kept while a commit is under
+ * way) that the signal thread must unlink; written before any signal can need them. */
+static char pending[3][4096], backups[3][4200];
 
-static void on_fatal_signal(int sig) {
-  for (int i = 0; i < 3; i++)
+/* Every asynchronous signal whose default action ends the process (signal(7)), SIGPIPE
+ * aside: that one is sent to the thread that wrote to a closed pipe, and keeps a handler
+ * of its own. Faults (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGSYS, SIGTRAP) are left
+ * to their default and to the sanitizers' reports: where the temporary is unnamed
+ * (O_TMPFILE, image_io.cpp) even they, and SIGKILL, leave nothing behind. */
+static const int fatal_signals[] = {SIGHUP,  SIGINT,  SIGQUIT, SIGALRM, SIGTERM, SIGUSR1, SIGUSR2,
+                                    SIGVTALRM, SIGPROF, SIGXCPU, SIGIO,   SIGPWR,  SIGSTKFLT};
+static sigset_t fatal_set;
+/* Held while the files of a run are renamed into place: the signal thread waits for it,
+ * so that a signal lands before the first rename or after the last, never between. */
+static pthread_mutex_t commit_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static void unlink_pending(void) {
+  for (int i = 0; i < 3; i++) {
     if (pending[i][0]) unlink(pending[i]);
+    if (backups[i][0]) unlink(backups[i]);
+  }
+}
+
+static void on_pipe(int sig) {
+  unlink_pending();
   signal(sig, SIG_DFL);
   raise(sig);
 }
 
-/* Every asynchronous signal whose default action ends the process (signal(7)). Faults
- * (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGSYS, SIGTRAP) are left to their default
- * and to the sanitizers' reports: where the temporary is unnamed (O_TMPFILE, image_io.cpp)
- * even they, and SIGKILL, leave nothing behind. */
-static const int fatal_signals[] = {SIGHUP,  SIGINT,    SIGQUIT, SIGPIPE, SIGALRM, SIGTERM, SIGUSR1,
-                                    SIGUSR2, SIGVTALRM, SIGPROF, SIGXCPU, SIGIO,   SIGPWR,  SIGSTKFLT};
+/* The one thread that takes the process's asynchronous signals: every other thread
+ * blocks them (the mask is set before any thread starts: the driver's, the reference's,
+ * the importer's inherit it). It waits for a commit under way, removes the temporaries,
+ * and ends the process by the same signal. */
+static void *signal_thread(void *unused) {
+  (void)unused;
+  int sig = 0;
+  while (sigwait(&fatal_set, &sig) != 0) {
+  }
+  pthread_mutex_lock(&commit_lock);
+  unlink_pending();
+  signal(sig, SIG_DFL);
+  sigset_t one;
+  sigemptyset(&one);
+  sigaddset(&one, sig);
+  pthread_sigmask(SIG_UNBLOCK, &one, NULL);
+  raise(sig);
+  _exit(128 + sig);
+}
 
 void rc_output_install_signal_handlers(void) {
-  struct sigaction sa = {.sa_handler = on_fatal_signal};
-  sigfillset(&sa.sa_mask); /* one handler at a time */
-  for (size_t i = 0; i < sizeof fatal_signals / sizeof *fatal_signals; i++) sigaction(fatal_signals[i], &sa, NULL);
-  for (int s = SIGRTMIN; s <= SIGRTMAX; s++) sigaction(s, &sa, NULL);
+  static bool installed;
+  if (installed) return;
+  installed = true;
+  sigemptyset(&fatal_set);
+  for (size_t i = 0; i < sizeof fatal_signals / sizeof *fatal_signals; i++) sigaddset(&fatal_set, fatal_signals[i]);
+  for (int s = SIGRTMIN; s <= SIGRTMAX; s++) sigaddset(&fatal_set, s);
+  pthread_sigmask(SIG_BLOCK, &fatal_set, NULL);
+  pthread_t t;
+  if (pthread_create(&t, NULL, signal_thread, NULL) == 0) pthread_detach(t);
+  struct sigaction sa = {.sa_handler = on_pipe};
+  sigfillset(&sa.sa_mask);
+  sigaction(SIGPIPE, &sa, NULL);
   signal(SIGXFSZ, SIG_IGN); /* a file size limit becomes a write error (EFBIG) */
 }
 
@@ -132,6 +174,85 @@ rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu
   return RC_OK;
 }
 
+typedef struct {
+  rc_image_writer *w;
+  const char *path, *what;
+} commit_file;
+
+/* The backup's name: a hidden link beside the file, unique to this process. */
+static void backup_name(const char *path, char *out, size_t cap) {
+  const char *slash = strrchr(path, '/');
+  int dir = slash ? (int)(slash - path + 1) : 0;
+  snprintf(out, cap, "%.*s.%s.vkraycast-old-%ld", dir, path, slash ? slash + 1 : path, (long)getpid());
+}
+
+/* The rename of file `step` (0 image, 1 AOV, 2 statistics) fails when VKRAYCAST_FAULT is
+ * commit:STEP: how the tests make a commit fail halfway, as a full disk or a lost
+ * folder would. */
+static bool injected(int step) {
+  const char *arg = rc_fault_arg("commit");
+  return arg && atoi(arg) == step;
+}
+
+/* Renames the written files into place, all or none: each old file is kept as a hard
+ * link until every rename has succeeded; after a failure the files renamed so far are
+ * put back (the old one restored, or the new one removed where there was none). Signals
+ * wait for it to end (commit_lock). */
+static rc_status commit_all(commit_file *files, int n) {
+  char err[512];
+  bool existed[3] = {false}, renamed[3] = {false};
+  rc_status st = RC_OK;
+  pthread_mutex_lock(&commit_lock);
+  for (int i = 0; i < n; i++) {
+    if (!files[i].w) continue;
+    backup_name(files[i].path, backups[i], sizeof backups[i]);
+    unlink(backups[i]);
+    struct stat sb;
+    existed[i] = lstat(files[i].path, &sb) == 0;
+    if (existed[i] && link(files[i].path, backups[i]) != 0) {
+      rc_error("%s: cannot keep the old %s while the new one is renamed into place: %s", files[i].path,
+               files[i].what, strerror(errno));
+      backups[i][0] = '\0';
+      st = RC_ERR_IO;
+      break;
+    }
+    if (!existed[i]) backups[i][0] = '\0';
+  }
+  for (int i = 0; i < n; i++) {
+    if (!files[i].w) continue;
+    bool ok = st == RC_OK;
+    if (ok && injected(i)) {
+      rc_error("%s: cannot write %s: injected fault (VKRAYCAST_FAULT=commit:%d)", files[i].path, files[i].what, i);
+      ok = false;
+    }
+    if (rc_image_writer_close(files[i].w, ok, err, sizeof err) != 0 && ok) {
+      rc_error("%s: cannot write %s: %s", files[i].path, files[i].what, err);
+      ok = false;
+    }
+    renamed[i] = ok;
+    if (!ok) st = RC_ERR_IO;
+    /* VKRAYCAST_FAULT=commit-pause:STEP holds the commit after that rename for two
+     * seconds: the tests send a signal then, which must wait for the commit's end. */
+    const char *pause = rc_fault_arg("commit-pause");
+    if (ok && pause && atoi(pause) == i) sleep(2);
+  }
+  for (int i = 0; i < n; i++) {
+    if (st != RC_OK && renamed[i]) {
+      /* Put back what was there: the old file, or nothing. */
+      bool back = existed[i] ? rename(backups[i], files[i].path) == 0 : unlink(files[i].path) == 0;
+      if (!back)
+        rc_error("%s: cannot restore the old %s after the failure: %s (the old one is %s)", files[i].path,
+                 files[i].what, strerror(errno), existed[i] ? backups[i] : "absent");
+      else if (existed[i])
+        backups[i][0] = '\0';
+    }
+    if (backups[i][0]) unlink(backups[i]);
+    backups[i][0] = '\0';
+  }
+  pthread_mutex_unlock(&commit_lock);
+  return st;
+}
+
 rc_status rc_output_close(rc_output *o, bool commit) {
   if (!o) return RC_OK;
   rc_status st = RC_OK;
@@ -140,10 +261,7 @@ rc_status rc_output_close(rc_output *o, bool commit) {
   /* One transaction: every file is written and fsynced before any is renamed, and a
    * failure of any discards all, so an AOV or statistics file that cannot be written
    * leaves the old image in place too. */
-  struct {
-    rc_image_writer *w;
-    const char *path, *what;
-  } files[3] = {{o->image, o->image_path, "image"},
+  commit_file files[3] = {{o->image, o->image_path, "image"},
                 {o->aov, o->aov_path, "the AOV file"},
                 {o->stats, o->stats_path, "statistics"}};
   for (int i = 0; commit && i < 3; i++) {
@@ -153,13 +271,9 @@ rc_status rc_output_close(rc_output *o, bool commit) {
       commit = false;
     }
   }
-  for (int i = 0; i < 3; i++) {
-    if (files[i].w && rc_image_writer_close(files[i].w, commit, err, sizeof err) != 0) {
-      rc_error("%s: cannot write %s: %s", files[i].path, files[i].what, err);
-      st = RC_ERR_IO;
-      commit = false;
-    }
-  }
+  if (commit) st = commit_all(files, 3);
+  for (int i = 0; !commit && i < 3; i++)
+    if (files[i].w) rc_image_writer_close(files[i].w, false, err, sizeof err);
   o->write_ms += rc_now_ms() - t0;
   pending[0][0] = pending[1][0] = pending[2][0] = '\0';
   free(o->aov_band);

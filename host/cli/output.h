@@ -1,11 +1,14 @@
 /* output.h: where a render's bands of rows go: the image file (and the AOV file) through
  * OpenImageIO's scanline writers, into temporary files renamed into place only when the
  * whole frame is written, every write checked and the file fsynced first (image_io.h).
- * The temporaries are unnamed where Linux allows it (O_TMPFILE), so nothing can leave
- * them behind; where they have names, a handler for every asynchronous terminating
- * signal unlinks them before dying. SIGXFSZ (a file size limit) is ignored so that a
- * full disk or a size limit becomes a write error. Either way an existing image is never
- * left half overwritten. */
+ * The image, the AOV file and the statistics of a run are one commit: each old file is
+ * kept as a hard link until every rename has succeeded, and put back if one fails.
+ * The temporaries are unnamed where Linux allows it (O_TMPFILE); where they have names,
+ * and for the backups, one signal thread takes every asynchronous terminating signal
+ * (all other threads block them from the start), waits for a commit under way, unlinks
+ * them and dies by the signal. SIGXFSZ (a file size limit) is ignored so that a full disk
+ * or a size limit becomes a write error. Either way an existing image is never left half
+ * overwritten, and the files of a run are all old or all new. */
 #ifndef RC_OUTPUT_H
 #define RC_OUTPUT_H
 
@@ -37,6 +40,9 @@ rc_status rc_output_attach(rc_output *o, const char *path, const char *text);
 rc_status rc_output_close(rc_output *o, bool commit);
 double rc_output_write_ms(const rc_output *o);
 
+/* Blocks the asynchronous terminating signals in the calling thread (and so in every
+ * thread it starts) and starts the signal thread; once a process, first thing in main.
+ * A child process must be started with an empty signal mask (posix_spawnattr). */
 void rc_output_install_signal_handlers(void);
 
 #endif
