@@ -192,9 +192,11 @@ static rc_status parse_args(int argc, char **argv, compare_args *a, rc_heat_scal
     rc_usage_error(&rc_compare_spec, "--diff -: the heat map is not written to standard output; name a file");
     return RC_ERR_USAGE;
   }
-  const rc_file_role roles[] = {
+  rc_file_role roles[3 + RC_OPT_LIST_MAX] = {
       {a->files[0], "image A", false}, {a->files[1], "image B", false}, {a->diff, "the heat map", true}};
-  if (rc_check_distinct(roles, 3) != RC_OK) return RC_ERR_USAGE;
+  size_t n = 3;
+  for (unsigned k = 0; k < a->bands.count; k++) roles[n++] = (rc_file_role){a->bands.item[k], "a --band file", false};
+  if (rc_check_distinct(roles, n) != RC_OK) return RC_ERR_USAGE;
   if (a->diff && rc_check_output(a->diff, "the heat map") != RC_OK) return RC_ERR_IO;
   return a->diff ? rc_output_check_format(a->diff) : RC_OK;
 }

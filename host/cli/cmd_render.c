@@ -540,6 +540,28 @@ static void part_settings(render_args *a, const rc_scene *s, const char *backend
 
 static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *ctx, double parse_ms, bool warn);
 
+/* No output may name a file the scene read (a mesh, the MTL or glTF buffer it names):
+ * writing one would replace an input of the very render, or of the next. Known only once
+ * the scene has loaded, and checked then, before anything renders or is written. */
+static rc_status check_outputs_against_inputs(const render_args *a, const rc_scene *scene) {
+  const char *outputs[3 + 2 * RC_MAX_BAND_RENDERS] = {a->output, a->aov, a->stats_stdout ? NULL : a->stats_json};
+  static const char *const roles[3] = {"the image", "the AOV file", "the statistics"};
+  size_t n = 3;
+  char band_names[2 * RC_MAX_BAND_RENDERS][PATH_MAX];
+  for (uint32_t k = 1; k <= a->band_renders; k++) {
+    if (a->output && band_path(a->output, k, band_names[n - 3], PATH_MAX)) outputs[n] = band_names[n - 3], n++;
+    if (a->aov && band_path(a->aov, k, band_names[n - 3], PATH_MAX)) outputs[n] = band_names[n - 3], n++;
+  }
+  for (size_t i = 0; i < scene->input_count; i++)
+    for (size_t k = 0; k < n; k++) {
+      if (!outputs[k]) continue;
+      const rc_file_role pair[2] = {{scene->inputs[i], "a file the scene reads", false},
+                                    {outputs[k], k < 3 ? roles[k] : "a band render's file", true}};
+      if (rc_check_distinct(pair, 2) != RC_OK) return RC_ERR_USAGE;
+    }
+  return RC_OK;
+}
+
 rc_status rc_cmd_render(int argc, char **argv) {
   render_args a;
   rc_status st = parse_args(argc, argv, &a);
@@ -550,6 +572,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_set_scene_path(a.scene);
   st = rc_scene_load(a.scene, &a.load, &scene);
   double parse_ms = rc_now_ms() - t0;
+  if (st == RC_OK) st = check_outputs_against_inputs(&a, &scene);
   if (st == RC_OK && !a.output) {
     if (scene.output_name[0]) {
       a.output = scene.output_name;

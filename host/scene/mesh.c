@@ -73,6 +73,7 @@ static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char
 typedef struct {
   const char *root; /* the folder files must lie in; NULL: anywhere */
   char refused[4200];
+  rc_scene *scene;  /* records every file opened (rc_scene_note_input) */
 } file_policy;
 
 static size_t file_read(struct aiFile *f, char *buf, size_t size, size_t count) {
@@ -113,6 +114,7 @@ static struct aiFile *file_open(struct aiFileIO *io, const char *path, const cha
     return NULL;
   }
   *f = (struct aiFile){file_read, file_write, file_tell, file_size, file_seek, file_flush, (aiUserData)fp};
+  if (policy->scene) rc_scene_note_input(policy->scene, path);
   return f;
 }
 
@@ -239,6 +241,7 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
       fprintf(stderr, "%s: cannot load mesh %s (looked for %s): %s\n", where, file, resolved, why);
     return RC_ERR_IO;
   }
+  if (!rc_scene_note_input(s, file)) return RC_ERR_OUT_OF_MEMORY;
   char why_not[300];
   const char *refused = rc_mesh_check(file, bytes, why_not, sizeof why_not);
   if (refused) {
@@ -249,7 +252,7 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
   bool known = stat(file, &id) == 0;
   const struct aiScene *ai = known ? cache_find(file, root, &id) : NULL;
   if (!ai) {
-    file_policy policy = {.root = root};
+    file_policy policy = {.root = root, .scene = s};
     ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
     if (policy.refused[0]) {
       fprintf(stderr, "%s: cannot load mesh %s: refused to open %s\n", where, file, policy.refused);

@@ -54,8 +54,26 @@ void rc_scene_free(rc_scene *scene) {
   for (size_t i = 0; i < scene->csg_count; i++) free(scene->csgs[i].program);
   free(scene->csgs);
   free(scene->origins);
+  for (size_t i = 0; i < scene->input_count; i++) free(scene->inputs[i]);
+  free(scene->inputs);
   free(scene->path);
   memset(scene, 0, sizeof *scene);
+}
+
+bool rc_scene_note_input(rc_scene *s, const char *path) {
+  /* A file placed many times is one input: the last few are where a repeat comes from. */
+  for (size_t i = s->input_count, k = 0; i > 0 && k < 8; i--, k++)
+    if (strcmp(s->inputs[i - 1], path) == 0) return true;
+  if (s->input_count == s->input_capacity) {
+    size_t cap = s->input_capacity ? 2 * s->input_capacity : 8;
+    char **p = realloc(s->inputs, cap * sizeof *p);
+    if (!p) return false;
+    s->inputs = p, s->input_capacity = cap;
+  }
+  char *copy = strdup(path);
+  if (!copy) return false;
+  s->inputs[s->input_count++] = copy;
+  return true;
 }
 
 /* |up x forward| <= 1e-6 |up| |forward| counts as parallel (tests/bad_input/cases.txt). */

@@ -148,6 +148,10 @@ typedef struct rc_scene {
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
   bool srgb_8bit;              /* 8-bit outputs sRGB-encoded (JSON image.encoding); else linear */
   char output_name[256];       /* a .test scene's `output` file name ("" when none): a bare name, no folder */
+  /* Every file the scene read besides itself (its meshes and the files they name), as
+   * opened: the outputs of a run may name none of them (cli/cmd_render.c). */
+  char **inputs;
+  size_t input_count, input_capacity;
   rc_origin *origins;          /* in file order */
   size_t origin_count, origin_capacity;
 } rc_scene;
@@ -183,6 +187,8 @@ rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc
 rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, const rc_load_options *options,
                               rc_scene *scene);
 void rc_scene_free(rc_scene *scene);
+/* Records a file the scene read (once each); false when memory runs out. */
+bool rc_scene_note_input(rc_scene *scene, const char *path);
 /* Room for `extra` more triangles (meshes and JSON triangles both append). */
 rc_status rc_scene_reserve_triangles(rc_scene *scene, size_t extra);
 /* Appends a triangle, or counts it in degenerate_triangles when its area is exactly zero

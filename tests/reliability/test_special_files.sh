@@ -76,5 +76,43 @@ for kind in "${!kinds[@]}"; do
     check "band $f output is $kind" "$why"
   done
 done
+# No output names a file the run reads (issue 45, class 1): every output role against a
+# mesh, the material library it names, and a symbolic and a hard link to the mesh; and
+# compare's heat map against a --band file. Each refused with exit 2, the input intact.
+mkdir -p "$work/in"
+printf 'mtllib mats.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$work/in/t.obj"
+printf 'newmtl a\nKd 1 0 0\n' >"$work/in/mats.mtl"
+printf '{ "image": {"width": 8, "height": 8}, "camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  "objects": [{"type": "mesh", "file": "t.obj"}]}\n' >"$work/in/t.json"
+ln -sf t.obj "$work/in/sym.png"
+ln -f "$work/in/t.obj" "$work/in/hard.exr"
+cp "$work/in/t.obj" "$work/t.obj.orig"
+cp "$work/in/mats.mtl" "$work/mats.orig"
+for input in t.obj mats.mtl sym.png hard.exr; do
+  for role in image aov stats band; do
+    case $role in
+      image) args=(-o "$work/in/$input") ;;
+      aov) args=(-o "$work/in/o.png" --aov "$work/in/$input") ;;
+      stats) args=(-o "$work/in/o.png" --stats-json "$work/in/$input") ;;
+      band) [[ $input == *.png ]] || continue
+            ln -sf t.obj "$work/in/b.band1.png"; args=(-o "$work/in/b.png" --band-renders 1) ;;
+    esac
+    timeout 30 "$bin" render "$work/in/t.json" "${args[@]}" --quiet >/dev/null 2>"$work/err"
+    got=$? why=ok
+    [[ $got == 2 ]] || why="exit status $got, expected 2"
+    cmp -s "$work/in/t.obj" "$work/t.obj.orig" && cmp -s "$work/in/mats.mtl" "$work/mats.orig" || why="$why; an input changed"
+    [[ ! -e $work/in/o.png && ! -e $work/in/b.png ]] || why="$why; an output was written"
+    grep -q "name the same file\|no image format\|need a multi-channel" "$work/err" || why="$why; stderr: $(head -c 200 "$work/err")"
+    rm -f "$work/in/o.png" "$work/in/b.png" "$work/in/b.band1.png"
+    check "$role output names the scene's input $input" "$why"
+  done
+done
+"$bin" render "$scenes/shadows.json" -o "$work/ref.exr" --aov "$work/ref.aov.exr" --width 16 --height 12 --quiet
+cp "$work/ref.aov.exr" "$work/band.aov.exr"
+timeout 30 "$bin" compare "$work/ref.aov.exr" "$work/ref.aov.exr" --band "$work/band.aov.exr" --diff "$work/band.aov.exr" \
+  >/dev/null 2>"$work/err"
+check "compare --diff names a --band file" \
+  "$([[ $? == 2 ]] && grep -q "name the same file" "$work/err" && cmp -s "$work/ref.aov.exr" "$work/band.aov.exr" &&
+     echo ok || cat "$work/err")"
 check "/dev/null is still a character device" "$([[ -c /dev/null ]] && echo ok || echo 'it was replaced')"
 finish
