@@ -116,15 +116,21 @@ static const char *check_ply(FILE *f, size_t bytes, char *why, size_t len) {
  * carries on: a wrong triangle, rendered). */
 static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
   char word[16];
-  unsigned long long nv, nf, ne;
+  unsigned long long nv, nf;
   if (fscanf(f, "%15s", word) != 1 || !strstr(word, "OFF")) return NULL;
-  if (strcmp(word, "OFF") != 0) return NULL; /* COFF, NOFF, 4OFF...: the importer's business */
-  if (fscanf(f, "%llu %llu %llu", &nv, &nf, &ne) != 3) return NULL;
+  /* The first two numbers after the keyword are what the importer reserves for, whatever
+   * follows them (the fuzzer found "OFF 3 1000000000" and then garbage, which ran it out
+   * of memory); for COFF, NOFF and the like too, counts being counts. */
+  if (fscanf(f, "%llu %llu", &nv, &nf) != 2) return NULL;
   /* A vertex is at least "0 0 0\n" (6 bytes), a face "3 0 0 0\n" (8). */
   if (nv > bytes / 6 || nf > bytes / 8) {
     snprintf(why, len, "its header declares %llu vertices and %llu faces, more than a file of %zu bytes holds", nv,
              nf, bytes);
     return why;
+  }
+  if (strcmp(word, "OFF") != 0) return NULL; /* the indices of the plain format only */
+  int ch;
+  while ((ch = fgetc(f)) != EOF && ch != '\n') {
   }
   for (unsigned long long v = 0; v < nv; v++) {
     double x, y, z;

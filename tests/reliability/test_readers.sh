@@ -45,6 +45,9 @@ put("ply_binary_count_2e9.ply", head.format(fmt="binary_little_endian", nv=20000
 put("ply_binary_truncated.ply", head.format(fmt="binary_little_endian", nv=3, nf=1).encode() + binv[:20])
 put("off_index_past_end.off", "OFF\n3 1 0\n" + verts + "3 0 1 77777777\n")
 put("off_counts_1e9.off", "OFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
+# Found by the fuzzer: the counts, then no third number but bytes assimp skips.
+put("off_counts_then_garbage.off", b"OFF\n3 1000000000 " + b"\xa3" * 89 + b"0\n0 0 0\n1\n")
+put("noff_counts_1e9.off", "NOFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
 put("stl_binary_count_4e9.stl", b"\0" * 80 + struct.pack("<I", 0xFFFFFFFF) + b"\0" * 50)
 put("stl_binary_truncated.stl", b"\0" * 80 + struct.pack("<I", 2) + b"\0" * 60)
 put("stl_ascii_nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
