@@ -179,10 +179,36 @@ static bool band_path(const char *path, uint32_t k, char *out, size_t cap) {
   return len > 0 && (size_t)len < cap;
 }
 
-/* Every output is checked before anything renders: an existing special file or folder,
- * a missing folder, or two roles naming one file, band renders' files included (and, once
- * the scene has loaded, a format the name does not give: rc_output_check_format, which
- * loads the image module, so that a bad scene is refused without it). */
+/* The run's files as rc_check_distinct's roles: the scene (an input), then the outputs:
+ * the image, the AOV file, the statistics, and each band render's image and AOV file
+ * (their names written into names). Returns the count; 0 after saying that a band
+ * render's name is too long. */
+#define RUN_FILES_MAX (4 + 2 * RC_MAX_BAND_RENDERS)
+static size_t run_files(const render_args *a, rc_file_role files[RUN_FILES_MAX],
+                        char names[2 * RC_MAX_BAND_RENDERS][PATH_MAX]) {
+  files[0] = (rc_file_role){strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false};
+  files[1] = (rc_file_role){a->output, "the image", true};
+  files[2] = (rc_file_role){a->aov, "the AOV file", true};
+  files[3] = (rc_file_role){a->stats_stdout ? NULL : a->stats_json, "the statistics", true};
+  size_t n = 4;
+  static const char *const band_roles[2] = {"a band image", "a band AOV file"};
+  const char *base[2] = {a->output, a->aov};
+  for (uint32_t k = 1; k <= a->band_renders; k++)
+    for (int f = 0; f < 2 && base[f]; f++) {
+      char *name = names[n - 4];
+      if (!band_path(base[f], k, name, PATH_MAX)) {
+        rc_error("%s: too long a name for its band renders (--band-renders)", base[f]);
+        return 0;
+      }
+      files[n++] = (rc_file_role){name, band_roles[f], true};
+    }
+  return n;
+}
+
+/* Every output is checked before the scene is read: an existing special file or folder,
+ * a missing folder, two roles naming one file (band renders' files included, each
+ * checked like OUT itself: a folder named NAME.bandK.EXT would otherwise fail the band
+ * render after OUT had landed), and a name no image format writes. */
 static rc_status check_outputs(const render_args *a) {
   if (strcmp(a->output, "-") == 0) {
     rc_usage_error(&rc_render_spec, "-o -: images are not written to standard output (a renamed temporary file is what "
@@ -193,31 +219,12 @@ static rc_status check_outputs(const render_args *a) {
     rc_usage_error(&rc_render_spec, "--aov -: the AOV file is not written to standard output; name a .exr file");
     return RC_ERR_USAGE;
   }
-  if (rc_check_output(a->output, "the image") != RC_OK) return RC_ERR_IO;
-  if (a->aov && rc_check_output(a->aov, "the AOV file") != RC_OK) return RC_ERR_IO;
-  if (a->stats_json && !a->stats_stdout && rc_check_output(a->stats_json, "statistics") != RC_OK) return RC_ERR_IO;
-  rc_file_role files[4 + 2 * RC_MAX_BAND_RENDERS] = {
-      {strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false},
-      {a->output, "the image", true},
-      {a->aov, "the AOV file", true},
-      {a->stats_stdout ? NULL : a->stats_json, "the statistics", true}};
-  size_t n = 4;
-  static const char *const band_roles[2] = {"a band image", "a band AOV file"};
-  const char *base[2] = {a->output, a->aov};
+  rc_file_role files[RUN_FILES_MAX];
   char band_names[2 * RC_MAX_BAND_RENDERS][PATH_MAX];
-  for (uint32_t k = 1; k <= a->band_renders; k++) {
-    for (int f = 0; f < 2 && base[f]; f++) {
-      char *name = band_names[n - 4];
-      if (!band_path(base[f], k, name, PATH_MAX)) {
-        rc_error("%s: too long a name for its band renders (--band-renders)", base[f]);
-        return RC_ERR_USAGE;
-      }
-      /* Checked like OUT itself, before any work: a folder or a device named NAME.bandK.EXT
-       * would otherwise fail the band render after OUT had landed. */
-      if (rc_check_output(name, band_roles[f]) != RC_OK) return RC_ERR_IO;
-      files[n++] = (rc_file_role){name, band_roles[f], true};
-    }
-  }
+  size_t n = run_files(a, files, band_names);
+  if (n == 0) return RC_ERR_USAGE;
+  for (size_t i = 1; i < n; i++)
+    if (files[i].path && rc_check_output(files[i].path, files[i].role) != RC_OK) return RC_ERR_IO;
   if (rc_check_distinct(files, n) != RC_OK) return RC_ERR_USAGE;
   if (a->aov && !is_exr(a->aov)) {
     rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
@@ -544,19 +551,14 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
  * writing one would replace an input of the very render, or of the next. Known only once
  * the scene has loaded, and checked then, before anything renders or is written. */
 static rc_status check_outputs_against_inputs(const render_args *a, const rc_scene *scene) {
-  const char *outputs[3 + 2 * RC_MAX_BAND_RENDERS] = {a->output, a->aov, a->stats_stdout ? NULL : a->stats_json};
-  static const char *const roles[3] = {"the image", "the AOV file", "the statistics"};
-  size_t n = 3;
+  rc_file_role files[RUN_FILES_MAX];
   char band_names[2 * RC_MAX_BAND_RENDERS][PATH_MAX];
-  for (uint32_t k = 1; k <= a->band_renders; k++) {
-    if (a->output && band_path(a->output, k, band_names[n - 3], PATH_MAX)) outputs[n] = band_names[n - 3], n++;
-    if (a->aov && band_path(a->aov, k, band_names[n - 3], PATH_MAX)) outputs[n] = band_names[n - 3], n++;
-  }
+  size_t n = run_files(a, files, band_names);
+  if (n == 0) return RC_ERR_USAGE;
   for (size_t i = 0; i < scene->input_count; i++)
-    for (size_t k = 0; k < n; k++) {
-      if (!outputs[k]) continue;
-      const rc_file_role pair[2] = {{scene->inputs[i], "a file the scene reads", false},
-                                    {outputs[k], k < 3 ? roles[k] : "a band render's file", true}};
+    for (size_t k = 1; k < n; k++) {
+      if (!files[k].path) continue;
+      const rc_file_role pair[2] = {{scene->inputs[i], "a file the scene reads", false}, files[k]};
       if (rc_check_distinct(pair, 2) != RC_OK) return RC_ERR_USAGE;
     }
   return RC_OK;
