@@ -30,11 +30,12 @@ layout(constant_id = RC_SPEC_SHADOWS) const uint spec_shadows = RC_SHADOWS_FROM_
 layout(constant_id = RC_SPEC_SPECULAR_MODEL) const uint spec_specular_model = RC_SPECULAR_FROM_FRAME;
 layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth = RC_DEPTH_FROM_FRAME;
 layout(constant_id = RC_SPEC_SAMPLES) const uint spec_samples = RC_SAMPLES_FROM_FRAME;
+layout(constant_id = RC_SPEC_LIGHT_PASSES) const bool light_passes = false;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = RC_BINDING_STATUS) buffer Status { gpu_status status; };
-layout(std430, binding = RC_BINDING_AOV) writeonly buffer Aov { gpu_aov aov[]; };
+layout(std430, binding = RC_BINDING_AOV) buffer Aov { gpu_aov aov[]; };
 layout(push_constant) uniform Push { gpu_push push; };
 
 // Where each kind's object numbers begin (rc_intersect.glsl's object_kind), read from the
@@ -48,6 +49,10 @@ uint reflection_rays = 0u;
 // Whether the ray being traced left a surface (shadow and reflection rays): only those can
 // re-hit the surface they start on, so only they reject hits within t's error bound.
 bool spawned_ray = false;
+// The lights this dispatch shades, [pass_first_light, pass_end_light): all of them unless the
+// scene's samples are too long for one dispatch (RC_SPEC_LIGHT_PASSES, host/gpu/gpu_plan.h).
+uint pass_first_light = 0u;
+uint pass_end_light = 0u;
 // The AOV record of this invocation's first sample (rc_trace.glsl fills it).
 bool aov_recording = false;
 gpu_aov aov_record;
@@ -66,6 +71,11 @@ uint scene_samples_per_pixel() {
 uint scene_reflection_depth() {
   return spec_reflection_depth == RC_DEPTH_FROM_FRAME ? frame.reflection_depth : spec_reflection_depth;
 }
+// The light pass: constants, and so free, where the scene needs none. Only the first pass of
+// a sample adds what no light contributes (background, ambient, emission) and counts its
+// reflection rays.
+uint light_pass_begin() { return light_passes ? pass_first_light : 0u; }
+uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count(); }
 
 #include "rc_real.glsl"
 #include "rc_scene_access.glsl"
@@ -103,16 +113,36 @@ void main() {
   uint slot = local.y * push.tile_width + local.x;
 
   vec4 sum = vec4(0.0);
-  uint target = 0u;
-  uint accum_done_before = 0u;
+  uint target = 0u;     // the pixel's progress after this dispatch
+  uint total = 0u;      // ... when it is complete
+  bool aov_write = false;
   if (inside) {
     sum = accum[slot];
     uint done = uint(sum.a);
-    accum_done_before = done;
-    target = min(done + push.batch_samples, scene_samples_per_pixel());
-    for (uint s = done; s < target; s++) {
-      if (!budget_step()) break;
-      sum.rgb += vec3(trace_sample(pixel, s));
+    if (light_passes) {
+      // Progress counts lights: the next pass of sample s starts at light done - s x lights,
+      // and traces the sample's rays again (the same rays: nothing in them is random).
+      uint lights = scene_light_count();
+      uint s = done / lights;
+      total = scene_samples_per_pixel() * lights;
+      target = done;
+      if (s < scene_samples_per_pixel() && budget_step()) {
+        pass_first_light = done - s * lights;
+        pass_end_light = min(pass_first_light + push.light_pass, lights);
+        sum.rgb += vec3(trace_sample(pixel, s));
+        target = s * lights + pass_end_light;
+        // The first sample's record gathers its shadow bits over the passes.
+        aov_write = aov_enabled && s == 0u;
+        if (aov_write && pass_first_light > 0u) aov_record.shadow_bits += aov[slot].shadow_bits;
+      }
+    } else {
+      total = scene_samples_per_pixel();
+      target = min(done + push.batch_samples, total);
+      aov_write = aov_enabled && done == 0u && target > 0u;
+      for (uint s = done; s < target; s++) {
+        if (!budget_step()) break;
+        sum.rgb += vec3(trace_sample(pixel, s));
+      }
     }
 #if RC_QUADRICS
     if (crossing_blame != 0u && atomicCompSwap(status.crossing_object, 0u, crossing_blame) == 0u)
@@ -133,8 +163,8 @@ void main() {
     return;
   }
   accum[slot] = vec4(sum.rgb, float(target));
-  if (aov_enabled && accum_done_before == 0u && target > 0u) aov[slot] = aov_record;
-  if (target < scene_samples_per_pixel()) atomicAdd(status.incomplete_pixels, 1u);
+  if (aov_write) aov[slot] = aov_record;
+  if (target < total) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);
 }

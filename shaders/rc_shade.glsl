@@ -230,14 +230,15 @@ rvec3 light_contribution(gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l
 }
 
 // Direct light at the surface seen along d: ambient, then each light whose shadow ray is
-// unblocked.
+// unblocked (in a light pass, the pass's lights only: raycast.comp).
 rvec3 shade_phong(surface sf, rvec3 d) {
   gpu_material m = load_material(sf.material);
   rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
+  if (light_pass_begin() != 0u) color = rvec3(0.0);
   rvec3 v = -d;
   rvec3 origin = spawn_origin(sf);
   spawned_ray = true; // every shadow ray below leaves the surface
-  for (uint i = 0u; i < scene_light_count(); i++) {
+  for (uint i = light_pass_begin(); i < light_pass_end(); i++) {
     if (!budget_step()) break;
     rvec3 l;
     rvec3 irradiance;

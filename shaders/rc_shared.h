@@ -44,7 +44,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_BINDING_TRIANGLES 2 /* gpu_triangle[] */
 #define RC_BINDING_MATERIALS 3 /* gpu_material[] */
 #define RC_BINDING_LIGHTS 4    /* gpu_light[] */
-#define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = sample count */
+#define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = progress (RC_SPEC_LIGHT_PASSES) */
 #define RC_BINDING_STATUS 6    /* gpu_status */
 #define RC_BINDING_AOV 7       /* gpu_aov per tile pixel (written only when aov_enabled) */
 #define RC_BINDING_BVH_NODES 8 /* gpu_bvh_node[] (texel or storage, like the scene arrays) */
@@ -75,6 +75,9 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SPEC_SPECULAR_MODEL 12  /* RC_SPECULAR_*, or RC_SPECULAR_FROM_FRAME */
 #define RC_SPEC_REFLECTION_DEPTH 13 /* mirror bounces, or RC_DEPTH_FROM_FRAME */
 #define RC_SPEC_SAMPLES 14         /* samples per pixel, or RC_SAMPLES_FROM_FRAME */
+/* bool: a sample's lights are shaded in passes of push.light_pass (host/gpu/gpu_plan.h),
+ * and accum.a counts lights (sample x lights + lights done) instead of samples */
+#define RC_SPEC_LIGHT_PASSES 15
 #define RC_KIND_SPHERES 1u
 #define RC_KIND_TRIANGLES 2u
 #define RC_KIND_QUADRICS 4u
@@ -354,7 +357,8 @@ struct gpu_push {
   uint tile_x; uint tile_y; uint tile_width; uint tile_height;
   uint batch_samples;
   uint row_stride; /* workgroup row i renders block row (i * row_stride) mod rows (gpu_tiles.h) */
-  uint pad1; uint pad2;
+  uint light_pass; /* with RC_SPEC_LIGHT_PASSES: the lights one dispatch shades per sample */
+  uint pad0;
 };
 
 #define RC_TEXELS_PER_SPHERE 2

@@ -28,7 +28,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     aov_recording = aov_enabled && s == 0u && depth == 0u;
     if (aov_recording) aov_begin(h);
     if (!hit) {
-      color += weight * rvec3(frame.background);
+      if (light_pass_begin() == 0u) color += weight * rvec3(frame.background);
       break;
     }
     surface sf = surface_at(o, d, h);
@@ -40,7 +40,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     weight *= mirror;
     o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));
-    reflection_rays++;
+    if (light_pass_begin() == 0u) reflection_rays++;
   }
   return color;
 }

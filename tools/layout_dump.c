@@ -133,8 +133,8 @@ int main(void) {
   OFF("push.tile_height", gpu_push, tile_height);
   OFF("push.batch_samples", gpu_push, batch_samples);
   OFF("push.row_stride", gpu_push, row_stride);
-  OFF("push.pad1", gpu_push, pad1);
-  OFF("push.pad2", gpu_push, pad2);
+  OFF("push.light_pass", gpu_push, light_pass);
+  OFF("push.pad0", gpu_push, pad0);
   printf("Push size %zu\n", sizeof(gpu_push));
   OFF("status.exhausted_pixels", gpu_status, exhausted_pixels);
   OFF("status.incomplete_pixels", gpu_status, incomplete_pixels);

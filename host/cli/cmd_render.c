@@ -147,7 +147,7 @@ static const rc_option render_options[] = {
     {"--plan-budget", NULL, RC_OPT_UINT, ARG(plan_budget), "N", 1, UINT32_MAX,
      .help = "loop budget the host plans batches with (default: the shader's, 49152\n"
              "divided by the subgroup size on llvmpipe); larger values test the\n"
-             "shader's exhaustion flag"},
+             "shader's exhaustion flag, smaller ones smaller light passes"},
 };
 #undef ARG
 
@@ -476,14 +476,23 @@ static void report_object(const rc_scene *s, size_t o, const char *what) {
 
 /* A sample that ran out of the GPU's loop budget on its own (a ray through a pile of
  * overlapping objects): the object the shader was testing, with its place in the scene
- * file, and the way out. Nothing has been written. */
+ * file, what exceeded the budget, and the way out. Nothing has been written. */
 static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const char *device) {
-  char what[600];
+  char work[160], plan[120] = "", what[900];
+  if (g->plan.budget != g->loop_budget)
+    snprintf(plan, sizeof plan, " for a budget of %u (--plan-budget)", g->plan.budget);
+  if (g->lights_per_pass)
+    snprintf(work, sizeof work, "the rays of one sample shading a single light of its %zu", s->light_count);
+  else
+    snprintf(work, sizeof work, "one sample (%zu lights%s)", s->light_count,
+             s->light_count ? ", all shaded in one dispatch as planned" : "");
   snprintf(what, sizeof what,
-           "a ray through pixel (%u, %u) was testing this object when its sample ran out of the shader loop budget "
-           "on %s (%u pixels did: objects piled up along a ray, or --accel none); refusing to write a wrong "
-           "image: --backend cpu renders it",
-           g->budget_x, g->budget_y, device, g->budget_pixels);
+           "%s through pixel (%u, %u) %s %s needed more than the shader loop budget of %u iterations on %s (planned "
+           "at about %llu per sample%s; %u pixels ran out: objects piled up along a ray, or --accel none); refusing to "
+           "write a wrong image: --backend cpu renders it",
+           g->budget_object == UINT32_MAX ? "in the sample" : "a ray", g->budget_x, g->budget_y,
+           g->budget_object == UINT32_MAX ? "" : "was testing this object when", work, g->loop_budget, device,
+           (unsigned long long)g->plan.steps_per_sample, plan, g->budget_pixels);
   report_object(s, g->budget_object, what);
 }
 

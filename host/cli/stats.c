@@ -12,6 +12,14 @@ double rc_stats_mrays_per_s(const rc_render_stats *s) {
   return s->render_ms > 0 ? rays / (s->render_ms * 1e3) : 0.0;
 }
 
+/* ", lights in passes of N" where a sample was too long for one dispatch (gpu_plan.h). */
+static const char *light_passes_text(const rc_render_stats *s) {
+  static char text[64];
+  text[0] = 0;
+  if (s->gpu.lights_per_pass) snprintf(text, sizeof text, ", lights in passes of %u", s->gpu.lights_per_pass);
+  return text;
+}
+
 void rc_stats_print(const rc_render_stats *s) {
   fprintf(stderr, "vkraycast: device %s (%s, %s)\n", s->device, s->device_type, s->driver);
   fprintf(stderr, "vkraycast: %ux%u, %u spp, %zu spheres + %zu triangles + %zu quadrics + %zu planes + %zu composites, "
@@ -19,9 +27,9 @@ void rc_stats_print(const rc_render_stats *s) {
           s->planes,
           s->composites, s->lights, s->backend, s->precision);
   if (strcmp(s->backend, "gpu") == 0)
-    fprintf(stderr, "vkraycast: %s buffers%s; %u tiles, %u dispatches, %u samples per batch\n",
+    fprintf(stderr, "vkraycast: %s buffers%s; %u tiles, %u dispatches, %u samples per batch%s\n",
             rc_scene_buffer_names[s->gpu.scene_buffers], s->gpu.staging ? ", staging" : "",
-            s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples);
+            s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples, light_passes_text(s));
   else
     fprintf(stderr, "vkraycast: %u threads\n", s->threads);
   if (s->bvh.nodes)
@@ -124,6 +132,7 @@ static void add_gpu_fields(cJSON *o, const rc_render_stats *s) {
   cJSON_AddNumberToObject(o, "max_dispatch_ms", s->gpu.max_dispatch_ms);
   cJSON_AddNumberToObject(o, "dispatches_over_budget", s->gpu.over_budget);
   cJSON_AddNumberToObject(o, "batch_samples", s->gpu.plan.batch_samples);
+  cJSON_AddNumberToObject(o, "lights_per_pass", s->gpu.lights_per_pass);
   cJSON_AddNumberToObject(o, "loop_steps_per_sample", (double)s->gpu.plan.steps_per_sample);
   cJSON_AddNumberToObject(o, "budget_retries", s->gpu.budget_retries);
   cJSON_AddNumberToObject(o, "loop_budget", s->gpu.loop_budget);

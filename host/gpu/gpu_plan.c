@@ -23,26 +23,62 @@ uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
                                  object_steps(f));
 }
 
+/* Light passes (gpu_plan.h): what one pass of `lights` lights costs a sample whose rays
+ * cost `ray` steps each. */
+static uint64_t pass_steps(const gpu_frame *f, uint64_t ray, uint64_t lights) {
+  return 1 + ((uint64_t)f->reflection_depth + 1) * (1 + ray + lights * (1 + ray));
+}
+
 rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
   plan->budget = budget;
+  plan->light_pass = 0;
   /* Through the BVH: its boxes and leaves, then every infinite plane, one step each (a
    * plane's test has no loop: rc_bvh.glsl, test_planes). */
-  plan->steps_per_sample =
-      bvh_depth ? steps_per_sample(f, 4ull * bvh_depth + leaf_tests(f) * object_steps(f) + f->plane_count)
-                : rc_gpu_plan_steps_per_sample(f);
+  uint64_t objects = (uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count;
+  uint64_t ray = bvh_depth ? 4ull * bvh_depth + leaf_tests(f) * object_steps(f) + f->plane_count
+                           : objects * object_steps(f);
+  plan->steps_per_sample = pass_steps(f, ray, f->light_count);
   uint64_t batch = budget / plan->steps_per_sample;
-  if (batch == 0 && bvh_depth) batch = 1;
-  if (batch == 0) {
-    rc_refuse_scene("scene too large for brute-force GPU rendering: one sample needs up to %llu loop "
-             "iterations (%u spheres + %u triangles, %u lights, reflection depth %u), more than the "
-             "per-invocation budget of %u that keeps llvmpipe under its 65,535-iteration cap; use "
-             "the BVH (--accel bvh), or fewer objects, lights or reflection bounces",
-             (unsigned long long)plan->steps_per_sample, f->sphere_count, f->triangle_count,
-             f->light_count, f->reflection_depth, budget);
+  if (batch > 0) {
+    /* The whole sample fits: its lights in one dispatch. */
+    plan->batch_samples = (uint32_t)(batch > f->samples_per_pixel ? f->samples_per_pixel : batch);
+    return RC_OK;
+  }
+  /* One sample is over the budget. Its lights are the work that splits: a pass re-traces
+   * the sample's rays (the same rays, bit for bit) and shades with the next lights. A
+   * pixel's progress then counts lights (accum.a = sample x lights + lights done), exact in
+   * a float up to 2^24. */
+  plan->batch_samples = 1;
+  uint64_t path = pass_steps(f, ray, 0), per_light = pass_steps(f, ray, 1) - path;
+  uint64_t units = (uint64_t)f->samples_per_pixel * f->light_count;
+  bool countable = f->light_count > 0 && units <= (1u << 24);
+  if (bvh_depth) {
+    /* The BVH's estimate is loose: a pass starts with every light and halves where the
+     * shader finds it over the budget (gpu_render.c, render_tile). */
+    plan->light_pass = countable ? f->light_count : 0;
+    return RC_OK;
+  }
+  uint64_t lights = budget > path ? (budget - path) / per_light : 0;
+  if (lights == 0) {
+    rc_refuse_scene("scene too large for brute-force GPU rendering: the rays of one sample with %s need up to %llu "
+                    "loop iterations (%llu objects: %u spheres, %u triangles, %u quadrics, %u composites; reflection "
+                    "depth %u), more than the per-invocation budget of %u that keeps llvmpipe under its "
+                    "65,535-iteration cap; use the BVH (--accel bvh), or fewer objects or reflection bounces",
+                    f->light_count ? "one light" : "no light",
+                    (unsigned long long)(f->light_count ? path + per_light : path), (unsigned long long)objects,
+                    f->sphere_count, f->triangle_count, f->quadric_count, f->csg_count, f->reflection_depth, budget);
     return RC_ERR_TOO_LARGE;
   }
-  if (batch > f->samples_per_pixel) batch = f->samples_per_pixel;
-  plan->batch_samples = (uint32_t)batch;
+  if (!countable) {
+    rc_refuse_scene("scene too large for brute-force GPU rendering: one sample with its %u lights needs up to %llu "
+                    "loop iterations, over the per-invocation budget of %u, so its lights would be shaded in passes "
+                    "of %llu; but %u samples x %u lights is more than the 16,777,216 a pixel can count; use fewer "
+                    "samples per pixel or lights, the BVH (--accel bvh), or --backend cpu",
+                    f->light_count, (unsigned long long)plan->steps_per_sample, budget, (unsigned long long)lights,
+                    f->samples_per_pixel, f->light_count);
+    return RC_ERR_TOO_LARGE;
+  }
+  plan->light_pass = (uint32_t)lights;
   return RC_OK;
 }
 

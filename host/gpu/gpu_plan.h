@@ -13,6 +13,8 @@
 typedef struct rc_gpu_plan {
   uint64_t steps_per_sample; /* worst case over all pixels */
   uint32_t batch_samples;    /* samples per pixel per dispatch */
+  uint32_t light_pass;       /* 0: a sample's lights in one dispatch (accum.a counts samples);
+                              * else lights per pass to start with (accum.a counts lights) */
   uint32_t budget;           /* the budget the plan was made for */
 } rc_gpu_plan;
 
@@ -23,13 +25,20 @@ typedef struct rc_gpu_plan {
  *                                   + L * (1 (light loop) + N (shadow ray))]. */
 uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
 
-/* Brute force (bvh_depth 0): the exact worst case; fails with RC_ERR_TOO_LARGE (message
- * with the numbers) when even one sample exceeds the budget, as brute force over that
- * many objects cannot render correctly on llvmpipe.
+/* Brute force (bvh_depth 0): the exact worst case.
+ * Where one sample exceeds the budget, its lights are split into passes: each dispatch
+ * traces one sample's rays again and shades with the next `light_pass` lights, as many as
+ * the budget pays for after the rays themselves, so that any number of lights the CPU
+ * renders the GPU renders too. Fails with RC_ERR_TOO_LARGE, the message naming the numbers,
+ * only where the rays of one sample with one light exceed the budget (brute force over
+ * too many objects) or a pixel could not count its passes.
  * BVH (bvh_depth = tree depth): no useful worst case exists, so the batch comes from an
  * estimate of a traversal's steps, 4 x depth node visits + 2 leaves of 8 objects, and the
  * shader's exhaustion flag catches what the estimate misses (the batch is halved and the
- * work repeated; one sample over the budget is an error, never a wrong image). */
+ * work repeated, then the lights of a sample halved into passes; one sample with one light
+ * over the budget is an error, never a wrong image). Where the estimate puts one sample
+ * over the budget, the pipeline counts light passes, starting with all of a sample's
+ * lights in one. */
 rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan);
 
 /* The per-invocation loop budget on a device. llvmpipe (`capped`) caps the loop

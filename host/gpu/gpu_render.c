@@ -18,6 +18,8 @@ struct rc_gpu_renderer {
   rc_vk_ctx *ctx;
   rc_gpu_options opts;
   uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
+  bool light_passes;   /* RC_SPEC_LIGHT_PASSES: samples too long for one dispatch */
+  uint32_t light_pass; /* then: lights per pass, halved where a pass ran out (for later tiles too) */
   gpu_frame frame;
   rc_region region; /* the pixels rendered, within the frame */
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
@@ -315,7 +317,7 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
                                  (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
                                  (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
                                  (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0);
-  const uint32_t spec_values[15] = {r->local_x,
+  const uint32_t spec_values[16] = {r->local_x,
                                     r->local_y,
                                     r->budget,
                                     r->opts.aov ? VK_TRUE : VK_FALSE,
@@ -329,14 +331,16 @@ static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
                                     generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
                                     generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
                                     generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth,
-                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel};
-  const VkSpecializationMapEntry entries[15] = {
+                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel,
+                                    r->light_passes ? VK_TRUE : VK_FALSE};
+  const VkSpecializationMapEntry entries[16] = {
       {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
       {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
       {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
       {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
-      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 15, .pMapEntries = entries, .dataSize = sizeof spec_values,
+      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4},
+      {RC_SPEC_LIGHT_PASSES, 60, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 16, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
@@ -455,6 +459,8 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->workgroup_y = r->local_y;
   rc_status st = rc_gpu_plan_make(&scene->frame, opts->bvh_depth, opts->plan_budget ? opts->plan_budget : r->budget,
                                   &stats->plan);
+  r->light_passes = stats->plan.light_pass != 0;
+  r->light_pass = stats->plan.light_pass;
   if (st == RC_OK && opts->f64 && !ctx->float64) {
     rc_error("--precision f64: device %u (%s) does not support shaderFloat64 and shaderInt64; use f32, or "
              "--backend cpu for an f64 render",
@@ -621,7 +627,8 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples,
-                   .row_stride = rc_tiles_row_stride(group_count(th, r->local_y))};
+                   .row_stride = rc_tiles_row_stride(group_count(th, r->local_y)),
+                   .light_pass = r->light_pass};
   bool first = true;
   for (;;) {
     gpu_status status;
@@ -645,16 +652,23 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
       return RC_ERR_TOO_LARGE;
     }
     if (status.exhausted_pixels) {
-      if (push.batch_samples == 1) {
+      /* The batch first, then a sample's lights, halve; the pixels that ran out kept their
+       * progress, so the next dispatch goes on where each pixel stands. */
+      if (push.batch_samples > 1) {
+        push.batch_samples /= 2;
+      } else if (push.light_pass > 1) {
+        push.light_pass /= 2;
+        r->light_pass = push.light_pass; /* the next tiles start here */
+      } else {
         /* Reported by the caller, which knows where the object came from. */
         stats->budget_refused = true;
+        stats->lights_per_pass = push.light_pass;
         stats->budget_pixels = status.exhausted_pixels;
         stats->budget_object = status.exhausted_object ? status.exhausted_object - 1 : UINT32_MAX;
         uint32_t at = status.exhausted_pixel ? status.exhausted_pixel - 1 : 0;
         stats->budget_x = at % r->frame.camera.width, stats->budget_y = at / r->frame.camera.width;
         return RC_ERR_TOO_LARGE;
       }
-      push.batch_samples /= 2;
       stats->budget_retries++;
     }
     if (status.incomplete_pixels == 0) break;
@@ -684,12 +698,14 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
       memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
   }
   const float *acc = ab->memory.mapped;
+  const uint32_t spp = r->frame.samples_per_pixel;
+  const float complete = (float)spp * (float)(r->light_passes ? r->frame.light_count : 1);
   for (uint32_t y = 0; y < th; y++) {
     for (uint32_t x = 0; x < tw; x++) {
       const float *a = acc + 4 * ((size_t)y * tw + x);
       float *o = r->band_rgb + 3 * ((size_t)y * width + (bx + x));
-      RC_ASSERT(a[3] == (float)r->frame.samples_per_pixel);
-      for (int c = 0; c < 3; c++) o[c] = a[c] / a[3];
+      RC_ASSERT(a[3] == complete);
+      for (int c = 0; c < 3; c++) o[c] = a[c] / (float)spp;
     }
   }
   stats->readback_ms += rc_now_ms() - t0;
@@ -730,6 +746,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
     y0 += rows;
   }
   if (r->opts.progress) fputc('\n', stderr);
+  stats->lights_per_pass = r->light_pass;
   stats->render_ms = rc_now_ms() - t0;
   return RC_OK;
 }

@@ -52,6 +52,8 @@ typedef struct rc_gpu_stats {
   uint32_t crossing_object;    /* UINT32_MAX, or as rc_ref_stats.crossing_object (ref_render.h) */
   uint32_t crossing_x, crossing_y;
   rc_gpu_plan plan;
+  uint32_t lights_per_pass; /* 0: each sample's lights in one dispatch; else the passes' size
+                               in the end (plan.light_pass, halved where the shader ran out) */
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */
   uint32_t subgroup_size;
   uint32_t workgroup_x, workgroup_y; /* invocations per workgroup, chosen from the subgroup size */

@@ -320,26 +320,46 @@ TEST(loop_budget_splits_heavy_scenes_into_batches_and_renders_them_right) {
   free(bvh.px);
 }
 
-TEST(one_sample_beyond_the_budget_fails_loudly) {
+TEST(one_sample_beyond_the_budget_renders_in_light_passes_or_fails_loudly) {
   /* 300 spheres and 200 lights: 1 + 1 + 301 + 200 * 302 = 60,703 steps for one sample,
-   * beyond any lane's budget. */
+   * beyond any lane's budget. Its lights go in passes (gpu_plan.h), as many as the budget
+   * pays for after the sample's rays (1 + 1 + 301) at 302 each, and the image is the
+   * BVH's to the bit (ambient only: every light adds exactly 0). */
   write_heavy_scene("huge.json", 300, 200, 1);
-  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --accel none --quiet", tmp, tmp), 2);
-  CHECK(stderr_contains("huge.json: error: scene too large for brute-force GPU rendering: one sample needs up to 60703 loop"));
-  /* Planned past the budget, the shader's flag stops it instead of a wrong image. */
-  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --accel none --quiet --plan-budget 4000000000", tmp, tmp), 2);
-  CHECK(stderr_contains("ran out of the shader loop budget"));
-  CHECK(stderr_contains("huge.json:")); /* the scene file, and the object being tested */
-  CHECK(stderr_contains("error: objects["));
-  char path[300];
-  snprintf(path, sizeof path, "%s/huge.exr", tmp);
-  CHECK(access(path, F_OK) != 0); /* no output file */
-  /* The BVH makes the same scene cheap: it renders, and exactly right. */
+  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --accel none --quiet --stats-json %s/huge_stats.json", tmp,
+                   tmp, tmp),
+               0);
+  cJSON *stats = load_json("huge_stats.json");
+  if (!stats) { CHECK(false); return; }
+  uint32_t budget = (uint32_t)json_number(stats, "loop_budget");
+  uint32_t pass = budget > 303 ? (budget - 303) / 302 : 0;
+  CHECK_EQ_INT(json_number(stats, "lights_per_pass"), pass < 200 ? pass : 0);
+  CHECK_EQ_INT(json_number(stats, "budget_retries"), 0);
+  cJSON_Delete(stats);
+  image passes = load("huge.exr");
+  if (!passes.px) { CHECK(false); return; }
+  check_heavy_image(&passes);
   CHECK_EQ_INT(run("render %s/huge.json -o %s/huge_bvh.exr --quiet", tmp, tmp), 0);
   image im = load("huge_bvh.exr");
-  if (!im.px) { CHECK(false); return; }
-  check_heavy_image(&im);
+  if (!im.px) { CHECK(false); free(passes.px); return; }
+  CHECK(identical(&im, &passes));
   free(im.px);
+  free(passes.px);
+  /* Rays that alone exceed the budget cannot be split: a budget of 500 cannot pay for a
+   * sample's rays with one light (303 + 302). */
+  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge.exr --accel none --quiet --plan-budget 500", tmp, tmp), 2);
+  CHECK(stderr_contains("huge.json: error: scene too large for brute-force GPU rendering: the rays of one sample with "
+                        "one light need up to 605 loop iterations (301 objects: 301 spheres"));
+  /* Planned past the budget, the shader's flag stops it instead of a wrong image. */
+  CHECK_EQ_INT(run("render %s/huge.json -o %s/huge_over.exr --accel none --quiet --plan-budget 4000000000", tmp, tmp), 2);
+  CHECK(stderr_contains("needed more than the shader loop budget of"));
+  CHECK(stderr_contains("huge.json:")); /* the scene file, and the object being tested */
+  CHECK(stderr_contains("error: objects["));
+  CHECK(stderr_contains("one sample (200 lights, all shaded in one dispatch as planned)"));
+  CHECK(stderr_contains("for a budget of 4000000000 (--plan-budget)"));
+  char path[300];
+  snprintf(path, sizeof path, "%s/huge_over.exr", tmp);
+  CHECK(access(path, F_OK) != 0); /* no output file */
 }
 
 TEST(stats_json_reports_rays_and_timings) {
@@ -385,8 +405,9 @@ TEST(failed_render_leaves_the_old_image) {
   CHECK_EQ_INT(run("render %s/showcase.json -o %s --width 16 --height 16 --quiet", scenes_dir, path), 0);
   struct stat before, after;
   CHECK(stat(path, &before) == 0);
+  /* Refused in the middle of the render: planned past the budget, a sample runs out. */
   write_heavy_scene("huge2.json", 300, 200, 1);
-  CHECK_EQ_INT(run("render %s/huge2.json -o %s --accel none --quiet", tmp, path), 2);
+  CHECK_EQ_INT(run("render %s/huge2.json -o %s --accel none --quiet --plan-budget 4000000000", tmp, path), 2);
   CHECK(stat(path, &after) == 0 && after.st_size == before.st_size && after.st_mtime == before.st_mtime);
 }
 
@@ -586,7 +607,7 @@ int main(int argc, char **argv) {
       {"csg_bowl", test_sphere_minus_sphere_shows_the_analytic_inner_surface},
       {"buffer_kinds", test_buffer_kinds_and_staging_path_give_identical_images},
       {"loop_budget", test_loop_budget_splits_heavy_scenes_into_batches_and_renders_them_right},
-      {"budget_refusal", test_one_sample_beyond_the_budget_fails_loudly},
+      {"budget_refusal", test_one_sample_beyond_the_budget_renders_in_light_passes_or_fails_loudly},
       {"stats", test_stats_json_reports_rays_and_timings},
       {"png", test_png_is_the_clamped_linear_value},
       {"failed_render", test_failed_render_leaves_the_old_image},

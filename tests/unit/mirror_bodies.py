@@ -38,7 +38,12 @@ GLSL_ONLY = [
     r"\bbudget_blame\s*=[^;]*;",
     r"\bhas_kind\s*\(\s*\w+\s*\)\s*&&",  # a specialization constant: the feature is compiled out
     r"!\s*has_kind\s*\(\s*\w+\s*\)\s*\|\|",  # the same, where the feature's absence takes the common path
+    # A light pass (raycast.comp): a later pass drops what no light contributes, and the
+    # first pass's guard of it; the pass's lights are, on the CPU, all of them.
+    r"\bif\s*\(\s*light_pass_begin\s*\(\s*\)\s*!=\s*0u\s*\)[^;]*;",
+    r"\bif\s*\(\s*light_pass_begin\s*\(\s*\)\s*==\s*0u\s*\)",
 ]
+GLSL_PASS_BOUNDS = [(r"\blight_pass_begin\s*\(\s*\)", "0u"), (r"\blight_pass_end\s*\(\s*\)", "scene_light_count()")]
 # Statements only the reference has: its work counter (--stats of the CPU backend).
 C_ONLY = [r"\bref_work\s*(?:\+\+|\+=[^;]*);"]
 # The reference's `x = RV(add)(x, y)` is the shader's `x += y`.
@@ -138,6 +143,8 @@ def reduce(body, c):
     if not c:
         for pat in GLSL_ONLY:
             body = re.sub(pat, " ", body)
+        for pat, rep in GLSL_PASS_BOUNDS:
+            body = re.sub(pat, rep, body)
         body = re.sub(r"\bpixel\.x\b", "px", re.sub(r"\bpixel\.y\b", "py", body))
         body = re.sub(r"\bscene_(\w+)\s*\(\s*\)", r"frame.\1", body)
     else:

@@ -39,6 +39,44 @@ TEST(one_sample_over_budget_is_refused) {
   CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, RC_LOOP_BUDGET, &p), RC_ERR_TOO_LARGE);
 }
 
+TEST(lights_beyond_one_dispatch_go_in_passes_that_fit_the_budget) {
+  /* 100 spheres and 5,000 lights by brute force: a sample's rays cost 1 + (1 + 100) and
+   * each light 1 + 100 more; a pass takes as many lights as the rest of the budget pays. */
+  gpu_frame f = {0};
+  f.sphere_count = 100;
+  f.light_count = 5000;
+  f.samples_per_pixel = 4;
+  f.reflection_depth = 0;
+  rc_gpu_plan p;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, 6144, &p), RC_OK);
+  CHECK_EQ_INT(p.batch_samples, 1);
+  CHECK_EQ_INT(p.light_pass, (6144 - 102) / 101);
+  CHECK(102 + (uint64_t)p.light_pass * 101 <= 6144 && 102 + (uint64_t)(p.light_pass + 1) * 101 > 6144);
+  /* Two bounces: the rays and each light cost three times as much. */
+  f.reflection_depth = 2;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, 6144, &p), RC_OK);
+  CHECK_EQ_INT(p.light_pass, (6144 - 1 - 3 * 102) / (3 * 101));
+  /* A sample that fits keeps its lights together. */
+  f.light_count = 3;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, 6144, &p), RC_OK);
+  CHECK_EQ_INT(p.light_pass, 0);
+  /* Rays that alone exceed the budget cannot be split: refused. */
+  f.light_count = 5000;
+  f.sphere_count = 3000;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, 6144, &p), RC_ERR_TOO_LARGE);
+  /* Nor can a pixel count more than 2^24 lights' progress in its float. */
+  f.sphere_count = 100;
+  f.reflection_depth = 0;
+  f.samples_per_pixel = 4000;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 0, 6144, &p), RC_ERR_TOO_LARGE);
+  /* Through the BVH the estimate is loose: a pass starts with every light. */
+  f.samples_per_pixel = 4;
+  f.object_count = 100;
+  CHECK_EQ_INT(rc_gpu_plan_make(&f, 7, 6144, &p), RC_OK);
+  CHECK_EQ_INT(p.batch_samples, 1);
+  CHECK_EQ_INT(p.light_pass, 5000);
+}
+
 TEST(bvh_plans_from_the_depth_and_never_refuses) {
   gpu_frame f = {0};
   f.triangle_count = 1000000;
@@ -127,6 +165,7 @@ int main(void) {
   RUN(steps_per_sample_counts_every_loop);
   RUN(batch_fits_the_budget_and_the_samples);
   RUN(one_sample_over_budget_is_refused);
+  RUN(lights_beyond_one_dispatch_go_in_passes_that_fit_the_budget);
   RUN(bvh_plans_from_the_depth_and_never_refuses);
   RUN(bvh_plan_counts_composites_by_their_loaders_steps);
   RUN(workgroup_holds_whole_subgroups_of_every_vendor);
