@@ -34,10 +34,12 @@ bool rc_shard_parse(const char *text, uint32_t *index, uint32_t *count, const ch
 void rc_shard_rows(const double *row_cost, uint32_t height, uint32_t index, uint32_t count, uint32_t *y0,
                    uint32_t *y1);
 
-/* Coverage of a width x height frame by n parts: 0 when every pixel lies in exactly one
- * part. Otherwise 1 with *overlap_a/_b the first two parts that share a pixel, or 2 with
- * *gap the first uncovered rectangle (its rows where the same columns stay uncovered),
- * or 3 with *overlap_a the first part that leaves the frame. */
+/* Coverage of a width x height frame by n parts (region_coverage.c: O(n log n), whatever
+ * the sizes): 0 when every pixel lies in exactly one part. Otherwise 3 with *overlap_a the
+ * first part that is empty or leaves the frame; else 1 with *overlap_a < *overlap_b two
+ * parts that share a pixel (the topmost such pair); else 2 with *gap the first uncovered
+ * rectangle (its first row, its columns there, and the rows where the same columns stay
+ * uncovered); 4 when memory ran out. */
 int rc_region_coverage(const rc_region *parts, size_t n, uint32_t width, uint32_t height, size_t *overlap_a,
                        size_t *overlap_b, rc_region *gap);
 

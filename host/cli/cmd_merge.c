@@ -14,6 +14,7 @@
 #include "cli/options.h"
 #include "cli/output.h"
 #include "cli/part.h"
+#include "scene/scene.h"
 
 #define MAX_PARTS 4096u
 /* Rows per band of the merged image. */
@@ -60,12 +61,12 @@ typedef struct {
 /* Opens a part and reads its header; the reader stays open. */
 static rc_status open_part(part *p) {
   char err[512];
-  int w, h, c;
+  int w, hgt, c;
   bool f32;
   /* Opened without blocking and refused unless a regular file, as render's inputs are: a
    * FIFO part would hang the image library's open. */
   if (rc_check_input(p->path, "part", NULL) != RC_OK) return RC_ERR_IO;
-  p->reader = rc_image_reader_open(p->path, &w, &h, &c, &f32, err, sizeof err);
+  p->reader = rc_image_reader_open(p->path, &w, &hgt, &c, &f32, err, sizeof err);
   if (!p->reader) {
     rc_error("%s: cannot read the part: %s", p->path, err);
     return RC_ERR_IO;
@@ -77,15 +78,46 @@ static rc_status open_part(part *p) {
              p->path, missing);
     return RC_ERR_INPUT;
   }
+  /* What the header declares, against what a render writes: a frame no render makes, or a
+   * region or shard outside its own frame, is refused before anything is sized by it. */
+  const rc_part_info *h = &p->info;
+  const rc_region g = h->region;
+  if (h->width == 0 || h->height == 0 || h->width > RC_MAX_IMAGE_SIDE || h->height > RC_MAX_IMAGE_SIDE) {
+    rc_error("%s: its header's frame %u x %u is not one a render writes (1 to %u pixels a side)", p->path, h->width,
+             h->height, RC_MAX_IMAGE_SIDE);
+    return RC_ERR_INPUT;
+  }
+  if (g.x0 >= g.x1 || g.y0 >= g.y1 || g.x1 > h->width || g.y1 > h->height) {
+    rc_error("%s: its header's region %u,%u,%u,%u (X0,Y0,X1,Y1) is empty or leaves its %u x %u frame", p->path, g.x0,
+             g.y0, g.x1, g.y1, h->width, h->height);
+    return RC_ERR_INPUT;
+  }
+  if (h->shard_count && (h->shard_index >= h->shard_count || h->shard_count > h->height)) {
+    rc_error("%s: its header's shard %u/%u is not one of a %u-row frame (0 <= I < N <= rows)", p->path,
+             h->shard_index, h->shard_count, h->height);
+    return RC_ERR_INPUT;
+  }
+  /* A lossy recompression changed the render's pixels: the merge could not be its image. */
+  char compression[64];
+  if (rc_image_reader_meta(p->reader, "compression", compression, sizeof compression)) {
+    static const char *const lossy[] = {"dwaa", "dwab", "b44", "pxr24"};
+    for (size_t i = 0; i < sizeof lossy / sizeof *lossy; i++) {
+      if (strncmp(compression, lossy[i], strlen(lossy[i])) == 0) {
+        rc_error("%s: the part is compressed lossily (%s): its pixels are no longer the render's; merge the "
+                 "part render wrote",
+                 p->path, compression);
+        return RC_ERR_INPUT;
+      }
+    }
+  }
   if (!f32 || c != 3) {
     rc_error("%s: the part holds %d channel(s)%s; a part is 3 channels of 32-bit float (write it as .exr)", p->path, c,
              f32 ? "" : " not all 32-bit float");
     return RC_ERR_INPUT;
   }
-  const rc_region r = p->info.region;
-  if ((uint32_t)w != rc_region_width(r) || (uint32_t)h != rc_region_height(r)) {
-    rc_error("%s: the part is %d x %d pixels, but its header's region %u,%u,%u,%u is %u x %u", p->path, w, h, r.x0,
-             r.y0, r.x1, r.y1, rc_region_width(r), rc_region_height(r));
+  if ((uint32_t)w != rc_region_width(g) || (uint32_t)hgt != rc_region_height(g)) {
+    rc_error("%s: the part is %d x %d pixels, but its header's region %u,%u,%u,%u is %u x %u", p->path, w, hgt, g.x0,
+             g.y0, g.x1, g.y1, rc_region_width(g), rc_region_height(g));
     return RC_ERR_INPUT;
   }
   return RC_OK;
@@ -124,6 +156,38 @@ static rc_status check_agreement(const part *parts, size_t n) {
   return RC_OK;
 }
 
+static int shard_order(const void *a, const void *b) {
+  uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* The shards of `count` that no part holds, the first few by number and then how many
+ * more: sorted, so O(n log n) whatever count the headers declare. */
+static void note_missing_shards(const part *parts, size_t n, uint32_t count) {
+  uint32_t *have = rc_alloc(n, sizeof *have, "the parts' shard numbers");
+  if (!have) return;
+  for (size_t i = 0; i < n; i++) have[i] = parts[i].info.shard_index;
+  qsort(have, n, sizeof *have, shard_order);
+  enum { SHOWN = 8 };
+  uint64_t missing = 0;
+  uint32_t shown = 0, k = 0; /* shards below k are accounted for */
+  for (size_t i = 0; i <= n; i++) {
+    uint32_t next = i < n ? have[i] : count; /* shards [k, next) are missing */
+    if (next > k) {
+      for (uint32_t m = k; m < next && shown < SHOWN; m++, shown++)
+        fprintf(stderr, "vkraycast: note: shard %u/%u is missing: render it again with `--shard %u/%u` (under "
+                        "Slurm: sbatch --array=%u ...; docs/cluster.md)\n",
+                m, count, m, count, m);
+      missing += next - k;
+    }
+    if (i < n && have[i] >= k) k = have[i] + 1;
+  }
+  if (missing > shown)
+    fprintf(stderr, "vkraycast: note: and %llu more of the %u shards are missing\n",
+            (unsigned long long)(missing - shown), count);
+  free(have);
+}
+
 /* The regions cover the frame exactly once; else the parts that overlap, or the first
  * uncovered region and, for shards, the missing ones. */
 static rc_status check_coverage(const part *parts, size_t n) {
@@ -136,6 +200,10 @@ static rc_status check_coverage(const part *parts, size_t n) {
   int verdict = rc_region_coverage(regions, n, w, h, &a, &b, &gap);
   free(regions);
   if (verdict == 0) return RC_OK;
+  if (verdict == 4) {
+    rc_error("out of memory checking the coverage of %zu parts", n);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
   if (verdict == 3) {
     const rc_region r = parts[a].info.region;
     rc_error("%s: its region %u,%u,%u,%u leaves the %u x %u frame", parts[a].path, r.x0, r.y0, r.x1, r.y1, w, h);
@@ -154,14 +222,7 @@ static rc_status check_coverage(const part *parts, size_t n) {
     uint32_t count = parts[0].info.shard_count;
     bool shards = count > 0;
     for (size_t i = 0; i < n; i++) shards = shards && parts[i].info.shard_count == count;
-    for (uint32_t k = 0; shards && k < count; k++) {
-      bool found = false;
-      for (size_t i = 0; i < n && !found; i++) found = parts[i].info.shard_index == k;
-      if (!found)
-        fprintf(stderr, "vkraycast: note: shard %u/%u is missing: render it again with `--shard %u/%u` (under "
-                        "Slurm: sbatch --array=%u ...; docs/cluster.md)\n",
-                k, count, k, count, k);
-    }
+    if (shards) note_missing_shards(parts, n, count);
   }
   return RC_ERR_INPUT;
 }
@@ -175,20 +236,38 @@ static void close_parts(part *parts, size_t n) {
   }
 }
 
+static const part *sort_parts; /* qsort's context: the parts ordered by their first row */
+static int first_row_order(const void *a, const void *b) {
+  const rc_region *x = &sort_parts[*(const size_t *)a].info.region, *y = &sort_parts[*(const size_t *)b].info.region;
+  if (x->y0 != y->y0) return x->y0 < y->y0 ? -1 : 1;
+  return x->x0 < y->x0 ? -1 : x->x0 > y->x0;
+}
+
 /* Band after band of the frame, each assembled from the parts that meet it; a part is
- * open from the first band that meets it to its last. */
+ * open from the first band that meets it to its last. The parts are visited in the order
+ * of their first rows, so that each band looks at the parts that meet it only. */
 static rc_status write_merged(part *parts, size_t n, rc_output *out) {
   const uint32_t w = parts[0].info.width, h = parts[0].info.height;
   float *band = rc_alloc((size_t)w * BAND_ROWS * 3, sizeof(float), "one band of the image");
-  if (!band) return RC_ERR_OUT_OF_MEMORY;
+  size_t *order = rc_alloc(n, sizeof *order, "the parts' order"), *active = rc_alloc(n, sizeof *active, "the parts' order");
+  if (!band || !order || !active) {
+    free(band);
+    free(order);
+    free(active);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
+  for (size_t i = 0; i < n; i++) order[i] = i;
+  sort_parts = parts;
+  qsort(order, n, sizeof *order, first_row_order);
+  size_t started = 0, live = 0; /* order[0, started) met a band; active[0, live) still do */
   rc_status st = RC_OK;
   char err[512];
   for (uint32_t y0 = 0; st == RC_OK && y0 < h; y0 += BAND_ROWS) {
     uint32_t y1 = y0 + BAND_ROWS < h ? y0 + BAND_ROWS : h;
-    for (size_t i = 0; st == RC_OK && i < n; i++) {
-      part *p = &parts[i];
+    while (started < n && parts[order[started]].info.region.y0 < y1) active[live++] = order[started++];
+    for (size_t j = 0; st == RC_OK && j < live;) {
+      part *p = &parts[active[j]];
       const rc_region r = p->info.region;
-      if (r.y1 <= y0 || r.y0 >= y1) continue;
       uint32_t a = r.y0 > y0 ? r.y0 : y0, b = r.y1 < y1 ? r.y1 : y1, pw = rc_region_width(r);
       if (!p->reader) { /* the first band that meets the part */
         int pw_, ph_, c_;
@@ -217,11 +296,16 @@ static rc_status write_merged(part *parts, size_t n, rc_output *out) {
         p->reader = NULL;
         free(p->rows);
         p->rows = NULL;
+        active[j] = active[--live];
+      } else {
+        j++;
       }
     }
     if (st == RC_OK) st = rc_output_band(y0, y1 - y0, band, NULL, out);
   }
   free(band);
+  free(order);
+  free(active);
   return st;
 }
 

@@ -45,8 +45,10 @@ bool rc_part_read(const rc_image_reader *r, rc_part_info *info, const char **mis
       sscanf(v, "%" SCNu32 " %" SCNu32 " %" SCNu32 " %" SCNu32 " %c", &g->x0, &g->y0, &g->x1, &g->y1, &tail) != 4)
     return false;
   *missing = NAME_SHARD;
+  /* Present, it names a shard: render writes no count 0 (it leaves the attribute out). */
   if (rc_image_reader_meta(r, NAME_SHARD, v, sizeof v) &&
-      sscanf(v, "%" SCNu32 "/%" SCNu32 " %c", &info->shard_index, &info->shard_count, &tail) != 2)
+      (sscanf(v, "%" SCNu32 "/%" SCNu32 " %c", &info->shard_index, &info->shard_count, &tail) != 2 ||
+       info->shard_count == 0))
     return false;
   *missing = NAME_SCENE;
   if (!rc_image_reader_meta(r, NAME_SCENE, info->scene_hash, sizeof info->scene_hash)) return false;

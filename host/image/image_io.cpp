@@ -470,6 +470,14 @@ extern "C" rc_image_reader *rc_image_reader_open(const char *path, int *width, i
       return nullptr;
     }
     const ImageSpec &spec = r->in->spec();
+    /* Layouts the row reader cannot take, refused by name. */
+    const char *unsupported = spec.deep ? "a deep image (several samples per pixel)"
+                              : spec.depth > 1 ? "a volume (depth above 1)"
+                                               : nullptr;
+    if (unsupported) {
+      set_error(err, err_len, std::string("it is ") + unsupported + ", not a flat image");
+      return nullptr;
+    }
     *width = spec.width;
     *height = spec.height;
     *channels = spec.nchannels;
@@ -489,9 +497,27 @@ extern "C" int rc_image_reader_meta(const rc_image_reader *r, const char *name, 
   return 1;
 }
 
+/* Rows [y0, y1) counted from the top of the data window, wherever the file puts it. A
+ * tiled file is read by whole tiles: OpenImageIO 2.4's scanline emulation over tiles died
+ * of SIGFPE on a tiled OpenEXR part. */
 extern "C" int rc_image_reader_rows(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len) {
   try {
-    if (r->in->read_scanlines(0, 0, y0, y1, 0, 0, r->in->spec().nchannels, TypeDesc::FLOAT, pixels)) return 0;
+    const ImageSpec &spec = r->in->spec();
+    const int nch = spec.nchannels;
+    bool ok;
+    if (spec.tile_width > 0 && spec.tile_height > 0) {
+      const int th = spec.tile_height;
+      const int ta = y0 / th * th, tb = std::min(spec.height, (y1 + th - 1) / th * th);
+      std::vector<float> tiles((size_t)(tb - ta) * (size_t)spec.width * (size_t)nch);
+      ok = r->in->read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + ta, spec.y + tb, spec.z,
+                             spec.z + std::max(1, spec.depth), 0, nch, TypeDesc::FLOAT, tiles.data());
+      if (ok)
+        std::memcpy(pixels, tiles.data() + (size_t)(y0 - ta) * (size_t)spec.width * (size_t)nch,
+                    (size_t)(y1 - y0) * (size_t)spec.width * (size_t)nch * sizeof(float));
+    } else {
+      ok = r->in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, nch, TypeDesc::FLOAT, pixels);
+    }
+    if (ok) return 0;
     set_error(err, err_len, r->in->geterror());
     return -1;
   } catch (const std::exception &e) {

@@ -5,6 +5,8 @@
 #include "rc_test.h"
 
 #include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
 
 TEST(parse) {
   rc_region r;
@@ -105,6 +107,115 @@ TEST(coverage) {
   CHECK(gap.x0 == 30 && gap.y0 == 20 && gap.x1 == 31 && gap.y1 == 21);
 }
 
+/* A random guillotine tiling of a w x h frame into at most max rectangles. */
+static size_t tile(rc_region *out, size_t max, rc_region r, unsigned *seed) {
+  uint32_t w = r.x1 - r.x0, h = r.y1 - r.y0;
+  if (max < 2 || (w < 2 && h < 2) || rand_r(seed) % 4 == 0) {
+    out[0] = r;
+    return 1;
+  }
+  rc_region a = r, b = r;
+  if (w >= 2 && (h < 2 || rand_r(seed) % 2)) {
+    a.x1 = b.x0 = r.x0 + 1 + (uint32_t)rand_r(seed) % (w - 1);
+  } else {
+    a.y1 = b.y0 = r.y0 + 1 + (uint32_t)rand_r(seed) % (h - 1);
+  }
+  size_t n = tile(out, max / 2, a, seed);
+  return n + tile(out + n, max - n, b, seed);
+}
+
+/* The coverage verdict by counting every pixel (the oracle), and for a gap its rectangle
+ * as rc_region_coverage defines it. */
+static int oracle(const rc_region *parts, size_t n, uint32_t w, uint32_t h, rc_region *gap) {
+  static unsigned char count[64 * 64];
+  memset(count, 0, sizeof count);
+  for (size_t i = 0; i < n; i++)
+    for (uint32_t y = parts[i].y0; y < parts[i].y1; y++)
+      for (uint32_t x = parts[i].x0; x < parts[i].x1; x++)
+        if (++count[y * w + x] > 1) return 1;
+  for (uint32_t y = 0; y < h; y++)
+    for (uint32_t x = 0; x < w; x++) {
+      if (count[y * w + x]) continue;
+      uint32_t x1 = x;
+      while (x1 < w && !count[y * w + x1]) x1++;
+      uint32_t y1 = y + 1;
+      for (bool empty = true; empty && y1 < h; y1 += empty) {
+        for (uint32_t k = x; k < x1; k++) empty = empty && !count[y1 * w + k];
+      }
+      *gap = (rc_region){x, y, x1, y1};
+      return 2;
+    }
+  return 0;
+}
+
+static bool share_a_pixel(rc_region p, rc_region q) {
+  return p.x0 < q.x1 && q.x0 < p.x1 && p.y0 < q.y1 && q.y0 < p.y1;
+}
+
+/* Generated: 3,000 random tilings of frames up to 64 x 64, each as it is, with one or two
+ * parts taken out, a part given twice, a part moved by one pixel, and a part one column
+ * narrower; the sweep's verdict and gap against counting every pixel. */
+TEST(coverage_generated) {
+  unsigned seed = 45;
+  rc_region parts[80], gap = {0}, want_gap = {0};
+  int wrong = 0;
+  for (int round = 0; round < 3000; round++) {
+    uint32_t w = 1 + (uint32_t)rand_r(&seed) % 64, h = 1 + (uint32_t)rand_r(&seed) % 64;
+    size_t n = tile(parts, 40, (rc_region){0, 0, w, h}, &seed);
+    /* Shuffle: the verdict must not depend on the parts' order. */
+    for (size_t i = n; i > 1; i--) {
+      size_t j = (size_t)rand_r(&seed) % i;
+      rc_region t = parts[i - 1];
+      parts[i - 1] = parts[j];
+      parts[j] = t;
+    }
+    int how = round % 6;
+    size_t k = (size_t)rand_r(&seed) % n;
+    if (how == 1 && n > 1) parts[k] = parts[--n];
+    if (how == 4 && n > 2) { /* two out: gaps of other shapes than a rectangle */
+      parts[k] = parts[--n];
+      parts[(size_t)rand_r(&seed) % n] = parts[n - 1];
+      n--;
+    }
+    if (how == 5 && parts[k].x1 - parts[k].x0 > 1) parts[k].x1--;
+    if (how == 2) parts[n++] = parts[k];
+    if (how == 3) {
+      rc_region *p = &parts[k];
+      if (p->x1 < w) p->x0++, p->x1++;
+      else if (p->x0 > 0) p->x0--, p->x1--;
+    }
+    size_t a = SIZE_MAX, b = SIZE_MAX;
+    int got = rc_region_coverage(parts, n, w, h, &a, &b, &gap);
+    int want = oracle(parts, n, w, h, &want_gap);
+    bool ok = got == want;
+    if (ok && got == 1) ok = a < b && b < n && share_a_pixel(parts[a], parts[b]);
+    if (ok && got == 2)
+      ok = gap.x0 == want_gap.x0 && gap.y0 == want_gap.y0 && gap.x1 == want_gap.x1 && gap.y1 == want_gap.y1;
+    if (!ok && wrong++ < 5) printf("  round %d (%ux%u, %zu parts, change %d): verdict %d, expected %d\n", round, w, h, n, how, got, want);
+  }
+  CHECK_EQ_INT(wrong, 0);
+}
+
+/* What a header may declare cannot make the check slow: 4,096 one-row bands of a
+ * 4,096 x 65,536 frame with the last missing, and three parts of a 4e9 x 4e9 frame. */
+TEST(coverage_at_scale) {
+  size_t n = 4096, a, b;
+  rc_region *bands = malloc(n * sizeof *bands), gap;
+  if (!bands) { CHECK(false); return; }
+  for (size_t i = 0; i < n; i++) bands[i] = (rc_region){0, (uint32_t)(16 * i), 4096, (uint32_t)(16 * i + 16)};
+  CHECK_EQ_INT(rc_region_coverage(bands, n, 4096, 65536, &a, &b, &gap), 0);
+  CHECK_EQ_INT(rc_region_coverage(bands, n - 1, 4096, 65536, &a, &b, &gap), 2);
+  CHECK(gap.x0 == 0 && gap.y0 == 65520 && gap.x1 == 4096 && gap.y1 == 65536);
+  /* Every band twice, in reverse: the first pair found is the topmost. */
+  for (size_t i = 0; i < n; i++) bands[i] = (rc_region){0, (uint32_t)(i / 2), 7, (uint32_t)(i / 2 + 1)};
+  CHECK_EQ_INT(rc_region_coverage(bands, n, 7, 2048, &a, &b, &gap), 1);
+  CHECK(a == 0 && b == 1);
+  free(bands);
+  rc_region huge[] = {{0, 0, 4000000000u, 1}, {0, 2, 4000000000u, 4000000000u}, {5, 1, 4000000000u, 2}};
+  CHECK_EQ_INT(rc_region_coverage(huge, 3, 4000000000u, 4000000000u, &a, &b, &gap), 2);
+  CHECK(gap.x0 == 0 && gap.y0 == 1 && gap.x1 == 5 && gap.y1 == 2);
+}
+
 /* The settings string of a part's header (part.c): one setting's value, and the first
  * setting in which two strings differ. */
 TEST(part_settings) {
@@ -136,6 +247,8 @@ int main(void) {
   RUN(shards_tile_the_frame);
   RUN(shards_balance_cost);
   RUN(coverage);
+  RUN(coverage_generated);
+  RUN(coverage_at_scale);
   RUN(part_settings);
   TEST_MAIN_END
 }
