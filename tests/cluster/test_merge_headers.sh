@@ -20,6 +20,10 @@ args=(--width 64 --height 48 --spp 1 --quiet)
 "$bin" render "$scenes/showcase.json" "${args[@]}" -o "$work/whole.exr" || exit 1
 for i in 0 1 2; do "$bin" render "$scenes/showcase.json" "${args[@]}" --shard $i/3 -o "$work/p$i.exr" || exit 1; done
 same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
+# Under the sanitizers (tools/test.sh's second pass) each kind of layout and of hostile
+# value runs once: the host code is the same for the rest, which the first pass covers.
+full=1
+[[ -z ${ASAN_OPTIONS:-} ]] || full=0
 
 # `layout NAME OIIOTOOL-ARGS...`: the middle part so rewritten (-o, or the last argument
 # `-otex` for a mip-mapped file) merges to the whole render.
@@ -35,17 +39,19 @@ layout() {
   check "layout $name" "$why"
 }
 layout tiled-16x16 --tile 16 16
-layout tiled-7x5 --tile 7 5
-layout tiled-64x64 --tile 64 64
 layout origin --origin +3+7
-layout negative-origin --origin -5-9
-layout fullsize --fullsize 100x100
-layout zip --compression zip
-layout piz --compression piz
-layout rle --compression rle
-layout none --compression none
-layout bgr-order --ch B,G,R
-layout mipmapped --tile 16 16 -otex
+if ((full)); then
+  layout tiled-7x5 --tile 7 5
+  layout tiled-64x64 --tile 64 64
+  layout negative-origin --origin -5-9
+  layout fullsize --fullsize 100x100
+  layout zip --compression zip
+  layout piz --compression piz
+  layout rle --compression rle
+  layout none --compression none
+  layout bgr-order --ch B,G,R
+  layout mipmapped --tile 16 16 -otex
+fi
 
 # `refused NAME MESSAGE PART`: the merge with PART in the middle exits 2 with MESSAGE, writes nothing.
 refused() {
@@ -53,7 +59,9 @@ refused() {
 }
 oiiotool "$work/p1.exr" -d half -o "$work/half.exr" && refused "half floats" "not all 32-bit float" "$work/half.exr"
 oiiotool "$work/p1.exr" --ch R,G,B,A=1.0 -o "$work/rgba.exr" && refused "alpha" "holds 4 channel(s)" "$work/rgba.exr"
-for c in dwaa dwab b44 b44a pxr24; do
+lossy=(dwaa dwab b44 b44a pxr24)
+((full)) || lossy=(dwaa)
+for c in "${lossy[@]}"; do
   oiiotool "$work/p1.exr" --compression $c -o "$work/$c.exr" && refused "lossy $c" "compressed lossily ($c" "$work/$c.exr"
 done
 
@@ -68,6 +76,7 @@ hostile() { # FIELD VALUE
   oiiotool "$work/p1.exr" --sattrib "vkraycast:$1" "$2" -o "$work/h$n.exr" 2>/dev/null || return
   refused "header $1 \"$2\"" "h$n.exr: " "$work/h$n.exr"
 }
+((full)) || frames=("${frames[4]}") regions=("${regions[1]}") shards=("${shards[2]}")
 for v in "${frames[@]}"; do hostile frame "$v"; done
 for v in "${regions[@]}"; do hostile region "$v"; done
 for v in "${shards[@]}"; do hostile shard "$v"; done
