@@ -1,160 +1,18 @@
-#include "gpu/gpu_render.h"
+#include "gpu/gpu_renderer.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#include "gpu/gpu_pipeline_cache.h"
-#include "gpu/gpu_shaders.h"
 #include "gpu/gpu_tiles.h"
 
 /* The tile buffers hold this many pixels: no tile exceeds it. */
 #define MAX_TILE_PIXELS (1u << 20)
-#define SCENE_ARRAYS 11 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
-                           quadrics, composites, CSG programs */
-
-struct rc_gpu_renderer {
-  rc_vk_ctx *ctx;
-  rc_gpu_options opts;
-  uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
-  bool light_passes;   /* RC_SPEC_LIGHT_PASSES: samples too long for one dispatch */
-  uint32_t light_pass; /* then: lights per pass, halved where a pass ran out (for later tiles too) */
-  gpu_frame frame;
-  rc_region region; /* the pixels rendered, within the frame */
-  bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
-  bool sphere_transforms, vertex_normals; /* RC_KIND_SPHERE_TRANSFORMS, RC_KIND_VERTEX_NORMALS */
-  rc_buffer frame_buf;
-  rc_buffer arrays[SCENE_ARRAYS];
-  VkBufferView views[SCENE_ARRAYS];
-  uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
-  double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
-  rc_buffer accum, accum_readback;
-  rc_buffer status, status_readback;
-  rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
-  float *band_rgb;             /* one band of rows on the host */
-  gpu_aov *band_aov;
-  VkDescriptorSetLayout set_layout;
-  VkPipelineLayout pipeline_layout;
-  VkPipeline pipeline;
-  VkDescriptorPool descriptor_pool;
-  VkDescriptorSet set;
-  VkQueryPool queries;
-  VkCommandPool pool; /* holds `cmd` alone: reset as a whole before each recording */
-  VkCommandBuffer cmd;
-  VkFence fence;
-  bool staging;
-};
-
-static const uint32_t array_bindings[SCENE_ARRAYS] = {
-    RC_BINDING_SPHERES,   RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS, RC_BINDING_LIGHTS,
-    RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS, RC_BINDING_NORMALS,
-    RC_BINDING_QUADRICS,  RC_BINDING_CSG,       RC_BINDING_CSG_PROGRAM};
-static const char *const array_names[SCENE_ARRAYS] = {
-    "spheres",    "triangles", "materials", "lights", "BVH nodes", "BVH references", "transforms", "normals",
-    "quadrics", "composites", "CSG programs"};
 
 /* Within what every Vulkan device offers, so no device can refuse them (docs/porting.md). */
 _Static_assert(sizeof(gpu_frame) <= 16384, "gpu_frame must fit the guaranteed maxUniformBufferRange");
 _Static_assert(sizeof(gpu_push) <= 128, "gpu_push must fit the guaranteed maxPushConstantsSize");
-
-/* The shader's descriptors besides the scene arrays: the frame (a uniform buffer) and the
- * accumulation, status and AOV storage buffers. */
-#define OUTPUT_STORAGE_BUFFERS 3u
-
-/* The scene-array kinds, fastest on lavapipe first: the order a default render tries them in. */
-static const char *const kind_names[3] = {"storage texel buffers", "uniform texel buffers", "storage buffers"};
-
-static const VkDescriptorType kind_descriptor[3] = {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
-                                                    VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER,
-                                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-static const VkBufferUsageFlags kind_usage[3] = {VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
-                                                 VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
-                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
-
-static bool is_texel_kind(rc_scene_buffers kind) { return kind != RC_SCENE_BUFFERS_STORAGE; }
-
-/* Whether the device can take the scene arrays as buffers of `kind`: NULL, or the first
- * limit that stops it, with the numbers, in `why`. Uniform texel views count against the
- * sampled image limits, storage texel views against the storage image limits (Vulkan 1.1,
- * "Limits"); the arrays' sizes against the texel count or the storage range of one binding. */
-static const char *kind_blocked(const rc_vk_ctx *ctx, rc_scene_buffers kind, const VkDeviceSize sizes[SCENE_ARRAYS],
-                                char *why, size_t n) {
-  const VkPhysicalDeviceLimits *l = &ctx->props.limits;
-  bool texel = is_texel_kind(kind), image = kind == RC_SCENE_BUFFERS_IMAGE;
-  uint32_t storage = OUTPUT_STORAGE_BUFFERS + (texel ? 0 : SCENE_ARRAYS);
-  if (texel) {
-    VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(ctx->physical, VK_FORMAT_R32G32B32A32_UINT, &fp);
-    VkFormatFeatureFlags need = image ? VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT : VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT;
-    if (!(fp.bufferFeatures & need)) {
-      snprintf(why, n, "the device has no RGBA32UI %s", kind_names[kind]);
-      return why;
-    }
-    for (int i = 0; i < SCENE_ARRAYS; i++) {
-      if (sizes[i] / 16 > l->maxTexelBufferElements) {
-        snprintf(why, n, "the %s array needs %llu texels, more than maxTexelBufferElements (%u)", array_names[i],
-                 (unsigned long long)(sizes[i] / 16), l->maxTexelBufferElements);
-        return why;
-      }
-    }
-    uint32_t views = SCENE_ARRAYS;
-    uint32_t stage = image ? l->maxPerStageDescriptorStorageImages : l->maxPerStageDescriptorSampledImages;
-    uint32_t set = image ? l->maxDescriptorSetStorageImages : l->maxDescriptorSetSampledImages;
-    const char *what = image ? "StorageImages" : "SampledImages";
-    if (views > stage || views > set) {
-      snprintf(why, n, "%u %s, more than maxPerStageDescriptor%s (%u) or maxDescriptorSet%s (%u)", views,
-               kind_names[kind], what, stage, what, set);
-      return why;
-    }
-  } else {
-    for (int i = 0; i < SCENE_ARRAYS; i++) {
-      if (sizes[i] > l->maxStorageBufferRange) {
-        snprintf(why, n, "the %s array is %llu bytes, more than maxStorageBufferRange (%u bytes)", array_names[i],
-                 (unsigned long long)sizes[i], l->maxStorageBufferRange);
-        return why;
-      }
-    }
-  }
-  if (storage > l->maxPerStageDescriptorStorageBuffers || storage > l->maxDescriptorSetStorageBuffers) {
-    snprintf(why, n, "%u storage buffers, more than maxPerStageDescriptorStorageBuffers (%u) or "
-             "maxDescriptorSetStorageBuffers (%u)", storage, l->maxPerStageDescriptorStorageBuffers,
-             l->maxDescriptorSetStorageBuffers);
-    return why;
-  }
-  if (RC_BINDING_COUNT > l->maxPerStageResources) {
-    snprintf(why, n, "%u descriptors, more than maxPerStageResources (%u)", RC_BINDING_COUNT, l->maxPerStageResources);
-    return why;
-  }
-  return NULL;
-}
-
-/* The buffer kind the device can take for this scene: the one asked for, or the next that
- * fits in the order image, texel, storage. Storage texel buffers (the default) give way
- * silently to uniform texel buffers, which read the same texels; falling back to storage
- * buffers (slower on lavapipe) is a warning; an explicit --scene-buffers storage is kept or
- * refused. A scene no kind fits is refused before anything is allocated, with every kind's
- * limit and numbers (docs/porting.md). */
-static rc_status choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers *kind, const VkDeviceSize sizes[SCENE_ARRAYS]) {
-  char why[3][256];
-  for (rc_scene_buffers k = *kind; k <= RC_SCENE_BUFFERS_STORAGE; k++) {
-    if (kind_blocked(ctx, k, sizes, why[k], sizeof why[k])) continue;
-    if (k == RC_SCENE_BUFFERS_STORAGE && *kind != k)
-      rc_warning("texel buffers do not fit (%s); using storage buffers", why[k - 1]);
-    *kind = k;
-    return RC_OK;
-  }
-  if (*kind == RC_SCENE_BUFFERS_STORAGE) {
-    rc_refuse_scene("--scene-buffers storage: device %u (%s) cannot take this scene: %s", ctx->device_index,
-                    ctx->props.deviceName, why[RC_SCENE_BUFFERS_STORAGE]);
-  } else {
-    char all[800] = "";
-    for (rc_scene_buffers k = *kind; k <= RC_SCENE_BUFFERS_STORAGE; k++)
-      snprintf(all + strlen(all), sizeof all - strlen(all), "%sas %s %s", k == *kind ? "" : "; ", kind_names[k], why[k]);
-    rc_refuse_scene("scene too large for device %u (%s): %s", ctx->device_index, ctx->props.deviceName, all);
-  }
-  return RC_ERR_TOO_LARGE;
-}
 
 /* The tile buffers' capacity in pixels: no tile is larger, nor larger than the region. */
 static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
@@ -183,61 +41,6 @@ static double resolve_tile_budget(const rc_vk_ctx *ctx, double wanted_ms) {
   return ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0.0 : RC_DEFAULT_TILE_BUDGET_MS;
 }
 
-static rc_status upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s) {
-  rc_vk_ctx *ctx = r->ctx;
-  const gpu_frame *f = &s->frame;
-  /* Without a BVH the node and reference buffers still exist (one dummy element): every
-   * binding must be valid even where the specialized shader never reads it. */
-  static const gpu_bvh_node no_node;
-  static const uint32_t no_refs[4];
-  bool bvh = s->bvh_node_total > 0; /* the object tree, or a mesh operand's */
-  const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
-                                    bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs,
-                                    s->transforms, s->normals, s->quadrics, s->csg, s->csg_program};
-  /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
-  VkDeviceSize sizes[SCENE_ARRAYS] = {
-      (f->sphere_count + 1) * sizeof(gpu_sphere), (s->triangle_total + 1) * sizeof(gpu_triangle),
-      (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
-      bvh ? s->bvh_node_total * sizeof(gpu_bvh_node) : sizeof no_node,
-      bvh ? (s->bvh_prim_total + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
-      (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals),
-      (s->quadric_total + 1) * sizeof(gpu_quadric), (f->csg_count + 1) * sizeof(gpu_csg),
-      (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t)};
-  rc_status chosen = choose_buffers(ctx, &r->opts.scene_buffers, sizes);
-  if (chosen != RC_OK) return chosen;
-  /* Everything the render allocates on the device, against its largest device-local heap:
-   * refuse what cannot fit before allocating anything. */
-  VkDeviceSize need = sizeof(gpu_frame) + max_tile_pixels(r) * (16 + (r->opts.aov ? sizeof(gpu_aov) : 0));
-  for (int i = 0; i < SCENE_ARRAYS; i++) need += sizes[i];
-  VkDeviceSize heap = 0;
-  for (uint32_t i = 0; i < ctx->memory.memoryHeapCount; i++)
-    if ((ctx->memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) && ctx->memory.memoryHeaps[i].size > heap)
-      heap = ctx->memory.memoryHeaps[i].size;
-  if (heap && need > heap) {
-    rc_refuse_scene("scene too large for the device: it needs %.1f MiB of device memory, the largest device-local heap "
-             "has %.1f MiB",
-             (double)need / (1 << 20), (double)heap / (1 << 20));
-    return RC_ERR_TOO_LARGE;
-  }
-  bool texel = is_texel_kind(r->opts.scene_buffers);
-  for (int i = 0; i < SCENE_ARRAYS; i++) {
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT | kind_usage[r->opts.scene_buffers];
-    rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);
-    if (st == RC_OK) st = rc_buffer_upload(ctx, &r->arrays[i], data[i], sizes[i], r->opts.force_staging);
-    if (st != RC_OK) return st;
-    if (texel) {
-      VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
-                                   .buffer = r->arrays[i].buffer,
-                                   .format = VK_FORMAT_R32G32B32A32_UINT,
-                                   .range = VK_WHOLE_SIZE};
-      RC_VK_TRY(vkCreateBufferView(ctx->device, &vi, NULL, &r->views[i]));
-    }
-  }
-  rc_status st = rc_buffer_create(ctx, sizeof(gpu_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  RC_MEM_DEVICE, &r->frame_buf);
-  if (st == RC_OK) st = rc_buffer_upload(ctx, &r->frame_buf, f, sizeof *f, r->opts.force_staging);
-  return st;
-}
 
 /* The per-tile accumulation buffer and the status counters, with readback copies when
  * they are not mapped directly. */
@@ -269,151 +72,10 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   return st;
 }
 
-static rc_status create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
+
+/* The timestamp queries, the command pool and buffer, and the fence of the dispatches. */
+static rc_status create_commands(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
-  VkDescriptorType array_type = kind_descriptor[r->opts.scene_buffers];
-  VkDescriptorSetLayoutBinding b[RC_BINDING_COUNT];
-  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
-    b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
-                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                          .descriptorCount = 1,
-                                          .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
-  }
-  b[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  for (int i = 0; i < SCENE_ARRAYS; i++) b[array_bindings[i]].descriptorType = array_type;
-
-  VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-                                         .bindingCount = RC_BINDING_COUNT,
-                                         .pBindings = b};
-  RC_VK_TRY(vkCreateDescriptorSetLayout(ctx->device, &sli, NULL, &r->set_layout));
-  VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(gpu_push)};
-  VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
-                                    .setLayoutCount = 1,
-                                    .pSetLayouts = &r->set_layout,
-                                    .pushConstantRangeCount = 1,
-                                    .pPushConstantRanges = &pcr};
-  RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
-
-  /* The module without quadric code where the scene has none (and the pipeline is not the
-   * generic one): lavapipe compiles the whole module before specializing it. */
-  bool quadrics = r->opts.generic_pipeline || r->frame.quadric_count || r->frame.csg_count;
-  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, r->opts.f64, quadrics);
-  VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-                                  .codeSize = code.size,
-                                  .pCode = code.words};
-  VkShaderModule module;
-  RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
-  /* A bool specialization constant is 4 bytes (VkBool32); a float one is its 4 bytes. */
-  float epsilon = r->frame.offset_epsilon;
-  uint32_t epsilon_bits;
-  memcpy(&epsilon_bits, &epsilon, sizeof epsilon_bits);
-  /* The scene's features (rc_shared.h, RC_SPEC_KINDS...): what the scene lacks is
-   * compiled out. A generic pipeline reads them from the frame instead. */
-  const gpu_frame *f = &r->frame;
-  bool generic = r->opts.generic_pipeline;
-  uint32_t kinds = generic ? RC_KIND_ALL
-                           : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
-                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
-                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
-                                 (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
-                                 (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0);
-  const uint32_t spec_values[16] = {r->local_x,
-                                    r->local_y,
-                                    r->budget,
-                                    r->opts.aov ? VK_TRUE : VK_FALSE,
-                                    r->opts.bvh_depth ? VK_TRUE : VK_FALSE,
-                                    f->sphere_formula,
-                                    f->triangle_formula,
-                                    f->offset_strategy,
-                                    epsilon_bits,
-                                    kinds,
-                                    generic ? RC_LIGHTS_FROM_FRAME : f->light_count,
-                                    generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
-                                    generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
-                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth,
-                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel,
-                                    r->light_passes ? VK_TRUE : VK_FALSE};
-  const VkSpecializationMapEntry entries[16] = {
-      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
-      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
-      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
-      {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
-      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4},
-      {RC_SPEC_LIGHT_PASSES, 60, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 16, .pMapEntries = entries, .dataSize = sizeof spec_values,
-                               .pData = spec_values};
-  VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-                                    .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                                              .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                                              .module = module,
-                                              .pName = "main",
-                                              .pSpecializationInfo = &spec},
-                                    .layout = r->pipeline_layout};
-  rc_pipeline_cache cache;
-  rc_pipeline_cache_open(ctx, code, &cache);
-  *cache_hit = cache.loaded;
-  VkResult res = vkCreateComputePipelines(ctx->device, cache.cache, 1, &ci, NULL, &r->pipeline);
-  if (res == VK_SUCCESS) rc_pipeline_cache_close(ctx, &cache);
-  else if (cache.cache) vkDestroyPipelineCache(ctx->device, cache.cache, NULL);
-  vkDestroyShaderModule(ctx->device, module, NULL);
-  if (res == VK_SUCCESS && rc_fault("pipeline")) {
-    vkDestroyPipeline(ctx->device, r->pipeline, NULL);
-    r->pipeline = VK_NULL_HANDLE;
-    res = VK_ERROR_INITIALIZATION_FAILED;
-  }
-  if (res != VK_SUCCESS) {
-    rc_error("the device could not create the compute pipeline (%s); its driver may not support this shader",
-             rc_vk_result_str(res));
-    return RC_ERR_VULKAN;
-  }
-  return RC_OK;
-}
-
-static rc_status create_descriptors(rc_gpu_renderer *r) {
-  rc_vk_ctx *ctx = r->ctx;
-  bool texel = is_texel_kind(r->opts.scene_buffers);
-  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 3 + SCENE_ARRAYS},
-                                   {kind_descriptor[r->opts.scene_buffers], SCENE_ARRAYS}};
-  VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                   .maxSets = 1,
-                                   .poolSizeCount = texel ? 3 : 2,
-                                   .pPoolSizes = sizes};
-  RC_VK_TRY(vkCreateDescriptorPool(ctx->device, &pi, NULL, &r->descriptor_pool));
-  VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-                                    .descriptorPool = r->descriptor_pool,
-                                    .descriptorSetCount = 1,
-                                    .pSetLayouts = &r->set_layout};
-  RC_VK_TRY(vkAllocateDescriptorSets(ctx->device, &ai, &r->set));
-
-  VkDescriptorBufferInfo infos[RC_BINDING_COUNT] = {0};
-  VkWriteDescriptorSet w[RC_BINDING_COUNT];
-  const rc_buffer *bufs[RC_BINDING_COUNT] = {0};
-  bufs[RC_BINDING_FRAME] = &r->frame_buf;
-  bufs[RC_BINDING_ACCUM] = &r->accum;
-  bufs[RC_BINDING_STATUS] = &r->status;
-  bufs[RC_BINDING_AOV] = &r->aov;
-  for (int i = 0; i < SCENE_ARRAYS; i++) bufs[array_bindings[i]] = &r->arrays[i];
-  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
-    infos[i] = (VkDescriptorBufferInfo){.buffer = bufs[i]->buffer, .range = VK_WHOLE_SIZE};
-    w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-                                  .dstSet = r->set,
-                                  .dstBinding = i,
-                                  .descriptorCount = 1,
-                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                  .pBufferInfo = &infos[i]};
-  }
-  w[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  for (int i = 0; i < SCENE_ARRAYS; i++) {
-    VkWriteDescriptorSet *x = &w[array_bindings[i]];
-    if (texel) {
-      x->descriptorType = kind_descriptor[r->opts.scene_buffers];
-      x->pBufferInfo = NULL;
-      x->pTexelBufferView = &r->views[i];
-    }
-  }
-  vkUpdateDescriptorSets(ctx->device, RC_BINDING_COUNT, w, 0, NULL);
-
   VkQueryPoolCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                               .queryType = VK_QUERY_TYPE_TIMESTAMP,
                               .queryCount = 2};
@@ -431,6 +93,7 @@ static rc_status create_descriptors(rc_gpu_renderer *r) {
   RC_VK_TRY(vkCreateFence(ctx->device, &fi, NULL, &r->fence));
   return RC_OK;
 }
+
 
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats) {
@@ -468,12 +131,13 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
     st = RC_ERR_DEVICE;
   }
   double t0 = rc_now_ms();
-  if (st == RC_OK) st = upload_scene(r, scene);
+  if (st == RC_OK) st = rc_gpu_upload_scene(r, scene, max_tile_pixels(r));
   double t1 = rc_now_ms();
   if (st == RC_OK) st = create_outputs(r);
-  if (st == RC_OK) st = create_pipeline(r, &stats->pipeline_cache_hit);
+  if (st == RC_OK) st = rc_gpu_create_pipeline(r, &stats->pipeline_cache_hit);
   double t2 = rc_now_ms();
-  if (st == RC_OK) st = create_descriptors(r);
+  if (st == RC_OK) st = rc_gpu_create_descriptors(r);
+  if (st == RC_OK) st = create_commands(r);
   stats->upload_ms = t1 - t0;
   stats->pipeline_ms = t2 - t1;
   stats->scene_buffers = r->opts.scene_buffers;

@@ -1,0 +1,156 @@
+/* gpu_pipeline.c: the compute pipeline, specialized to the scene (rc_shared.h, RC_SPEC_*:
+ * what the scene lacks is compiled out), and the descriptor set that binds the scene
+ * arrays and the output buffers to it. */
+#include <string.h>
+
+#include "gpu/gpu_pipeline_cache.h"
+#include "gpu/gpu_renderer.h"
+#include "gpu/gpu_shaders.h"
+
+rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
+  rc_vk_ctx *ctx = r->ctx;
+  VkDescriptorType array_type = rc_gpu_kind_descriptor(r->opts.scene_buffers);
+  VkDescriptorSetLayoutBinding b[RC_BINDING_COUNT];
+  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
+    b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
+                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                          .descriptorCount = 1,
+                                          .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+  }
+  b[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  for (int i = 0; i < SCENE_ARRAYS; i++) b[rc_gpu_array_bindings[i]].descriptorType = array_type;
+
+  VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                         .bindingCount = RC_BINDING_COUNT,
+                                         .pBindings = b};
+  RC_VK_TRY(vkCreateDescriptorSetLayout(ctx->device, &sli, NULL, &r->set_layout));
+  VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(gpu_push)};
+  VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                    .setLayoutCount = 1,
+                                    .pSetLayouts = &r->set_layout,
+                                    .pushConstantRangeCount = 1,
+                                    .pPushConstantRanges = &pcr};
+  RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
+
+  /* The module without quadric code where the scene has none (and the pipeline is not the
+   * generic one): lavapipe compiles the whole module before specializing it. */
+  bool quadrics = r->opts.generic_pipeline || r->frame.quadric_count || r->frame.csg_count;
+  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, r->opts.f64, quadrics);
+  VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                  .codeSize = code.size,
+                                  .pCode = code.words};
+  VkShaderModule module;
+  RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
+  /* A bool specialization constant is 4 bytes (VkBool32); a float one is its 4 bytes. */
+  float epsilon = r->frame.offset_epsilon;
+  uint32_t epsilon_bits;
+  memcpy(&epsilon_bits, &epsilon, sizeof epsilon_bits);
+  /* The scene's features (rc_shared.h, RC_SPEC_KINDS...): what the scene lacks is
+   * compiled out. A generic pipeline reads them from the frame instead. */
+  const gpu_frame *f = &r->frame;
+  bool generic = r->opts.generic_pipeline;
+  uint32_t kinds = generic ? RC_KIND_ALL
+                           : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
+                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
+                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
+                                 (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
+                                 (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0);
+  const uint32_t spec_values[16] = {r->local_x,
+                                    r->local_y,
+                                    r->budget,
+                                    r->opts.aov ? VK_TRUE : VK_FALSE,
+                                    r->opts.bvh_depth ? VK_TRUE : VK_FALSE,
+                                    f->sphere_formula,
+                                    f->triangle_formula,
+                                    f->offset_strategy,
+                                    epsilon_bits,
+                                    kinds,
+                                    generic ? RC_LIGHTS_FROM_FRAME : f->light_count,
+                                    generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
+                                    generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
+                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth,
+                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel,
+                                    r->light_passes ? VK_TRUE : VK_FALSE};
+  const VkSpecializationMapEntry entries[16] = {
+      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
+      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
+      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
+      {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
+      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4},
+      {RC_SPEC_LIGHT_PASSES, 60, 4}};
+  VkSpecializationInfo spec = {.mapEntryCount = 16, .pMapEntries = entries, .dataSize = sizeof spec_values,
+                               .pData = spec_values};
+  VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+                                    .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                              .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                                              .module = module,
+                                              .pName = "main",
+                                              .pSpecializationInfo = &spec},
+                                    .layout = r->pipeline_layout};
+  rc_pipeline_cache cache;
+  rc_pipeline_cache_open(ctx, code, &cache);
+  *cache_hit = cache.loaded;
+  VkResult res = vkCreateComputePipelines(ctx->device, cache.cache, 1, &ci, NULL, &r->pipeline);
+  if (res == VK_SUCCESS) rc_pipeline_cache_close(ctx, &cache);
+  else if (cache.cache) vkDestroyPipelineCache(ctx->device, cache.cache, NULL);
+  vkDestroyShaderModule(ctx->device, module, NULL);
+  if (res == VK_SUCCESS && rc_fault("pipeline")) {
+    vkDestroyPipeline(ctx->device, r->pipeline, NULL);
+    r->pipeline = VK_NULL_HANDLE;
+    res = VK_ERROR_INITIALIZATION_FAILED;
+  }
+  if (res != VK_SUCCESS) {
+    rc_error("the device could not create the compute pipeline (%s); its driver may not support this shader",
+             rc_vk_result_str(res));
+    return RC_ERR_VULKAN;
+  }
+  return RC_OK;
+}
+
+
+rc_status rc_gpu_create_descriptors(rc_gpu_renderer *r) {
+  rc_vk_ctx *ctx = r->ctx;
+  bool texel = rc_gpu_is_texel_kind(r->opts.scene_buffers);
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texel ? 3 : 3 + SCENE_ARRAYS},
+                                   {rc_gpu_kind_descriptor(r->opts.scene_buffers), SCENE_ARRAYS}};
+  VkDescriptorPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                   .maxSets = 1,
+                                   .poolSizeCount = texel ? 3 : 2,
+                                   .pPoolSizes = sizes};
+  RC_VK_TRY(vkCreateDescriptorPool(ctx->device, &pi, NULL, &r->descriptor_pool));
+  VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                    .descriptorPool = r->descriptor_pool,
+                                    .descriptorSetCount = 1,
+                                    .pSetLayouts = &r->set_layout};
+  RC_VK_TRY(vkAllocateDescriptorSets(ctx->device, &ai, &r->set));
+
+  VkDescriptorBufferInfo infos[RC_BINDING_COUNT] = {0};
+  VkWriteDescriptorSet w[RC_BINDING_COUNT];
+  const rc_buffer *bufs[RC_BINDING_COUNT] = {0};
+  bufs[RC_BINDING_FRAME] = &r->frame_buf;
+  bufs[RC_BINDING_ACCUM] = &r->accum;
+  bufs[RC_BINDING_STATUS] = &r->status;
+  bufs[RC_BINDING_AOV] = &r->aov;
+  for (int i = 0; i < SCENE_ARRAYS; i++) bufs[rc_gpu_array_bindings[i]] = &r->arrays[i];
+  for (uint32_t i = 0; i < RC_BINDING_COUNT; i++) {
+    infos[i] = (VkDescriptorBufferInfo){.buffer = bufs[i]->buffer, .range = VK_WHOLE_SIZE};
+    w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = r->set,
+                                  .dstBinding = i,
+                                  .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  .pBufferInfo = &infos[i]};
+  }
+  w[RC_BINDING_FRAME].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  for (int i = 0; i < SCENE_ARRAYS; i++) {
+    VkWriteDescriptorSet *x = &w[rc_gpu_array_bindings[i]];
+    if (texel) {
+      x->descriptorType = rc_gpu_kind_descriptor(r->opts.scene_buffers);
+      x->pBufferInfo = NULL;
+      x->pTexelBufferView = &r->views[i];
+    }
+  }
+  vkUpdateDescriptorSets(ctx->device, RC_BINDING_COUNT, w, 0, NULL);
+  return RC_OK;
+}
