@@ -43,6 +43,13 @@ void rc_set_scene_path(const char *path);
 void rc_refuse_scene(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* Programmer errors: always checked, release builds included. */
+/* Returns the status of `expr` from the calling function unless it is RC_OK. */
+#define RC_TRY(expr)              \
+  do {                            \
+    rc_status st_ = (expr);       \
+    if (st_ != RC_OK) return st_; \
+  } while (0)
+
 #define RC_ASSERT(cond)                                                            \
   do {                                                                             \
     if (!(cond)) rc_assert_fail(__FILE__, __LINE__, #cond);                        \

@@ -163,181 +163,236 @@ typedef struct {
   int normal_warnings;
 } state;
 
+/* The commands, one handler each. A handler gets its arguments c->tok[1..] already
+ * counted, and parsed as numbers into v where its entry says so. */
+typedef rc_status (*command_fn)(state *g, ctx *c, const double *v);
+
+static rc_status cmd_size(state *g, ctx *c, const double *v) {
+  (void)v;
+  long w = 0, h = 0;
+  RC_TRY(whole(c, 1, 1, RC_MAX_IMAGE_SIDE, &w));
+  RC_TRY(whole(c, 2, 1, RC_MAX_IMAGE_SIDE, &h));
+  g->s->width = (uint32_t)w, g->s->height = (uint32_t)h, g->have_size = true;
+  return RC_OK;
+}
+
+static rc_status cmd_maxdepth(state *g, ctx *c, const double *v) {
+  (void)v;
+  long d = 0;
+  RC_TRY(whole(c, 1, 1, RC_MAX_REFLECTION_DEPTH + 1, &d));
+  g->s->reflection_depth = (uint32_t)d - 1;
+  return RC_OK;
+}
+
+/* Honoured when the command line names no -o. A bare file name written in the current
+ * folder, as the course's programs did: an untrusted scene must not name /etc/... */
+static rc_status cmd_output(state *g, ctx *c, const double *v) {
+  (void)v;
+  rc_scene *s = g->s;
+  const char *name = c->tok[1];
+  size_t len = strcspn(name, " \t\r\n");
+  if (len >= sizeof s->output_name || strchr(name, '/') || name[0] == '.' || name[0] == '-')
+    return fail(c, 1, "an output file name without a folder, not starting with '.' or '-', at most %zu bytes "
+                      "(-o on the command line can name any path)", sizeof s->output_name - 1);
+  for (size_t i = 0; i < len; i++)
+    if ((unsigned char)name[i] < 0x20 || name[i] == 0x7f) return fail(c, 1, "a control character in the file name");
+  memcpy(s->output_name, name, len);
+  s->output_name[len] = '\0';
+  return RC_OK;
+}
+
+static rc_status cmd_camera(state *g, ctx *c, const double *v) {
+  rc_scene *s = g->s;
+  s->camera = (rc_camera_def){RC_PROJECTION_PERSPECTIVE, rcm_make_d(v[0], v[1], v[2]), rcm_make_d(v[3], v[4], v[5]),
+                              rcm_make_d(v[6], v[7], v[8]), v[9], 0};
+  const char *field = NULL, *problem = rc_scene_camera_problem(&s->camera, &field);
+  if (problem) {
+    int arg = !strcmp(field, "look_at") ? 4 : !strcmp(field, "up") ? 7 : 10;
+    return fail(c, arg, "%s %s", field, problem);
+  }
+  g->have_camera = true;
+  return RC_OK;
+}
+
+static rc_status cmd_sphere(state *g, ctx *c, const double *v) {
+  rc_scene *s = g->s;
+  if (!(v[3] > 0)) return fail(c, 4, "radius must be greater than 0");
+  GROW(s->spheres, s->sphere_count, g->sphere_cap);
+  rc_sphere_def *d = &s->spheres[s->sphere_count];
+  memset(d, 0, sizeof *d);
+  d->center = rcm_make_d(v[0], v[1], v[2]);
+  d->radius = v[3];
+  const double(*m)[4] = g->stack[g->top];
+  if (!mat_is_identity(m)) {
+    d->transformed = true;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 4; j++) d->world_from_object.m[i][j] = m[i][j];
+  }
+  RC_TRY(material_index(s, &g->mat_cap, &g->seen_materials, &g->mat, &d->material));
+  s->sphere_count++;
+  return RC_OK;
+}
+
+/* maxverts, maxvertnorms: only a size hint. */
+static rc_status cmd_hint(state *g, ctx *c, const double *v) {
+  (void)g, (void)c, (void)v;
+  return RC_OK;
+}
+
+static rc_status cmd_vertex(state *g, ctx *c, const double *v) {
+  (void)c;
+  GROW(g->verts, g->nverts, g->verts_cap);
+  g->verts[g->nverts++] = rcm_make_d(v[0], v[1], v[2]);
+  return RC_OK;
+}
+
+static rc_status cmd_vertexnormal(state *g, ctx *c, const double *v) {
+  RC_TRY(cmd_vertex(g, c, v));
+  if (!g->normal_warnings++)
+    rc_warning("%s:%d: vertexnormal: per-vertex normals are not used (triangles are flat shaded)", c->file, c->line);
+  return RC_OK;
+}
+
+/* tri, trinormal (whose indices name vertexnormal vertices: the same list here). */
+static rc_status cmd_tri(state *g, ctx *c, const double *v) {
+  (void)v;
+  long idx[3];
+  for (int k = 0; k < 3; k++) {
+    RC_TRY(whole(c, 1 + k, 0, 0x7fffffff, &idx[k]));
+    if ((size_t)idx[k] >= g->nverts)
+      return fail(c, 1 + k, "vertex index out of range (%zu vertices defined so far)", g->nverts);
+  }
+  rc_triangle_def t = {0};
+  for (int k = 0; k < 3; k++) t.v[k] = mat_point(g->stack[g->top], g->verts[idx[k]]);
+  RC_TRY(material_index(g->s, &g->mat_cap, &g->seen_materials, &g->mat, &t.material));
+  return rc_scene_add_triangle(g->s, &t);
+}
+
+static rc_status cmd_translate(state *g, ctx *c, const double *v) {
+  (void)c;
+  mat4 r;
+  mat_identity(r);
+  r[0][3] = v[0], r[1][3] = v[1], r[2][3] = v[2];
+  mat_right_multiply(g->stack[g->top], r);
+  return RC_OK;
+}
+
+static rc_status cmd_scale(state *g, ctx *c, const double *v) {
+  if (v[0] == 0 || v[1] == 0 || v[2] == 0) return fail(c, 1, "a zero scale makes objects vanish");
+  mat4 r;
+  mat_identity(r);
+  r[0][0] = v[0], r[1][1] = v[1], r[2][2] = v[2];
+  mat_right_multiply(g->stack[g->top], r);
+  return RC_OK;
+}
+
+static rc_status cmd_rotate(state *g, ctx *c, const double *v) {
+  dvec3 axis = rcm_make_d(v[0], v[1], v[2]);
+  if (rcm_max_abs_comp_d(axis) == 0) return fail(c, 1, "the rotation axis must not be zero");
+  mat4 r;
+  mat_rotation(r, rcm_normalize_d(axis), v[3]);
+  mat_right_multiply(g->stack[g->top], r);
+  return RC_OK;
+}
+
+static rc_status cmd_push(state *g, ctx *c, const double *v) {
+  (void)v;
+  if (g->top + 1 >= MAX_STACK) return fail(c, 0, "more than %d nested pushTransform", MAX_STACK - 1);
+  memcpy(g->stack[g->top + 1], g->stack[g->top], sizeof(mat4));
+  g->top++;
+  return RC_OK;
+}
+
+static rc_status cmd_pop(state *g, ctx *c, const double *v) {
+  (void)v;
+  if (g->top == 0) return fail(c, 0, "popTransform without a matching pushTransform");
+  g->top--;
+  return RC_OK;
+}
+
+/* directional, point: x y z r g b. */
+static rc_status cmd_light(state *g, ctx *c, const double *v) {
+  rc_scene *s = g->s;
+  for (int k = 3; k < 6; k++)
+    if (v[k] < 0) return fail(c, 1 + k, "light colour must not be negative");
+  GROW(s->lights, s->light_count, g->light_cap);
+  rc_light_def *l = &s->lights[s->light_count];
+  memset(l, 0, sizeof *l);
+  l->intensity = rcm_make_d(v[3], v[4], v[5]);
+  if (c->cmd[0] == 'd') {
+    dvec3 toward = mat_vector(g->stack[g->top], rcm_make_d(v[0], v[1], v[2]));
+    if (rcm_max_abs_comp_d(toward) == 0) return fail(c, 1, "direction must not be zero");
+    l->type = RC_LIGHT_DIRECTIONAL;
+    l->direction = rcm_neg_d(toward); /* ours: the direction the light travels in */
+  } else {
+    l->type = RC_LIGHT_POINT;
+    l->position = mat_point(g->stack[g->top], rcm_make_d(v[0], v[1], v[2]));
+    l->attenuation = g->attenuation;
+  }
+  s->light_count++;
+  return RC_OK;
+}
+
+static rc_status cmd_attenuation(state *g, ctx *c, const double *v) {
+  if (v[0] < 0 || v[1] < 0 || v[2] < 0 || (v[0] == 0 && v[1] == 0 && v[2] == 0))
+    return fail(c, 1, "coefficients must be non-negative and not all zero");
+  g->attenuation = rcm_make_d(v[0], v[1], v[2]);
+  return RC_OK;
+}
+
+/* ambient, diffuse, specular, emission: the material state's colours. */
+static rc_status cmd_colour(state *g, ctx *c, const double *v) {
+  for (int k = 0; k < 3; k++)
+    if (v[k] < 0) return fail(c, 1 + k, "must not be negative");
+  dvec3 col = rcm_make_d(v[0], v[1], v[2]);
+  char k = c->cmd[0];
+  *(k == 'a' ? &g->mat.ambient : k == 'd' ? &g->mat.diffuse : k == 's' ? &g->mat.specular : &g->mat.emission) = col;
+  return RC_OK;
+}
+
+static rc_status cmd_shininess(state *g, ctx *c, const double *v) {
+  if (v[0] < 0) return fail(c, 1, "must not be negative");
+  g->mat.shininess = v[0] + 0.0;
+  return RC_OK;
+}
+
+/* Every command: its name, its argument count, whether those are all numbers (parsed
+ * into v before the handler runs), and its handler. The names also feed did-you-mean. */
+static const struct {
+  const char *name;
+  int args;
+  bool numbers;
+  command_fn run;
+} commands[] = {
+    {"size", 2, false, cmd_size},           {"maxdepth", 1, false, cmd_maxdepth},
+    {"output", 1, false, cmd_output},       {"camera", 10, true, cmd_camera},
+    {"sphere", 4, true, cmd_sphere},        {"maxverts", 1, false, cmd_hint},
+    {"maxvertnorms", 1, false, cmd_hint},   {"vertex", 3, true, cmd_vertex},
+    {"vertexnormal", 6, true, cmd_vertexnormal}, {"tri", 3, false, cmd_tri},
+    {"trinormal", 3, false, cmd_tri},       {"translate", 3, true, cmd_translate},
+    {"rotate", 4, true, cmd_rotate},        {"scale", 3, true, cmd_scale},
+    {"pushTransform", 0, false, cmd_push},  {"popTransform", 0, false, cmd_pop},
+    {"directional", 6, true, cmd_light},    {"point", 6, true, cmd_light},
+    {"attenuation", 3, true, cmd_attenuation}, {"ambient", 3, true, cmd_colour},
+    {"diffuse", 3, true, cmd_colour},       {"specular", 3, true, cmd_colour},
+    {"emission", 3, true, cmd_colour},      {"shininess", 1, true, cmd_shininess},
+};
+#define COMMAND_COUNT (sizeof commands / sizeof *commands)
+
 /* One command; the arguments are c->tok[1..ntok-1]. */
 static rc_status command(state *g, ctx *c) {
-  rc_scene *s = g->s;
-  const char *cmd = c->cmd;
-  double v[10];
-#define ARGS(n)                                                                               \
-  do {                                                                                        \
-    if (c->ntok - 1 != (n)) return fail(c, 0, "expected %d arguments, got %d", (n), c->ntok - 1); \
-  } while (0)
-#define TRY(x)                      \
-  do {                              \
-    rc_status st_ = (x);            \
-    if (st_ != RC_OK) return st_;   \
-  } while (0)
-  if (!strcmp(cmd, "size")) {
-    ARGS(2);
-    long w = 0, h = 0;
-    TRY(whole(c, 1, 1, RC_MAX_IMAGE_SIDE, &w));
-    TRY(whole(c, 2, 1, RC_MAX_IMAGE_SIDE, &h));
-    s->width = (uint32_t)w, s->height = (uint32_t)h, g->have_size = true;
-  } else if (!strcmp(cmd, "maxdepth")) {
-    ARGS(1);
-    long d;
-    TRY(whole(c, 1, 1, RC_MAX_REFLECTION_DEPTH + 1, &d));
-    s->reflection_depth = (uint32_t)d - 1;
-  } else if (!strcmp(cmd, "output")) {
-    ARGS(1);
-    /* Honoured when the command line names no -o. A bare file name written in the current
-     * folder, as the course's programs did: an untrusted scene must not name /etc/... */
-    const char *name = c->tok[1];
-    size_t len = strcspn(name, " \t\r\n");
-    if (len >= sizeof s->output_name || strchr(name, '/') || name[0] == '.' || name[0] == '-')
-      return fail(c, 1, "an output file name without a folder, not starting with '.' or '-', at most %zu bytes "
-                        "(-o on the command line can name any path)", sizeof s->output_name - 1);
-    for (size_t i = 0; i < len; i++)
-      if ((unsigned char)name[i] < 0x20 || name[i] == 0x7f) return fail(c, 1, "a control character in the file name");
-    memcpy(s->output_name, name, len);
-    s->output_name[len] = '\0';
-  } else if (!strcmp(cmd, "camera")) {
-    ARGS(10);
-    TRY(numbers(c, 1, 10, v));
-    s->camera = (rc_camera_def){RC_PROJECTION_PERSPECTIVE, rcm_make_d(v[0], v[1], v[2]), rcm_make_d(v[3], v[4], v[5]),
-                                rcm_make_d(v[6], v[7], v[8]), v[9], 0};
-    const char *field = NULL, *problem = rc_scene_camera_problem(&s->camera, &field);
-    if (problem) {
-      int arg = !strcmp(field, "look_at") ? 4 : !strcmp(field, "up") ? 7 : 10;
-      return fail(c, arg, "%s %s", field, problem);
-    }
-    g->have_camera = true;
-  } else if (!strcmp(cmd, "sphere")) {
-    ARGS(4);
-    TRY(numbers(c, 1, 4, v));
-    if (!(v[3] > 0)) return fail(c, 4, "radius must be greater than 0");
-    GROW(s->spheres, s->sphere_count, g->sphere_cap);
-    rc_sphere_def *d = &s->spheres[s->sphere_count];
-    memset(d, 0, sizeof *d);
-    d->center = rcm_make_d(v[0], v[1], v[2]);
-    d->radius = v[3];
-    const double(*m)[4] = g->stack[g->top];
-    if (!mat_is_identity(m)) {
-      d->transformed = true;
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 4; j++) d->world_from_object.m[i][j] = m[i][j];
-    }
-    TRY(material_index(s, &g->mat_cap, &g->seen_materials, &g->mat, &d->material));
-    s->sphere_count++;
-  } else if (!strcmp(cmd, "maxverts") || !strcmp(cmd, "maxvertnorms")) {
-    ARGS(1); /* only a size hint */
-  } else if (!strcmp(cmd, "vertex")) {
-    ARGS(3);
-    TRY(numbers(c, 1, 3, v));
-    GROW(g->verts, g->nverts, g->verts_cap);
-    g->verts[g->nverts++] = rcm_make_d(v[0], v[1], v[2]);
-  } else if (!strcmp(cmd, "vertexnormal")) {
-    ARGS(6);
-    TRY(numbers(c, 1, 6, v));
-    GROW(g->verts, g->nverts, g->verts_cap);
-    g->verts[g->nverts++] = rcm_make_d(v[0], v[1], v[2]);
-    if (!g->normal_warnings++)
-      rc_warning("%s:%d: vertexnormal: per-vertex normals are not used (triangles are flat shaded)", c->file, c->line);
-  } else if (!strcmp(cmd, "tri") || !strcmp(cmd, "trinormal")) {
-    ARGS(3);
-    long idx[3];
-    for (int k = 0; k < 3; k++) {
-      TRY(whole(c, 1 + k, 0, 0x7fffffff, &idx[k]));
-      if ((size_t)idx[k] >= g->nverts)
-        return fail(c, 1 + k, "vertex index out of range (%zu vertices defined so far)", g->nverts);
-    }
-    rc_triangle_def t = {0};
-    for (int k = 0; k < 3; k++) t.v[k] = mat_point(g->stack[g->top], g->verts[idx[k]]);
-    TRY(material_index(s, &g->mat_cap, &g->seen_materials, &g->mat, &t.material));
-    TRY(rc_scene_add_triangle(s, &t));
-  } else if (!strcmp(cmd, "translate") || !strcmp(cmd, "scale")) {
-    ARGS(3);
-    TRY(numbers(c, 1, 3, v));
-    mat4 r;
-    mat_identity(r);
-    if (cmd[0] == 't') {
-      r[0][3] = v[0], r[1][3] = v[1], r[2][3] = v[2];
-    } else {
-      if (v[0] == 0 || v[1] == 0 || v[2] == 0) return fail(c, 1, "a zero scale makes objects vanish");
-      r[0][0] = v[0], r[1][1] = v[1], r[2][2] = v[2];
-    }
-    mat_right_multiply(g->stack[g->top], r);
-  } else if (!strcmp(cmd, "rotate")) {
-    ARGS(4);
-    TRY(numbers(c, 1, 4, v));
-    dvec3 axis = rcm_make_d(v[0], v[1], v[2]);
-    if (rcm_max_abs_comp_d(axis) == 0) return fail(c, 1, "the rotation axis must not be zero");
-    mat4 r;
-    mat_rotation(r, rcm_normalize_d(axis), v[3]);
-    mat_right_multiply(g->stack[g->top], r);
-  } else if (!strcmp(cmd, "pushTransform")) {
-    ARGS(0);
-    if (g->top + 1 >= MAX_STACK) return fail(c, 0, "more than %d nested pushTransform", MAX_STACK - 1);
-    memcpy(g->stack[g->top + 1], g->stack[g->top], sizeof(mat4));
-    g->top++;
-  } else if (!strcmp(cmd, "popTransform")) {
-    ARGS(0);
-    if (g->top == 0) return fail(c, 0, "popTransform without a matching pushTransform");
-    g->top--;
-  } else if (!strcmp(cmd, "directional") || !strcmp(cmd, "point")) {
-    ARGS(6);
-    TRY(numbers(c, 1, 6, v));
-    for (int k = 3; k < 6; k++)
-      if (v[k] < 0) return fail(c, 1 + k, "light colour must not be negative");
-    GROW(s->lights, s->light_count, g->light_cap);
-    rc_light_def *l = &s->lights[s->light_count];
-    memset(l, 0, sizeof *l);
-    l->intensity = rcm_make_d(v[3], v[4], v[5]);
-    if (cmd[0] == 'd') {
-      dvec3 toward = mat_vector(g->stack[g->top], rcm_make_d(v[0], v[1], v[2]));
-      if (rcm_max_abs_comp_d(toward) == 0) return fail(c, 1, "direction must not be zero");
-      l->type = RC_LIGHT_DIRECTIONAL;
-      l->direction = rcm_neg_d(toward); /* ours: the direction the light travels in */
-    } else {
-      l->type = RC_LIGHT_POINT;
-      l->position = mat_point(g->stack[g->top], rcm_make_d(v[0], v[1], v[2]));
-      l->attenuation = g->attenuation;
-    }
-    s->light_count++;
-  } else if (!strcmp(cmd, "attenuation")) {
-    ARGS(3);
-    TRY(numbers(c, 1, 3, v));
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || (v[0] == 0 && v[1] == 0 && v[2] == 0))
-      return fail(c, 1, "coefficients must be non-negative and not all zero");
-    g->attenuation = rcm_make_d(v[0], v[1], v[2]);
-  } else if (!strcmp(cmd, "ambient") || !strcmp(cmd, "diffuse") || !strcmp(cmd, "specular") ||
-             !strcmp(cmd, "emission")) {
-    ARGS(3);
-    TRY(numbers(c, 1, 3, v));
-    for (int k = 0; k < 3; k++)
-      if (v[k] < 0) return fail(c, 1 + k, "must not be negative");
-    dvec3 col = rcm_make_d(v[0], v[1], v[2]);
-    if (cmd[0] == 'a') g->mat.ambient = col;
-    else if (cmd[0] == 'd') g->mat.diffuse = col;
-    else if (cmd[0] == 's') g->mat.specular = col;
-    else g->mat.emission = col;
-  } else if (!strcmp(cmd, "shininess")) {
-    ARGS(1);
-    TRY(number(c, 1, &v[0]));
-    if (v[0] < 0) return fail(c, 1, "must not be negative");
-    g->mat.shininess = v[0] + 0.0;
-  } else {
-    static const char *const known[] = {
-        "size", "maxdepth", "output", "camera", "sphere", "maxverts", "maxvertnorms", "vertex", "vertexnormal",
-        "tri", "trinormal", "translate", "rotate", "scale", "pushTransform", "popTransform", "directional", "point",
-        "attenuation", "ambient", "diffuse", "specular", "emission", "shininess"};
-    const char *near = rc_nearest(cmd, known, sizeof known / sizeof *known);
-    if (near) return fail(c, 0, "unknown command (did you mean %s?)", near);
-    return fail(c, 0, "unknown command");
+  for (size_t i = 0; i < COMMAND_COUNT; i++) {
+    if (strcmp(c->cmd, commands[i].name) != 0) continue;
+    if (c->ntok - 1 != commands[i].args) return fail(c, 0, "expected %d arguments, got %d", commands[i].args, c->ntok - 1);
+    double v[MAX_ARGS];
+    if (commands[i].numbers) RC_TRY(numbers(c, 1, commands[i].args, v));
+    return commands[i].run(g, c, v);
   }
-  return RC_OK;
-#undef ARGS
-#undef TRY
+  const char *known[COMMAND_COUNT];
+  for (size_t i = 0; i < COMMAND_COUNT; i++) known[i] = commands[i].name;
+  const char *near = rc_nearest(c->cmd, known, COMMAND_COUNT);
+  if (near) return fail(c, 0, "unknown command (did you mean %s?)", near);
+  return fail(c, 0, "unknown command");
 }
 
 /* The commands that add to the scene, as static strings for rc_origin. */

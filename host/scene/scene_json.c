@@ -35,18 +35,18 @@ static rc_status parse_image(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *img = cJSON_GetObjectItemCaseSensitive(root, "image");
   if (!img) return js_fail(c, "missing field \"image\"");
   js_push_key(c, "image");
-  TRY(js_expect_object(c, img));
+  RC_TRY(js_expect_object(c, img));
   static const char *const allowed[] = {"width", "height", "samples_per_pixel", "encoding", "quantize", NULL};
-  TRY(js_check_members(c, img, allowed));
-  TRY(js_get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
-  TRY(js_get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
-  TRY(js_get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
+  RC_TRY(js_check_members(c, img, allowed));
+  RC_TRY(js_get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
+  RC_TRY(js_get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
+  RC_TRY(js_get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
   /* How 8-bit outputs store a linear value (render --encoding and --quantize override). */
   static const char *const encodings[] = {"linear", "srgb", NULL}, *const quantizers[] = {"round", "truncate", NULL};
   uint32_t k;
-  TRY(js_get_enum(c, img, "encoding", encodings, 0, &k));
+  RC_TRY(js_get_enum(c, img, "encoding", encodings, 0, &k));
   s->srgb_8bit = k == 1;
-  TRY(js_get_enum(c, img, "quantize", quantizers, 0, &k));
+  RC_TRY(js_get_enum(c, img, "quantize", quantizers, 0, &k));
   s->truncate_8bit = k == 1;
   js_pop(c);
   return RC_OK;
@@ -56,27 +56,27 @@ static rc_status parse_camera(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
   if (!cam) return js_fail(c, "missing field \"camera\"");
   js_push_key(c, "camera");
-  TRY(js_expect_object(c, cam));
+  RC_TRY(js_expect_object(c, cam));
   static const char *const allowed[] = {"projection", "eye", "look_at", "up", "fov_y_deg", "view_height", NULL};
-  TRY(js_check_members(c, cam, allowed));
+  RC_TRY(js_check_members(c, cam, allowed));
   static const char *const projections[] = {"perspective", "parallel", NULL};
   rc_camera_def *k = &s->camera;
-  TRY(js_get_enum(c, cam, "projection", projections, RC_PROJECTION_PERSPECTIVE, &k->projection));
-  TRY(js_get_vec3(c, cam, "eye", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->eye));
-  TRY(js_get_vec3(c, cam, "look_at", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->look_at));
-  TRY(js_get_vec3(c, cam, "up", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &k->up));
+  RC_TRY(js_get_enum(c, cam, "projection", projections, RC_PROJECTION_PERSPECTIVE, &k->projection));
+  RC_TRY(js_get_vec3(c, cam, "eye", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->eye));
+  RC_TRY(js_get_vec3(c, cam, "look_at", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &k->look_at));
+  RC_TRY(js_get_vec3(c, cam, "up", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &k->up));
   if (k->projection == RC_PROJECTION_PERSPECTIVE) {
     if (cJSON_GetObjectItemCaseSensitive(cam, "view_height")) {
       js_push_key(c, "view_height");
       return js_fail(c, "applies to the parallel projection only");
     }
-    TRY(js_get_number(c, cam, "fov_y_deg", false, 45.0, -HUGE_VAL, HUGE_VAL, &k->fov_y_deg));
+    RC_TRY(js_get_number(c, cam, "fov_y_deg", false, 45.0, -HUGE_VAL, HUGE_VAL, &k->fov_y_deg));
   } else {
     if (cJSON_GetObjectItemCaseSensitive(cam, "fov_y_deg")) {
       js_push_key(c, "fov_y_deg");
       return js_fail(c, "applies to the perspective projection only");
     }
-    TRY(js_get_positive(c, cam, "view_height", true, 0, &k->view_height));
+    RC_TRY(js_get_positive(c, cam, "view_height", true, 0, &k->view_height));
   }
   const char *field = NULL;
   const char *problem = rc_scene_camera_problem(k, &field);
@@ -92,7 +92,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
   if (!mats) return RC_OK;
   js_push_key(c, "materials");
-  TRY(js_expect_object(c, mats));
+  RC_TRY(js_expect_object(c, mats));
   c->material_defs = mats;
   size_t n = (size_t)cJSON_GetArraySize(mats);
   s->materials = rc_alloc(n, sizeof *s->materials, "materials");
@@ -112,21 +112,21 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
       js_mark_repeat(c);
       return js_fail(c, "material defined twice");
     }
-    TRY(js_expect_object(c, m));
+    RC_TRY(js_expect_object(c, m));
     static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", "emission", NULL};
-    TRY(js_check_members(c, m, allowed));
+    RC_TRY(js_check_members(c, m, allowed));
     rc_material_def *d = &s->materials[s->material_count];
     d->name = strdup(m->string);
     if (!d->name) return RC_ERR_OUT_OF_MEMORY;
     s->material_count++;
     dvec3 zero = rcm_make_d(0, 0, 0);
-    TRY(js_get_vec3(c, m, "ambient", false, zero, 0.0, &d->ambient));
-    TRY(js_get_vec3(c, m, "diffuse", false, zero, 0.0, &d->diffuse));
-    TRY(js_get_vec3(c, m, "specular", false, zero, 0.0, &d->specular));
-    TRY(js_get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
-    TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
-    TRY(js_get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
-    TRY(js_note_origin(c, s, before, off, "materials", UINT32_MAX));
+    RC_TRY(js_get_vec3(c, m, "ambient", false, zero, 0.0, &d->ambient));
+    RC_TRY(js_get_vec3(c, m, "diffuse", false, zero, 0.0, &d->diffuse));
+    RC_TRY(js_get_vec3(c, m, "specular", false, zero, 0.0, &d->specular));
+    RC_TRY(js_get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
+    RC_TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
+    RC_TRY(js_get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
+    RC_TRY(js_note_origin(c, s, before, off, "materials", UINT32_MAX));
     js_pop(c);
   }
   js_pop(c);
@@ -147,33 +147,33 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
     off = i == 0 ? js_offset(c) : rc_json_next_value(c->text, c->len, off, false);
     size_t before[RC_ORIGIN_KINDS];
     rc_scene_counts(s, before);
-    TRY(js_expect_object(c, l));
+    RC_TRY(js_expect_object(c, l));
     rc_light_def *d = &s->lights[s->light_count++];
     static const char *const types[] = {"point", "directional", NULL};
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(l, "type");
     if (!type) return js_fail(c, "missing field \"type\"");
-    TRY(js_get_enum(c, l, "type", types, 0, &d->type));
+    RC_TRY(js_get_enum(c, l, "type", types, 0, &d->type));
     static const char *const point_fields[] = {"type", "position", "intensity", "attenuation", NULL};
     static const char *const dir_fields[] = {"type", "direction", "intensity", NULL};
     bool point = d->type == RC_LIGHT_POINT;
-    TRY(js_check_members(c, l, point ? point_fields : dir_fields));
+    RC_TRY(js_check_members(c, l, point ? point_fields : dir_fields));
     dvec3 zero = rcm_make_d(0, 0, 0);
     if (point) {
-      TRY(js_get_vec3(c, l, "position", true, zero, -HUGE_VAL, &d->position));
-      TRY(js_get_vec3(c, l, "attenuation", false, rcm_make_d(0, 0, 1), 0.0, &d->attenuation));
+      RC_TRY(js_get_vec3(c, l, "position", true, zero, -HUGE_VAL, &d->position));
+      RC_TRY(js_get_vec3(c, l, "attenuation", false, rcm_make_d(0, 0, 1), 0.0, &d->attenuation));
       if (rcm_max_abs_comp_d(d->attenuation) == 0.0) {
         js_push_key(c, "attenuation");
         return js_fail(c, "must not be all zero (the light would be infinitely bright)");
       }
     } else {
-      TRY(js_get_vec3(c, l, "direction", true, zero, -HUGE_VAL, &d->direction));
+      RC_TRY(js_get_vec3(c, l, "direction", true, zero, -HUGE_VAL, &d->direction));
       if (rcm_max_abs_comp_d(d->direction) == 0.0) {
         js_push_key(c, "direction");
         return js_fail(c, "must not be the zero vector");
       }
     }
-    TRY(js_get_vec3(c, l, "intensity", true, zero, 0.0, &d->intensity));
-    TRY(js_note_origin(c, s, before, off, "lights", (uint32_t)i));
+    RC_TRY(js_get_vec3(c, l, "intensity", true, zero, 0.0, &d->intensity));
+    RC_TRY(js_note_origin(c, s, before, off, "lights", (uint32_t)i));
     js_pop(c);
   }
   js_pop(c);
@@ -195,35 +195,35 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
     c->base_off = off, c->base_depth = c->depth, c->base_index = i;
     size_t before[RC_ORIGIN_KINDS];
     rc_scene_counts(s, before);
-    TRY(js_expect_object(c, o));
+    RC_TRY(js_expect_object(c, o));
     static const char *const types[] = {"sphere",     "triangle",    "mesh", "quadric", "ellipsoid", "cylinder", "cone",
                                         "paraboloid", "hyperboloid", "box",  "csg",     "plane", NULL};
     const cJSON *tv = cJSON_GetObjectItemCaseSensitive(o, "type");
     if (!tv) return js_fail(c, "missing field \"type\"");
     if (cJSON_IsString(tv) && js_is_quadric_type(tv->valuestring)) {
-      TRY(js_parse_quadric_object(c, o, s));
-      TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
+      RC_TRY(js_parse_quadric_object(c, o, s));
+      RC_TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
       js_pop(c);
       continue;
     }
     uint32_t type;
-    TRY(js_get_enum(c, o, "type", types, 0, &type));
+    RC_TRY(js_get_enum(c, o, "type", types, 0, &type));
     dvec3 zero = rcm_make_d(0, 0, 0);
     rc_affine m;
     bool transformed;
     if (type == 0) {
       static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
-      TRY(js_check_members(c, o, allowed));
+      RC_TRY(js_check_members(c, o, allowed));
       rc_sphere_def *d = &s->spheres[s->sphere_count++];
-      TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
-      TRY(js_get_positive(c, o, "radius", true, 0, &d->radius));
-      TRY(js_get_material_ref(c, o, &d->material));
-      TRY(js_get_transform(c, o, &m, &transformed));
+      RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &d->center));
+      RC_TRY(js_get_positive(c, o, "radius", true, 0, &d->radius));
+      RC_TRY(js_get_material_ref(c, o, &d->material));
+      RC_TRY(js_get_transform(c, o, &m, &transformed));
       d->transformed = transformed;
       d->world_from_object = m;
     } else if (type == 1) {
       static const char *const allowed[] = {"type", "vertices", "material", "transform", NULL};
-      TRY(js_check_members(c, o, allowed));
+      RC_TRY(js_check_members(c, o, allowed));
       rc_triangle_def d = {0};
       const cJSON *vs = cJSON_GetObjectItemCaseSensitive(o, "vertices");
       if (!vs) return js_fail(c, "missing field \"vertices\"");
@@ -232,21 +232,21 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
         return js_fail(c, "expected an array of 3 points");
       for (int k = 0; k < 3; k++) {
         js_push_index(c, (size_t)k);
-        TRY(js_vec3_value(c, cJSON_GetArrayItem(vs, k), -HUGE_VAL, &d.v[k]));
+        RC_TRY(js_vec3_value(c, cJSON_GetArrayItem(vs, k), -HUGE_VAL, &d.v[k]));
         js_pop(c);
       }
       js_pop(c);
-      TRY(js_get_material_ref(c, o, &d.material));
-      TRY(js_get_transform(c, o, &m, &transformed));
+      RC_TRY(js_get_material_ref(c, o, &d.material));
+      RC_TRY(js_get_transform(c, o, &m, &transformed));
       for (int k = 0; k < 3; k++) d.v[k] = rc_affine_point(&m, d.v[k]);
-      TRY(rc_scene_add_triangle(s, &d));
+      RC_TRY(rc_scene_add_triangle(s, &d));
     } else {
       static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
-      TRY(js_check_members(c, o, allowed));
-      TRY(js_get_transform(c, o, &m, &transformed));
-      TRY(js_load_mesh(c, o, s, &m, -1));
+      RC_TRY(js_check_members(c, o, allowed));
+      RC_TRY(js_get_transform(c, o, &m, &transformed));
+      RC_TRY(js_load_mesh(c, o, s, &m, -1));
     }
-    TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
+    RC_TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
     js_pop(c);
   }
   js_pop(c);
@@ -254,45 +254,45 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
 }
 
 static rc_status parse_root(jctx *c, const cJSON *root, rc_scene *s) {
-  TRY(js_expect_object(c, root));
+  RC_TRY(js_expect_object(c, root));
   static const char *const allowed[] = {"version", "image", "camera", "background", "ambient_light",
                                         "specular_model", "seed", "quality", "materials", "lights",
                                         "objects", NULL};
-  TRY(js_check_members(c, root, allowed));
+  RC_TRY(js_check_members(c, root, allowed));
   uint32_t version;
-  TRY(js_get_uint(c, root, "version", false, 1, 1, 1, &version));
-  TRY(parse_image(c, root, s));
-  TRY(parse_camera(c, root, s));
-  TRY(js_get_vec3(c, root, "background", false, rcm_make_d(0, 0, 0), 0.0, &s->background));
-  TRY(js_get_vec3(c, root, "ambient_light", false, rcm_make_d(1, 1, 1), 0.0, &s->ambient_light));
+  RC_TRY(js_get_uint(c, root, "version", false, 1, 1, 1, &version));
+  RC_TRY(parse_image(c, root, s));
+  RC_TRY(parse_camera(c, root, s));
+  RC_TRY(js_get_vec3(c, root, "background", false, rcm_make_d(0, 0, 0), 0.0, &s->background));
+  RC_TRY(js_get_vec3(c, root, "ambient_light", false, rcm_make_d(1, 1, 1), 0.0, &s->ambient_light));
   static const char *const models[] = {"blinn-phong", "phong", NULL};
-  TRY(js_get_enum(c, root, "specular_model", models, RC_SPECULAR_BLINN_PHONG, &s->specular_model));
-  TRY(js_get_uint(c, root, "seed", false, 0, 0, UINT32_MAX, &s->seed));
+  RC_TRY(js_get_enum(c, root, "specular_model", models, RC_SPECULAR_BLINN_PHONG, &s->specular_model));
+  RC_TRY(js_get_uint(c, root, "seed", false, 0, 0, UINT32_MAX, &s->seed));
   s->reflection_depth = 5;
   s->quality = rc_quality_default();
   const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
   if (q) {
     js_push_key(c, "quality");
-    TRY(js_expect_object(c, q));
+    RC_TRY(js_expect_object(c, q));
     static const char *const qfields[] = {"reflection_depth", "precision", "sphere_intersection",
                                           "triangle_intersection", "shadow_offset", "shadow_epsilon",
                                           "camera_relative", "rescale", "shadows", NULL};
-    TRY(js_check_members(c, q, qfields));
+    RC_TRY(js_check_members(c, q, qfields));
     rc_quality *k = &s->quality;
-    TRY(js_get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
-    TRY(js_get_enum(c, q, "precision", rc_precision_names, k->precision, &k->precision));
-    TRY(js_get_enum(c, q, "sphere_intersection", rc_sphere_formula_names, k->sphere, &k->sphere));
-    TRY(js_get_enum(c, q, "triangle_intersection", rc_triangle_formula_names, k->triangle, &k->triangle));
-    TRY(js_get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
-    TRY(js_get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
-    TRY(js_get_bool(c, q, "camera_relative", k->camera_relative, &k->camera_relative));
-    TRY(js_get_bool(c, q, "rescale", k->rescale, &k->rescale));
-    TRY(js_get_bool(c, q, "shadows", k->shadows, &k->shadows));
+    RC_TRY(js_get_uint(c, q, "reflection_depth", false, 5, 0, RC_MAX_REFLECTION_DEPTH, &s->reflection_depth));
+    RC_TRY(js_get_enum(c, q, "precision", rc_precision_names, k->precision, &k->precision));
+    RC_TRY(js_get_enum(c, q, "sphere_intersection", rc_sphere_formula_names, k->sphere, &k->sphere));
+    RC_TRY(js_get_enum(c, q, "triangle_intersection", rc_triangle_formula_names, k->triangle, &k->triangle));
+    RC_TRY(js_get_enum(c, q, "shadow_offset", rc_offset_names, k->offset, &k->offset));
+    RC_TRY(js_get_positive(c, q, "shadow_epsilon", false, k->offset_epsilon, &k->offset_epsilon));
+    RC_TRY(js_get_bool(c, q, "camera_relative", k->camera_relative, &k->camera_relative));
+    RC_TRY(js_get_bool(c, q, "rescale", k->rescale, &k->rescale));
+    RC_TRY(js_get_bool(c, q, "shadows", k->shadows, &k->shadows));
     js_pop(c);
   }
-  TRY(parse_materials(c, root, s));
-  TRY(parse_lights(c, root, s));
-  TRY(parse_objects(c, root, s));
+  RC_TRY(parse_materials(c, root, s));
+  RC_TRY(parse_lights(c, root, s));
+  RC_TRY(parse_objects(c, root, s));
   return RC_OK;
 }
 

@@ -63,9 +63,9 @@ static rc_status find_open_edge(const rc_triangle_def *t, size_t n, bool *open, 
 rc_status js_parse_mesh_operand(jctx *c, const cJSON *o, rc_scene *s, int material, const rc_affine *t,
                                 rc_quadric_def *q, uint32_t *intervals) {
   static const char *const allowed[] = {"type", "file", "material", "transform", "max_crossings", NULL};
-  TRY(js_check_members(c, o, allowed));
+  RC_TRY(js_check_members(c, o, allowed));
   uint32_t crossings;
-  TRY(js_get_uint(c, o, "max_crossings", false, 8, 2, 2 * RC_CSG_MAX_INTERVALS, &crossings));
+  RC_TRY(js_get_uint(c, o, "max_crossings", false, 8, 2, 2 * RC_CSG_MAX_INTERVALS, &crossings));
   if (crossings % 2) {
     js_push_key(c, "max_crossings");
     return js_fail(c, "must be even: a closed surface is crossed in pairs, in and out");
@@ -82,7 +82,7 @@ rc_status js_parse_mesh_operand(jctx *c, const cJSON *o, rc_scene *s, int materi
   const rc_triangle_def *tris = s->triangles + before; /* after a failure, s->triangles may be NULL */
   bool open;
   edge e;
-  TRY(find_open_edge(tris, n, &open, &e));
+  RC_TRY(find_open_edge(tris, n, &open, &e));
   if (open) {
     js_push_key(c, "file");
     return js_fail(c, "the mesh is not closed, so it has no inside for a composite: the edge (%g, %g, %g)-(%g, %g, %g) "
@@ -145,7 +145,7 @@ rc_status js_load_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m,
   js_pop(c);
   if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
     uint32_t id;
-    TRY(js_get_material_ref(c, o, &id));
+    RC_TRY(js_get_material_ref(c, o, &id));
     material = (int)id;
   }
   return rc_mesh_load(path, c->allow_outside_paths ? NULL : folder, m, material, s, where);

@@ -125,7 +125,7 @@ static rc_status member_number(jctx *c, const cJSON *obj, const char *key, bool 
 rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool required, double def,
                             double lo, double hi, double *out) {
   bool present;
-  TRY(member_number(c, obj, key, required, &present, out));
+  RC_TRY(member_number(c, obj, key, required, &present, out));
   if (!present) {
     *out = def;
     return RC_OK;
@@ -139,7 +139,7 @@ rc_status js_get_number(jctx *c, const cJSON *obj, const char *key, bool require
 rc_status js_get_positive(jctx *c, const cJSON *obj, const char *key, bool required,
                               double def, double *out) {
   bool present;
-  TRY(member_number(c, obj, key, required, &present, out));
+  RC_TRY(member_number(c, obj, key, required, &present, out));
   if (!present) {
     *out = def;
     return RC_OK;
@@ -153,7 +153,7 @@ rc_status js_get_uint(jctx *c, const cJSON *obj, const char *key, bool required,
                           uint32_t lo, uint32_t hi, uint32_t *out) {
   bool present;
   double x = 0; /* set whenever present (GCC -O2 cannot tell) */
-  TRY(member_number(c, obj, key, required, &present, &x));
+  RC_TRY(member_number(c, obj, key, required, &present, &x));
   if (!present) {
     *out = def;
     return RC_OK;
@@ -329,9 +329,9 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
   *present = t != NULL;
   if (!t) return RC_OK;
   js_push_key(c, "transform");
-  TRY(js_expect_object(c, t));
+  RC_TRY(js_expect_object(c, t));
   static const char *const allowed[] = {"matrix", "translate", "rotate_deg", "scale", NULL};
-  TRY(js_check_members(c, t, allowed));
+  RC_TRY(js_check_members(c, t, allowed));
   const cJSON *m = cJSON_GetObjectItemCaseSensitive(t, "matrix");
   if (m) {
     js_push_key(c, "matrix");
@@ -343,7 +343,7 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
       for (int j = 0; j < 4; j++) {
         js_push_index(c, (size_t)j);
         double x = 0;
-        TRY(js_number_value(c, cJSON_GetArrayItem(row, j), &x));
+        RC_TRY(js_number_value(c, cJSON_GetArrayItem(row, j), &x));
         if (i < 3) out->m[i][j] = x;
         else if (x != (j == 3 ? 1.0 : 0.0)) return js_fail(c, "the last row must be [0, 0, 0, 1] (affine transforms only)");
         js_pop(c);
@@ -354,7 +354,7 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
   }
   dvec3 v;
   if (cJSON_GetObjectItemCaseSensitive(t, "translate")) {
-    TRY(js_get_vec3(c, t, "translate", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
+    RC_TRY(js_get_vec3(c, t, "translate", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
     rc_affine tr;
     js_affine_identity(&tr);
     tr.m[0][3] = v.x, tr.m[1][3] = v.y, tr.m[2][3] = v.z;
@@ -365,10 +365,10 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
     js_push_key(c, "rotate_deg");
     if (cJSON_IsObject(r)) {
       static const char *const rfields[] = {"axis", "angle", NULL};
-      TRY(js_check_members(c, r, rfields));
+      RC_TRY(js_check_members(c, r, rfields));
       double angle;
-      TRY(js_get_vec3(c, r, "axis", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
-      TRY(js_get_number(c, r, "angle", true, 0, -HUGE_VAL, HUGE_VAL, &angle));
+      RC_TRY(js_get_vec3(c, r, "axis", true, rcm_make_d(0, 0, 0), -HUGE_VAL, &v));
+      RC_TRY(js_get_number(c, r, "angle", true, 0, -HUGE_VAL, HUGE_VAL, &angle));
       if (rcm_max_abs_comp_d(v) == 0) {
         js_push_key(c, "axis");
         return js_fail(c, "must not be the zero vector");
@@ -376,7 +376,7 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
       rc_affine rot = rotation(rcm_normalize_d(v), angle);
       js_affine_multiply(out, &rot);
     } else {
-      TRY(js_vec3_value(c, r, -HUGE_VAL, &v));
+      RC_TRY(js_vec3_value(c, r, -HUGE_VAL, &v));
       rc_affine rz = rotation(rcm_make_d(0, 0, 1), v.z), ry = rotation(rcm_make_d(0, 1, 0), v.y),
                 rx = rotation(rcm_make_d(1, 0, 0), v.x);
       js_affine_multiply(out, &rz);
@@ -389,10 +389,10 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
   if (sc) {
     if (cJSON_IsNumber(sc)) {
       double k;
-      TRY(js_get_number(c, t, "scale", true, 1, -HUGE_VAL, HUGE_VAL, &k));
+      RC_TRY(js_get_number(c, t, "scale", true, 1, -HUGE_VAL, HUGE_VAL, &k));
       v = rcm_make_d(k, k, k);
     } else {
-      TRY(js_get_vec3(c, t, "scale", true, rcm_make_d(1, 1, 1), -HUGE_VAL, &v));
+      RC_TRY(js_get_vec3(c, t, "scale", true, rcm_make_d(1, 1, 1), -HUGE_VAL, &v));
     }
     if (v.x == 0 || v.y == 0 || v.z == 0) {
       js_push_key(c, "scale");

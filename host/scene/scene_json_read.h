@@ -29,12 +29,6 @@ typedef struct {
   size_t base_off, base_depth, base_index;
 } jctx;
 
-#define TRY(expr)                 \
-  do {                            \
-    rc_status st_ = (expr);       \
-    if (st_ != RC_OK) return st_; \
-  } while (0)
-
 void js_push_key(jctx *c, const char *key);
 /* The key on top of the path is a repeat: errors point at its second occurrence. */
 void js_mark_repeat(jctx *c);

@@ -47,7 +47,7 @@ static void normalize_coefficients(rc_quadric_def *q) {
 
 static rc_status get_axis(jctx *c, const cJSON *o, dvec3 *out) {
   dvec3 a;
-  TRY(js_get_vec3(c, o, "axis", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &a));
+  RC_TRY(js_get_vec3(c, o, "axis", false, rcm_make_d(0, 1, 0), -HUGE_VAL, &a));
   if (rcm_max_abs_comp_d(a) == 0) {
     js_push_key(c, "axis");
     return js_fail(c, "must not be the zero vector");
@@ -59,7 +59,7 @@ static rc_status get_axis(jctx *c, const cJSON *o, dvec3 *out) {
 /* {"type": "quadric", "matrix": 4x4 symmetric, "bounds": {"min", "max"}, "solid"}. */
 static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool *solid) {
   static const char *const allowed[] = {"type", "matrix", "bounds", "material", "solid", "transform", NULL};
-  TRY(js_check_members(c, o, allowed));
+  RC_TRY(js_check_members(c, o, allowed));
   const cJSON *m = cJSON_GetObjectItemCaseSensitive(o, "matrix");
   if (!m) return js_fail(c, "missing field \"matrix\"");
   js_push_key(c, "matrix");
@@ -71,7 +71,7 @@ static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool 
     if (!cJSON_IsArray(row) || cJSON_GetArraySize(row) != 4) return js_fail(c, "expected a row of 4 numbers");
     for (int j = 0; j < 4; j++) {
       js_push_index(c, (size_t)j);
-      TRY(js_number_value(c, cJSON_GetArrayItem(row, j), &Q[i][j]));
+      RC_TRY(js_number_value(c, cJSON_GetArrayItem(row, j), &Q[i][j]));
       js_pop(c);
     }
     js_pop(c);
@@ -91,18 +91,18 @@ static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool 
   const cJSON *b = cJSON_GetObjectItemCaseSensitive(o, "bounds");
   if (!b) return js_fail(c, "missing field \"bounds\" (a quadric is clipped to a box)");
   js_push_key(c, "bounds");
-  TRY(js_expect_object(c, b));
+  RC_TRY(js_expect_object(c, b));
   static const char *const bfields[] = {"min", "max", NULL};
-  TRY(js_check_members(c, b, bfields));
+  RC_TRY(js_check_members(c, b, bfields));
   dvec3 zero = rcm_make_d(0, 0, 0), lo, hi;
-  TRY(js_get_vec3(c, b, "min", true, zero, -HUGE_VAL, &lo));
-  TRY(js_get_vec3(c, b, "max", true, zero, -HUGE_VAL, &hi));
+  RC_TRY(js_get_vec3(c, b, "min", true, zero, -HUGE_VAL, &lo));
+  RC_TRY(js_get_vec3(c, b, "max", true, zero, -HUGE_VAL, &hi));
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {
     js_push_key(c, "max");
     return js_fail(c, "must exceed min in every coordinate");
   }
   js_pop(c);
-  TRY(js_get_bool(c, o, "solid", false, solid));
+  RC_TRY(js_get_bool(c, o, "solid", false, solid));
   /* Recentred on the bounds: f = p - c, Q = f^T M f + 2 (M c + l).f + (c^T M c + 2 l.c + J). */
   dvec3 ctr = rcm_scale_d(rcm_add_d(lo, hi), 0.5);
   double cv[3] = {ctr.x, ctr.y, ctr.z}, lin[3], mc[3];
@@ -132,10 +132,10 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   q->linear = zero;
   if (type == T_ELLIPSOID) {
     static const char *const allowed[] = {"type", "center", "radii", "material", "transform", NULL};
-    TRY(js_check_members(c, o, allowed));
+    RC_TRY(js_check_members(c, o, allowed));
     dvec3 r;
-    TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
-    TRY(js_get_vec3(c, o, "radii", true, zero, -HUGE_VAL, &r));
+    RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
+    RC_TRY(js_get_vec3(c, o, "radii", true, zero, -HUGE_VAL, &r));
     if (!(r.x > 0 && r.y > 0 && r.z > 0)) {
       js_push_key(c, "radii");
       return js_fail(c, "must all be greater than 0");
@@ -151,10 +151,10 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     /* Only as a composite's operand (a standalone sphere has its own type): the solid
      * ellipsoid with three equal radii. */
     static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
-    TRY(js_check_members(c, o, allowed));
+    RC_TRY(js_check_members(c, o, allowed));
     double r;
-    TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
-    TRY(js_get_positive(c, o, "radius", true, 0, &r));
+    RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
+    RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
     identity_frame(q->axis);
     q->diag = rcm_make_d(1, 1, 1);
     q->constant = -r * r;
@@ -164,10 +164,10 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   }
   if (type == T_BOX) {
     static const char *const allowed[] = {"type", "min", "max", "material", "transform", NULL};
-    TRY(js_check_members(c, o, allowed));
+    RC_TRY(js_check_members(c, o, allowed));
     dvec3 lo, hi;
-    TRY(js_get_vec3(c, o, "min", true, zero, -HUGE_VAL, &lo));
-    TRY(js_get_vec3(c, o, "max", true, zero, -HUGE_VAL, &hi));
+    RC_TRY(js_get_vec3(c, o, "min", true, zero, -HUGE_VAL, &lo));
+    RC_TRY(js_get_vec3(c, o, "max", true, zero, -HUGE_VAL, &hi));
     if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {
       js_push_key(c, "max");
       return js_fail(c, "must exceed min in every coordinate");
@@ -190,27 +190,27 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   static const char *const hyp2[] = {"type", "center", "axis", "gap", "end_radius", "height", "capped", "material",
                                      "transform", "sheets", NULL};
   uint32_t sheets = 1;
-  if (type == T_HYPERBOLOID) TRY(js_get_uint(c, o, "sheets", false, 1, 1, 2, &sheets));
+  if (type == T_HYPERBOLOID) RC_TRY(js_get_uint(c, o, "sheets", false, 1, 1, 2, &sheets));
   const char *const *allowed = type == T_CYLINDER ? cyl : type == T_CONE ? cone : type == T_PARABOLOID ? para : sheets == 1 ? hyp : hyp2;
-  TRY(js_check_members(c, o, allowed));
+  RC_TRY(js_check_members(c, o, allowed));
   const char *origin = type == T_CONE ? "apex" : type == T_PARABOLOID ? "vertex" : "center";
   dvec3 z = rcm_make_d(0, 0, 1);
   double h;
-  TRY(js_get_vec3(c, o, origin, true, zero, -HUGE_VAL, &q->center));
-  TRY(get_axis(c, o, &z));
-  TRY(js_get_positive(c, o, "height", true, 0, &h));
-  TRY(js_get_bool(c, o, "capped", true, solid));
+  RC_TRY(js_get_vec3(c, o, origin, true, zero, -HUGE_VAL, &q->center));
+  RC_TRY(get_axis(c, o, &z));
+  RC_TRY(js_get_positive(c, o, "height", true, 0, &h));
+  RC_TRY(js_get_bool(c, o, "capped", true, solid));
   frame_from_axis(z, q->axis);
   if (type == T_CYLINDER) {
     double r;
-    TRY(js_get_positive(c, o, "radius", true, 0, &r));
+    RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
     q->diag = rcm_make_d(1 / (r * r), 1 / (r * r), 0); /* (x^2 + y^2) / r^2 - 1 */
     q->constant = -1;
     q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), h / 2);
     q->lo = rcm_scale_d(q->hi, -1);
   } else if (type == T_CONE) {
     double deg;
-    TRY(js_get_number(c, o, "angle_deg", true, 0, 0, 90, &deg));
+    RC_TRY(js_get_number(c, o, "angle_deg", true, 0, 0, 90, &deg));
     if (!(deg > 0 && deg < 90)) {
       js_push_key(c, "angle_deg");
       return js_fail(c, "must be in (0, 90) degrees");
@@ -223,7 +223,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     *intervals = 2;
   } else if (type == T_PARABOLOID) {
     double r;
-    TRY(js_get_positive(c, o, "radius", true, 0, &r));
+    RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
     q->diag = rcm_make_d(1, 1, 0); /* x^2 + y^2 - (r^2 / h) z: radius r at height h */
     q->linear = rcm_make_d(0, 0, -r * r / (2 * h));
     q->constant = 0;
@@ -231,8 +231,8 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     q->lo = rcm_make_d(-q->hi.x, -q->hi.y, 0);
   } else if (sheets == 2) {
     double g, e;
-    TRY(js_get_positive(c, o, "gap", true, 0, &g));
-    TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
+    RC_TRY(js_get_positive(c, o, "gap", true, 0, &g));
+    RC_TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
     if (!(h > g)) {
       js_push_key(c, "height");
       return js_fail(c, "must exceed gap (the distance between the two sheets' vertices)");
@@ -247,8 +247,8 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
     *intervals = 2;
   } else {
     double a, e;
-    TRY(js_get_positive(c, o, "radius", true, 0, &a));
-    TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
+    RC_TRY(js_get_positive(c, o, "radius", true, 0, &a));
+    RC_TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
     if (!(e > a)) {
       js_push_key(c, "end_radius");
       return js_fail(c, "must exceed radius (the waist) for a hyperboloid of one sheet");
@@ -268,7 +268,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
  * *t = outer * own. */
 static rc_status get_composed_transform(jctx *c, const cJSON *o, const rc_affine *outer, rc_affine *t) {
   bool present;
-  TRY(js_get_transform(c, o, t, &present));
+  RC_TRY(js_get_transform(c, o, t, &present));
   rc_affine own = *t;
   *t = *outer;
   js_affine_multiply(t, &own);
@@ -302,16 +302,16 @@ static rc_status parse_quadric(jctx *c, const cJSON *o, uint32_t type, int inher
   bool solid = true;
   *intervals = 2;
   if (type == T_QUADRIC)
-    TRY(parse_general(c, o, q, &solid));
+    RC_TRY(parse_general(c, o, q, &solid));
   else
-    TRY(parse_named(c, o, type, q, &solid, intervals));
+    RC_TRY(parse_named(c, o, type, q, &solid, intervals));
   rc_affine t;
-  TRY(get_composed_transform(c, o, outer, &t));
-  TRY(transform_quadric(c, &t, q));
+  RC_TRY(get_composed_transform(c, o, outer, &t));
+  RC_TRY(transform_quadric(c, &t, q));
   q->solid = solid;
   normalize_coefficients(q);
   if (cJSON_GetObjectItemCaseSensitive(o, "material") || inherited < 0) {
-    TRY(js_get_material_ref(c, o, &q->material));
+    RC_TRY(js_get_material_ref(c, o, &q->material));
   } else {
     q->material = (uint32_t)inherited;
   }
@@ -348,7 +348,7 @@ static rc_status add_leaf(rc_scene *s, const rc_quadric_def *q, program *p, csg_
 
 static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inherited, const rc_affine *outer,
                                 program *p, csg_need *need) {
-  TRY(js_expect_object(c, o));
+  RC_TRY(js_expect_object(c, o));
   const cJSON *t = cJSON_GetObjectItemCaseSensitive(o, "type");
   if (!t) return js_fail(c, "missing field \"type\"");
   if (cJSON_IsString(t) && !strcmp(t->valuestring, "plane")) {
@@ -358,37 +358,37 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
   uint32_t type;
   static const char *const leaf_types[] = {"quadric", "ellipsoid", "cylinder", "cone", "paraboloid",
                                            "hyperboloid", "box", "csg", "sphere", "mesh", NULL};
-  TRY(js_get_enum(c, o, "type", leaf_types, 0, &type));
+  RC_TRY(js_get_enum(c, o, "type", leaf_types, 0, &type));
   rc_quadric_def q;
   if (type == T_MESH) {
     rc_affine t;
-    TRY(get_composed_transform(c, o, outer, &t));
-    TRY(js_parse_mesh_operand(c, o, s, inherited, &t, &q, &need->intervals));
+    RC_TRY(get_composed_transform(c, o, outer, &t));
+    RC_TRY(js_parse_mesh_operand(c, o, s, inherited, &t, &q, &need->intervals));
     return add_leaf(s, &q, p, need);
   }
   if (type == T_CSG) {
     if (c->depth + 4 >= RC_JSON_MAX_DEPTH) return js_fail(c, "composites nested too deeply");
     static const char *const allowed[] = {"type", "op", "left", "right", "material", "transform", NULL};
-    TRY(js_check_members(c, o, allowed));
+    RC_TRY(js_check_members(c, o, allowed));
     static const char *const ops[] = {"union", "intersection", "difference", NULL};
     if (!cJSON_GetObjectItemCaseSensitive(o, "op")) return js_fail(c, "missing field \"op\"");
     uint32_t op;
-    TRY(js_get_enum(c, o, "op", ops, 0, &op));
+    RC_TRY(js_get_enum(c, o, "op", ops, 0, &op));
     int material = inherited;
     if (cJSON_GetObjectItemCaseSensitive(o, "material")) {
       uint32_t id;
-      TRY(js_get_material_ref(c, o, &id));
+      RC_TRY(js_get_material_ref(c, o, &id));
       material = (int)id;
     }
     rc_affine t;
-    TRY(get_composed_transform(c, o, outer, &t));
+    RC_TRY(get_composed_transform(c, o, outer, &t));
     csg_need l, r;
     const char *sides[2] = {"left", "right"};
     for (int k = 0; k < 2; k++) {
       const cJSON *child = cJSON_GetObjectItemCaseSensitive(o, sides[k]);
       if (!child) return js_fail(c, "missing field \"%s\"", sides[k]);
       js_push_key(c, sides[k]);
-      TRY(parse_csg_node(c, child, s, material, &t, p, k ? &r : &l));
+      RC_TRY(parse_csg_node(c, child, s, material, &t, p, k ? &r : &l));
       js_pop(c);
     }
     /* Postfix: the left list waits on the stack while the right one is built. */
@@ -412,7 +412,7 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
     p->code[p->length++] = ((op + 1) << RC_CSG_OP_SHIFT);
     return RC_OK;
   }
-  TRY(parse_quadric(c, o, type, inherited, outer, &q, &need->intervals));
+  RC_TRY(parse_quadric(c, o, type, inherited, outer, &q, &need->intervals));
   if (!q.solid) return js_fail(c, "a composite's operands must be closed solids (\"capped\" or \"solid\": true)");
   return add_leaf(s, &q, p, need);
 }
@@ -426,17 +426,17 @@ static rc_status parse_csg_node(jctx *c, const cJSON *o, rc_scene *s, int inheri
  * the plane's point nearest the eye: rc_scene_pack). */
 static rc_status parse_plane(jctx *c, const cJSON *o, rc_scene *s) {
   static const char *const allowed[] = {"type", "point", "normal", "material", "one_sided", "transform", NULL};
-  TRY(js_check_members(c, o, allowed));
+  RC_TRY(js_check_members(c, o, allowed));
   dvec3 zero = rcm_make_d(0, 0, 0), point, normal;
-  TRY(js_get_vec3(c, o, "point", true, zero, -HUGE_VAL, &point));
-  TRY(js_get_vec3(c, o, "normal", true, zero, -HUGE_VAL, &normal));
+  RC_TRY(js_get_vec3(c, o, "point", true, zero, -HUGE_VAL, &point));
+  RC_TRY(js_get_vec3(c, o, "normal", true, zero, -HUGE_VAL, &normal));
   if (rcm_max_abs_comp_d(normal) == 0) {
     js_push_key(c, "normal");
     return js_fail(c, "must not be the zero vector");
   }
   rc_affine t;
   bool present;
-  TRY(js_get_transform(c, o, &t, &present));
+  RC_TRY(js_get_transform(c, o, &t, &present));
   double a[3][3], inv[3][3];
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) a[i][j] = t.m[i][j];
@@ -453,8 +453,8 @@ static rc_status parse_plane(jctx *c, const cJSON *o, rc_scene *s) {
   q.linear = rcm_make_d(0, 0, 1);
   q.hi = rcm_make_d(PLANE_EXTENT, PLANE_EXTENT, PLANE_EXTENT);
   q.lo = rcm_scale_d(q.hi, -1);
-  TRY(js_get_bool(c, o, "one_sided", false, &q.one_sided));
-  TRY(js_get_material_ref(c, o, &q.material));
+  RC_TRY(js_get_bool(c, o, "one_sided", false, &q.one_sided));
+  RC_TRY(js_get_material_ref(c, o, &q.material));
   GROW(s->planes, s->plane_count, s->plane_capacity);
   s->planes[s->plane_count++] = q;
   return RC_OK;
@@ -466,11 +466,11 @@ rc_status js_parse_quadric_object(jctx *c, const cJSON *o, rc_scene *s) {
   rc_affine identity;
   js_affine_identity(&identity);
   uint32_t type;
-  TRY(js_get_enum(c, o, "type", quadric_types, 0, &type));
+  RC_TRY(js_get_enum(c, o, "type", quadric_types, 0, &type));
   if (type != T_CSG) {
     GROW(s->quadrics, s->quadric_count, s->quadric_capacity);
     uint32_t intervals;
-    TRY(parse_quadric(c, o, type, -1, &identity, &s->quadrics[s->quadric_count], &intervals));
+    RC_TRY(parse_quadric(c, o, type, -1, &identity, &s->quadrics[s->quadric_count], &intervals));
     s->quadric_count++;
     return RC_OK;
   }
