@@ -217,14 +217,8 @@ static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_qua
   g->flags |= RC_QUADRIC_UNBOUNDED;
 }
 
-rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
-  memset(p, 0, sizeof *p);
-  /* Camera-relative packing is the default; without it the packed space is world space,
-   * kept only to measure what the floating origin buys (docs/accuracy.md). */
-  p->origin = s->quality.camera_relative ? s->camera.eye : rcm_make_d(0, 0, 0);
-  p->scale = packing_scale(s, p->origin);
-  pack_camera(s, p);
-
+/* The frame: the quality settings, the image's sampling, the counts. */
+static void pack_frame(const rc_scene *s, rc_packed_scene *p) {
   gpu_frame *f = &p->frame;
   f->sphere_formula = s->quality.sphere;
   f->triangle_formula = s->quality.triangle;
@@ -248,14 +242,16 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   f->csg_count = (uint32_t)s->csg_count;
   f->object_count = f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count;
   f->shadows = s->quality.shadows ? 1u : 0u;
-
   /* Reflection costs a bounce loop only where some material mirrors. */
   bool any_mirror = false;
-  for (size_t i = 0; i < s->material_count; i++)
-    any_mirror |= rcm_max_abs_comp_d(s->materials[i].mirror) > 0.0;
+  for (size_t i = 0; i < s->material_count; i++) any_mirror |= rcm_max_abs_comp_d(s->materials[i].mirror) > 0.0;
   f->reflection_depth = any_mirror ? s->reflection_depth : 0;
+  for (size_t i = 0; i < s->csg_count; i++)
+    if (s->csgs[i].steps > f->csg_max_steps) f->csg_max_steps = s->csgs[i].steps;
+}
 
-  /* At least one element each: Vulkan has no zero-sized buffers. */
+/* Every array at its size, at least one element each: Vulkan has no zero-sized buffers. */
+static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   p->spheres = rc_alloc(s->sphere_count + 1, sizeof *p->spheres, "packed spheres");
   p->triangle_total = (uint32_t)(s->triangle_count + s->csg_triangle_count);
   p->triangles = rc_alloc(p->triangle_total + 1, sizeof *p->triangles, "packed triangles");
@@ -270,20 +266,18 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   p->quadrics = rc_alloc(standalone + s->csg_leaf_count + 1, sizeof *p->quadrics, "packed quadrics");
   p->csg = rc_alloc(s->csg_count + 1, sizeof *p->csg, "packed composites");
   size_t program = 0;
-  for (size_t i = 0; i < s->csg_count; i++) {
-    program += s->csgs[i].length;
-    if (s->csgs[i].steps > f->csg_max_steps) f->csg_max_steps = s->csgs[i].steps;
-  }
+  for (size_t i = 0; i < s->csg_count; i++) program += s->csgs[i].length;
   p->csg_program = rc_alloc((program + 4) / 4 * 4, sizeof *p->csg_program, "packed CSG programs");
   p->csg_program_length = (uint32_t)program;
   p->quadric_total = (uint32_t)(standalone + s->csg_leaf_count);
   for (size_t i = 0; i < s->csg_leaf_count; i++) p->mesh_operand_count += s->csg_leaves[i].mesh;
   p->mesh_operands = rc_alloc(p->mesh_operand_count + 1, sizeof *p->mesh_operands, "packed mesh operands");
-  if (!p->mesh_operands || !p->spheres || !p->triangles || !p->materials || !p->lights || !p->transforms || !p->normals || !p->quadrics ||
-      !p->csg || !p->csg_program) {
-    rc_packed_scene_free(p);
-    return RC_ERR_OUT_OF_MEMORY;
-  }
+  return p->mesh_operands && p->spheres && p->triangles && p->materials && p->lights && p->transforms &&
+         p->normals && p->quadrics && p->csg && p->csg_program;
+}
+
+/* Spheres: packed-space centres, or object-space ones with the transform from packed space. */
+static rc_status pack_spheres(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->sphere_count; i++) {
     const rc_sphere_def *d = &s->spheres[i];
     p->spheres[i].radius = (float)(d->radius * p->scale);
@@ -296,12 +290,17 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
       if (!object_from_packed(&d->world_from_object, p->origin, p->scale, &p->transforms[p->transform_count])) {
         rc_scene_error(s, RC_ORIGIN_SPHERE, i, "its transform is singular, or is once inverted in f32 (a scale of "
                        "0, or beyond 1e38 or below 1e-38)");
-        rc_packed_scene_free(p);
         return RC_ERR_INPUT;
       }
       p->spheres[i].transform = p->transform_count++;
     }
   }
+  return RC_OK;
+}
+
+/* The scene's triangles (with their vertex normals where smooth), then the composites'
+ * mesh operands' triangles. */
+static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->triangle_count; i++) {
     p->triangles[i].v0 = to_packed(p, s->triangles[i].v[0]);
     p->triangles[i].v1 = to_packed(p, s->triangles[i].v[1]);
@@ -324,6 +323,9 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     g->material = s->csg_triangles[i].material;
     g->normals = RC_NO_NORMALS;
   }
+}
+
+static void pack_materials(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->material_count; i++) {
     const rc_material_def *m = &s->materials[i];
     p->materials[i].ambient = rcm_to_f(m->ambient);
@@ -333,6 +335,9 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     p->materials[i].shininess = (float)m->shininess;
     p->materials[i].emission = rcm_to_f(m->emission);
   }
+}
+
+static void pack_lights(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->light_count; i++) {
     const rc_light_def *l = &s->lights[i];
     p->lights[i].type = l->type;
@@ -346,6 +351,12 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     p->lights[i].position = l->type == RC_LIGHT_POINT ? to_packed(p, l->position)
                                                       : rcm_to_f(rcm_normalize_d(l->direction));
   }
+}
+
+/* Standalone quadrics, then planes, then the composites' leaves (a mesh operand's leaf
+ * names its triangles), and the composites, whose leaf operands index that array. */
+static void pack_quadrics_and_composites(const rc_scene *s, rc_packed_scene *p) {
+  size_t standalone = s->quadric_count + s->plane_count;
   for (size_t i = 0; i < s->quadric_count; i++) pack_quadric(p, &s->quadrics[i], &p->quadrics[i]);
   for (size_t i = 0; i < s->plane_count; i++) pack_plane(p, s, &s->planes[i], &p->quadrics[s->quadric_count + i]);
   for (size_t i = 0, m = 0; i < s->csg_leaf_count; i++) {
@@ -362,15 +373,34 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->csg_count; i++) {
     const rc_csg_def *c = &s->csgs[i];
     p->csg[i] = (gpu_csg){.lo = to_packed(p, c->lo), .hi = to_packed(p, c->hi), .first = at, .count = c->length};
-    /* Leaf operands index the packed quadric array, where the leaves follow the standalone
-     * quadrics and planes. */
     for (uint32_t k = 0; k < c->length; k++) {
       uint32_t ins = c->program[k];
       bool leaf = (ins >> RC_CSG_OP_SHIFT) == RC_CSG_LEAF;
       p->csg_program[at++] = leaf ? ins + (uint32_t)standalone : ins;
     }
   }
-  rc_status st = check_f32_range(s, p);
+}
+
+rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
+  memset(p, 0, sizeof *p);
+  /* Camera-relative packing is the default; without it the packed space is world space,
+   * kept only to measure what the floating origin buys (docs/accuracy.md). */
+  p->origin = s->quality.camera_relative ? s->camera.eye : rcm_make_d(0, 0, 0);
+  p->scale = packing_scale(s, p->origin);
+  pack_camera(s, p);
+  pack_frame(s, p);
+  if (!alloc_arrays(s, p)) {
+    rc_packed_scene_free(p);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
+  rc_status st = pack_spheres(s, p);
+  if (st == RC_OK) {
+    pack_triangles(s, p);
+    pack_materials(s, p);
+    pack_lights(s, p);
+    pack_quadrics_and_composites(s, p);
+    st = check_f32_range(s, p);
+  }
   if (st != RC_OK) rc_packed_scene_free(p);
   return st;
 }
