@@ -123,63 +123,140 @@ static rc_status parse_general(jctx *c, const cJSON *o, rc_quadric_def *q, bool 
 /* The named shapes; *closable: whether "capped" applies; *intervals: the most [in, out]
  * intervals a ray can have in the solid (2 where Q is indefinite: a cone's two nappes, a
  * hyperboloid's waist). */
-static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_def *q, bool *solid,
-                             uint32_t *intervals) {
+static rc_status parse_ellipsoid(jctx *c, const cJSON *o, rc_quadric_def *q) {
   dvec3 zero = rcm_make_d(0, 0, 0);
-  *intervals = 1;
-  *solid = true;
-  q->off = zero;
-  q->linear = zero;
-  if (type == T_ELLIPSOID) {
-    static const char *const allowed[] = {"type", "center", "radii", "material", "transform", NULL};
-    RC_TRY(js_check_members(c, o, allowed));
-    dvec3 r;
-    RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
-    RC_TRY(js_get_vec3(c, o, "radii", true, zero, -HUGE_VAL, &r));
-    if (!(r.x > 0 && r.y > 0 && r.z > 0)) {
-      js_push_key(c, "radii");
-      return js_fail(c, "must all be greater than 0");
-    }
-    identity_frame(q->axis);
-    q->diag = rcm_make_d(1 / (r.x * r.x), 1 / (r.y * r.y), 1 / (r.z * r.z));
-    q->constant = -1;
-    q->hi = rcm_scale_d(r, 1 + BOX_MARGIN);
-    q->lo = rcm_scale_d(q->hi, -1);
-    return RC_OK;
+  static const char *const allowed[] = {"type", "center", "radii", "material", "transform", NULL};
+  RC_TRY(js_check_members(c, o, allowed));
+  dvec3 r;
+  RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
+  RC_TRY(js_get_vec3(c, o, "radii", true, zero, -HUGE_VAL, &r));
+  if (!(r.x > 0 && r.y > 0 && r.z > 0)) {
+    js_push_key(c, "radii");
+    return js_fail(c, "must all be greater than 0");
   }
-  if (type == T_SPHERE) {
-    /* Only as a composite's operand (a standalone sphere has its own type): the solid
-     * ellipsoid with three equal radii. */
-    static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
-    RC_TRY(js_check_members(c, o, allowed));
-    double r;
-    RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
-    RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
-    identity_frame(q->axis);
-    q->diag = rcm_make_d(1, 1, 1);
-    q->constant = -r * r;
-    q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN));
-    q->lo = rcm_scale_d(q->hi, -1);
-    return RC_OK;
+  identity_frame(q->axis);
+  q->diag = rcm_make_d(1 / (r.x * r.x), 1 / (r.y * r.y), 1 / (r.z * r.z));
+  q->constant = -1;
+  q->hi = rcm_scale_d(r, 1 + BOX_MARGIN);
+  q->lo = rcm_scale_d(q->hi, -1);
+  return RC_OK;
+}
+
+/* Only as a composite's operand (a standalone sphere has its own type): the solid
+ * ellipsoid with three equal radii. */
+static rc_status parse_sphere_operand(jctx *c, const cJSON *o, rc_quadric_def *q) {
+  dvec3 zero = rcm_make_d(0, 0, 0);
+  /* Only as a composite's operand (a standalone sphere has its own type): the solid
+   * ellipsoid with three equal radii. */
+  static const char *const allowed[] = {"type", "center", "radius", "material", "transform", NULL};
+  RC_TRY(js_check_members(c, o, allowed));
+  double r;
+  RC_TRY(js_get_vec3(c, o, "center", true, zero, -HUGE_VAL, &q->center));
+  RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
+  identity_frame(q->axis);
+  q->diag = rcm_make_d(1, 1, 1);
+  q->constant = -r * r;
+  q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN));
+  q->lo = rcm_scale_d(q->hi, -1);
+  return RC_OK;
+}
+
+static rc_status parse_box(jctx *c, const cJSON *o, rc_quadric_def *q) {
+  dvec3 zero = rcm_make_d(0, 0, 0);
+  static const char *const allowed[] = {"type", "min", "max", "material", "transform", NULL};
+  RC_TRY(js_check_members(c, o, allowed));
+  dvec3 lo, hi;
+  RC_TRY(js_get_vec3(c, o, "min", true, zero, -HUGE_VAL, &lo));
+  RC_TRY(js_get_vec3(c, o, "max", true, zero, -HUGE_VAL, &hi));
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {
+    js_push_key(c, "max");
+    return js_fail(c, "must exceed min in every coordinate");
   }
-  if (type == T_BOX) {
-    static const char *const allowed[] = {"type", "min", "max", "material", "transform", NULL};
-    RC_TRY(js_check_members(c, o, allowed));
-    dvec3 lo, hi;
-    RC_TRY(js_get_vec3(c, o, "min", true, zero, -HUGE_VAL, &lo));
-    RC_TRY(js_get_vec3(c, o, "max", true, zero, -HUGE_VAL, &hi));
-    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {
-      js_push_key(c, "max");
-      return js_fail(c, "must exceed min in every coordinate");
-    }
-    q->center = rcm_scale_d(rcm_add_d(lo, hi), 0.5);
-    identity_frame(q->axis);
-    q->diag = zero;
-    q->constant = -1; /* inside everywhere: the solid is the box */
-    q->lo = rcm_sub_d(lo, q->center);
-    q->hi = rcm_sub_d(hi, q->center);
-    return RC_OK;
+  q->center = rcm_scale_d(rcm_add_d(lo, hi), 0.5);
+  identity_frame(q->axis);
+  q->diag = zero;
+  q->constant = -1; /* inside everywhere: the solid is the box */
+  q->lo = rcm_sub_d(lo, q->center);
+  q->hi = rcm_sub_d(hi, q->center);
+  return RC_OK;
+}
+
+/* The axial shapes, in their frame (z along the axis, the origin at the centre, apex or
+ * vertex), after their common members: the height h along the axis. */
+static rc_status axial_cylinder(jctx *c, const cJSON *o, double h, rc_quadric_def *q) {
+  double r;
+  RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
+  q->diag = rcm_make_d(1 / (r * r), 1 / (r * r), 0); /* (x^2 + y^2) / r^2 - 1 */
+  q->constant = -1;
+  q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), h / 2);
+  q->lo = rcm_scale_d(q->hi, -1);
+  return RC_OK;
+}
+
+static rc_status axial_cone(jctx *c, const cJSON *o, double h, rc_quadric_def *q) {
+  double deg;
+  RC_TRY(js_get_number(c, o, "angle_deg", true, 0, 0, 90, &deg));
+  if (!(deg > 0 && deg < 90)) {
+    js_push_key(c, "angle_deg");
+    return js_fail(c, "must be in (0, 90) degrees");
   }
+  double k = tan(deg * M_PI / 180);
+  q->diag = rcm_make_d(1, 1, -k * k); /* x^2 + y^2 - (z tan)^2, the apex at 0, z along the axis */
+  q->constant = 0;
+  q->hi = rcm_make_d(h * k * (1 + BOX_MARGIN), h * k * (1 + BOX_MARGIN), h);
+  q->lo = rcm_make_d(-q->hi.x, -q->hi.y, 0);
+  return RC_OK;
+}
+
+static rc_status axial_paraboloid(jctx *c, const cJSON *o, double h, rc_quadric_def *q) {
+  double r;
+  RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
+  q->diag = rcm_make_d(1, 1, 0); /* x^2 + y^2 - (r^2 / h) z: radius r at height h */
+  q->linear = rcm_make_d(0, 0, -r * r / (2 * h));
+  q->constant = 0;
+  q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), h);
+  q->lo = rcm_make_d(-q->hi.x, -q->hi.y, 0);
+  return RC_OK;
+}
+
+static rc_status axial_hyperboloid_two_sheets(jctx *c, const cJSON *o, double h, rc_quadric_def *q) {
+  double g, e;
+  RC_TRY(js_get_positive(c, o, "gap", true, 0, &g));
+  RC_TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
+  if (!(h > g)) {
+    js_push_key(c, "height");
+    return js_fail(c, "must exceed gap (the distance between the two sheets' vertices)");
+  }
+  /* Two sheets: (x^2 + y^2) / a^2 - z^2 / s^2 + 1, vertices at z = +-s (s = gap / 2), radius
+   * e at z = +-h/2; Q < 0 inside the two cups. */
+  double s2 = (g / 2) * (g / 2), a2 = e * e / ((h / 2) * (h / 2) / s2 - 1);
+  q->diag = rcm_make_d(1 / a2, 1 / a2, -1 / s2);
+  q->constant = 1;
+  q->hi = rcm_make_d(e * (1 + BOX_MARGIN), e * (1 + BOX_MARGIN), h / 2);
+  q->lo = rcm_scale_d(q->hi, -1);
+  return RC_OK;
+}
+
+static rc_status axial_hyperboloid_one_sheet(jctx *c, const cJSON *o, double h, rc_quadric_def *q) {
+  double a, e;
+  RC_TRY(js_get_positive(c, o, "radius", true, 0, &a));
+  RC_TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
+  if (!(e > a)) {
+    js_push_key(c, "end_radius");
+    return js_fail(c, "must exceed radius (the waist) for a hyperboloid of one sheet");
+  }
+  /* (x^2 + y^2) / a^2 - z^2 / s^2 - 1, with radius e at z = +-h/2. */
+  double s2 = (h / 2) * (h / 2) / ((e / a) * (e / a) - 1);
+  q->diag = rcm_make_d(1 / (a * a), 1 / (a * a), -1 / s2);
+  q->constant = -1;
+  q->hi = rcm_make_d(e * (1 + BOX_MARGIN), e * (1 + BOX_MARGIN), h / 2);
+  q->lo = rcm_scale_d(q->hi, -1);
+  return RC_OK;
+}
+
+/* The axial shapes' common members (origin, axis, height, capped), then the shape's own. */
+static rc_status parse_axial(jctx *c, const cJSON *o, uint32_t type, rc_quadric_def *q, bool *solid,
+                             uint32_t *intervals) {
   static const char *const cyl[] = {"type", "center", "axis", "radius", "height", "capped", "material", "transform", NULL};
   static const char *const cone[] = {"type", "apex", "axis", "angle_deg", "height", "capped", "material", "transform",
                                      NULL};
@@ -189,6 +266,7 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
                                     "transform", "sheets", NULL};
   static const char *const hyp2[] = {"type", "center", "axis", "gap", "end_radius", "height", "capped", "material",
                                      "transform", "sheets", NULL};
+  dvec3 zero = rcm_make_d(0, 0, 0);
   uint32_t sheets = 1;
   if (type == T_HYPERBOLOID) RC_TRY(js_get_uint(c, o, "sheets", false, 1, 1, 2, &sheets));
   const char *const *allowed = type == T_CYLINDER ? cyl : type == T_CONE ? cone : type == T_PARABOLOID ? para : sheets == 1 ? hyp : hyp2;
@@ -201,67 +279,26 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   RC_TRY(js_get_positive(c, o, "height", true, 0, &h));
   RC_TRY(js_get_bool(c, o, "capped", true, solid));
   frame_from_axis(z, q->axis);
-  if (type == T_CYLINDER) {
-    double r;
-    RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
-    q->diag = rcm_make_d(1 / (r * r), 1 / (r * r), 0); /* (x^2 + y^2) / r^2 - 1 */
-    q->constant = -1;
-    q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), h / 2);
-    q->lo = rcm_scale_d(q->hi, -1);
-  } else if (type == T_CONE) {
-    double deg;
-    RC_TRY(js_get_number(c, o, "angle_deg", true, 0, 0, 90, &deg));
-    if (!(deg > 0 && deg < 90)) {
-      js_push_key(c, "angle_deg");
-      return js_fail(c, "must be in (0, 90) degrees");
-    }
-    double k = tan(deg * M_PI / 180);
-    q->diag = rcm_make_d(1, 1, -k * k); /* x^2 + y^2 - (z tan)^2, the apex at 0, z along the axis */
-    q->constant = 0;
-    q->hi = rcm_make_d(h * k * (1 + BOX_MARGIN), h * k * (1 + BOX_MARGIN), h);
-    q->lo = rcm_make_d(-q->hi.x, -q->hi.y, 0);
-    *intervals = 2;
-  } else if (type == T_PARABOLOID) {
-    double r;
-    RC_TRY(js_get_positive(c, o, "radius", true, 0, &r));
-    q->diag = rcm_make_d(1, 1, 0); /* x^2 + y^2 - (r^2 / h) z: radius r at height h */
-    q->linear = rcm_make_d(0, 0, -r * r / (2 * h));
-    q->constant = 0;
-    q->hi = rcm_make_d(r * (1 + BOX_MARGIN), r * (1 + BOX_MARGIN), h);
-    q->lo = rcm_make_d(-q->hi.x, -q->hi.y, 0);
-  } else if (sheets == 2) {
-    double g, e;
-    RC_TRY(js_get_positive(c, o, "gap", true, 0, &g));
-    RC_TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
-    if (!(h > g)) {
-      js_push_key(c, "height");
-      return js_fail(c, "must exceed gap (the distance between the two sheets' vertices)");
-    }
-    /* Two sheets: (x^2 + y^2) / a^2 - z^2 / s^2 + 1, vertices at z = +-s (s = gap / 2), radius
-     * e at z = +-h/2; Q < 0 inside the two cups. */
-    double s2 = (g / 2) * (g / 2), a2 = e * e / ((h / 2) * (h / 2) / s2 - 1);
-    q->diag = rcm_make_d(1 / a2, 1 / a2, -1 / s2);
-    q->constant = 1;
-    q->hi = rcm_make_d(e * (1 + BOX_MARGIN), e * (1 + BOX_MARGIN), h / 2);
-    q->lo = rcm_scale_d(q->hi, -1);
-    *intervals = 2;
-  } else {
-    double a, e;
-    RC_TRY(js_get_positive(c, o, "radius", true, 0, &a));
-    RC_TRY(js_get_positive(c, o, "end_radius", true, 0, &e));
-    if (!(e > a)) {
-      js_push_key(c, "end_radius");
-      return js_fail(c, "must exceed radius (the waist) for a hyperboloid of one sheet");
-    }
-    /* (x^2 + y^2) / a^2 - z^2 / s^2 - 1, with radius e at z = +-h/2. */
-    double s2 = (h / 2) * (h / 2) / ((e / a) * (e / a) - 1);
-    q->diag = rcm_make_d(1 / (a * a), 1 / (a * a), -1 / s2);
-    q->constant = -1;
-    q->hi = rcm_make_d(e * (1 + BOX_MARGIN), e * (1 + BOX_MARGIN), h / 2);
-    q->lo = rcm_scale_d(q->hi, -1);
-    *intervals = 2;
-  }
-  return RC_OK;
+  /* A cone's and a hyperboloid's surface meets a line twice inside the box. */
+  *intervals = type == T_CYLINDER || type == T_PARABOLOID ? 1 : 2;
+  if (type == T_CYLINDER) return axial_cylinder(c, o, h, q);
+  if (type == T_CONE) return axial_cone(c, o, h, q);
+  if (type == T_PARABOLOID) return axial_paraboloid(c, o, h, q);
+  if (sheets == 2) return axial_hyperboloid_two_sheets(c, o, h, q);
+  return axial_hyperboloid_one_sheet(c, o, h, q);
+}
+
+static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_def *q, bool *solid,
+                             uint32_t *intervals) {
+  dvec3 zero = rcm_make_d(0, 0, 0);
+  *intervals = 1;
+  *solid = true;
+  q->off = zero;
+  q->linear = zero;
+  if (type == T_ELLIPSOID) return parse_ellipsoid(c, o, q);
+  if (type == T_SPHERE) return parse_sphere_operand(c, o, q);
+  if (type == T_BOX) return parse_box(c, o, q);
+  return parse_axial(c, o, type, q, solid, intervals);
 }
 
 /* The object's own "transform" after the enclosing composites' (outer, applied last):
