@@ -375,12 +375,12 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
 
 static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uint32_t y);
 
-/* The CPU reference in bands of CPU_BAND_ROWS rows. */
+/* The CPU reference in bands of CPU_BAND_ROWS rows, in f64 or f32 (rc_precision_choose). */
 #define CPU_BAND_ROWS 32u
 
 static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
-                                   rc_render_stats *rs, rc_output **out) {
-  rc_ref_options opts = {.f64 = a->gpu.f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals};
+                                   bool f64, rc_render_stats *rs, rc_output **out) {
+  rc_ref_options opts = {.f64 = f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals};
   const rc_region region = a->part.region;
   uint32_t w = rc_region_width(region), h = rc_region_height(region);
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
@@ -418,7 +418,6 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
 
 static void apply_quality_overrides(const render_args *a, rc_scene *s) {
   rc_quality *q = &s->quality;
-  if (a->precision >= 0) q->precision = (uint32_t)a->precision;
   if (a->sphere >= 0) q->sphere = (uint32_t)a->sphere;
   if (a->triangle >= 0) q->triangle = (uint32_t)a->triangle;
   if (a->offset >= 0) q->offset = (uint32_t)a->offset;
@@ -442,21 +441,15 @@ static void report_budget(const rc_scene *s, const rc_precision_report *b) {
             s->quality.camera_relative ? "" : " or leave --camera-relative on");
 }
 
-/* --precision auto on the GPU: f32 unless the scene needs f64 and the device has it. */
-static bool gpu_precision(const rc_scene *s, const rc_precision_report *b, const rc_vk_ctx *ctx) {
-  if (s->quality.precision == RC_PRECISION_F64) return true;
-  if (s->quality.precision == RC_PRECISION_F32) {
-    if (b->needs_f64) fprintf(stderr, "%s: warning: precision: rendering in f32 as asked; the output is degraded\n", s->path);
-    return false;
-  }
-  if (!b->needs_f64) return false;
-  if (ctx->float64) {
+/* What the precision decision says to the user (rc_precision_choose). */
+static void report_precision(const rc_scene *s, rc_precision_why why, const char *device) {
+  if (why == RC_PRECISION_F32_DEGRADED)
+    fprintf(stderr, "%s: warning: precision: rendering in f32 as asked; the output is degraded\n", s->path);
+  else if (why == RC_PRECISION_AUTO_F64)
     fprintf(stderr, "%s: note: precision auto: rendering in f64\n", s->path);
-    return true;
-  }
-  fprintf(stderr, "%s: warning: precision auto: device %s has no shaderFloat64; rendering in f32, the output is "
-          "degraded (--backend cpu renders in f64)\n", s->path, ctx->props.deviceName);
-  return false;
+  else if (why == RC_PRECISION_NO_DEVICE_F64)
+    fprintf(stderr, "%s: warning: precision auto: device %s has no shaderFloat64; rendering in f32, the output is "
+            "degraded (--backend cpu renders in f64)\n", s->path, device);
 }
 
 /* An error about the shader's object number `o` (spheres, triangles, quadrics, planes,
@@ -646,17 +639,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   }
   rs.region = a->part.region;
   rs.shard_index = a->part.shard_index, rs.shard_count = a->part.shard_count;
-  rs.width = scene->width;
-  rs.height = scene->height;
-  rs.samples_per_pixel = scene->samples_per_pixel;
-  rs.spheres = scene->sphere_count;
-  rs.triangles = scene->triangle_count;
-  rs.lights = scene->light_count;
-  rs.quadrics = scene->quadric_count;
-  rs.planes = scene->plane_count;
-  rs.composites = scene->csg_count;
-  rs.materials = scene->material_count;
-  rs.shadows = scene->quality.shadows;
+  rc_stats_describe_scene(&rs, scene);
   rs.generic_pipeline = a->gpu.generic_pipeline;
   rs.rays_primary = rc_region_pixels(a->part.region) * scene->samples_per_pixel;
   rc_precision_report budget = {0};
@@ -667,24 +650,21 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   rs.budget_needs_f64 = budget.needs_f64;
   rs.budget_quantized = budget.quantized;
   rs.budget_ms = budget.ms;
-  rs.precision_requested = rc_precision_names[scene->quality.precision];
-  rs.sphere_formula = rc_sphere_formula_names[scene->quality.sphere];
-  rs.triangle_formula = rc_triangle_formula_names[scene->quality.triangle];
-  rs.shadow_offset = rc_offset_names[scene->quality.offset];
-  rs.camera_relative = scene->quality.camera_relative;
   rs.packing_scale = packed.scale;
+  /* --precision wins over the scene's `quality`; the decision is rc_precision_choose's. */
+  const uint32_t requested = a->precision >= 0 ? (uint32_t)a->precision : scene->quality.precision;
+  rs.precision_requested = rc_precision_names[requested];
   char driver[600] = "";
   if (st == RC_OK && a->cpu) {
     rs.backend = "cpu";
     rs.device = "CPU reference";
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
-    /* The reference renders in f64 unless f32 is asked for: it is the accuracy yardstick. */
-    a->gpu.f64 = scene->quality.precision != RC_PRECISION_F32;
-    rs.precision = a->gpu.f64 ? "f64" : "f32";
+    const rc_precision_choice precision = rc_precision_choose(requested, &budget, true, true);
+    rs.precision = precision.f64 ? "f64" : "f32";
     part_settings(a, scene, rs.backend, rs.precision);
     snprintf(a->part.device, sizeof a->part.device, "%s", rs.device);
-    st = render_frames_cpu(a, scene, &packed, &rs, &out);
+    st = render_frames_cpu(a, scene, &packed, precision.f64, &rs, &out);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a->device};
     if (!ctx->instance) st = rc_vk_create(&vo, ctx);
@@ -694,8 +674,10 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
       rs.device = ctx->props.deviceName;
       rs.device_type = rc_vk_device_type_str(ctx->props.deviceType);
       rs.driver = driver;
-      a->gpu.f64 = gpu_precision(scene, &budget, ctx);
-      rs.precision = a->gpu.f64 ? "f64" : "f32";
+      const rc_precision_choice precision = rc_precision_choose(requested, &budget, false, ctx->float64);
+      report_precision(scene, precision.why, ctx->props.deviceName);
+      a->gpu.f64 = precision.f64;
+      rs.precision = precision.f64 ? "f64" : "f32";
       part_settings(a, scene, rs.backend, rs.precision);
       snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
       st = render_frames(a, ctx, scene, &packed, &rs, &out);

@@ -12,6 +12,24 @@ double rc_stats_mrays_per_s(const rc_render_stats *s) {
   return s->render_ms > 0 ? rays / (s->render_ms * 1e3) : 0.0;
 }
 
+void rc_stats_describe_scene(rc_render_stats *s, const rc_scene *scene) {
+  s->width = scene->width;
+  s->height = scene->height;
+  s->samples_per_pixel = scene->samples_per_pixel;
+  s->spheres = scene->sphere_count;
+  s->triangles = scene->triangle_count;
+  s->lights = scene->light_count;
+  s->quadrics = scene->quadric_count;
+  s->planes = scene->plane_count;
+  s->composites = scene->csg_count;
+  s->materials = scene->material_count;
+  s->shadows = scene->quality.shadows;
+  s->sphere_formula = rc_sphere_formula_names[scene->quality.sphere];
+  s->triangle_formula = rc_triangle_formula_names[scene->quality.triangle];
+  s->shadow_offset = rc_offset_names[scene->quality.offset];
+  s->camera_relative = scene->quality.camera_relative;
+}
+
 /* ", lights in passes of N" where a sample was too long for one dispatch (gpu_plan.h). */
 static const char *light_passes_text(const rc_render_stats *s) {
   static char text[64];

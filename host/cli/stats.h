@@ -4,6 +4,7 @@
 
 #include "scene/bvh.h"
 #include "gpu/gpu_render.h"
+#include "scene/scene.h"
 
 typedef struct rc_render_stats {
   const char *version;   /* "0.1.0 (git abc123)" */
@@ -25,7 +26,7 @@ typedef struct rc_render_stats {
   size_t spheres, triangles, lights, quadrics, planes, composites, materials;
   bool shadows;
   bool generic_pipeline;
-  double parse_ms, pack_ms, write_ms;
+  double parse_ms, write_ms;
   double first_frame_ms; /* includes the JIT on lavapipe */
   double render_ms;      /* GPU time of one frame: the first, or the median of the others with --repeat */
   double render_wall_ms; /* wall time of that frame, including waits and readback */
@@ -35,6 +36,10 @@ typedef struct rc_render_stats {
   rc_gpu_stats gpu;
   rc_bvh_stats bvh; /* zero with --accel none */
 } rc_render_stats;
+
+/* What the statistics say about the scene itself: the frame, the counts of each kind, the
+ * quality settings (after the command line's overrides). */
+void rc_stats_describe_scene(rc_render_stats *s, const rc_scene *scene);
 
 double rc_stats_mrays_per_s(const rc_render_stats *s);
 void rc_stats_print(const rc_render_stats *s);

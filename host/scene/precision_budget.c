@@ -138,3 +138,14 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
   }
   r->ms = rc_now_ms() - t0;
 }
+
+rc_precision_choice rc_precision_choose(uint32_t requested, const rc_precision_report *budget, bool reference,
+                                        bool device_f64) {
+  if (reference) return (rc_precision_choice){requested != RC_PRECISION_F32, RC_PRECISION_QUIET};
+  if (requested == RC_PRECISION_F64) return (rc_precision_choice){true, RC_PRECISION_QUIET};
+  if (requested == RC_PRECISION_F32)
+    return (rc_precision_choice){false, budget->needs_f64 ? RC_PRECISION_F32_DEGRADED : RC_PRECISION_QUIET};
+  if (!budget->needs_f64) return (rc_precision_choice){false, RC_PRECISION_QUIET};
+  if (device_f64) return (rc_precision_choice){true, RC_PRECISION_AUTO_F64};
+  return (rc_precision_choice){false, RC_PRECISION_NO_DEVICE_F64};
+}

@@ -7,6 +7,7 @@
 #include "rc_test.h"
 #include "scene/bvh.h"
 #include "scene/scene_pack.h"
+#include "scene/precision_budget.h"
 
 static rc_status parse(const char *text, rc_scene *s) { return rc_scene_parse_json("test.json", text, strlen(text), NULL, s); }
 
@@ -230,6 +231,34 @@ TEST(a_floor_does_not_spoil_the_tree_of_the_object_on_it) {
   CHECK(added < own * 1.01);
 }
 
+/* The one precision decision (precision_budget.h), for every request, finding and device. */
+TEST(precision_is_decided_once_for_both_backends) {
+  rc_precision_report fine = {0}, needs = {.needs_f64 = 3};
+  struct {
+    uint32_t requested;
+    const rc_precision_report *budget;
+    bool reference, device_f64, f64;
+    rc_precision_why why;
+  } cases[] = {
+      {RC_PRECISION_AUTO, &fine, true, true, true, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &needs, true, true, true, RC_PRECISION_QUIET},
+      {RC_PRECISION_F32, &needs, true, true, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_F64, &fine, true, true, true, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &fine, false, true, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &needs, false, true, true, RC_PRECISION_AUTO_F64},
+      {RC_PRECISION_AUTO, &needs, false, false, false, RC_PRECISION_NO_DEVICE_F64},
+      {RC_PRECISION_F32, &fine, false, true, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_F32, &needs, false, true, false, RC_PRECISION_F32_DEGRADED},
+      {RC_PRECISION_F64, &fine, false, false, true, RC_PRECISION_QUIET}, /* the renderer refuses it by name */
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    rc_precision_choice c = rc_precision_choose(cases[i].requested, cases[i].budget, cases[i].reference,
+                                                cases[i].device_f64);
+    CHECK_EQ_INT(c.f64, cases[i].f64);
+    CHECK_EQ_INT(c.why, cases[i].why);
+  }
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(defaults_are_the_documented_ones);
@@ -240,5 +269,6 @@ int main(void) {
   RUN(obj_mesh_is_triangulated_and_transformed);
   RUN(mesh_outside_the_scene_folder_needs_the_option);
   RUN(a_floor_does_not_spoil_the_tree_of_the_object_on_it);
+  RUN(precision_is_decided_once_for_both_backends);
   TEST_MAIN_END
 }
