@@ -1,5 +1,6 @@
-// rc_budget.glsl: the per-invocation loop budget (host/gpu/gpu_plan.h). llvmpipe ends every loop
-// after 65,535 iterations summed over the whole invocation, silently; so every loop here
+// rc_budget.glsl: the per-lane loop budget (host/gpu/gpu_plan.h). llvmpipe ends every loop
+// after 65,535 iterations summed over one SIMD vector of lanes, silently (the budget is
+// that cap's share of one lane: rc_gpu_loop_budget); so every loop here
 // calls budget_step() once per iteration and breaks when it returns false (the BVH's box
 // walk takes the same step inline and tests it in its loop condition, rc_bvh.glsl). Every loop
 // means every loop: llvmpipe does not unroll even a two-iteration loop, and an uncounted

@@ -121,11 +121,12 @@ typedef struct gpu_csg gpu_csg;
  * stays finite. */
 #define RC_BOX_NEAR_SCALE 1.0000019073486328
 
-/* llvmpipe silently ends every loop once one invocation has run 65,535 loop iterations
- * in total (tests/gpu/test_gpu_render.c renders a scene past it), where an "invocation"
- * is a SIMD vector of lanes. Every shader loop counts into one per-lane budget (a specialization constant: this, a quarter
- * below the cap, divided by the subgroup size on llvmpipe, rc_vk_loop_budget), and the
- * host plans each dispatch's work so that its worst case fits (host/gpu/gpu_plan.c). */
+/* llvmpipe silently ends every loop once one SIMD vector of lanes (a subgroup of
+ * invocations) has run 65,535 loop iterations in total (tests/gpu/test_gpu_render.c
+ * renders a scene past it). Every shader loop counts into one per-lane budget (a
+ * specialization constant: this, a quarter below the cap, divided by the subgroup size on
+ * llvmpipe: rc_gpu_loop_budget), and the host plans each dispatch's work so that its worst
+ * case fits (host/gpu/gpu_plan.c). */
 #define RC_LOOP_BUDGET 49152u
 
 #define RC_PROJECTION_PERSPECTIVE 0u

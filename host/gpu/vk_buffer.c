@@ -80,35 +80,6 @@ rc_status rc_buffer_invalidate(rc_vk_ctx *ctx, const rc_buffer *buf) {
   return RC_OK;
 }
 
-rc_status rc_vk_submit_and_wait(rc_vk_ctx *ctx, void (*record)(VkCommandBuffer, void *), void *user) {
-  VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                    .commandPool = ctx->pool,
-                                    .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-                                    .commandBufferCount = 1};
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
-  RC_VK_TRY(vkAllocateCommandBuffers(ctx->device, &ai, &cmd));
-  VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                 .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-  VkResult r = vkBeginCommandBuffer(cmd, &bi);
-  if (r == VK_SUCCESS) {
-    record(cmd, user);
-    r = vkEndCommandBuffer(cmd);
-  }
-  VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  if (r == VK_SUCCESS) r = vkCreateFence(ctx->device, &fi, NULL, &fence);
-  VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-  if (r == VK_SUCCESS) r = vkQueueSubmit(ctx->queue, 1, &si, fence);
-  if (r == VK_SUCCESS) r = vkWaitForFences(ctx->device, 1, &fence, VK_TRUE, UINT64_MAX);
-  vkDestroyFence(ctx->device, fence, NULL);
-  vkFreeCommandBuffers(ctx->device, ctx->pool, 1, &cmd);
-  if (r != VK_SUCCESS) {
-    rc_error("command submission failed: %s", rc_vk_result_str(r));
-    return RC_ERR_VULKAN;
-  }
-  return RC_OK;
-}
-
 typedef struct {
   VkBuffer src, dst;
   VkDeviceSize size;

@@ -37,7 +37,5 @@ rc_status rc_buffer_upload(rc_vk_ctx *ctx, rc_buffer *dst, const void *data, VkD
 rc_status rc_buffer_flush(rc_vk_ctx *ctx, const rc_buffer *buf);
 rc_status rc_buffer_invalidate(rc_vk_ctx *ctx, const rc_buffer *buf);
 
-/* Records a command buffer with `record`, submits it and waits for it. */
-rc_status rc_vk_submit_and_wait(rc_vk_ctx *ctx, void (*record)(VkCommandBuffer cmd, void *user), void *user);
 
 #endif

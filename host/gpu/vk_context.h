@@ -52,6 +52,10 @@ rc_status rc_vk_destroy(rc_vk_ctx *ctx);
 /* Prints the physical devices (index, name, type, driver, API version, shaderFloat64). */
 rc_status rc_vk_list_devices(void);
 
+/* Records a command buffer from the context's pool with `record`, submits it to the
+ * context's queue and waits for it (one-off work: uploads through staging). */
+rc_status rc_vk_submit_and_wait(rc_vk_ctx *ctx, void (*record)(VkCommandBuffer cmd, void *user), void *user);
+
 const char *rc_vk_result_str(VkResult r);
 const char *rc_vk_device_type_str(VkPhysicalDeviceType t);
 

@@ -2,8 +2,8 @@
  * shader line translates to one C line. Two instantiations from one template:
  *   vec3  (float, the type of rc_shared.h)  -> rcm_<op>_f
  *   dvec3 (double)                          -> rcm_<op>_d
- * Functions: make, add, sub, mul, scale, neg, dot, cross, length, normalize, reflect,
- * min_comp/max_comp, max_abs_comp, to_f, to_d. */
+ * Functions: make, add, sub, mul, scale, neg, abs, dot, cross, length, normalize,
+ * reflect, max_abs_comp; and rcm_xyz, rcm_to_f, rcm_to_d. */
 #ifndef RCM_VEC3_H
 #define RCM_VEC3_H
 

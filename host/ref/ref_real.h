@@ -33,7 +33,9 @@ static inline rvec3 rvec3_from(vec3 a) { return a; }
 #endif
 
 static inline real rv_get(rvec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }
-/* Min and max of two reals: the twins of the shader's scalar min and max. */
+/* Min and max of two reals by comparison: the twins of the shader's select_min and
+ * select_max (rc_real.glsl), not of GLSL's min and max, whose result for a NaN operand
+ * the specification leaves open. */
 static inline real rmin(real a, real b) { return a < b ? a : b; }
 static inline real rmax(real a, real b) { return a > b ? a : b; }
 

@@ -226,3 +226,12 @@ void rc_json_quote(const char *text, size_t len, size_t max, char *out, size_t c
   out[o++] = '\'';
   out[o] = '\0';
 }
+
+rc_status rc_scene_check_text(const char *path, const char *text, size_t len) {
+  const char *nul = memchr(text, '\0', len);
+  if (!nul) return RC_OK;
+  int line, col;
+  rc_json_line_col(text, len, (size_t)(nul - text), &line, &col);
+  fprintf(stderr, "%s:%d:%d: error: a NUL byte (byte %zu of the file)\n", path, line, col, (size_t)(nul - text));
+  return RC_ERR_INPUT;
+}

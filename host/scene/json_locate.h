@@ -7,6 +7,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "base/rc_base.h"
+
 typedef struct rc_json_step {
   const char *key; /* object member, or NULL for an array element */
   size_t index;    /* array element; for a member, which occurrence of a repeated key */
@@ -23,6 +25,11 @@ size_t rc_json_locate_from(const char *text, size_t len, size_t start, const rc_
 size_t rc_json_next_value(const char *text, size_t len, size_t offset, bool member);
 /* 1-based line and column (in bytes) of an offset. */
 void rc_json_line_col(const char *text, size_t len, size_t offset, int *line, int *col);
+
+/* Neither scene format allows a NUL byte, which would silently end the C string of a name
+ * or a token that holds it: an error with its line and column. Both parsers call it
+ * first, so it lives below them. */
+rc_status rc_scene_check_text(const char *path, const char *text, size_t len);
 /* Offset of the first "\u0000" escape inside a string (a NUL that would end the decoded
  * name early), or len when there is none. */
 size_t rc_json_find_nul_escape(const char *text, size_t len);

@@ -178,11 +178,8 @@ typedef struct rc_load_options {
 /* Reads and validates a scene file, JSON or (by the extension .test) the CSE167 format;
  * errors are printed as FILE:LINE:COL: error: ... */
 rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_scene *scene);
-/* Neither format allows a NUL byte, which would silently end the C string of a name or a
- * token that holds it: an error with its line and column. Both parsers call it first. */
-rc_status rc_scene_check_text(const char *path, const char *text, size_t len);
-/* The CSE167x ray-tracer format (scene_cse167.c); it names no other files. */
-rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc_scene *scene);
+/* The CSE167x ray-tracer format (`.test` files: scene_cse167.c); it names no other files. */
+rc_status rc_scene_parse_cse167(const char *path, const char *text, size_t len, rc_scene *scene);
 /* The JSON format from text in memory; `path` names it in messages and locates meshes. */
 rc_status rc_scene_parse_json(const char *path, const char *text, size_t len, const rc_load_options *options,
                               rc_scene *scene);

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "math/rcm_mat3.h"
+#include "scene/json_locate.h"
 #include "scene/name_table.h"
 #include "scene/scene.h"
 
@@ -402,7 +403,7 @@ static const char *origin_name(const char *cmd) {
   return i >= 0 ? names[i] : "command";
 }
 
-rc_status rc_scene_parse_test(const char *path, const char *text, size_t len, rc_scene *s) {
+rc_status rc_scene_parse_cse167(const char *path, const char *text, size_t len, rc_scene *s) {
   memset(s, 0, sizeof *s);
   s->path = strdup(path);
   s->samples_per_pixel = 1;

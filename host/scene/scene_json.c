@@ -12,7 +12,8 @@
 #include "math/rcm_mat3.h"
 #include "scene/json_locate.h"
 #include "scene/scene.h"
-#include "scene/scene_json.h"
+#include "scene/scene_json_mesh.h"
+#include "scene/scene_quadric.h"
 
 /* A colour that may also be written as one number for all three channels (mirror). */
 static rc_status get_color_or_scalar(jctx *c, const cJSON *obj, const char *key, dvec3 *out) {

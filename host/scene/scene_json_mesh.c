@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "scene/mesh.h"
-#include "scene/scene_json.h"
+#include "scene/scene_json_mesh.h"
 
 /* An edge as its two end points, the smaller (lexicographically) first, and the triangle it
  * came from. Positions are compared exactly: a file's shared vertex is one value, carried

@@ -45,7 +45,7 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
     return RC_ERR_INPUT;
   }
   bool test = format == FORMAT_TEST || (format == FORMAT_BY_CONTENT && !starts_like_json(text, len));
-  st = test ? rc_scene_parse_test(name, text, len, scene) : rc_scene_parse_json(name, text, len, options, scene);
+  st = test ? rc_scene_parse_cse167(name, text, len, scene) : rc_scene_parse_json(name, text, len, options, scene);
   rc_mesh_cache_clear();
   free(text);
   size_t inline_skipped = scene->degenerate_triangles - scene->degenerate_in_meshes;
@@ -53,13 +53,4 @@ rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_sce
     fprintf(stderr, "%s: warning: skipped %zu degenerate (zero-area) triangle%s\n", name, inline_skipped,
             inline_skipped == 1 ? "" : "s");
   return st;
-}
-
-rc_status rc_scene_check_text(const char *path, const char *text, size_t len) {
-  const char *nul = memchr(text, '\0', len);
-  if (!nul) return RC_OK;
-  int line, col;
-  rc_json_line_col(text, len, (size_t)(nul - text), &line, &col);
-  fprintf(stderr, "%s:%d:%d: error: a NUL byte (byte %zu of the file)\n", path, line, col, (size_t)(nul - text));
-  return RC_ERR_INPUT;
 }

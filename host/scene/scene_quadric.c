@@ -7,7 +7,8 @@
 #include <string.h>
 
 #include "math/rcm_mat3.h"
-#include "scene/scene_json.h"
+#include "scene/scene_json_mesh.h"
+#include "scene/scene_quadric.h"
 
 /* The clip box of a closed shape reaches this fraction beyond its surface, so that a box
  * face never grazes the surface it bounds (the box would cut a flat spot into it). */

@@ -42,7 +42,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
 #if FUZZ_TARGET == 1
   rc_scene_parse_json("fuzz.json", text, size, NULL, &s);
 #else
-  rc_scene_parse_test("fuzz.test", text, size, &s);
+  rc_scene_parse_cse167("fuzz.test", text, size, &s);
 #endif
   free(text);
 #endif
