@@ -13,8 +13,8 @@ set -uo pipefail
 bin=$1 src=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# shellcheck source=../reliability/check.sh
-source "$src/tests/reliability/check.sh"
+# shellcheck source=../check.sh
+source "$src/tests/check.sh"
 
 clone=$work/clone
 mkdir -p "$clone"

@@ -9,8 +9,8 @@ set -uo pipefail
 bin=$1 scenes=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# shellcheck source=../reliability/check.sh
-source "$(dirname "$0")/../reliability/check.sh"
+# shellcheck source=../check.sh
+source "$(dirname "$0")/../check.sh"
 
 mkdir -p "$work/user" "$work/user/my"
 cp "$scenes/shadows.json" "$work/user/my/scene.json"

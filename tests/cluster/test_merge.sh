@@ -10,7 +10,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/../reliability/check.sh"
+source "$(dirname "$0")/../check.sh"
 scene=$scenes/showcase.json
 size=(--width 64 --height 48)
 region_of() { tr -d ' \n\t' <"$1" | sed -n 's/.*"region":\[\([0-9,]*\)\].*/\1/p'; }

@@ -14,7 +14,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/../reliability/check.sh"
+source "$(dirname "$0")/../check.sh"
 command -v oiiotool >/dev/null || { echo "FAIL: oiiotool (openimageio-tools) is missing"; exit 1; }
 args=(--width 64 --height 48 --spp 1 --quiet)
 "$bin" render "$scenes/showcase.json" "${args[@]}" -o "$work/whole.exr" || exit 1

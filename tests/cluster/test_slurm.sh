@@ -18,7 +18,7 @@ fi
 for d in munged slurmctld slurmd sbatch; do
   command -v "$d" >/dev/null || { echo "FAIL: $d is missing: tools/setup.sh installs slurmctld, slurmd, slurm-client and munge"; exit 1; }
 done
-source "$here/../reliability/check.sh"
+source "$here/../check.sh"
 source "$here/slurm_node.sh"
 slurm_start "$work/slurm" || { echo "FAIL: Slurm did not start"; exit 1; }
 export VKRAYCAST=$bin

@@ -10,7 +10,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 mkdir -p "$work"
-source "$(dirname "$0")/../reliability/check.sh"
+source "$(dirname "$0")/../check.sh"
 export VKRAYCAST_VALIDATION=1
 export VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT:VALIDATION_CHECK_ENABLE_VENDOR_SPECIFIC_NVIDIA:VALIDATION_CHECK_ENABLE_VENDOR_SPECIFIC_AMD
 

@@ -9,7 +9,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3 gen_mesh=$4
 mkdir -p "$work"
-source "$(dirname "$0")/../reliability/check.sh"
+source "$(dirname "$0")/../check.sh"
 
 # Every example scene: the minimum device's image equals the full device's f32 image.
 for s in "$scenes"/*.json; do

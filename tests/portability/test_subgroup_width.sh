@@ -7,7 +7,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 mkdir -p "$work"
-source "$(dirname "$0")/../reliability/check.sh"
+source "$(dirname "$0")/../check.sh"
 # Only lavapipe has a vector width to set. On the GPU a build's tests were configured for
 # (VKRAYCAST_TEST_DEVICE) there is nothing to test: skipped, never on lavapipe, where a
 # missing device fails below.

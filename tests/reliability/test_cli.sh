@@ -7,7 +7,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 S=$scenes/shadows.json
 small=(--width 24 --height 16 --quiet)
 

@@ -10,7 +10,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work/out" "$work/old"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 S=$scenes/shadows.json
 render() { # SIZE [env...]: the run's three outputs into $work/out
   local size=$1

@@ -12,7 +12,7 @@
 set -uo pipefail
 bin=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 pile() { # N kind -> scene
   awk -v n="$1" -v kind="$2" 'BEGIN {
     print "{ \"image\": { \"width\": 48, \"height\": 36 }, \"camera\": { \"eye\": [0.3, 0.4, 5], \"look_at\": [0, 0, 0] },"

@@ -8,7 +8,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
 # A previous image that must survive every failure below.
 "$bin" render "$scenes/shadows.json" -o "$work/keep.png" --width 64 --height 48 --quiet || exit 1

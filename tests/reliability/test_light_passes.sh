@@ -10,7 +10,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 
 # `lights SCENE N SEED OUT`: SCENE at 32x20, 1 spp, with N point and directional lights
 # around it (their intensities sum to about the scene's own), its meshes copied beside it.

@@ -8,7 +8,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 # AddressSanitizer keeps freed memory in quarantine, which would look like growth.
 # (grep without -q: with pipefail, an early exit would SIGPIPE ldd and fail the test.)
 if ldd "$bin" 2>/dev/null | grep libasan >/dev/null; then

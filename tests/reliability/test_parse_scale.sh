@@ -11,7 +11,7 @@
 set -uo pipefail
 bin=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 gen="$(dirname "$0")/gen_scale.sh"
 n=200000
 stat() { sed -n "s/.*\"$1\":[[:space:]]*\([0-9]*\).*/\1/p" "$work/stats.json"; }

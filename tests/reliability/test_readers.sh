@@ -12,7 +12,7 @@
 set -uo pipefail
 bin=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 # The limit where the binary starts under it (a sanitizer build reserves terabytes of
 # address space for its shadow memory and does not).
 limited=0

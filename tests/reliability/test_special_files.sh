@@ -10,7 +10,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 mkfifo "$work/fifo"
 mkdir "$work/dir"
 # A listening Unix socket for the length of the test (python3 ships with Debian 12).

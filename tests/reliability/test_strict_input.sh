@@ -14,7 +14,7 @@ set -uo pipefail
 export LC_ALL=C # byte columns
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 line_col() { # file offset -> "LINE:COL" of that byte (the bytes before it hold no NUL)
   local pre
   pre=$(head -c "$2" "$1"; echo x)

@@ -11,7 +11,7 @@
 set -uo pipefail
 bin=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 
 # fan N TILT_DEGREES CX CY parallel|perspective -> scene: N triangles around (CX, CY, 0),
 # their plane turned TILT_DEGREES about the x axis, alternating two materials.

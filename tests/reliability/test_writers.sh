@@ -11,7 +11,7 @@
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-source "$(dirname "$0")/check.sh"
+source "$(dirname "$0")/../check.sh"
 temps() { find "$1" -maxdepth 1 \( -name '.vkraycast-*' -o -name '*.tmp*' \) | head -3; }
 # The CPU reference renders: its frames stream into the same writers (rc_output_band) band by
 # band as the GPU's, and a process that needs no Vulkan instance and no shader compile makes

@@ -15,7 +15,7 @@
 set -u
 bin=$1 scenes=$2 extremes=$3 work=$4
 rm -rf "$work" && mkdir -p "$work" && cp -r "$scenes/meshes" "$work/" || exit 1
-source "$(dirname "$0")/../reliability/check.sh"
+source "$(dirname "$0")/../check.sh"
 
 for name in transforms csg_meshes room quadrics hyperboloids parallel csg showcase; do
   python3 - "$scenes/$name.json" "$work/$name.json" <<'EOF' || { check "$name: the variant" "cannot be made"; continue; }

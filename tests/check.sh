@@ -1,4 +1,5 @@
-# Sourced by the reliability tests. `check NAME RESULT` counts RESULT "ok" as a pass and
+# Sourced by the shell tests of every folder (reliability/, cluster/, cli/, portability/,
+# rescale/), as rc_test.h serves the C tests. `check NAME RESULT` counts RESULT "ok" as a pass and
 # anything else as a failure, printed with NAME and the reason; `finish` prints the
 # closing "N passed, N failed" line and fails when anything failed.
 failed=0 passed=0
