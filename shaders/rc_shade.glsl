@@ -82,7 +82,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     } else {
       if (has_kind(RC_KIND_SPHERE_TRANSFORMS) && s.transform != RC_NO_TRANSFORM) {
         // Normals go back by the transpose of object_from_packed's linear part.
-        n = normalize(rvec3(m.row0.xyz) * n.x + rvec3(m.row1.xyz) * n.y + rvec3(m.row2.xyz) * n.z);
+        n = normalize(n.x * rvec3(m.row0.xyz) + n.y * rvec3(m.row1.xyz) + n.z * rvec3(m.row2.xyz));
       }
       precise rvec3 td = h.t * d;
       sf.p = o + td;
@@ -170,14 +170,14 @@ real round_away(real c, real n) { return (n > 0.0) ? next_float(c, true) : ((n <
 // |n| . p_error, then one more float away so that rounding cannot land back inside it.
 rvec3 offset_error_bound(rvec3 p, rvec3 n, rvec3 p_error) {
   precise real dist = dot(abs(n), p_error);
-  precise rvec3 po = p + n * dist;
+  precise rvec3 po = p + dist * n;
   return rvec3(round_away(po.x, n.x), round_away(po.y, n.y), round_away(po.z, n.z));
 }
 
 // The origin of a shadow or reflection ray leaving the surface, by the chosen strategy.
 rvec3 spawn_origin(surface sf) {
   if (offset_strategy == RC_OFFSET_ULP) return offset_ray_origin(sf.p, sf.ng);
-  if (offset_strategy == RC_OFFSET_EPSILON) return sf.p + sf.ng * real(offset_epsilon);
+  if (offset_strategy == RC_OFFSET_EPSILON) return sf.p + real(offset_epsilon) * sf.ng;
   return offset_error_bound(sf.p, sf.ng, sf.p_error);
 }
 
@@ -186,7 +186,7 @@ rvec3 spawn_origin(surface sf) {
 real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
   real c;
   if (scene_specular_model() == RC_SPECULAR_PHONG) {
-    c = dot(v, n * (2.0 * dot(n, l)) - l);
+    c = dot(v, (2.0 * dot(n, l)) * n - l);
   } else {
     c = dot(n, normalize(l + v));
   }
@@ -226,7 +226,7 @@ bool light_at(gpu_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 irr
 // What an unblocked light adds: Lambert diffuse plus the specular lobe, scaled by its
 // irradiance (n_dot_l = dot(n, l) > 0).
 rvec3 light_contribution(gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l, rvec3 irradiance) {
-  return irradiance * (rvec3(m.diffuse) * n_dot_l + rvec3(m.specular) * specular_term(n, l, v, m.shininess));
+  return irradiance * (n_dot_l * rvec3(m.diffuse) + specular_term(n, l, v, m.shininess) * rvec3(m.specular));
 }
 
 // Direct light at the surface seen along d: ambient, then each light whose shadow ray is

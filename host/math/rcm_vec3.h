@@ -2,12 +2,13 @@
  * shader line translates to one C line. Two instantiations from one template:
  *   vec3  (float, the type of rc_shared.h)  -> rcm_<op>_f
  *   dvec3 (double)                          -> rcm_<op>_d
- * Functions: make, add, sub, mul, scale, neg, abs, dot, cross, length, normalize,
- * reflect, max_abs_comp; and rcm_xyz, rcm_to_f, rcm_to_d. */
+ * Functions: make, add, sub, mul, div, divs (by a scalar), scale, neg, abs, dot, cross, eq,
+ * length, normalize, reflect, max_abs_comp; and rcm_xyz, rcm_to_f, rcm_to_d. */
 #ifndef RCM_VEC3_H
 #define RCM_VEC3_H
 
 #include <math.h>
+#include <stdbool.h>
 
 #include "rc_shared.h"
 
@@ -18,6 +19,9 @@ typedef struct { double x, y, z; } dvec3;
   static inline V rcm_add_##S(V a, V b) { return rcm_make_##S(a.x + b.x, a.y + b.y, a.z + b.z); } \
   static inline V rcm_sub_##S(V a, V b) { return rcm_make_##S(a.x - b.x, a.y - b.y, a.z - b.z); } \
   static inline V rcm_mul_##S(V a, V b) { return rcm_make_##S(a.x * b.x, a.y * b.y, a.z * b.z); } \
+  static inline V rcm_div_##S(V a, V b) { return rcm_make_##S(a.x / b.x, a.y / b.y, a.z / b.z); } \
+  /* GLSL's v / s: three divisions (not a product with 1 / s). */                            \
+  static inline V rcm_divs_##S(V a, R s) { return rcm_make_##S(a.x / s, a.y / s, a.z / s); }  \
   static inline V rcm_scale_##S(V a, R s) { return rcm_make_##S(a.x * s, a.y * s, a.z * s); }   \
   static inline V rcm_neg_##S(V a) { return rcm_make_##S(-a.x, -a.y, -a.z); }                 \
   static inline V rcm_abs_##S(V a) { return rcm_make_##S(FABS(a.x), FABS(a.y), FABS(a.z)); }   \
@@ -25,6 +29,8 @@ typedef struct { double x, y, z; } dvec3;
   static inline V rcm_cross_##S(V a, V b) {                                                    \
     return rcm_make_##S(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);  \
   }                                                                                            \
+  /* GLSL's a == b: every component equal. */                                               \
+  static inline bool rcm_eq_##S(V a, V b) { return a.x == b.x && a.y == b.y && a.z == b.z; }  \
   static inline R rcm_length_##S(V a) { return SQRT(rcm_dot_##S(a, a)); }                     \
   static inline V rcm_normalize_##S(V a) { return rcm_scale_##S(a, (R)1 / rcm_length_##S(a)); } \
   /* GLSL reflect(): d - 2 dot(n, d) n, n unit. */                                             \

@@ -6,8 +6,9 @@
 
 rvec3 REF(safe_inverse)(rvec3 d) {
   const real tiny = (real)1e-30;
-  return RV(make)(1 / (d.x >= 0 ? rmax(d.x, tiny) : rmin(d.x, -tiny)), 1 / (d.y >= 0 ? rmax(d.y, tiny) : rmin(d.y, -tiny)),
-                  1 / (d.z >= 0 ? rmax(d.z, tiny) : rmin(d.z, -tiny)));
+  return RV(div)(RV(make)(1, 1, 1), RV(make)(d.x >= 0 ? rmax(d.x, tiny) : rmin(d.x, -tiny),
+                                             d.y >= 0 ? rmax(d.y, tiny) : rmin(d.y, -tiny),
+                                             d.z >= 0 ? rmax(d.z, tiny) : rmin(d.z, -tiny)));
 }
 
 real REF(intersect_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {

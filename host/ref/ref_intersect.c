@@ -31,7 +31,7 @@ real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, gpu_sphere s, real t_max,
   if (q == 0) return (real)RC_T_FAR;
   real c = RV(dot)(f, f) - r * r;
   real t0 = c / q;
-  return REF(first_root)(t0 < q ? t0 : q, t0 < q ? q : t0, t_max, side);
+  return REF(first_root)(rmin(t0, q), rmax(t0, q), t_max, side);
 }
 
 real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
@@ -120,7 +120,14 @@ void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, 
 }
 
 ref_hit REF(no_hit)(void) {
-  ref_hit h = {(real)RC_T_FAR, RC_HIT_NONE, 0, 0xffffffffu, RV(make)(0, 0, 0), 0, 0};
+  ref_hit h;
+  h.t = (real)RC_T_FAR;
+  h.kind = RC_HIT_NONE;
+  h.index = 0u;
+  h.object = 0xffffffffu;
+  h.bary = RV(make)(0, 0, 0);
+  h.side = 0;
+  h.part = 0u;
   return h;
 }
 

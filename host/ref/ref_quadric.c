@@ -51,7 +51,7 @@ uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, 
     return RC_QR_BETWEEN;
   }
   real disc;
-  if (q->off.x == 0 && q->off.y == 0 && q->off.z == 0) {
+  if (rcm_eq_f(q->off, rcm_make_f(0, 0, 0))) {
     real cxy = v.x * f.y - v.y * f.x;
     real cxz = v.x * f.z - v.z * f.x;
     real cyz = v.y * f.z - v.z * f.y;

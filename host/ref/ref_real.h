@@ -20,6 +20,8 @@ typedef dvec3 rvec3;
 #define RC_UNIT_ROUNDOFF 1.1102230246251565e-16
 #define RC_SMALLEST_NORMAL 2.2250738585072014e-308
 static inline rvec3 rvec3_from(vec3 a) { return rcm_to_d(a); }
+/* GLSL's vec3(v) of an rvec3: rounded to float (the AOV's f32 fields). */
+static inline vec3 vec3_from(rvec3 a) { return rcm_to_f(a); }
 #else
 typedef float real;
 typedef vec3 rvec3;
@@ -30,6 +32,7 @@ typedef vec3 rvec3;
 #define RC_UNIT_ROUNDOFF 5.9604644775390625e-8f
 #define RC_SMALLEST_NORMAL 1.17549435e-38f
 static inline rvec3 rvec3_from(vec3 a) { return a; }
+static inline vec3 vec3_from(rvec3 a) { return a; }
 #endif
 
 static inline real rv_get(rvec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }

@@ -31,11 +31,11 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
       break;
     }
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
-    if (ref_aov_recording) ref_aov_record.normal = rcm_make_f((float)sf.n.x, (float)sf.n.y, (float)sf.n.z);
+    if (ref_aov_recording) ref_aov_record.normal = vec3_from(sf.n);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
     ref_aov_recording = false;
     rvec3 mirror = rvec3_from(sc->materials[sf.material].mirror);
-    if (depth == sc->frame->reflection_depth || (mirror.x == 0 && mirror.y == 0 && mirror.z == 0)) break;
+    if (depth == sc->frame->reflection_depth || RV(eq)(mirror, RV(make)(0, 0, 0))) break;
     weight = RV(mul)(weight, mirror);
     o = REF(spawn_origin)(sc, &sf);
     d = RV(normalize)(RV(reflect)(d, sf.n));

@@ -7,7 +7,7 @@
 real REF(gamma_bound)(real n) { return (n * RC_UNIT_ROUNDOFF) / (1 - n * RC_UNIT_ROUNDOFF); }
 
 ref_shear REF(ray_shear_for)(rvec3 d) {
-  rvec3 a = RV(make)(R_ABS(d.x), R_ABS(d.y), R_ABS(d.z));
+  rvec3 a = RV(abs)(d);
   int kz = (a.x > a.y) ? ((a.x > a.z) ? 0 : 2) : ((a.y > a.z) ? 1 : 2);
   int kx = (kz + 1) % 3;
   int ky = (kx + 1) % 3;
@@ -35,8 +35,12 @@ ref_sheared REF(shear_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri) 
   real u = cx * by - cy * bx;
   real v = ax * cy - ay * cx;
   real w = bx * ay - by * ax;
-  ref_sheared st = {RV(make)(ax, bx, cx), RV(make)(ay, by, cy),
-                    RV(make)(sh->s.z * a.z, sh->s.z * b.z, sh->s.z * c.z), RV(make)(u, v, w)};
+  rvec3 z = RV(make)(sh->s.z * a.z, sh->s.z * b.z, sh->s.z * c.z);
+  ref_sheared st;
+  st.x = RV(make)(ax, bx, cx);
+  st.y = RV(make)(ay, by, cy);
+  st.z = z;
+  st.e = RV(make)(u, v, w);
   return st;
 }
 
@@ -75,7 +79,7 @@ real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, rea
   real t = REF(triangle_t)(&st, det);
   if (!(t > 0 && t <= t_max)) return (real)RC_T_FAR;
   if (ref_spawned_ray && t <= REF(triangle_t_error)(&st, det)) return (real)RC_T_FAR;
-  *bary = RV(make)(st.e.x / det, st.e.y / det, st.e.z / det);
+  *bary = RV(divs)(st.e, det);
   return t;
 }
 

@@ -72,16 +72,16 @@ SCENE_DATA = {v for k, v in GLSL_MAP.items() if k.startswith("load_")}
 # Reference spellings -> shader tokens.
 C_MAP = {"R_ABS": "abs", "R_SQRT": "sqrt", "fabs": "abs", "fabsf": "abs", "sqrtf": "sqrt", "powf": "pow",
          "fminf": "min", "fmaxf": "max", "fmin": "min", "fmax": "max", "floorf": "floor", "ceilf": "ceil",
-         "rmin": "min", "rmax": "max"}
+         "rmin": "min", "rmax": "max", "rcm_eq_f": "=="}
 # Vector operations of the C side (RV(op)(a, b)): the operator they stand for.
-RV_OPS = {"add": "+", "sub": "-", "mul": "*", "scale": "*", "div": "/", "neg": "-", "dot": "dot",
+RV_OPS = {"add": "+", "sub": "-", "mul": "*", "scale": "*", "div": "/", "divs": "/", "neg": "-", "dot": "dot", "eq": "==",
           "cross": "cross", "length": "length", "normalize": "normalize", "abs": "abs", "min": "min",
           "max": "max", "reflect": "reflect", "make": None, "from": None}
 # Names that carry no arithmetic: types, qualifiers, constructors, conversions, the C scene
 # argument and its frame pointer, GLSL's .xyz.
 NEUTRAL = set("""real rvec3 vec3 dvec3 vec2 ivec3 uvec3 uvec4 uvec2 bvec3 float double int uint uint32_t int32_t
 uint64_t int64_t bool const precise ray_shear sheared_triangle surface hit_record in out inout void static return
-if else for while break continue do struct sc rvec3_from rv_get true false v3 rcm_xyz rcm_make_f rcm_to_f
+if else for while break continue do struct sc rvec3_from vec3_from rv_get true false v3 rcm_xyz rcm_make_f rcm_to_f
 RC_OFFSET_INT offset_int xyz""".split())
 SPEC_CONSTANTS = ["sphere_formula", "triangle_formula", "offset_strategy", "offset_epsilon", "use_bvh"]
 OPS = {"+", "-", "*", "/", "<", ">", "<=", ">=", "==", "!=", "&&", "||", "!", "?", "%", "<<", ">>", "&", "|", "^",
@@ -138,6 +138,45 @@ def inline_aliases(body):
     return body
 
 
+def call_args(text, start):
+    """The arguments of the call whose '(' is at text[start], split at top-level commas
+    (parentheses and brackets balanced), and the index just past its ')'."""
+    depth, args, arg_start = 0, [], start + 1
+    for i in range(start, len(text)):
+        ch = text[i]
+        if ch in "([":
+            depth += 1
+        elif ch in ")]":
+            depth -= 1
+            if depth == 0:
+                args.append(text[arg_start:i])
+                return args, i + 1
+        elif ch == "," and depth == 1:
+            args.append(text[arg_start:i])
+            arg_start = i + 1
+    return None, len(text)
+
+
+def scalar_first(body):
+    """RV(scale)(v, s) is GLSL's s * v: its arguments swapped, so that the operands come in
+    the shader's order (the scalar first, as the shaders write it), nested calls included."""
+    out, i = [], 0
+    key = "RV(scale)("
+    while True:
+        j = body.find(key, i)
+        if j < 0:
+            out.append(body[i:])
+            return "".join(out)
+        args, end = call_args(body, j + len(key) - 1)
+        if not args or len(args) != 2:
+            out.append(body[i:j + len(key)])
+            i = j + len(key)
+            continue
+        v, s_ = (scalar_first(a).strip() for a in args)
+        out.append(body[i:j] + f"RV(scale)({s_}, {v})")
+        i = end
+
+
 def reduce(body, c):
     """(operands in order, operations counted)."""
     if not c:
@@ -151,6 +190,7 @@ def reduce(body, c):
         for pat in C_ONLY:
             body = re.sub(pat, " ", body)
         body = re.sub(*C_COMPOUND, body)
+        body = scalar_first(body)
         body = re.sub(r"\brv_get\(\s*(\w+)\s*,\s*(\w+)\s*\)", r"\1[\2]", body)  # GLSL's v[k]
     for pat, rep in COMMON:
         body = re.sub(pat, rep, body, flags=re.M)
