@@ -7,7 +7,9 @@
 #include "gpu/gpu_renderer.h"
 #include "gpu/gpu_shaders.h"
 
-rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
+/* The descriptor set layout (the scene arrays as the chosen buffer kind) and the pipeline
+ * layout with the push constants. */
+static rc_status create_layouts(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
   VkDescriptorType array_type = rc_gpu_kind_descriptor(r->opts.scene_buffers);
   VkDescriptorSetLayoutBinding b[RC_BINDING_COUNT];
@@ -31,6 +33,43 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
                                     .pushConstantRangeCount = 1,
                                     .pPushConstantRanges = &pcr};
   RC_VK_TRY(vkCreatePipelineLayout(ctx->device, &pli, NULL, &r->pipeline_layout));
+  return RC_OK;
+}
+
+/* The specialization constants, by id (rc_shared.h, RC_SPEC_*): the workgroup, the loop
+ * budget, the formulas, and the scene's features, so that what the scene lacks is
+ * compiled out; a generic pipeline reads the features from the frame instead. A bool is 4
+ * bytes (VkBool32), a float its 4 bytes. */
+static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) {
+  const gpu_frame *f = &r->frame;
+  bool generic = r->opts.generic_pipeline;
+  float epsilon = f->offset_epsilon;
+  v[RC_SPEC_LOCAL_SIZE_X] = r->local_x;
+  v[RC_SPEC_LOCAL_SIZE_Y] = r->local_y;
+  v[RC_SPEC_LOOP_BUDGET] = r->budget;
+  v[RC_SPEC_AOV] = r->opts.aov ? VK_TRUE : VK_FALSE;
+  v[RC_SPEC_BVH] = r->opts.bvh_depth ? VK_TRUE : VK_FALSE;
+  v[RC_SPEC_SPHERE_FORMULA] = f->sphere_formula;
+  v[RC_SPEC_TRIANGLE_FORMULA] = f->triangle_formula;
+  v[RC_SPEC_OFFSET_STRATEGY] = f->offset_strategy;
+  memcpy(&v[RC_SPEC_OFFSET_EPSILON], &epsilon, sizeof epsilon);
+  v[RC_SPEC_KINDS] = generic ? RC_KIND_ALL
+                             : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
+                                   (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
+                                   (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
+                                   (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
+                                   (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0);
+  v[RC_SPEC_LIGHT_COUNT] = generic ? RC_LIGHTS_FROM_FRAME : f->light_count;
+  v[RC_SPEC_SHADOWS] = generic ? RC_SHADOWS_FROM_FRAME : f->shadows;
+  v[RC_SPEC_SPECULAR_MODEL] = generic ? RC_SPECULAR_FROM_FRAME : f->specular_model;
+  v[RC_SPEC_REFLECTION_DEPTH] = generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth;
+  v[RC_SPEC_SAMPLES] = generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel;
+  v[RC_SPEC_LIGHT_PASSES] = r->light_passes ? VK_TRUE : VK_FALSE;
+}
+
+rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
+  rc_vk_ctx *ctx = r->ctx;
+  RC_TRY(create_layouts(r));
 
   /* The module without quadric code where the scene has none (and the pipeline is not the
    * generic one): lavapipe compiles the whole module before specializing it. */
@@ -41,44 +80,11 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
                                   .pCode = code.words};
   VkShaderModule module;
   RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
-  /* A bool specialization constant is 4 bytes (VkBool32); a float one is its 4 bytes. */
-  float epsilon = r->frame.offset_epsilon;
-  uint32_t epsilon_bits;
-  memcpy(&epsilon_bits, &epsilon, sizeof epsilon_bits);
-  /* The scene's features (rc_shared.h, RC_SPEC_KINDS...): what the scene lacks is
-   * compiled out. A generic pipeline reads them from the frame instead. */
-  const gpu_frame *f = &r->frame;
-  bool generic = r->opts.generic_pipeline;
-  uint32_t kinds = generic ? RC_KIND_ALL
-                           : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
-                                 (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
-                                 (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
-                                 (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
-                                 (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0);
-  const uint32_t spec_values[16] = {r->local_x,
-                                    r->local_y,
-                                    r->budget,
-                                    r->opts.aov ? VK_TRUE : VK_FALSE,
-                                    r->opts.bvh_depth ? VK_TRUE : VK_FALSE,
-                                    f->sphere_formula,
-                                    f->triangle_formula,
-                                    f->offset_strategy,
-                                    epsilon_bits,
-                                    kinds,
-                                    generic ? RC_LIGHTS_FROM_FRAME : f->light_count,
-                                    generic ? RC_SHADOWS_FROM_FRAME : f->shadows,
-                                    generic ? RC_SPECULAR_FROM_FRAME : f->specular_model,
-                                    generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth,
-                                    generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel,
-                                    r->light_passes ? VK_TRUE : VK_FALSE};
-  const VkSpecializationMapEntry entries[16] = {
-      {RC_SPEC_LOCAL_SIZE_X, 0, 4},      {RC_SPEC_LOCAL_SIZE_Y, 4, 4},       {RC_SPEC_LOOP_BUDGET, 8, 4},
-      {RC_SPEC_AOV, 12, 4},              {RC_SPEC_BVH, 16, 4},               {RC_SPEC_SPHERE_FORMULA, 20, 4},
-      {RC_SPEC_TRIANGLE_FORMULA, 24, 4}, {RC_SPEC_OFFSET_STRATEGY, 28, 4},   {RC_SPEC_OFFSET_EPSILON, 32, 4},
-      {RC_SPEC_KINDS, 36, 4},            {RC_SPEC_LIGHT_COUNT, 40, 4},       {RC_SPEC_SHADOWS, 44, 4},
-      {RC_SPEC_SPECULAR_MODEL, 48, 4},   {RC_SPEC_REFLECTION_DEPTH, 52, 4},  {RC_SPEC_SAMPLES, 56, 4},
-      {RC_SPEC_LIGHT_PASSES, 60, 4}};
-  VkSpecializationInfo spec = {.mapEntryCount = 16, .pMapEntries = entries, .dataSize = sizeof spec_values,
+  uint32_t spec_values[RC_SPEC_COUNT];
+  VkSpecializationMapEntry entries[RC_SPEC_COUNT];
+  specialization(r, spec_values);
+  for (uint32_t i = 0; i < RC_SPEC_COUNT; i++) entries[i] = (VkSpecializationMapEntry){i, 4 * i, 4};
+  VkSpecializationInfo spec = {.mapEntryCount = RC_SPEC_COUNT, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
   VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
                                     .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
