@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 #include <sys/resource.h>
 
@@ -67,31 +68,108 @@ void rc_stats_print(const rc_render_stats *s) {
           (unsigned long long)s->rays_reflection, rc_stats_mrays_per_s(s));
 }
 
-static void add_gpu_fields(cJSON *o, const rc_render_stats *s);
+/* The --stats-json fields that are one field of rc_render_stats each: one table, in the
+ * order they are written, for both backends or the GPU's alone (absent on the CPU backend
+ * rather than zero). The fields computed from others are written by rc_stats_json. */
+typedef enum { F_STRING, F_BOOL, F_U32, F_U64, F_SIZE, F_DOUBLE } field_kind;
+typedef struct {
+  const char *key;
+  field_kind kind;
+  size_t offset;
+} stats_field;
+#define FIELD(key, kind, member) {key, kind, offsetof(rc_render_stats, member)}
+
+static const stats_field head_fields[] = {
+    FIELD("vkraycast", F_STRING, version),
+    FIELD("scene", F_STRING, scene),
+    FIELD("device", F_STRING, device),
+    FIELD("device_type", F_STRING, device_type),
+    FIELD("driver", F_STRING, driver),
+    FIELD("backend", F_STRING, backend),
+    FIELD("precision", F_STRING, precision),
+    FIELD("precision_requested", F_STRING, precision_requested),
+    FIELD("sphere_intersection", F_STRING, sphere_formula),
+    FIELD("triangle_intersection", F_STRING, triangle_formula),
+    FIELD("shadow_offset", F_STRING, shadow_offset),
+    FIELD("camera_relative", F_BOOL, camera_relative),
+    FIELD("packing_scale", F_DOUBLE, packing_scale),
+    FIELD("budget_needs_f64", F_U32, budget_needs_f64),
+    FIELD("budget_quantized", F_U32, budget_quantized),
+    FIELD("budget_ms", F_DOUBLE, budget_ms),
+};
+static const stats_field frame_fields[] = {
+    FIELD("width", F_U32, width),
+    FIELD("height", F_U32, height),
+    FIELD("samples_per_pixel", F_U32, samples_per_pixel),
+};
+static const stats_field scene_fields[] = {
+    FIELD("part_ms", F_DOUBLE, part_ms),
+    FIELD("spheres", F_SIZE, spheres),
+    FIELD("triangles", F_SIZE, triangles),
+    FIELD("lights", F_SIZE, lights),
+    FIELD("quadrics", F_SIZE, quadrics),
+    FIELD("planes", F_SIZE, planes),
+    FIELD("composites", F_SIZE, composites),
+    FIELD("materials", F_SIZE, materials),
+    FIELD("shadows", F_BOOL, shadows),
+    FIELD("rays_primary", F_U64, rays_primary),
+    FIELD("rays_shadow", F_U64, rays_shadow),
+    FIELD("rays_reflection", F_U64, rays_reflection),
+};
+static const stats_field bvh_fields[] = {
+    FIELD("bvh_build_ms", F_DOUBLE, bvh.build_ms),
+    FIELD("bvh_nodes", F_U32, bvh.nodes),
+    FIELD("bvh_depth", F_U32, bvh.depth),
+    FIELD("bvh_repeats_left_out", F_U32, bvh.repeats),
+    FIELD("parse_ms", F_DOUBLE, parse_ms),
+    FIELD("first_frame_ms", F_DOUBLE, first_frame_ms),
+    FIELD("render_ms", F_DOUBLE, render_ms),
+    FIELD("render_wall_ms", F_DOUBLE, render_wall_ms),
+    FIELD("write_ms", F_DOUBLE, write_ms),
+    FIELD("cpu_ms", F_DOUBLE, cpu_ms),
+};
+static const stats_field gpu_fields[] = {
+    FIELD("staging", F_BOOL, gpu.staging),
+    FIELD("upload_ms", F_DOUBLE, gpu.upload_ms),
+    FIELD("pipeline_ms", F_DOUBLE, gpu.pipeline_ms),
+    FIELD("pipeline_cache_hit", F_BOOL, gpu.pipeline_cache_hit),
+    FIELD("readback_ms", F_DOUBLE, gpu.readback_ms),
+    FIELD("tiles", F_U32, gpu.tiles),
+    FIELD("dispatches", F_U32, gpu.dispatches),
+    FIELD("tile_budget_ms", F_DOUBLE, gpu.tile_budget_ms),
+    FIELD("max_dispatch_ms", F_DOUBLE, gpu.max_dispatch_ms),
+    FIELD("dispatches_over_budget", F_U32, gpu.over_budget),
+    FIELD("batch_samples", F_U32, gpu.plan.batch_samples),
+    FIELD("lights_per_pass", F_U32, gpu.lights_per_pass),
+    FIELD("loop_steps_per_sample", F_U64, gpu.plan.steps_per_sample),
+    FIELD("budget_retries", F_U32, gpu.budget_retries),
+    FIELD("loop_budget", F_U32, gpu.loop_budget),
+    FIELD("subgroup_size", F_U32, gpu.subgroup_size),
+    FIELD("workgroup_x", F_U32, gpu.workgroup_x),
+    FIELD("workgroup_y", F_U32, gpu.workgroup_y),
+    FIELD("memory_blocks", F_U32, gpu.memory_blocks),
+};
+#define ADD_FIELDS(o, s, table) add_fields(o, s, table, sizeof table / sizeof *table)
+
+static void add_fields(cJSON *o, const rc_render_stats *s, const stats_field *f, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    const void *p = (const char *)s + f[i].offset;
+    switch (f[i].kind) {
+    case F_STRING: cJSON_AddStringToObject(o, f[i].key, *(const char *const *)p); break;
+    case F_BOOL: cJSON_AddBoolToObject(o, f[i].key, *(const bool *)p); break;
+    case F_U32: cJSON_AddNumberToObject(o, f[i].key, *(const uint32_t *)p); break;
+    case F_U64: cJSON_AddNumberToObject(o, f[i].key, (double)*(const uint64_t *)p); break;
+    case F_SIZE: cJSON_AddNumberToObject(o, f[i].key, (double)*(const size_t *)p); break;
+    case F_DOUBLE: cJSON_AddNumberToObject(o, f[i].key, *(const double *)p); break;
+    }
+  }
+}
 
 char *rc_stats_json(const rc_render_stats *s) {
   cJSON *o = cJSON_CreateObject();
-  bool gpu = strcmp(s->backend, "gpu") == 0;
-  cJSON_AddStringToObject(o, "vkraycast", s->version);
-  cJSON_AddStringToObject(o, "scene", s->scene);
-  cJSON_AddStringToObject(o, "device", s->device);
-  cJSON_AddStringToObject(o, "device_type", s->device_type);
-  cJSON_AddStringToObject(o, "driver", s->driver);
-  cJSON_AddStringToObject(o, "backend", s->backend);
-  cJSON_AddStringToObject(o, "precision", s->precision);
-  cJSON_AddStringToObject(o, "precision_requested", s->precision_requested);
-  cJSON_AddStringToObject(o, "sphere_intersection", s->sphere_formula);
-  cJSON_AddStringToObject(o, "triangle_intersection", s->triangle_formula);
-  cJSON_AddStringToObject(o, "shadow_offset", s->shadow_offset);
-  cJSON_AddBoolToObject(o, "camera_relative", s->camera_relative);
-  cJSON_AddNumberToObject(o, "packing_scale", s->packing_scale);
-  cJSON_AddNumberToObject(o, "budget_needs_f64", s->budget_needs_f64);
-  cJSON_AddNumberToObject(o, "budget_quantized", s->budget_quantized);
-  cJSON_AddNumberToObject(o, "budget_ms", s->budget_ms);
+  ADD_FIELDS(o, s, head_fields);
   if (s->threads) cJSON_AddNumberToObject(o, "threads", s->threads);
-  cJSON_AddNumberToObject(o, "width", s->width);
-  cJSON_AddNumberToObject(o, "height", s->height);
-  cJSON_AddNumberToObject(o, "samples_per_pixel", s->samples_per_pixel);
+  ADD_FIELDS(o, s, frame_fields);
   const double region[4] = {s->region.x0, s->region.y0, s->region.x1, s->region.y1};
   cJSON_AddItemToObject(o, "region", cJSON_CreateDoubleArray(region, 4));
   if (s->shard_count) {
@@ -99,64 +177,24 @@ char *rc_stats_json(const rc_render_stats *s) {
     snprintf(shard, sizeof shard, "%u/%u", s->shard_index, s->shard_count);
     cJSON_AddStringToObject(o, "shard", shard);
   }
-  cJSON_AddNumberToObject(o, "part_ms", s->part_ms);
-  cJSON_AddNumberToObject(o, "spheres", (double)s->spheres);
-  cJSON_AddNumberToObject(o, "triangles", (double)s->triangles);
-  cJSON_AddNumberToObject(o, "lights", (double)s->lights);
-  cJSON_AddNumberToObject(o, "quadrics", (double)s->quadrics);
-  cJSON_AddNumberToObject(o, "planes", (double)s->planes);
-  cJSON_AddNumberToObject(o, "composites", (double)s->composites);
-  cJSON_AddNumberToObject(o, "materials", (double)s->materials);
-  cJSON_AddBoolToObject(o, "shadows", s->shadows);
-  cJSON_AddNumberToObject(o, "rays_primary", (double)s->rays_primary);
-  cJSON_AddNumberToObject(o, "rays_shadow", (double)s->rays_shadow);
-  cJSON_AddNumberToObject(o, "rays_reflection", (double)s->rays_reflection);
+  ADD_FIELDS(o, s, scene_fields);
   cJSON_AddStringToObject(o, "accel", s->bvh.nodes ? "bvh" : "none");
-  cJSON_AddNumberToObject(o, "bvh_build_ms", s->bvh.build_ms);
-  cJSON_AddNumberToObject(o, "bvh_nodes", s->bvh.nodes);
-  cJSON_AddNumberToObject(o, "bvh_depth", s->bvh.depth);
-  cJSON_AddNumberToObject(o, "bvh_repeats_left_out", s->bvh.repeats);
-  cJSON_AddNumberToObject(o, "parse_ms", s->parse_ms);
-  cJSON_AddNumberToObject(o, "first_frame_ms", s->first_frame_ms);
-  cJSON_AddNumberToObject(o, "render_ms", s->render_ms);
-  cJSON_AddNumberToObject(o, "render_wall_ms", s->render_wall_ms);
-  cJSON_AddNumberToObject(o, "write_ms", s->write_ms);
-  cJSON_AddNumberToObject(o, "cpu_ms", s->cpu_ms);
+  ADD_FIELDS(o, s, bvh_fields);
   struct rusage ru;
   if (getrusage(RUSAGE_SELF, &ru) == 0) cJSON_AddNumberToObject(o, "peak_rss_mib", (double)ru.ru_maxrss / 1024.0);
   cJSON_AddNumberToObject(o, "mrays_per_s", rc_stats_mrays_per_s(s));
   cJSON_AddNumberToObject(o, "repeat", s->repeat);
   /* What only the GPU backend has: absent on the CPU backend rather than zero. */
-  if (gpu) add_gpu_fields(o, s);
+  if (strcmp(s->backend, "gpu") == 0) {
+    cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
+    cJSON_AddStringToObject(o, "scene_buffers", rc_scene_buffer_names[s->gpu.scene_buffers]);
+    ADD_FIELDS(o, s, gpu_fields);
+    cJSON_AddNumberToObject(o, "memory_mib", (double)s->gpu.memory_bytes / (1 << 20));
+  }
   char *text = cJSON_Print(o);
   cJSON_Delete(o);
   char *line = text ? malloc(strlen(text) + 2) : NULL;
   if (line) sprintf(line, "%s\n", text);
   free(text);
   return line;
-}
-
-static void add_gpu_fields(cJSON *o, const rc_render_stats *s) {
-  cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
-  cJSON_AddStringToObject(o, "scene_buffers", rc_scene_buffer_names[s->gpu.scene_buffers]);
-  cJSON_AddBoolToObject(o, "staging", s->gpu.staging);
-  cJSON_AddNumberToObject(o, "upload_ms", s->gpu.upload_ms);
-  cJSON_AddNumberToObject(o, "pipeline_ms", s->gpu.pipeline_ms);
-  cJSON_AddBoolToObject(o, "pipeline_cache_hit", s->gpu.pipeline_cache_hit);
-  cJSON_AddNumberToObject(o, "readback_ms", s->gpu.readback_ms);
-  cJSON_AddNumberToObject(o, "tiles", s->gpu.tiles);
-  cJSON_AddNumberToObject(o, "dispatches", s->gpu.dispatches);
-  cJSON_AddNumberToObject(o, "tile_budget_ms", s->gpu.tile_budget_ms);
-  cJSON_AddNumberToObject(o, "max_dispatch_ms", s->gpu.max_dispatch_ms);
-  cJSON_AddNumberToObject(o, "dispatches_over_budget", s->gpu.over_budget);
-  cJSON_AddNumberToObject(o, "batch_samples", s->gpu.plan.batch_samples);
-  cJSON_AddNumberToObject(o, "lights_per_pass", s->gpu.lights_per_pass);
-  cJSON_AddNumberToObject(o, "loop_steps_per_sample", (double)s->gpu.plan.steps_per_sample);
-  cJSON_AddNumberToObject(o, "budget_retries", s->gpu.budget_retries);
-  cJSON_AddNumberToObject(o, "loop_budget", s->gpu.loop_budget);
-  cJSON_AddNumberToObject(o, "subgroup_size", s->gpu.subgroup_size);
-  cJSON_AddNumberToObject(o, "workgroup_x", s->gpu.workgroup_x);
-  cJSON_AddNumberToObject(o, "workgroup_y", s->gpu.workgroup_y);
-  cJSON_AddNumberToObject(o, "memory_blocks", s->gpu.memory_blocks);
-  cJSON_AddNumberToObject(o, "memory_mib", (double)s->gpu.memory_bytes / (1 << 20));
 }
