@@ -287,6 +287,50 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
  * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
  * with half the batch; exhaustion at one sample per batch is an error, never a silently
  * wrong pixel. Every dispatch's time goes to the planner. */
+/* The tile at column x0 of the current band into the band buffers: the accumulated sums
+ * over the samples, and the AOV records, read where they lie (or copied out through
+ * staging first). */
+static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_t th, rc_gpu_stats *stats) {
+  double t0 = rc_now_ms();
+  rc_status st = RC_OK;
+  /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
+   * the status) already made accum and AOVs visible: no second submit, which costs a
+   * whole queue round trip on lavapipe. Staging copies them first. */
+  if (r->staging) {
+    st = begin(r);
+    if (st != RC_OK) return st;
+    record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
+    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
+    st = submit(r);
+  }
+  const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
+  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
+  if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
+  if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
+  if (st != RC_OK) return st;
+  /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
+  uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
+  if (r->band_aov) {
+    const gpu_aov *src = vb->memory.mapped;
+    for (uint32_t y = 0; y < th; y++)
+      memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
+  }
+  const float *acc = ab->memory.mapped;
+  const uint32_t spp = r->frame.samples_per_pixel;
+  const float complete = (float)spp * (float)(r->light_passes ? r->frame.light_count : 1);
+  for (uint32_t y = 0; y < th; y++) {
+    for (uint32_t x = 0; x < tw; x++) {
+      const float *a = acc + 4 * ((size_t)y * tw + x);
+      float *o = r->band_rgb + 3 * ((size_t)y * width + (bx + x));
+      RC_ASSERT(a[3] == complete);
+      for (int c = 0; c < 3; c++) o[c] = a[c] / (float)spp;
+    }
+  }
+  stats->readback_ms += rc_now_ms() - t0;
+  stats->tiles++;
+  return RC_OK;
+}
+
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
@@ -337,44 +381,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     }
     if (status.incomplete_pixels == 0) break;
   }
-  double t0 = rc_now_ms();
-  rc_status st = RC_OK;
-  /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
-   * the status) already made accum and AOVs visible: no second submit, which costs a
-   * whole queue round trip on lavapipe. Staging copies them first. */
-  if (r->staging) {
-    st = begin(r);
-    if (st != RC_OK) return st;
-    record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
-    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
-    st = submit(r);
-  }
-  const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
-  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
-  if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
-  if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
-  if (st != RC_OK) return st;
-  /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
-  uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
-  if (r->band_aov) {
-    const gpu_aov *src = vb->memory.mapped;
-    for (uint32_t y = 0; y < th; y++)
-      memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
-  }
-  const float *acc = ab->memory.mapped;
-  const uint32_t spp = r->frame.samples_per_pixel;
-  const float complete = (float)spp * (float)(r->light_passes ? r->frame.light_count : 1);
-  for (uint32_t y = 0; y < th; y++) {
-    for (uint32_t x = 0; x < tw; x++) {
-      const float *a = acc + 4 * ((size_t)y * tw + x);
-      float *o = r->band_rgb + 3 * ((size_t)y * width + (bx + x));
-      RC_ASSERT(a[3] == complete);
-      for (int c = 0; c < 3; c++) o[c] = a[c] / (float)spp;
-    }
-  }
-  stats->readback_ms += rc_now_ms() - t0;
-  stats->tiles++;
-  return RC_OK;
+  return read_tile(r, x0, tw, th, stats);
 }
 
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {

@@ -29,11 +29,8 @@ static double gap(double e, double a, double b, double c) {
   return fmax(fmax(fmin(a, fmin(b, c)) - e, 0), e - fmax(a, fmax(b, c)));
 }
 
-void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_report *r) {
-  double t0 = rc_now_ms();
-  *r = (rc_precision_report){0};
-  const dvec3 eye = rcm_to_d(p->frame.camera.eye);
-  const double u = 1.0 / p->scale; /* the messages give lengths in scene units */
+/* Spheres: tiny, far, seen from just above a huge one, or with a centre f32 moves. */
+static void judge_spheres(const rc_packed_scene *p, dvec3 eye, double u, bool algebraic, rc_precision_report *r) {
   for (size_t i = 0; i < p->frame.sphere_count; i++) {
     const gpu_sphere *s = &p->spheres[i];
     if (s->transform != RC_NO_TRANSFORM) continue; /* ellipsoids: object space, scale 1 by construction */
@@ -58,7 +55,10 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
            "sphere %zu: its centre at |p| %g is rounded to f32 by up to %.3g of its radius", i, centre * u, q);
   }
-  /* Triangles, standalone and of composites' mesh operands alike. */
+}
+
+/* Triangles, standalone and of composites' mesh operands alike. */
+static void judge_triangles(const rc_packed_scene *p, dvec3 eye, double u, rc_precision_report *r) {
   for (size_t i = 0; i < p->triangle_total; i++) {
     const gpu_triangle *t = &p->triangles[i];
     dvec3 a = rcm_to_d(t->v0), b = rcm_to_d(t->v1), c = rcm_to_d(t->v2);
@@ -91,11 +91,14 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       note(&r->needs_f64, r->first_f64, sizeof r->first_f64,
            "triangle %zu: altitude %g at |p| %g, %.3g of it per f32 ulp", i, altitude * u, reach * u, 2 * q);
   }
-  /* Quadrics (standalone and composite leaves): their math runs on p - centre in their own
-   * frame, the sphere's geometric form generalized, so the far-sphere rule applies with
-   * the box's smallest half-extent as the radius; and the centre's f32 rounding against it.
-   * Under a transform the frame is scaled: a half-extent h along frame axis k spans
-   * h |column k of R^-1| in packed space. */
+}
+
+/* Quadrics (standalone and composite leaves): their math runs on p - centre in their own
+ * frame, the sphere's geometric form generalized, so the far-sphere rule applies with
+ * the box's smallest half-extent as the radius; and the centre's f32 rounding against it.
+ * Under a transform the frame is scaled: a half-extent h along frame axis k spans
+ * h |column k of R^-1| in packed space. */
+static void judge_quadrics(const rc_packed_scene *p, dvec3 eye, double u, rc_precision_report *r) {
   for (uint32_t i = 0; i < p->quadric_total; i++) {
     const gpu_quadric *q = &p->quadrics[i];
     if (q->flags & RC_QUADRIC_UNBOUNDED) {
@@ -136,6 +139,17 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
       note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
            "%s %zu: its centre is rounded to f32 by up to %.3g of its size", what, k, qz);
   }
+}
+
+/* `u`: the messages give lengths in scene units, packed units times 1 / scale. */
+void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_report *r) {
+  double t0 = rc_now_ms();
+  *r = (rc_precision_report){0};
+  const dvec3 eye = rcm_to_d(p->frame.camera.eye);
+  const double u = 1.0 / p->scale;
+  judge_spheres(p, eye, u, algebraic, r);
+  judge_triangles(p, eye, u, r);
+  judge_quadrics(p, eye, u, r);
   r->ms = rc_now_ms() - t0;
 }
 
