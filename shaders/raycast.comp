@@ -32,11 +32,11 @@ layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth 
 layout(constant_id = RC_SPEC_SAMPLES) const uint spec_samples = RC_SAMPLES_FROM_FRAME;
 layout(constant_id = RC_SPEC_LIGHT_PASSES) const bool light_passes = false;
 
-layout(std140, binding = RC_BINDING_FRAME) uniform Frame { gpu_frame frame; };
+layout(std140, binding = RC_BINDING_FRAME) uniform Frame { packed_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
-layout(std430, binding = RC_BINDING_STATUS) buffer Status { gpu_status status; };
-layout(std430, binding = RC_BINDING_AOV) buffer Aov { gpu_aov aov[]; };
-layout(push_constant) uniform Push { gpu_push push; };
+layout(std430, binding = RC_BINDING_STATUS) buffer Status { packed_status status; };
+layout(std430, binding = RC_BINDING_AOV) buffer Aov { packed_aov aov[]; };
+layout(push_constant) uniform Push { packed_push push; };
 
 // Where each kind's object numbers begin (rc_intersect.glsl's object_kind), read from the
 // frame once, at the top of main(). Read where they are used, inside the BVH's leaf loop,
@@ -55,7 +55,7 @@ uint pass_first_light = 0u;
 uint pass_end_light = 0u;
 // The AOV record of this invocation's first sample (rc_trace.glsl fills it).
 bool aov_recording = false;
-gpu_aov aov_record;
+packed_aov aov_record;
 
 // The scene's features: the specialized constant, or the frame's value in a generic
 // pipeline. A constant lets the compiler drop unused code and fix the loop counts.

@@ -7,7 +7,7 @@
 // one once let it cut samples silently (rc_bvh.glsl). The host sizes
 // each dispatch so that the worst case stays under loop_budget (host/gpu/gpu_plan.c); if an
 // invocation still runs out, its whole workgroup discards the batch (raycast.comp) and the
-// pixels are counted in gpu_status.exhausted_pixels.
+// pixels are counted in packed_status.exhausted_pixels.
 uint budget_steps = 0u;
 bool budget_exhausted = false;
 // 1 + the object whose test the budget could not pay for (0: it ran out elsewhere): the

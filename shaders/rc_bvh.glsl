@@ -63,7 +63,7 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
     uint leaf = 0u;
     while (node < node_count && leaf == 0u && budget_steps < loop_budget) {
       budget_steps++;
-      gpu_bvh_node n = load_bvh_node(node);
+      packed_bvh_node n = load_bvh_node(node);
       real limit = any ? t_max : h.t;
       bool enters = intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) < real(RC_T_FAR);
       // An entered inner node continues at its first child, the next node; a missed box

@@ -3,7 +3,7 @@
 // j from the bottom is (i + 0.5, j + 0.5)). The basis u, v, w and the window l, r, b, t
 // come from the host, computed in f64 (GPU trig carries 2^-11 absolute error).
 void camera_ray(vec2 raster, out rvec3 origin, out rvec3 dir) {
-  gpu_camera c = frame.camera;
+  packed_camera c = frame.camera;
   real us = real(c.left) + (real(c.right) - real(c.left)) * real(raster.x) / real(c.width);
   real vs = real(c.bottom) + (real(c.top) - real(c.bottom)) * real(raster.y) / real(c.height);
   // Selects, not a branch: a branch whose condition depends on uniform values alone made

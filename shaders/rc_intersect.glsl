@@ -34,7 +34,7 @@ real first_root(real t_near, real t_exit, real t_max, out real side) {
 // pair q = -(b + sign(b) sqrt(D)), t0 = c/q, t1 = q (Press et al.). Nearest root in
 // (0, t_max], else RC_T_FAR. (t_max is inclusive so that a BVH, visiting objects out of
 // order, still sees equal-t hits and can apply the tie rule.)
-real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+real intersect_sphere_geometric(rvec3 o, rvec3 d, packed_sphere s, real t_max, out real side) {
   side = 0.0;
   real r = real(s.radius);
   precise rvec3 f = o - rvec3(s.center);
@@ -54,7 +54,7 @@ real intersect_sphere_geometric(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
 // variant, kept to measure what the geometric form buys (docs/accuracy.md). b^2 and 4ac
 // cancel once the sphere is far compared to its radius (docs/numerics.md §2). Not `precise`:
 // as shipped in textbooks, the driver may contract it.
-real intersect_sphere_algebraic(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+real intersect_sphere_algebraic(rvec3 o, rvec3 d, packed_sphere s, real t_max, out real side) {
   side = 0.0;
   real r = real(s.radius);
   rvec3 f = o - rvec3(s.center);
@@ -67,27 +67,27 @@ real intersect_sphere_algebraic(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out 
   return first_root((-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a), t_max, side);
 }
 
-real intersect_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+real intersect_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max, out real side) {
   if (sphere_formula == RC_SPHERE_ALGEBRAIC) return intersect_sphere_algebraic(o, d, s, t_max, side);
   return intersect_sphere_geometric(o, d, s, t_max, side);
 }
 
 // A point and a direction taken into a transformed sphere's object space.
-rvec3 transform_point(gpu_transform m, rvec3 p) {
+rvec3 transform_point(packed_transform m, rvec3 p) {
   return rvec3(dot(rvec3(m.row0.xyz), p) + real(m.row0.w), dot(rvec3(m.row1.xyz), p) + real(m.row1.w),
                dot(rvec3(m.row2.xyz), p) + real(m.row2.w));
 }
 
-rvec3 transform_vector(gpu_transform m, rvec3 v) {
+rvec3 transform_vector(packed_transform m, rvec3 v) {
   return rvec3(dot(rvec3(m.row0.xyz), v), dot(rvec3(m.row1.xyz), v), dot(rvec3(m.row2.xyz), v));
 }
 
 // A sphere, transformed or not. Through a transform the ray is intersected in object
 // space with its direction renormalised, and t scaled back by the direction's length, so
 // t stays the packed-space t (and t_max keeps its meaning).
-real intersect_any_sphere(rvec3 o, rvec3 d, gpu_sphere s, real t_max, out real side) {
+real intersect_any_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max, out real side) {
   if (!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) return intersect_sphere(o, d, s, t_max, side);
-  gpu_transform m = load_transform(s.transform);
+  packed_transform m = load_transform(s.transform);
   rvec3 d_obj = transform_vector(m, d);
   real len = length(d_obj);
   real t = intersect_sphere(transform_point(m, o), d_obj / len, s, t_max * len, side);
@@ -115,7 +115,7 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
   uint kind = object_kind(object, index);
   if (has_kind(RC_KIND_SPHERES) && kind == RC_HIT_SPHERE) return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
   if (has_kind(RC_KIND_TRIANGLES) && kind == RC_HIT_TRIANGLE) {
-    gpu_triangle tri = load_triangle(index);
+    packed_triangle tri = load_triangle(index);
     if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
     if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
     return intersect_triangle(o, sh, tri, t_max, bary);

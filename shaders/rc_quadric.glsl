@@ -1,5 +1,5 @@
-// rc_quadric.glsl: quadric surfaces and solids (gpu_quadric) and composite solids
-// (gpu_csg). A ray meets a solid in depth-ordered [in, out] intervals; a composite combines
+// rc_quadric.glsl: quadric surfaces and solids (packed_quadric) and composite solids
+// (packed_csg). A ray meets a solid in depth-ordered [in, out] intervals; a composite combines
 // its operands' interval lists (Roth, "Ray Casting for Modeling Solids", CGIP 18(2),
 // 1982) and its surface is the first interval end in front of the ray.
 //
@@ -22,13 +22,13 @@ uint csg_code(uint leaf, uint face, bool leaf_exit, bool flip) {
 
 // A point or direction in the quadric's frame (centre-relative, rotated; for a point,
 // pass p - center). Forming a, b, c there keeps the products small (docs/numerics.md §3).
-rvec3 quadric_local(gpu_quadric q, rvec3 v) {
+rvec3 quadric_local(packed_quadric q, rvec3 v) {
   precise rvec3 l = rvec3(dot(rvec3(q.axis_x), v), dot(rvec3(q.axis_y), v), dot(rvec3(q.axis_z), v));
   return l;
 }
 
 // M v for the quadric's symmetric 3x3 part.
-rvec3 quadric_apply(gpu_quadric q, rvec3 v) {
+rvec3 quadric_apply(packed_quadric q, rvec3 v) {
   rvec3 D = rvec3(q.diag);
   rvec3 O = rvec3(q.off);
   precise rvec3 r = rvec3(D.x * v.x + O.x * v.y + O.y * v.z, O.x * v.x + D.y * v.y + O.z * v.z,
@@ -47,7 +47,7 @@ rvec3 quadric_apply(gpu_quadric q, rvec3 v) {
 // q = -(h + sign(h) sqrt(disc)); a = 0 (a ray parallel to a cylinder's or paraboloid's
 // axis) has its own branch, and a root beyond RC_T_FAR (a tiny a) is pinned there
 // instead of dividing (docs/numerics.md §3).
-uint quadric_roots(gpu_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi) {
+uint quadric_roots(packed_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi) {
   t_lo = -real(RC_T_FAR);
   t_hi = real(RC_T_FAR);
   rvec3 D = rvec3(q.diag);
@@ -130,7 +130,7 @@ void box_span(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d, out real t_in, out real t_ou
 
 // The solid {Q <= 0} inside its box along the ray: up to two intervals, written to the
 // interval stack at `base` (csg_t, csg_code_of). Returns the number of interval ends.
-uint solid_intervals(uint leaf, gpu_quadric q, rvec3 o, rvec3 d, bool flip, uint base) {
+uint solid_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, bool flip, uint base) {
   rvec3 f = quadric_local(q, o - rvec3(q.center));
   rvec3 v = quadric_local(q, d);
   real b_in, b_out;
@@ -180,13 +180,13 @@ bool line_meets_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d) {
 // come; by parity the crossings pair up into [in, out] intervals (Roth 1982 with a mesh for
 // a solid). More crossings than q.mesh_crossings, or an odd number, fail the composite
 // `csg` loudly (crossing_blame), never a wrong pixel in silence.
-uint mesh_intervals(uint csg, gpu_quadric q, rvec3 o, rvec3 d, bool flip, uint base) {
+uint mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, bool flip, uint base) {
   ray_shear sh = ray_shear_for(d);
   uint n = 0u;
   uint node = q.mesh_root;
   while (node < q.mesh_end) {
     if (!budget_step()) return 0u;
-    gpu_bvh_node b = load_bvh_node(node);
+    packed_bvh_node b = load_bvh_node(node);
     if (!line_meets_box(rvec3(b.lo), rvec3(b.hi), o, d)) {
       node = b.skip;
       continue;
@@ -229,7 +229,7 @@ uint mesh_intervals(uint csg, gpu_quadric q, rvec3 o, rvec3 d, bool flip, uint b
 
 // An open quadric surface (no RC_QUADRIC_SOLID): the nearest root in (0, t_max] whose
 // point lies in the box, else RC_T_FAR.
-real intersect_quadric_surface(gpu_quadric q, rvec3 o, rvec3 d, real t_max) {
+real intersect_quadric_surface(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   rvec3 f = quadric_local(q, o - rvec3(q.center));
   rvec3 v = quadric_local(q, d);
   real t_lo, t_hi;
@@ -260,7 +260,7 @@ real first_interval_end(uint base, uint n, real t_max, out uint code) {
 // An infinite plane (RC_QUADRIC_UNBOUNDED): Q = 2 f.z, so the root is t = -f.z / v.z, the
 // value quadric_roots finds with a = 0, without its products; a one-sided plane is met
 // only by rays moving against its normal. A root beyond RC_T_FAR is a miss, not a division.
-real intersect_plane(gpu_quadric q, rvec3 o, rvec3 d, real t_max) {
+real intersect_plane(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   precise real fz = dot(rvec3(q.axis_z), o - rvec3(q.center));
   precise real vz = dot(rvec3(q.axis_z), d);
   bool facing = ((q.flags & RC_QUADRIC_ONE_SIDED) == 0u) || vz < 0.0;
@@ -272,7 +272,7 @@ real intersect_plane(gpu_quadric q, rvec3 o, rvec3 d, real t_max) {
 // A standalone quadric, open or solid: t and the code of the surface hit.
 real intersect_quadric(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
   code = 0u;
-  gpu_quadric q = load_quadric(index);
+  packed_quadric q = load_quadric(index);
   if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
     code = csg_code(index, 0u, false, false);
     return intersect_plane(q, o, d, t_max);
@@ -331,7 +331,7 @@ uint combine_intervals(uint op, uint a, uint na, uint b, uint nb) {
 // end of the result in (0, t_max].
 real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
   code = 0u;
-  gpu_csg c = load_csg(index);
+  packed_csg c = load_csg(index);
   uint count[RC_CSG_STACK];
   uint sp = 0u;
   for (uint k = 0u; k < c.count; k++) {
@@ -340,7 +340,7 @@ real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
     uint op = ins >> RC_CSG_OP_SHIFT;
     uint operand = ins & RC_CSG_OPERAND_MASK;
     if (op == RC_CSG_LEAF) {
-      gpu_quadric q = load_quadric(operand);
+      packed_quadric q = load_quadric(operand);
       if (has_kind(RC_KIND_CSG_MESHES) && (q.flags & RC_QUADRIC_MESH) != 0u) {
         count[sp] = mesh_intervals(index, q, o, d, false, sp * RC_CSG_SLOT);
         if (crossing_blame != 0u) return real(RC_T_FAR);
@@ -366,7 +366,7 @@ real intersect_csg(uint index, rvec3 o, rvec3 d, real t_max, out uint code) {
 // The outward normal (not normalized) of the surface a code names, at p: grad Q / 2 =
 // M f + L in the quadric's frame, or the box face's axis, rotated back to the packed
 // space; reversed for the surface of a subtracted solid.
-rvec3 quadric_normal(gpu_quadric q, uint code, rvec3 p, rvec3 d) {
+rvec3 quadric_normal(packed_quadric q, uint code, rvec3 p, rvec3 d) {
   uint face = (code >> 2u) & 3u;
   rvec3 g;
   if (face == 0u) {
@@ -385,7 +385,7 @@ rvec3 quadric_normal(gpu_quadric q, uint code, rvec3 p, rvec3 d) {
 // code `code`: the geometric normal turned against the ray at an entry and along it at an
 // exit (parity, not the file's winding, tells inside from outside), reversed for a
 // subtracted solid.
-rvec3 mesh_normal(gpu_triangle tri, uint code, rvec3 d) {
+rvec3 mesh_normal(packed_triangle tri, uint code, rvec3 d) {
   rvec3 g = cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0));
   bool leaving = (code & 2u) != 0u;
   if ((dot(g, d) > 0.0) != leaving) g = -g;

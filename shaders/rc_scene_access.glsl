@@ -41,10 +41,10 @@ layout(binding = RC_BINDING_CSG_PROGRAM) uniform usamplerBuffer scene_csg_progra
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 #endif
 
-gpu_sphere load_sphere(uint i) {
+packed_sphere load_sphere(uint i) {
   uvec4 a = texel(scene_spheres, i * RC_TEXELS_PER_SPHERE);
   uvec4 b = texel(scene_spheres, i * RC_TEXELS_PER_SPHERE + 1u);
-  gpu_sphere s;
+  packed_sphere s;
   s.center = uintBitsToFloat(a.xyz);
   s.radius = uintBitsToFloat(a.w);
   s.material = b.x;
@@ -52,19 +52,19 @@ gpu_sphere load_sphere(uint i) {
   return s;
 }
 
-gpu_transform load_transform(uint i) {
-  gpu_transform m;
+packed_transform load_transform(uint i) {
+  packed_transform m;
   m.row0 = uintBitsToFloat(texel(scene_transforms, i * RC_TEXELS_PER_TRANSFORM));
   m.row1 = uintBitsToFloat(texel(scene_transforms, i * RC_TEXELS_PER_TRANSFORM + 1u));
   m.row2 = uintBitsToFloat(texel(scene_transforms, i * RC_TEXELS_PER_TRANSFORM + 2u));
   return m;
 }
 
-gpu_triangle load_triangle(uint i) {
+packed_triangle load_triangle(uint i) {
   uvec4 a = texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE);
   uvec4 b = texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE + 1u);
   uvec4 c = texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE + 2u);
-  gpu_triangle t;
+  packed_triangle t;
   t.v0 = uintBitsToFloat(a.xyz);
   t.material = a.w;
   t.v1 = uintBitsToFloat(b.xyz);
@@ -73,21 +73,21 @@ gpu_triangle load_triangle(uint i) {
   return t;
 }
 
-gpu_vertex_normals load_vertex_normals(uint i) {
-  gpu_vertex_normals n;
+packed_vertex_normals load_vertex_normals(uint i) {
+  packed_vertex_normals n;
   n.n0 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS).xyz);
   n.n1 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS + 1u).xyz);
   n.n2 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS + 2u).xyz);
   return n;
 }
 
-gpu_material load_material(uint i) {
+packed_material load_material(uint i) {
   uvec4 a = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL);
   uvec4 b = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 1u);
   uvec4 c = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 2u);
   uvec4 d = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 3u);
   uvec4 e = texel(scene_materials, i * RC_TEXELS_PER_MATERIAL + 4u);
-  gpu_material m;
+  packed_material m;
   m.ambient = uintBitsToFloat(a.xyz);
   m.shininess = uintBitsToFloat(a.w);
   m.diffuse = uintBitsToFloat(b.xyz);
@@ -97,10 +97,10 @@ gpu_material load_material(uint i) {
   return m;
 }
 
-gpu_bvh_node load_bvh_node(uint i) {
+packed_bvh_node load_bvh_node(uint i) {
   uvec4 a = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE);
   uvec4 b = texel(scene_bvh_nodes, i * RC_TEXELS_PER_BVH_NODE + 1u);
-  gpu_bvh_node n;
+  packed_bvh_node n;
   n.lo = uintBitsToFloat(a.xyz);
   n.skip = a.w;
   n.hi = uintBitsToFloat(b.xyz);
@@ -110,12 +110,12 @@ gpu_bvh_node load_bvh_node(uint i) {
 
 uint load_bvh_prim(uint i) { return texel(scene_bvh_prims, i >> 2u)[i & 3u]; }
 
-gpu_quadric load_quadric(uint i) {
+packed_quadric load_quadric(uint i) {
   uint k = i * RC_TEXELS_PER_QUADRIC;
   uvec4 a = texel(scene_quadrics, k);
   uvec4 b = texel(scene_quadrics, k + 1u);
   uvec4 c = texel(scene_quadrics, k + 2u);
-  gpu_quadric q;
+  packed_quadric q;
   q.center = uintBitsToFloat(a.xyz);
   q.material = a.w;
   q.axis_x = uintBitsToFloat(b.xyz);
@@ -137,10 +137,10 @@ gpu_quadric load_quadric(uint i) {
   return q;
 }
 
-gpu_csg load_csg(uint i) {
+packed_csg load_csg(uint i) {
   uvec4 a = texel(scene_csg, i * RC_TEXELS_PER_CSG);
   uvec4 b = texel(scene_csg, i * RC_TEXELS_PER_CSG + 1u);
-  gpu_csg c;
+  packed_csg c;
   c.lo = uintBitsToFloat(a.xyz);
   c.first = a.w;
   c.hi = uintBitsToFloat(b.xyz);
@@ -150,11 +150,11 @@ gpu_csg load_csg(uint i) {
 
 uint load_csg_instruction(uint i) { return texel(scene_csg_program, i >> 2u)[i & 3u]; }
 
-gpu_light load_light(uint i) {
+packed_light load_light(uint i) {
   uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
   uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
   uvec4 c = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 2u);
-  gpu_light l;
+  packed_light l;
   l.position = uintBitsToFloat(a.xyz);
   l.type = a.w;
   l.intensity = uintBitsToFloat(b.xyz);
@@ -162,27 +162,27 @@ gpu_light load_light(uint i) {
   return l;
 }
 #else
-layout(std430, binding = RC_BINDING_SPHERES) readonly buffer Spheres { gpu_sphere scene_spheres[]; };
-layout(std430, binding = RC_BINDING_TRIANGLES) readonly buffer Triangles { gpu_triangle scene_triangles[]; };
-layout(std430, binding = RC_BINDING_MATERIALS) readonly buffer Materials { gpu_material scene_materials[]; };
-layout(std430, binding = RC_BINDING_LIGHTS) readonly buffer Lights { gpu_light scene_lights[]; };
-layout(std430, binding = RC_BINDING_BVH_NODES) readonly buffer BvhNodes { gpu_bvh_node scene_bvh_nodes[]; };
+layout(std430, binding = RC_BINDING_SPHERES) readonly buffer Spheres { packed_sphere scene_spheres[]; };
+layout(std430, binding = RC_BINDING_TRIANGLES) readonly buffer Triangles { packed_triangle scene_triangles[]; };
+layout(std430, binding = RC_BINDING_MATERIALS) readonly buffer Materials { packed_material scene_materials[]; };
+layout(std430, binding = RC_BINDING_LIGHTS) readonly buffer Lights { packed_light scene_lights[]; };
+layout(std430, binding = RC_BINDING_BVH_NODES) readonly buffer BvhNodes { packed_bvh_node scene_bvh_nodes[]; };
 layout(std430, binding = RC_BINDING_BVH_PRIMS) readonly buffer BvhPrims { uint scene_bvh_prims[]; };
-layout(std430, binding = RC_BINDING_TRANSFORMS) readonly buffer Transforms { gpu_transform scene_transforms[]; };
-layout(std430, binding = RC_BINDING_NORMALS) readonly buffer Normals { gpu_vertex_normals scene_normals[]; };
-layout(std430, binding = RC_BINDING_QUADRICS) readonly buffer Quadrics { gpu_quadric scene_quadrics[]; };
-layout(std430, binding = RC_BINDING_CSG) readonly buffer Csg { gpu_csg scene_csg[]; };
+layout(std430, binding = RC_BINDING_TRANSFORMS) readonly buffer Transforms { packed_transform scene_transforms[]; };
+layout(std430, binding = RC_BINDING_NORMALS) readonly buffer Normals { packed_vertex_normals scene_normals[]; };
+layout(std430, binding = RC_BINDING_QUADRICS) readonly buffer Quadrics { packed_quadric scene_quadrics[]; };
+layout(std430, binding = RC_BINDING_CSG) readonly buffer Csg { packed_csg scene_csg[]; };
 layout(std430, binding = RC_BINDING_CSG_PROGRAM) readonly buffer CsgProgram { uint scene_csg_program[]; };
 
-gpu_sphere load_sphere(uint i) { return scene_spheres[i]; }
-gpu_triangle load_triangle(uint i) { return scene_triangles[i]; }
-gpu_material load_material(uint i) { return scene_materials[i]; }
-gpu_light load_light(uint i) { return scene_lights[i]; }
-gpu_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
+packed_sphere load_sphere(uint i) { return scene_spheres[i]; }
+packed_triangle load_triangle(uint i) { return scene_triangles[i]; }
+packed_material load_material(uint i) { return scene_materials[i]; }
+packed_light load_light(uint i) { return scene_lights[i]; }
+packed_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
 uint load_bvh_prim(uint i) { return scene_bvh_prims[i]; }
-gpu_transform load_transform(uint i) { return scene_transforms[i]; }
-gpu_vertex_normals load_vertex_normals(uint i) { return scene_normals[i]; }
-gpu_quadric load_quadric(uint i) { return scene_quadrics[i]; }
-gpu_csg load_csg(uint i) { return scene_csg[i]; }
+packed_transform load_transform(uint i) { return scene_transforms[i]; }
+packed_vertex_normals load_vertex_normals(uint i) { return scene_normals[i]; }
+packed_quadric load_quadric(uint i) { return scene_quadrics[i]; }
+packed_csg load_csg(uint i) { return scene_csg[i]; }
 uint load_csg_instruction(uint i) { return scene_csg_program[i]; }
 #endif

@@ -21,7 +21,7 @@ struct surface {
 // surface is Q's rounding error over |grad Q| (pbrt re-projects its quadrics' hit points
 // for the same reason, pbrt-v4 shapes.h); the error bound is that distance plus the
 // rounding of p - c (which Q saw) and of the step.
-rvec3 quadric_refine(gpu_quadric q, rvec3 p, inout rvec3 p_error) {
+rvec3 quadric_refine(packed_quadric q, rvec3 p, inout rvec3 p_error) {
   rvec3 L = rvec3(q.linear);
   precise rvec3 pc = p - rvec3(q.center);
   precise rvec3 f = quadric_local(q, pc);
@@ -47,12 +47,12 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
   rvec3 n;
   if (has_kind(RC_KIND_SPHERES) && h.kind == RC_HIT_SPHERE) {
-    gpu_sphere s = load_sphere(h.index);
+    packed_sphere s = load_sphere(h.index);
     real r = real(s.radius);
     rvec3 oo = o;
     rvec3 dd = d;
     real t_obj = h.t;
-    gpu_transform m;
+    packed_transform m;
     if (has_kind(RC_KIND_SPHERE_TRANSFORMS) && s.transform != RC_NO_TRANSFORM) {
       m = load_transform(s.transform);
       oo = transform_point(m, o);
@@ -100,18 +100,18 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     sf.p_error = gamma_bound(32.0) * (abs(o) + abs(td));
     uint leaf = h.part >> RC_CSG_CODE_LEAF_SHIFT;  // the surface's leaf (rc_quadric.glsl, csg_code)
     if ((h.part & RC_CSG_CODE_MESH) != 0u) {
-      gpu_triangle tri = load_triangle(leaf);
+      packed_triangle tri = load_triangle(leaf);
       n = normalize(mesh_normal(tri, h.part, d));
       sf.material = tri.material;
     } else {
-      gpu_quadric q = load_quadric(leaf);
+      packed_quadric q = load_quadric(leaf);
       if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
       n = normalize(quadric_normal(q, h.part, sf.p, d));
       sf.material = q.material;
     }
 #endif
   } else {
-    gpu_triangle tri = load_triangle(h.index);
+    packed_triangle tri = load_triangle(h.index);
     precise rvec3 p0 = h.bary.x * rvec3(tri.v0);
     precise rvec3 p1 = h.bary.y * rvec3(tri.v1);
     precise rvec3 p2 = h.bary.z * rvec3(tri.v2);
@@ -121,7 +121,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     n = normalize(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
     sf.material = tri.material;
     if (has_kind(RC_KIND_VERTEX_NORMALS) && tri.normals != RC_NO_NORMALS) {
-      gpu_vertex_normals vn = load_vertex_normals(tri.normals);
+      packed_vertex_normals vn = load_vertex_normals(tri.normals);
       rvec3 ng = (dot(n, d) > 0.0) ? -n : n;
       rvec3 ns = normalize(h.bary.x * rvec3(vn.n0) + h.bary.y * rvec3(vn.n1) + h.bary.z * rvec3(vn.n2));
       sf.ng = ng;
@@ -199,7 +199,7 @@ real specular_term(rvec3 n, rvec3 l, rvec3 v, float shininess) {
 // over its attenuation c0 + c1 r + c2 r^2), and the shadow ray's direction and extent
 // (short of the light by RC_SHADOW_EPSILON, so the light's own position never blocks).
 // False for a point light exactly at p (r = 0), which contributes nothing.
-bool light_at(gpu_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 irradiance, out rvec3 to_light,
+bool light_at(packed_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 irradiance, out rvec3 to_light,
               out real shadow_t_max) {
   if (light.type == RC_LIGHT_POINT) {
     rvec3 lp = rvec3(light.position);
@@ -225,14 +225,14 @@ bool light_at(gpu_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 irr
 
 // What an unblocked light adds: Lambert diffuse plus the specular lobe, scaled by its
 // irradiance (n_dot_l = dot(n, l) > 0).
-rvec3 light_contribution(gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l, rvec3 irradiance) {
+rvec3 light_contribution(packed_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l, rvec3 irradiance) {
   return irradiance * (n_dot_l * rvec3(m.diffuse) + specular_term(n, l, v, m.shininess) * rvec3(m.specular));
 }
 
 // Direct light at the surface seen along d: ambient, then each light whose shadow ray is
 // unblocked (in a light pass, the pass's lights only: raycast.comp).
 rvec3 shade_phong(surface sf, rvec3 d) {
-  gpu_material m = load_material(sf.material);
+  packed_material m = load_material(sf.material);
   rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
   if (light_pass_begin() != 0u) color = rvec3(0.0);
   rvec3 v = -d;

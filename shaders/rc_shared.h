@@ -19,40 +19,40 @@ typedef uint32_t uint;
 typedef struct { float x, y, z; } vec3;
 typedef struct { float x, y, z, w; } vec4;
 /* GLSL has no typedef; C gets the struct names as type names up front. */
-typedef struct gpu_camera gpu_camera;
-typedef struct gpu_frame gpu_frame;
-typedef struct gpu_sphere gpu_sphere;
-typedef struct gpu_triangle gpu_triangle;
-typedef struct gpu_material gpu_material;
-typedef struct gpu_light gpu_light;
-typedef struct gpu_status gpu_status;
-typedef struct gpu_push gpu_push;
-typedef struct gpu_aov gpu_aov;
-typedef struct gpu_bvh_node gpu_bvh_node;
-typedef struct gpu_transform gpu_transform;
-typedef struct gpu_vertex_normals gpu_vertex_normals;
-typedef struct gpu_quadric gpu_quadric;
-typedef struct gpu_csg gpu_csg;
+typedef struct packed_camera packed_camera;
+typedef struct packed_frame packed_frame;
+typedef struct packed_sphere packed_sphere;
+typedef struct packed_triangle packed_triangle;
+typedef struct packed_material packed_material;
+typedef struct packed_light packed_light;
+typedef struct packed_status packed_status;
+typedef struct packed_push packed_push;
+typedef struct packed_aov packed_aov;
+typedef struct packed_bvh_node packed_bvh_node;
+typedef struct packed_transform packed_transform;
+typedef struct packed_vertex_normals packed_vertex_normals;
+typedef struct packed_quadric packed_quadric;
+typedef struct packed_csg packed_csg;
 #endif
 
 /* Descriptor bindings (set 0). The scene arrays (spheres, triangles, materials, lights,
  * the BVH's nodes and references, transforms, normals, quadrics, composites and their
  * programs: 11 in all) are read either as storage buffers or as RGBA32UI uniform texel
  * buffers (rc_scene_access.glsl); the binding numbers are the same for both kinds. */
-#define RC_BINDING_FRAME 0     /* uniform gpu_frame */
-#define RC_BINDING_SPHERES 1   /* gpu_sphere[] */
-#define RC_BINDING_TRIANGLES 2 /* gpu_triangle[] */
-#define RC_BINDING_MATERIALS 3 /* gpu_material[] */
-#define RC_BINDING_LIGHTS 4    /* gpu_light[] */
+#define RC_BINDING_FRAME 0     /* uniform packed_frame */
+#define RC_BINDING_SPHERES 1   /* packed_sphere[] */
+#define RC_BINDING_TRIANGLES 2 /* packed_triangle[] */
+#define RC_BINDING_MATERIALS 3 /* packed_material[] */
+#define RC_BINDING_LIGHTS 4    /* packed_light[] */
 #define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = progress (RC_SPEC_LIGHT_PASSES) */
-#define RC_BINDING_STATUS 6    /* gpu_status */
-#define RC_BINDING_AOV 7       /* gpu_aov per tile pixel (written only when aov_enabled) */
-#define RC_BINDING_BVH_NODES 8 /* gpu_bvh_node[] (texel or storage, like the scene arrays) */
+#define RC_BINDING_STATUS 6    /* packed_status */
+#define RC_BINDING_AOV 7       /* packed_aov per tile pixel (written only when aov_enabled) */
+#define RC_BINDING_BVH_NODES 8 /* packed_bvh_node[] (texel or storage, like the scene arrays) */
 #define RC_BINDING_BVH_PRIMS 9 /* uint[] object references of the leaves, 4 per texel */
-#define RC_BINDING_TRANSFORMS 10 /* gpu_transform[] of transformed spheres */
-#define RC_BINDING_NORMALS 11    /* gpu_vertex_normals[] of smooth-shaded triangles */
-#define RC_BINDING_QUADRICS 12   /* gpu_quadric[]: the standalone ones, then the CSG leaves */
-#define RC_BINDING_CSG 13        /* gpu_csg[] */
+#define RC_BINDING_TRANSFORMS 10 /* packed_transform[] of transformed spheres */
+#define RC_BINDING_NORMALS 11    /* packed_vertex_normals[] of smooth-shaded triangles */
+#define RC_BINDING_QUADRICS 12   /* packed_quadric[]: the standalone ones, then the CSG leaves */
+#define RC_BINDING_CSG 13        /* packed_csg[] */
 #define RC_BINDING_CSG_PROGRAM 14 /* uint[] CSG instructions, 4 per texel */
 #define RC_BINDING_COUNT 15
 
@@ -60,7 +60,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SPEC_LOCAL_SIZE_X 0
 #define RC_SPEC_LOCAL_SIZE_Y 1
 #define RC_SPEC_LOOP_BUDGET 2
-#define RC_SPEC_AOV 3 /* bool: record the decision outputs (gpu_aov) */
+#define RC_SPEC_AOV 3 /* bool: record the decision outputs (packed_aov) */
 #define RC_SPEC_BVH 4 /* bool: traverse the BVH (else test every object) */
 #define RC_SPEC_SPHERE_FORMULA 5   /* RC_SPHERE_* */
 #define RC_SPEC_TRIANGLE_FORMULA 6 /* RC_TRIANGLE_* */
@@ -95,7 +95,7 @@ typedef struct gpu_csg gpu_csg;
 #define RC_SAMPLES_FROM_FRAME 0xffffffffu
 
 /* The speed/accuracy knobs (docs/accuracy.md). The first of each is the robust default;
- * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in gpu_frame. */
+ * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in packed_frame. */
 #define RC_SPHERE_GEOMETRIC 0u  /* Hearn-Baker discriminant, stable roots, centre-relative normal */
 #define RC_SPHERE_ALGEBRAIC 1u  /* textbook b^2 - 4ac, (-b -/+ sqrt)/2a, normal from o + t d */
 #define RC_TRIANGLE_WATERTIGHT 0u       /* Woop-Benthin-Wald, precise edge functions */
@@ -156,7 +156,7 @@ typedef struct gpu_csg gpu_csg;
 
 /* Camera, in the packed (camera-relative) space (docs/scene-format.md): the image plane spans
  * [left, right] x [bottom, top] at distance `focal` along -w from the eye. */
-struct gpu_camera {
+struct packed_camera {
   vec3 eye;   float left;
   vec3 u;     float right;
   vec3 v;     float bottom;
@@ -165,8 +165,8 @@ struct gpu_camera {
 };
 
 /* The uniform buffer: the camera and everything else that is constant for a frame. */
-struct gpu_frame {
-  gpu_camera camera;
+struct packed_frame {
+  packed_camera camera;
   vec3 background;    uint specular_model;
   vec3 ambient_light; uint reflection_depth;
   uint sphere_count;  uint triangle_count; uint material_count; uint light_count;
@@ -185,10 +185,10 @@ struct gpu_frame {
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
- * object space and the ray is taken there by gpu_transform: an ellipsoid (CSE167 format,
+ * object space and the ray is taken there by packed_transform: an ellipsoid (CSE167 format,
  * JSON "transform"). */
 #define RC_NO_TRANSFORM 0xffffffffu
-struct gpu_sphere {
+struct packed_sphere {
   vec3 center; float radius;
   uint material; uint transform; uint pad1; uint pad2;
 };
@@ -196,7 +196,7 @@ struct gpu_sphere {
 /* object_from_packed as the rows of a 3x4 affine matrix: p_obj = (row . (p, 1)). Its
  * linear part A also carries normals back: n_world ~ A^T n_obj (the inverse transpose of
  * world_from_object). */
-struct gpu_transform {
+struct packed_transform {
   vec4 row0;
   vec4 row1;
   vec4 row2;
@@ -205,15 +205,15 @@ struct gpu_transform {
 
 /* Vertices in the packed space; the geometric normal is cross(v1 - v0, v2 - v0). With
  * normals != RC_NO_NORMALS the triangle is smooth shaded: its shading normal interpolates
- * gpu_vertex_normals[normals] by the barycentrics (mesh files with vertex normals). */
+ * packed_vertex_normals[normals] by the barycentrics (mesh files with vertex normals). */
 #define RC_NO_NORMALS 0xffffffffu
-struct gpu_triangle {
+struct packed_triangle {
   vec3 v0; uint material;
   vec3 v1; uint normals;
   vec3 v2; float pad1;
 };
 
-struct gpu_vertex_normals {
+struct packed_vertex_normals {
   vec3 n0; float pad0;
   vec3 n1; float pad1;
   vec3 n2; float pad2;
@@ -251,7 +251,7 @@ struct gpu_vertex_normals {
  * (the scene's "max_crossings"); its inside is where the number of crossings before a point
  * is odd (rc_quadric.glsl, mesh_intervals). */
 #define RC_QUADRIC_MESH 8u
-struct gpu_quadric {
+struct packed_quadric {
   vec3 center; uint material;
   vec3 axis_x; float constant;
   vec3 axis_y; uint flags;
@@ -293,14 +293,14 @@ struct gpu_quadric {
 #define RC_QR_ALL 1u     /* everywhere */
 #define RC_QR_BETWEEN 2u /* [t_lo, t_hi] */
 #define RC_QR_OUTSIDE 3u /* (-inf, t_lo] and [t_hi, inf) */
-struct gpu_csg {
+struct packed_csg {
   vec3 lo; uint first;
   vec3 hi; uint count;
 };
 #define RC_TEXELS_PER_CSG 2
 /* Phong material: L = ambient*Ia + emission + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
  * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel. */
-struct gpu_material {
+struct packed_material {
   vec3 ambient;  float shininess;
   vec3 diffuse;  float pad0;
   vec3 specular; float pad1;
@@ -311,14 +311,14 @@ struct gpu_material {
 /* Point light: `position` in the packed space, irradiance intensity / (c0 + c1 r + c2 r^2)
  * with (c0, c1, c2) = attenuation ((0, 0, 1) is the physical 1/r^2).
  * Directional light: `position` holds the unit direction the light travels in; no falloff. */
-struct gpu_light {
+struct packed_light {
   vec3 position;    uint type;
   vec3 intensity;   float pad0;
   vec3 attenuation; float pad1;
 };
 
 /* Written by the shader with atomics, read back after each dispatch. */
-struct gpu_status {
+struct packed_status {
   uint exhausted_pixels;  /* pixels whose batch was discarded: their workgroup ran out of loop budget */
   uint incomplete_pixels; /* pixels that still have samples to take */
   uint shadow_rays;
@@ -335,7 +335,7 @@ struct gpu_status {
  * triangles S..S+T-1, quadrics, composites; shadow_bits: bit i set when light i faces the surface but its shadow
  * ray is blocked (lights 0..23: the bits stay exact in a float). */
 #define RC_AOV_SHADOW_LIGHTS 24u
-struct gpu_aov {
+struct packed_aov {
   float hit; float object; float t; float shadow_bits;
   vec3 normal; float pad0;
 };
@@ -346,7 +346,7 @@ struct gpu_aov {
  * (first << RC_BVH_LEAF_SHIFT) | count: `count` objects starting at `first` in the
  * object-reference array, whose entries are object numbers (spheres 0..S-1, then
  * triangles S..S+T-1, standalone quadrics, composites). */
-struct gpu_bvh_node {
+struct packed_bvh_node {
   vec3 lo; uint skip;
   vec3 hi; uint leaf;
 };
@@ -355,7 +355,7 @@ struct gpu_bvh_node {
 #define RC_BVH_LEAF_MAX 8u /* objects per leaf: fits below 1 << RC_BVH_LEAF_SHIFT */
 
 /* Per-dispatch parameters: the tile and the sample batch. */
-struct gpu_push {
+struct packed_push {
   uint tile_x; uint tile_y; uint tile_width; uint tile_height;
   uint batch_samples;
   uint row_stride; /* workgroup row i renders block row (i * row_stride) mod rows (gpu_tiles.h) */
@@ -375,83 +375,83 @@ struct gpu_push {
 #define RC_ASSERT_SIZE(type, size) _Static_assert(sizeof(type) == (size), #type " size")
 
 RC_ASSERT_SIZE(vec3, 12);
-RC_ASSERT_LAYOUT(gpu_camera, eye, 0);    RC_ASSERT_LAYOUT(gpu_camera, left, 12);
-RC_ASSERT_LAYOUT(gpu_camera, u, 16);     RC_ASSERT_LAYOUT(gpu_camera, right, 28);
-RC_ASSERT_LAYOUT(gpu_camera, v, 32);     RC_ASSERT_LAYOUT(gpu_camera, bottom, 44);
-RC_ASSERT_LAYOUT(gpu_camera, w, 48);     RC_ASSERT_LAYOUT(gpu_camera, top, 60);
-RC_ASSERT_LAYOUT(gpu_camera, focal, 64); RC_ASSERT_LAYOUT(gpu_camera, projection, 68);
-RC_ASSERT_LAYOUT(gpu_camera, width, 72); RC_ASSERT_LAYOUT(gpu_camera, height, 76);
-RC_ASSERT_SIZE(gpu_camera, 80);
+RC_ASSERT_LAYOUT(packed_camera, eye, 0);    RC_ASSERT_LAYOUT(packed_camera, left, 12);
+RC_ASSERT_LAYOUT(packed_camera, u, 16);     RC_ASSERT_LAYOUT(packed_camera, right, 28);
+RC_ASSERT_LAYOUT(packed_camera, v, 32);     RC_ASSERT_LAYOUT(packed_camera, bottom, 44);
+RC_ASSERT_LAYOUT(packed_camera, w, 48);     RC_ASSERT_LAYOUT(packed_camera, top, 60);
+RC_ASSERT_LAYOUT(packed_camera, focal, 64); RC_ASSERT_LAYOUT(packed_camera, projection, 68);
+RC_ASSERT_LAYOUT(packed_camera, width, 72); RC_ASSERT_LAYOUT(packed_camera, height, 76);
+RC_ASSERT_SIZE(packed_camera, 80);
 
-RC_ASSERT_LAYOUT(gpu_frame, camera, 0);
-RC_ASSERT_LAYOUT(gpu_frame, background, 80);     RC_ASSERT_LAYOUT(gpu_frame, specular_model, 92);
-RC_ASSERT_LAYOUT(gpu_frame, ambient_light, 96);  RC_ASSERT_LAYOUT(gpu_frame, reflection_depth, 108);
-RC_ASSERT_LAYOUT(gpu_frame, sphere_count, 112);  RC_ASSERT_LAYOUT(gpu_frame, triangle_count, 116);
-RC_ASSERT_LAYOUT(gpu_frame, material_count, 120); RC_ASSERT_LAYOUT(gpu_frame, light_count, 124);
-RC_ASSERT_LAYOUT(gpu_frame, samples_per_pixel, 128); RC_ASSERT_LAYOUT(gpu_frame, seed, 132);
-RC_ASSERT_LAYOUT(gpu_frame, strata_x, 136);      RC_ASSERT_LAYOUT(gpu_frame, strata_y, 140);
-RC_ASSERT_LAYOUT(gpu_frame, object_count, 144);  RC_ASSERT_LAYOUT(gpu_frame, bvh_node_count, 148);
-RC_ASSERT_LAYOUT(gpu_frame, inv_strata_x, 152);  RC_ASSERT_LAYOUT(gpu_frame, inv_strata_y, 156);
-RC_ASSERT_LAYOUT(gpu_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(gpu_frame, triangle_formula, 164);
-RC_ASSERT_LAYOUT(gpu_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(gpu_frame, offset_epsilon, 172);
-RC_ASSERT_LAYOUT(gpu_frame, quadric_count, 176); RC_ASSERT_LAYOUT(gpu_frame, csg_count, 180);
-RC_ASSERT_LAYOUT(gpu_frame, shadows, 184); RC_ASSERT_LAYOUT(gpu_frame, csg_max_steps, 188);
-RC_ASSERT_LAYOUT(gpu_frame, plane_count, 192);
-RC_ASSERT_SIZE(gpu_frame, 208);
-RC_ASSERT_LAYOUT(gpu_quadric, center, 0);   RC_ASSERT_LAYOUT(gpu_quadric, material, 12);
-RC_ASSERT_LAYOUT(gpu_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(gpu_quadric, constant, 28);
-RC_ASSERT_LAYOUT(gpu_quadric, axis_y, 32);  RC_ASSERT_LAYOUT(gpu_quadric, flags, 44);
-RC_ASSERT_LAYOUT(gpu_quadric, axis_z, 48);  RC_ASSERT_LAYOUT(gpu_quadric, mesh_root, 60);
-RC_ASSERT_LAYOUT(gpu_quadric, diag, 64);    RC_ASSERT_LAYOUT(gpu_quadric, mesh_end, 76);
-RC_ASSERT_LAYOUT(gpu_quadric, off, 80);     RC_ASSERT_LAYOUT(gpu_quadric, mesh_crossings, 92);     RC_ASSERT_LAYOUT(gpu_quadric, linear, 96);
-RC_ASSERT_LAYOUT(gpu_quadric, lo, 112);     RC_ASSERT_LAYOUT(gpu_quadric, hi, 128);
-RC_ASSERT_SIZE(gpu_quadric, 16 * RC_TEXELS_PER_QUADRIC);
-RC_ASSERT_LAYOUT(gpu_csg, lo, 0);  RC_ASSERT_LAYOUT(gpu_csg, first, 12);
-RC_ASSERT_LAYOUT(gpu_csg, hi, 16); RC_ASSERT_LAYOUT(gpu_csg, count, 28);
-RC_ASSERT_SIZE(gpu_csg, 16 * RC_TEXELS_PER_CSG);
+RC_ASSERT_LAYOUT(packed_frame, camera, 0);
+RC_ASSERT_LAYOUT(packed_frame, background, 80);     RC_ASSERT_LAYOUT(packed_frame, specular_model, 92);
+RC_ASSERT_LAYOUT(packed_frame, ambient_light, 96);  RC_ASSERT_LAYOUT(packed_frame, reflection_depth, 108);
+RC_ASSERT_LAYOUT(packed_frame, sphere_count, 112);  RC_ASSERT_LAYOUT(packed_frame, triangle_count, 116);
+RC_ASSERT_LAYOUT(packed_frame, material_count, 120); RC_ASSERT_LAYOUT(packed_frame, light_count, 124);
+RC_ASSERT_LAYOUT(packed_frame, samples_per_pixel, 128); RC_ASSERT_LAYOUT(packed_frame, seed, 132);
+RC_ASSERT_LAYOUT(packed_frame, strata_x, 136);      RC_ASSERT_LAYOUT(packed_frame, strata_y, 140);
+RC_ASSERT_LAYOUT(packed_frame, object_count, 144);  RC_ASSERT_LAYOUT(packed_frame, bvh_node_count, 148);
+RC_ASSERT_LAYOUT(packed_frame, inv_strata_x, 152);  RC_ASSERT_LAYOUT(packed_frame, inv_strata_y, 156);
+RC_ASSERT_LAYOUT(packed_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(packed_frame, triangle_formula, 164);
+RC_ASSERT_LAYOUT(packed_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(packed_frame, offset_epsilon, 172);
+RC_ASSERT_LAYOUT(packed_frame, quadric_count, 176); RC_ASSERT_LAYOUT(packed_frame, csg_count, 180);
+RC_ASSERT_LAYOUT(packed_frame, shadows, 184); RC_ASSERT_LAYOUT(packed_frame, csg_max_steps, 188);
+RC_ASSERT_LAYOUT(packed_frame, plane_count, 192);
+RC_ASSERT_SIZE(packed_frame, 208);
+RC_ASSERT_LAYOUT(packed_quadric, center, 0);   RC_ASSERT_LAYOUT(packed_quadric, material, 12);
+RC_ASSERT_LAYOUT(packed_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(packed_quadric, constant, 28);
+RC_ASSERT_LAYOUT(packed_quadric, axis_y, 32);  RC_ASSERT_LAYOUT(packed_quadric, flags, 44);
+RC_ASSERT_LAYOUT(packed_quadric, axis_z, 48);  RC_ASSERT_LAYOUT(packed_quadric, mesh_root, 60);
+RC_ASSERT_LAYOUT(packed_quadric, diag, 64);    RC_ASSERT_LAYOUT(packed_quadric, mesh_end, 76);
+RC_ASSERT_LAYOUT(packed_quadric, off, 80);     RC_ASSERT_LAYOUT(packed_quadric, mesh_crossings, 92);     RC_ASSERT_LAYOUT(packed_quadric, linear, 96);
+RC_ASSERT_LAYOUT(packed_quadric, lo, 112);     RC_ASSERT_LAYOUT(packed_quadric, hi, 128);
+RC_ASSERT_SIZE(packed_quadric, 16 * RC_TEXELS_PER_QUADRIC);
+RC_ASSERT_LAYOUT(packed_csg, lo, 0);  RC_ASSERT_LAYOUT(packed_csg, first, 12);
+RC_ASSERT_LAYOUT(packed_csg, hi, 16); RC_ASSERT_LAYOUT(packed_csg, count, 28);
+RC_ASSERT_SIZE(packed_csg, 16 * RC_TEXELS_PER_CSG);
 
-RC_ASSERT_LAYOUT(gpu_bvh_node, lo, 0);   RC_ASSERT_LAYOUT(gpu_bvh_node, skip, 12);
-RC_ASSERT_LAYOUT(gpu_bvh_node, hi, 16);  RC_ASSERT_LAYOUT(gpu_bvh_node, leaf, 28);
-RC_ASSERT_SIZE(gpu_bvh_node, 16 * RC_TEXELS_PER_BVH_NODE);
+RC_ASSERT_LAYOUT(packed_bvh_node, lo, 0);   RC_ASSERT_LAYOUT(packed_bvh_node, skip, 12);
+RC_ASSERT_LAYOUT(packed_bvh_node, hi, 16);  RC_ASSERT_LAYOUT(packed_bvh_node, leaf, 28);
+RC_ASSERT_SIZE(packed_bvh_node, 16 * RC_TEXELS_PER_BVH_NODE);
 
-RC_ASSERT_LAYOUT(gpu_sphere, center, 0); RC_ASSERT_LAYOUT(gpu_sphere, radius, 12);
-RC_ASSERT_LAYOUT(gpu_sphere, material, 16); RC_ASSERT_LAYOUT(gpu_sphere, transform, 20);
-RC_ASSERT_LAYOUT(gpu_transform, row0, 0);   RC_ASSERT_LAYOUT(gpu_transform, row1, 16);
-RC_ASSERT_LAYOUT(gpu_transform, row2, 32);
-RC_ASSERT_SIZE(gpu_transform, 16 * RC_TEXELS_PER_TRANSFORM);
-RC_ASSERT_SIZE(gpu_sphere, 16 * RC_TEXELS_PER_SPHERE);
+RC_ASSERT_LAYOUT(packed_sphere, center, 0); RC_ASSERT_LAYOUT(packed_sphere, radius, 12);
+RC_ASSERT_LAYOUT(packed_sphere, material, 16); RC_ASSERT_LAYOUT(packed_sphere, transform, 20);
+RC_ASSERT_LAYOUT(packed_transform, row0, 0);   RC_ASSERT_LAYOUT(packed_transform, row1, 16);
+RC_ASSERT_LAYOUT(packed_transform, row2, 32);
+RC_ASSERT_SIZE(packed_transform, 16 * RC_TEXELS_PER_TRANSFORM);
+RC_ASSERT_SIZE(packed_sphere, 16 * RC_TEXELS_PER_SPHERE);
 
-RC_ASSERT_LAYOUT(gpu_triangle, v0, 0);  RC_ASSERT_LAYOUT(gpu_triangle, material, 12);
-RC_ASSERT_LAYOUT(gpu_triangle, v1, 16); RC_ASSERT_LAYOUT(gpu_triangle, normals, 28);
-RC_ASSERT_LAYOUT(gpu_triangle, v2, 32);
-RC_ASSERT_LAYOUT(gpu_vertex_normals, n0, 0); RC_ASSERT_LAYOUT(gpu_vertex_normals, n1, 16);
-RC_ASSERT_LAYOUT(gpu_vertex_normals, n2, 32);
-RC_ASSERT_SIZE(gpu_vertex_normals, 16 * RC_TEXELS_PER_VERTEX_NORMALS);
-RC_ASSERT_SIZE(gpu_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
+RC_ASSERT_LAYOUT(packed_triangle, v0, 0);  RC_ASSERT_LAYOUT(packed_triangle, material, 12);
+RC_ASSERT_LAYOUT(packed_triangle, v1, 16); RC_ASSERT_LAYOUT(packed_triangle, normals, 28);
+RC_ASSERT_LAYOUT(packed_triangle, v2, 32);
+RC_ASSERT_LAYOUT(packed_vertex_normals, n0, 0); RC_ASSERT_LAYOUT(packed_vertex_normals, n1, 16);
+RC_ASSERT_LAYOUT(packed_vertex_normals, n2, 32);
+RC_ASSERT_SIZE(packed_vertex_normals, 16 * RC_TEXELS_PER_VERTEX_NORMALS);
+RC_ASSERT_SIZE(packed_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
 
-RC_ASSERT_LAYOUT(gpu_material, ambient, 0);   RC_ASSERT_LAYOUT(gpu_material, shininess, 12);
-RC_ASSERT_LAYOUT(gpu_material, diffuse, 16);  RC_ASSERT_LAYOUT(gpu_material, specular, 32);
-RC_ASSERT_LAYOUT(gpu_material, mirror, 48);   RC_ASSERT_LAYOUT(gpu_material, emission, 64);
-RC_ASSERT_SIZE(gpu_material, 16 * RC_TEXELS_PER_MATERIAL);
+RC_ASSERT_LAYOUT(packed_material, ambient, 0);   RC_ASSERT_LAYOUT(packed_material, shininess, 12);
+RC_ASSERT_LAYOUT(packed_material, diffuse, 16);  RC_ASSERT_LAYOUT(packed_material, specular, 32);
+RC_ASSERT_LAYOUT(packed_material, mirror, 48);   RC_ASSERT_LAYOUT(packed_material, emission, 64);
+RC_ASSERT_SIZE(packed_material, 16 * RC_TEXELS_PER_MATERIAL);
 
-RC_ASSERT_LAYOUT(gpu_light, position, 0);  RC_ASSERT_LAYOUT(gpu_light, type, 12);
-RC_ASSERT_LAYOUT(gpu_light, intensity, 16); RC_ASSERT_LAYOUT(gpu_light, attenuation, 32);
-RC_ASSERT_SIZE(gpu_light, 16 * RC_TEXELS_PER_LIGHT);
+RC_ASSERT_LAYOUT(packed_light, position, 0);  RC_ASSERT_LAYOUT(packed_light, type, 12);
+RC_ASSERT_LAYOUT(packed_light, intensity, 16); RC_ASSERT_LAYOUT(packed_light, attenuation, 32);
+RC_ASSERT_SIZE(packed_light, 16 * RC_TEXELS_PER_LIGHT);
 
-RC_ASSERT_LAYOUT(gpu_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(gpu_status, incomplete_pixels, 4);
-RC_ASSERT_LAYOUT(gpu_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(gpu_status, reflection_rays, 12);
-RC_ASSERT_LAYOUT(gpu_status, exhausted_object, 16); RC_ASSERT_LAYOUT(gpu_status, exhausted_pixel, 20);
-RC_ASSERT_LAYOUT(gpu_status, crossing_object, 24); RC_ASSERT_LAYOUT(gpu_status, crossing_pixel, 28);
-RC_ASSERT_SIZE(gpu_status, 32);
+RC_ASSERT_LAYOUT(packed_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(packed_status, incomplete_pixels, 4);
+RC_ASSERT_LAYOUT(packed_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(packed_status, reflection_rays, 12);
+RC_ASSERT_LAYOUT(packed_status, exhausted_object, 16); RC_ASSERT_LAYOUT(packed_status, exhausted_pixel, 20);
+RC_ASSERT_LAYOUT(packed_status, crossing_object, 24); RC_ASSERT_LAYOUT(packed_status, crossing_pixel, 28);
+RC_ASSERT_SIZE(packed_status, 32);
 
-RC_ASSERT_LAYOUT(gpu_aov, hit, 0);    RC_ASSERT_LAYOUT(gpu_aov, object, 4);
-RC_ASSERT_LAYOUT(gpu_aov, t, 8);      RC_ASSERT_LAYOUT(gpu_aov, shadow_bits, 12);
-RC_ASSERT_LAYOUT(gpu_aov, normal, 16);
-RC_ASSERT_SIZE(gpu_aov, 32);
+RC_ASSERT_LAYOUT(packed_aov, hit, 0);    RC_ASSERT_LAYOUT(packed_aov, object, 4);
+RC_ASSERT_LAYOUT(packed_aov, t, 8);      RC_ASSERT_LAYOUT(packed_aov, shadow_bits, 12);
+RC_ASSERT_LAYOUT(packed_aov, normal, 16);
+RC_ASSERT_SIZE(packed_aov, 32);
 
-RC_ASSERT_LAYOUT(gpu_push, tile_x, 0); RC_ASSERT_LAYOUT(gpu_push, tile_width, 8);
-RC_ASSERT_LAYOUT(gpu_push, batch_samples, 16); RC_ASSERT_LAYOUT(gpu_push, row_stride, 20);
-RC_ASSERT_SIZE(gpu_push, 32);
+RC_ASSERT_LAYOUT(packed_push, tile_x, 0); RC_ASSERT_LAYOUT(packed_push, tile_width, 8);
+RC_ASSERT_LAYOUT(packed_push, batch_samples, 16); RC_ASSERT_LAYOUT(packed_push, row_stride, 20);
+RC_ASSERT_SIZE(packed_push, 32);
 #endif
 
 #endif

@@ -43,7 +43,7 @@ struct sheared_triangle {
   rvec3 e;
 };
 
-sheared_triangle shear_triangle(rvec3 o, ray_shear sh, gpu_triangle tri) {
+sheared_triangle shear_triangle(rvec3 o, ray_shear sh, packed_triangle tri) {
   precise rvec3 a = permute(rvec3(tri.v0) - o, sh.k);
   precise rvec3 b = permute(rvec3(tri.v1) - o, sh.k);
   precise rvec3 c = permute(rvec3(tri.v2) - o, sh.k);
@@ -102,7 +102,7 @@ real triangle_t(sheared_triangle st, real det) {
 
 // The watertight test: inclusive edges (a zero edge function counts as inside); a
 // degenerate triangle (det 0) is missed.
-real intersect_triangle(rvec3 o, ray_shear sh, gpu_triangle tri, real t_max, out rvec3 bary) {
+real intersect_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, out rvec3 bary) {
   bary = rvec3(0.0);
   sheared_triangle st = shear_triangle(o, sh, tri);
   real det = enclosing_det(st.e);
@@ -136,7 +136,7 @@ bool edge_owned(real x0, real y0, real x1, real y1, real det) {
 // and the parity of a mesh operand (rc_quadric.glsl, mesh_intervals) stays right. A spawned
 // ray's crossing within t's error bound is the surface the ray left: it keeps its place in
 // the count at t = 0, behind the origin, so it is never hit.
-real triangle_crossing(rvec3 o, ray_shear sh, gpu_triangle tri) {
+real triangle_crossing(rvec3 o, ray_shear sh, packed_triangle tri) {
   sheared_triangle st = shear_triangle(o, sh, tri);
   real det = enclosing_det(st.e);
   if (det == 0.0) return real(RC_T_FAR);
@@ -152,7 +152,7 @@ real triangle_crossing(rvec3 o, ray_shear sh, gpu_triangle tri) {
 // with the paper's |det| < 1e-6 test: a fast variant. Each triangle is solved from its own
 // v0 and edges, so rays can slip between neighbours (docs/numerics.md §4), and the fixed
 // epsilon drops small triangles whatever the scene's scale.
-real intersect_triangle_moller_trumbore(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, out rvec3 bary) {
+real intersect_triangle_moller_trumbore(rvec3 o, rvec3 d, packed_triangle tri, real t_max, out rvec3 bary) {
   bary = rvec3(0.0);
   rvec3 v0 = rvec3(tri.v0);
   rvec3 e1 = rvec3(tri.v1) - v0;
@@ -176,7 +176,7 @@ real intersect_triangle_moller_trumbore(rvec3 o, rvec3 d, gpu_triangle tri, real
 // The textbook solve of o + t d = v0 + beta (v1 - v0) + gamma (v2 - v0) by Cramer's rule,
 // as written in Shirley's Fundamentals of Computer Graphics (§4.4.2): a fast variant with
 // no epsilon, still not watertight.
-real intersect_triangle_cramer(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, out rvec3 bary) {
+real intersect_triangle_cramer(rvec3 o, rvec3 d, packed_triangle tri, real t_max, out rvec3 bary) {
   bary = rvec3(0.0);
   rvec3 ab = rvec3(tri.v0) - rvec3(tri.v1);
   rvec3 ac = rvec3(tri.v0) - rvec3(tri.v2);

@@ -40,8 +40,8 @@ static uint32_t material_of(const bench *b, unsigned geom, unsigned prim) {
  * shadow rays' occlusion test is Embree's. The surface is the flat one Embree reports
  * (its geometric normal facing the ray), leaving from the reference's offset origin. */
 static vec3 shade(bench *b, vec3 o, vec3 d, float t, vec3 ng, uint32_t mat, uint64_t *shadow_rays) {
-  const gpu_material m = b->p->materials[mat];
-  const gpu_frame *f = &b->p->frame;
+  const packed_material m = b->p->materials[mat];
+  const packed_frame *f = &b->p->frame;
   vec3 n = rcm_normalize_f(ng);
   if (rcm_dot_f(n, d) > 0) n = rcm_neg_f(n);
   vec3 p = rcm_add_f(o, rcm_scale_f(d, t));

@@ -386,7 +386,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
   double *ms = calloc(a->repeat, sizeof *ms);
   float *rgb = rc_alloc((size_t)w * band * 3, sizeof(float), "one band of the image");
-  gpu_aov *aov = a->aov ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
+  packed_aov *aov = a->aov ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
   rc_status st = ms && rgb && (!a->aov || aov) ? RC_OK : RC_ERR_OUT_OF_MEMORY;
   rc_ref_stats last_stats = {0};
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {

@@ -141,14 +141,14 @@ rc_status rc_output_attach(rc_output *o, const char *path, const char *text) {
   return RC_OK;
 }
 
-rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *unused) {
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *unused) {
   (void)y0, (void)rows, (void)rgb, (void)aov, (void)unused;
   return RC_OK;
 }
 
 void rc_output_set_length_unit(rc_output *o, double unit) { o->length_unit = unit; }
 
-rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output) {
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *output) {
   (void)y0; /* bands arrive in order */
   rc_output *o = output;
   double t0 = rc_now_ms();

@@ -30,9 +30,9 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
  * scene units. */
 void rc_output_set_length_unit(rc_output *o, double unit);
 /* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows). */
-rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *output);
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *output);
 /* A band function for frames that are not written (--repeat). */
-rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *unused);
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *unused);
 /* Adds the statistics file (its whole text) to the transaction: written now, renamed
  * with the image. */
 rc_status rc_output_attach(rc_output *o, const char *path, const char *text);

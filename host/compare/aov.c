@@ -7,9 +7,9 @@
 const char *const rc_aov_channel_names[RC_AOV_CHANNELS] = {"R", "G", "B", "hit", "object", "t",
                                                            "N.X", "N.Y", "N.Z", "shadow"};
 
-void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, double length_unit, float *out) {
+void rc_aov_pack(const float *rgb, const packed_aov *aov, size_t count, double length_unit, float *out) {
   for (size_t i = 0; i < count; i++) {
-    const gpu_aov *a = &aov[i];
+    const packed_aov *a = &aov[i];
     const float v[RC_AOV_CHANNELS] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], a->hit,      a->object,
                                       (float)(a->t * length_unit), a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits};
     memcpy(out + i * RC_AOV_CHANNELS, v, sizeof v);

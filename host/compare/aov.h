@@ -1,4 +1,4 @@
-/* aov.h: the decision-output (AOV) file: a float EXR with the colour and the gpu_aov
+/* aov.h: the decision-output (AOV) file: a float EXR with the colour and the packed_aov
  * record of each pixel's first sample, in the channels named below. */
 #ifndef RC_AOV_H
 #define RC_AOV_H
@@ -12,7 +12,7 @@ extern const char *const rc_aov_channel_names[RC_AOV_CHANNELS]; /* R G B hit obj
 
 /* Interleaves count pixels of colour and records into the AOV channel layout; the depth t
  * times length_unit (scene units per packed unit, scene_pack.h). */
-void rc_aov_pack(const float *rgb, const gpu_aov *aov, size_t count, double length_unit, float *out);
+void rc_aov_pack(const float *rgb, const packed_aov *aov, size_t count, double length_unit, float *out);
 /* Where the decision channels of a file are (files may reorder channels: OpenEXR stores
  * them sorted by name). */
 typedef struct rc_aov_layout { int r, g, b, hit, object, t, nx, ny, nz, shadow; } rc_aov_layout;

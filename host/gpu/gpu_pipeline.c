@@ -26,7 +26,7 @@ static rc_status create_layouts(rc_gpu_renderer *r) {
                                          .bindingCount = RC_BINDING_COUNT,
                                          .pBindings = b};
   RC_VK_TRY(vkCreateDescriptorSetLayout(ctx->device, &sli, NULL, &r->set_layout));
-  VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(gpu_push)};
+  VkPushConstantRange pcr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(packed_push)};
   VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
                                     .setLayoutCount = 1,
                                     .pSetLayouts = &r->set_layout,
@@ -41,7 +41,7 @@ static rc_status create_layouts(rc_gpu_renderer *r) {
  * compiled out; a generic pipeline reads the features from the frame instead. A bool is 4
  * bytes (VkBool32), a float its 4 bytes. */
 static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) {
-  const gpu_frame *f = &r->frame;
+  const packed_frame *f = &r->frame;
   bool generic = r->opts.generic_pipeline;
   float epsilon = f->offset_epsilon;
   v[RC_SPEC_LOCAL_SIZE_X] = r->local_x;

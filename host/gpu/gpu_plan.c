@@ -1,6 +1,6 @@
 #include "gpu/gpu_plan.h"
 
-static uint64_t steps_per_sample(const gpu_frame *f, uint64_t prims) {
+static uint64_t steps_per_sample(const packed_frame *f, uint64_t prims) {
   uint64_t bounce = 1 + prims + (uint64_t)f->light_count * (1 + prims);
   return 1 + ((uint64_t)f->reflection_depth + 1) * bounce;
 }
@@ -8,7 +8,7 @@ static uint64_t steps_per_sample(const gpu_frame *f, uint64_t prims) {
 /* Loop steps of one ray against one object, at most: 1 for a sphere or triangle; a
  * quadric's two clipped pieces and its first-end scan; a composite's count from the loader
  * (its program, pieces, merges, copies and scan, from its tree's interval bounds). */
-static uint64_t object_steps(const gpu_frame *f) {
+static uint64_t object_steps(const packed_frame *f) {
   uint64_t csg = f->csg_count ? f->csg_max_steps : 0;
   uint64_t quadric = f->quadric_count ? 1 + 2 + 4 : 1;
   return csg > quadric ? csg : quadric;
@@ -16,20 +16,20 @@ static uint64_t object_steps(const gpu_frame *f) {
 
 /* Objects a ray tests through the BVH, as planned: 16, or all of them in a smaller scene
  * (each object is in one leaf, so no ray tests more). */
-static uint64_t leaf_tests(const gpu_frame *f) { return f->object_count < 16 ? f->object_count : 16; }
+static uint64_t leaf_tests(const packed_frame *f) { return f->object_count < 16 ? f->object_count : 16; }
 
-uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *f) {
+uint64_t rc_gpu_plan_steps_per_sample(const packed_frame *f) {
   return steps_per_sample(f, ((uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count) *
                                  object_steps(f));
 }
 
 /* Light passes (gpu_plan.h): what one pass of `lights` lights costs a sample whose rays
  * cost `ray` steps each. */
-static uint64_t pass_steps(const gpu_frame *f, uint64_t ray, uint64_t lights) {
+static uint64_t pass_steps(const packed_frame *f, uint64_t ray, uint64_t lights) {
   return 1 + ((uint64_t)f->reflection_depth + 1) * (1 + ray + lights * (1 + ray));
 }
 
-rc_status rc_gpu_plan_make(const gpu_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
+rc_status rc_gpu_plan_make(const packed_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
   plan->budget = budget;
   plan->light_pass = 0;
   /* Through the BVH: its boxes and leaves, then every infinite plane, one step each (a

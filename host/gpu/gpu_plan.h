@@ -23,7 +23,7 @@ typedef struct rc_gpu_plan {
  * loader: gpu_plan.c, object_steps):
  *   1 (sample loop) + (depth + 1) * [1 (bounce loop) + N (closest hit)
  *                                   + L * (1 (light loop) + N (shadow ray))]. */
-uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
+uint64_t rc_gpu_plan_steps_per_sample(const packed_frame *frame);
 
 /* Brute force (bvh_depth 0): the exact worst case.
  * Where one sample exceeds the budget, its lights are split into passes: each dispatch
@@ -39,7 +39,7 @@ uint64_t rc_gpu_plan_steps_per_sample(const gpu_frame *frame);
  * over the budget is an error, never a wrong image). Where the estimate puts one sample
  * over the budget, the pipeline counts light passes, starting with all of a sample's
  * lights in one. */
-rc_status rc_gpu_plan_make(const gpu_frame *frame, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan);
+rc_status rc_gpu_plan_make(const packed_frame *frame, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan);
 
 /* The per-invocation loop budget on a device. llvmpipe (`capped`) caps the loop
  * iterations of one SIMD vector, a subgroup of invocations run as lanes, at 65,535; with

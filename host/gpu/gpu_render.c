@@ -11,8 +11,8 @@
 #define MAX_TILE_PIXELS (1u << 20)
 
 /* Within what every Vulkan device offers, so no device can refuse them (docs/porting.md). */
-_Static_assert(sizeof(gpu_frame) <= 16384, "gpu_frame must fit the guaranteed maxUniformBufferRange");
-_Static_assert(sizeof(gpu_push) <= 128, "gpu_push must fit the guaranteed maxPushConstantsSize");
+_Static_assert(sizeof(packed_frame) <= 16384, "packed_frame must fit the guaranteed maxUniformBufferRange");
+_Static_assert(sizeof(packed_push) <= 128, "packed_push must fit the guaranteed maxPushConstantsSize");
 
 /* The tile buffers' capacity in pixels: no tile is larger, nor larger than the region. */
 static uint32_t max_tile_pixels(const rc_gpu_renderer *r) {
@@ -50,13 +50,13 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   VkDeviceSize accum_size = tile_pixels * 16;
   VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  VkDeviceSize aov_size = r->opts.aov ? tile_pixels * sizeof(gpu_aov) : sizeof(gpu_aov);
+  VkDeviceSize aov_size = r->opts.aov ? tile_pixels * sizeof(packed_aov) : sizeof(packed_aov);
   size_t band = (size_t)rc_region_width(r->region) * max_band_rows(r);
   r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
-  r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(gpu_aov), "one band of AOVs") : NULL;
+  r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(packed_aov), "one band of AOVs") : NULL;
   if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_OUT_OF_MEMORY;
   rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
-  if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(gpu_status), usage, RC_MEM_DEVICE, &r->status);
+  if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(packed_status), usage, RC_MEM_DEVICE, &r->status);
   if (st == RC_OK) st = rc_buffer_create(ctx, aov_size, usage, RC_MEM_DEVICE, &r->aov);
   if (st != RC_OK) return st;
   r->staging = !rc_buffer_is_direct(&r->accum, r->opts.force_staging) ||
@@ -64,7 +64,7 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   if (r->staging) {
     st = rc_buffer_create(ctx, accum_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->accum_readback);
     if (st == RC_OK)
-      st = rc_buffer_create(ctx, sizeof(gpu_status), VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
+      st = rc_buffer_create(ctx, sizeof(packed_status), VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
                             &r->status_readback);
     if (st == RC_OK)
       st = rc_buffer_create(ctx, aov_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->aov_readback);
@@ -231,7 +231,7 @@ static uint32_t group_count(uint32_t pixels, uint32_t local) { return (pixels + 
 
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
  * first batch), run the shader between two timestamps, and bring the status back. */
-static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, gpu_status *status, double *ms) {
+static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool first, packed_status *status, double *ms) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   VkCommandBuffer cmd = r->cmd;
@@ -254,7 +254,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const gpu_push *push, bool first, 
   vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
   vkCmdDispatch(cmd, group_count(push->tile_width, r->local_x), group_count(push->tile_height, r->local_y), 1);
   if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
-  record_readback(r, &r->status, &r->status_readback, sizeof(gpu_status));
+  record_readback(r, &r->status, &r->status_readback, sizeof(packed_status));
   double t0 = rc_now_ms();
   st = submit(r);
   double wall = rc_now_ms() - t0;
@@ -300,7 +300,7 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
     st = begin(r);
     if (st != RC_OK) return st;
     record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
-    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(gpu_aov));
+    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(packed_aov));
     st = submit(r);
   }
   const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
@@ -311,7 +311,7 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
   /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
   uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
   if (r->band_aov) {
-    const gpu_aov *src = vb->memory.mapped;
+    const packed_aov *src = vb->memory.mapped;
     for (uint32_t y = 0; y < th; y++)
       memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
   }
@@ -333,13 +333,13 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
 
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
-  gpu_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
+  packed_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = stats->plan.batch_samples,
                    .row_stride = rc_tiles_row_stride(group_count(th, r->local_y)),
                    .light_pass = r->light_pass};
   bool first = true;
   for (;;) {
-    gpu_status status;
+    packed_status status;
     double ms = 0;
     rc_status st = dispatch(r, &push, first, &status, &ms);
     if (st != RC_OK) return st;

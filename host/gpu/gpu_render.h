@@ -22,7 +22,7 @@ typedef struct rc_gpu_options {
                            tests, to make the shader's exhaustion flag fire */
   bool progress;        /* tiles done on stderr */
   bool f64;             /* the f64 shader module (the device must have shaderFloat64) */
-  bool aov;             /* record the decision outputs (gpu_aov) of each pixel's first sample */
+  bool aov;             /* record the decision outputs (packed_aov) of each pixel's first sample */
   uint32_t bvh_depth;   /* 0: brute force (no BVH in the scene); else traverse the BVH */
   bool generic_pipeline; /* one pipeline for every scene (all primitive kinds, light count,
                             shadows, specular model and bounces read from the frame), to
@@ -70,7 +70,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
 /* Receives the region's pixels in bands of rows, top to bottom: rgb (rows * width * 3
  * floats, width the region's) and, when the renderer records AOVs, aov (rows * width
  * records); NULL aov otherwise. y0 counts from the region's first row. */
-typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const gpu_aov *aov, void *user);
+typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user);
 
 /* Renders one frame, band by band: host memory is one band, whatever the image size. */
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats);

@@ -15,7 +15,7 @@ struct rc_gpu_renderer {
   uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
   bool light_passes;   /* RC_SPEC_LIGHT_PASSES: samples too long for one dispatch */
   uint32_t light_pass; /* then: lights per pass, halved where a pass ran out (for later tiles too) */
-  gpu_frame frame;
+  packed_frame frame;
   rc_region region; /* the pixels rendered, within the frame */
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
   bool sphere_transforms, vertex_normals; /* RC_KIND_SPHERE_TRANSFORMS, RC_KIND_VERTEX_NORMALS */
@@ -28,7 +28,7 @@ struct rc_gpu_renderer {
   rc_buffer status, status_readback;
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
   float *band_rgb;             /* one band of rows on the host */
-  gpu_aov *band_aov;
+  packed_aov *band_aov;
   VkDescriptorSetLayout set_layout;
   VkPipelineLayout pipeline_layout;
   VkPipeline pipeline;

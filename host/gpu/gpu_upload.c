@@ -116,10 +116,10 @@ static rc_status choose_buffers(rc_vk_ctx *ctx, rc_scene_buffers *kind, const Vk
 
 rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint64_t tile_pixels) {
   rc_vk_ctx *ctx = r->ctx;
-  const gpu_frame *f = &s->frame;
+  const packed_frame *f = &s->frame;
   /* Without a BVH the node and reference buffers still exist (one dummy element): every
    * binding must be valid even where the specialized shader never reads it. */
-  static const gpu_bvh_node no_node;
+  static const packed_bvh_node no_node;
   static const uint32_t no_refs[4];
   bool bvh = s->bvh_node_total > 0; /* the object tree, or a mesh operand's */
   const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
@@ -127,18 +127,18 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
                                     s->transforms, s->normals, s->quadrics, s->csg, s->csg_program};
   /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
   VkDeviceSize sizes[SCENE_ARRAYS] = {
-      (f->sphere_count + 1) * sizeof(gpu_sphere), (s->triangle_total + 1) * sizeof(gpu_triangle),
-      (f->material_count + 1) * sizeof(gpu_material), (f->light_count + 1) * sizeof(gpu_light),
-      bvh ? s->bvh_node_total * sizeof(gpu_bvh_node) : sizeof no_node,
+      (f->sphere_count + 1) * sizeof(packed_sphere), (s->triangle_total + 1) * sizeof(packed_triangle),
+      (f->material_count + 1) * sizeof(packed_material), (f->light_count + 1) * sizeof(packed_light),
+      bvh ? s->bvh_node_total * sizeof(packed_bvh_node) : sizeof no_node,
       bvh ? (s->bvh_prim_total + 3) / 4 * 4 * sizeof(uint32_t) : sizeof no_refs,
-      (s->transform_count + 1) * sizeof(gpu_transform), (s->normal_count + 1) * sizeof(gpu_vertex_normals),
-      (s->quadric_total + 1) * sizeof(gpu_quadric), (f->csg_count + 1) * sizeof(gpu_csg),
+      (s->transform_count + 1) * sizeof(packed_transform), (s->normal_count + 1) * sizeof(packed_vertex_normals),
+      (s->quadric_total + 1) * sizeof(packed_quadric), (f->csg_count + 1) * sizeof(packed_csg),
       (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t)};
   rc_status chosen = choose_buffers(ctx, &r->opts.scene_buffers, sizes);
   if (chosen != RC_OK) return chosen;
   /* Everything the render allocates on the device, against its largest device-local heap:
    * refuse what cannot fit before allocating anything. */
-  VkDeviceSize need = sizeof(gpu_frame) + tile_pixels * (16 + (r->opts.aov ? sizeof(gpu_aov) : 0));
+  VkDeviceSize need = sizeof(packed_frame) + tile_pixels * (16 + (r->opts.aov ? sizeof(packed_aov) : 0));
   for (int i = 0; i < SCENE_ARRAYS; i++) need += sizes[i];
   VkDeviceSize heap = 0;
   for (uint32_t i = 0; i < ctx->memory.memoryHeapCount; i++)
@@ -164,7 +164,7 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
       RC_VK_TRY(vkCreateBufferView(ctx->device, &vi, NULL, &r->views[i]));
     }
   }
-  rc_status st = rc_buffer_create(ctx, sizeof(gpu_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+  rc_status st = rc_buffer_create(ctx, sizeof(packed_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                   RC_MEM_DEVICE, &r->frame_buf);
   if (st == RC_OK) st = rc_buffer_upload(ctx, &r->frame_buf, f, sizeof *f, r->opts.force_staging);
   return st;

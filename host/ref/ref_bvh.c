@@ -38,7 +38,7 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
   rvec3 inv_d = REF(safe_inverse)(d);
   uint32_t node = 0;
   while (node < sc->frame->bvh_node_count) {
-    const gpu_bvh_node *n = NULL;
+    const packed_bvh_node *n = NULL;
     uint32_t leaf = 0;
     /* The shader's walk makes the same decisions with selects and one exit (rc_bvh.glsl,
      * for SIMD lanes); on a scalar CPU the branches ran 4 % faster on the 100k mesh. */
@@ -64,7 +64,7 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
 }
 
 bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
-  const gpu_frame *f = sc->frame;
+  const packed_frame *f = sc->frame;
   if (f->plane_count == 0) return false;
   uint32_t first = f->quadric_count - f->plane_count, first_quadric_object = f->sphere_count + f->triangle_count;
   for (uint32_t k = first; k < f->quadric_count; k++) {

@@ -3,7 +3,7 @@
 #include "ref/ref_shader.h"
 
 void REF(camera_ray)(const ref_scene *sc, ref_vec2 raster, rvec3 *origin, rvec3 *dir) {
-  const gpu_camera *c = &sc->frame->camera;
+  const packed_camera *c = &sc->frame->camera;
   real us = (real)c->left + ((real)c->right - (real)c->left) * (real)raster.x / (real)c->width;
   real vs = (real)c->bottom + ((real)c->top - (real)c->bottom) * (real)raster.y / (real)c->height;
   if (c->projection == RC_PROJECTION_PERSPECTIVE) {

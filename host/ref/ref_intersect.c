@@ -18,7 +18,7 @@ real REF(first_root)(real t_near, real t_exit, real t_max, real *side) {
   return (real)RC_T_FAR;
 }
 
-real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, packed_sphere s, real t_max, real *side) {
   *side = 0;
   real r = (real)s.radius;
   rvec3 f = RV(sub)(o, rvec3_from(s.center));
@@ -34,7 +34,7 @@ real REF(intersect_sphere_geometric)(rvec3 o, rvec3 d, gpu_sphere s, real t_max,
   return REF(first_root)(rmin(t0, q), rmax(t0, q), t_max, side);
 }
 
-real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, packed_sphere s, real t_max, real *side) {
   *side = 0;
   real r = (real)s.radius;
   rvec3 f = RV(sub)(o, rvec3_from(s.center));
@@ -47,25 +47,25 @@ real REF(intersect_sphere_algebraic)(rvec3 o, rvec3 d, gpu_sphere s, real t_max,
   return REF(first_root)((-b - sq) / (2 * a), (-b + sq) / (2 * a), t_max, side);
 }
 
-real REF(intersect_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+real REF(intersect_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max, real *side) {
   if (sc->frame->sphere_formula == RC_SPHERE_ALGEBRAIC) return REF(intersect_sphere_algebraic)(o, d, s, t_max, side);
   return REF(intersect_sphere_geometric)(o, d, s, t_max, side);
 }
 
-rvec3 REF(transform_point)(const gpu_transform *m, rvec3 p) {
+rvec3 REF(transform_point)(const packed_transform *m, rvec3 p) {
   return RV(make)(RV(dot)(rvec3_from(rcm_xyz(m->row0)), p) + (real)m->row0.w,
                   RV(dot)(rvec3_from(rcm_xyz(m->row1)), p) + (real)m->row1.w,
                   RV(dot)(rvec3_from(rcm_xyz(m->row2)), p) + (real)m->row2.w);
 }
 
-rvec3 REF(transform_vector)(const gpu_transform *m, rvec3 v) {
+rvec3 REF(transform_vector)(const packed_transform *m, rvec3 v) {
   return RV(make)(RV(dot)(rvec3_from(rcm_xyz(m->row0)), v), RV(dot)(rvec3_from(rcm_xyz(m->row1)), v),
                   RV(dot)(rvec3_from(rcm_xyz(m->row2)), v));
 }
 
-real REF(intersect_any_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere s, real t_max, real *side) {
+real REF(intersect_any_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max, real *side) {
   if (s.transform == RC_NO_TRANSFORM) return REF(intersect_sphere)(sc, o, d, s, t_max, side);
-  const gpu_transform *m = &sc->transforms[s.transform];
+  const packed_transform *m = &sc->transforms[s.transform];
   rvec3 d_obj = REF(transform_vector)(m, d);
   real len = RV(length)(d_obj);
   real t = REF(intersect_sphere)(sc, REF(transform_point)(m, o), RV(scale)(d_obj, 1 / len), s, t_max * len, side);
@@ -73,7 +73,7 @@ real REF(intersect_any_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, gpu_sphere
 }
 
 uint32_t REF(object_kind)(const ref_scene *sc, uint32_t object, uint32_t *index) {
-  const gpu_frame *f = sc->frame;
+  const packed_frame *f = sc->frame;
   uint32_t first_quadric = f->sphere_count + f->triangle_count;
   uint32_t first_csg = first_quadric + f->quadric_count;
   *index = (object < f->sphere_count) ? object
@@ -96,7 +96,7 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
   uint32_t kind = REF(object_kind)(sc, object, &index);
   if (kind == RC_HIT_SPHERE) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
   if (kind == RC_HIT_TRIANGLE) {
-    gpu_triangle tri = sc->triangles[index];
+    packed_triangle tri = sc->triangles[index];
     if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
       return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
     if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);

@@ -7,17 +7,17 @@
 
 /* The scene the reference reads: the very arrays the GPU gets (scene_pack.h). */
 typedef struct ref_scene {
-  const gpu_frame *frame;
-  const gpu_sphere *spheres;
-  const gpu_triangle *triangles;
-  const gpu_material *materials;
-  const gpu_light *lights;
-  const gpu_bvh_node *bvh_nodes;
+  const packed_frame *frame;
+  const packed_sphere *spheres;
+  const packed_triangle *triangles;
+  const packed_material *materials;
+  const packed_light *lights;
+  const packed_bvh_node *bvh_nodes;
   const uint32_t *bvh_prims;
-  const gpu_transform *transforms;
-  const gpu_vertex_normals *normals;
-  const gpu_quadric *quadrics;
-  const gpu_csg *csg;
+  const packed_transform *transforms;
+  const packed_vertex_normals *normals;
+  const packed_quadric *quadrics;
+  const packed_csg *csg;
   const uint32_t *csg_program;
   bool use_bvh;
 } ref_scene;
@@ -33,25 +33,25 @@ extern _Thread_local uint32_t ref_crossing_blame;
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_gamma_bound_##S(R n);                                                                   \
   R ref_first_root_##S(R t_near, R t_exit, R t_max, R *side);                                   \
-  R ref_intersect_sphere_geometric_##S(V o, V d, gpu_sphere s, R t_max, R *side);               \
-  R ref_intersect_sphere_algebraic_##S(V o, V d, gpu_sphere s, R t_max, R *side);               \
-  R ref_intersect_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side);    \
-  V ref_transform_point_##S(const gpu_transform *m, V p);                                       \
-  V ref_transform_vector_##S(const gpu_transform *m, V v);                                      \
-  R ref_intersect_any_sphere_##S(const ref_scene *sc, V o, V d, gpu_sphere s, R t_max, R *side); \
+  R ref_intersect_sphere_geometric_##S(V o, V d, packed_sphere s, R t_max, R *side);               \
+  R ref_intersect_sphere_algebraic_##S(V o, V d, packed_sphere s, R t_max, R *side);               \
+  R ref_intersect_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R *side);    \
+  V ref_transform_point_##S(const packed_transform *m, V p);                                       \
+  V ref_transform_vector_##S(const packed_transform *m, V v);                                      \
+  R ref_intersect_any_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R *side); \
   ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
   V ref_permute_##S(V a, const int k[3]);                                                       \
   typedef struct ref_sheared_##S { V x, y, z, e; } ref_sheared_##S;                             \
-  ref_sheared_##S ref_shear_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);       \
+  ref_sheared_##S ref_shear_triangle_##S(V o, const ref_shear_##S *sh, packed_triangle tri);       \
   R ref_max3_abs_##S(V a);                                                                      \
   R ref_triangle_t_error_##S(const ref_sheared_##S *st, R det);                                 \
   R ref_enclosing_det_##S(V e);                                                                 \
   R ref_triangle_t_##S(const ref_sheared_##S *st, R det);                                       \
   bool ref_edge_owned_##S(R x0, R y0, R x1, R y1, R det);                                       \
-  R ref_triangle_crossing_##S(V o, const ref_shear_##S *sh, gpu_triangle tri);                  \
-  R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, gpu_triangle tri, R t_max, V *bary); \
-  R ref_intersect_triangle_moller_trumbore_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);   \
-  R ref_intersect_triangle_cramer_##S(V o, V d, gpu_triangle tri, R t_max, V *bary);            \
+  R ref_triangle_crossing_##S(V o, const ref_shear_##S *sh, packed_triangle tri);                  \
+  R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, V *bary); \
+  R ref_intersect_triangle_moller_trumbore_##S(V o, V d, packed_triangle tri, R t_max, V *bary);   \
+  R ref_intersect_triangle_cramer_##S(V o, V d, packed_triangle tri, R t_max, V *bary);            \
   uint32_t ref_object_kind_##S(const ref_scene *sc, uint32_t object, uint32_t *index);           \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
                              R *side, V *bary, uint32_t *part);                                 \
@@ -71,23 +71,23 @@ extern _Thread_local uint32_t ref_crossing_blame;
 /* ref_quadric.c, the twin of rc_quadric.glsl. */
 #define REF_DECLARE_QUADRIC(S, R, V)                                                            \
   uint32_t ref_csg_code_##S(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip);           \
-  V ref_quadric_local_##S(const gpu_quadric *q, V v);                                           \
-  V ref_quadric_apply_##S(const gpu_quadric *q, V v);                                           \
-  uint32_t ref_quadric_roots_##S(const gpu_quadric *q, V f, V v, R *t_lo, R *t_hi);             \
+  V ref_quadric_local_##S(const packed_quadric *q, V v);                                           \
+  V ref_quadric_apply_##S(const packed_quadric *q, V v);                                           \
+  uint32_t ref_quadric_roots_##S(const packed_quadric *q, V f, V v, R *t_lo, R *t_hi);             \
   void ref_box_slab_##S(R lo, R hi, R o, R d, uint32_t k, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
   void ref_box_span_##S(V lo, V hi, V o, V d, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
-  uint32_t ref_solid_intervals_##S(uint32_t leaf, const gpu_quadric *q, V o, V d, bool flip, uint32_t base); \
-  R ref_intersect_quadric_surface_##S(const gpu_quadric *q, V o, V d, R t_max);                 \
+  uint32_t ref_solid_intervals_##S(uint32_t leaf, const packed_quadric *q, V o, V d, bool flip, uint32_t base); \
+  R ref_intersect_quadric_surface_##S(const packed_quadric *q, V o, V d, R t_max);                 \
   R ref_first_interval_end_##S(uint32_t base, uint32_t n, R t_max, uint32_t *code);             \
-  R ref_intersect_plane_##S(const gpu_quadric *q, V o, V d, R t_max);                              \
+  R ref_intersect_plane_##S(const packed_quadric *q, V o, V d, R t_max);                              \
   R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
   uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
   bool ref_line_meets_box_##S(V lo, V hi, V o, V d);                                            \
-  uint32_t ref_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const gpu_quadric *q, V o, V d, bool flip, \
+  uint32_t ref_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const packed_quadric *q, V o, V d, bool flip, \
                                   uint32_t base);                                               \
   R ref_intersect_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
-  V ref_quadric_normal_##S(const gpu_quadric *q, uint32_t code, V p, V d);                      \
-  V ref_mesh_normal_##S(gpu_triangle tri, uint32_t code, V d);
+  V ref_quadric_normal_##S(const packed_quadric *q, uint32_t code, V p, V d);                      \
+  V ref_mesh_normal_##S(packed_triangle tri, uint32_t code, V d);
 
 REF_DECLARE_QUADRIC(d, double, dvec3)
 REF_DECLARE_QUADRIC(f, float, vec3)

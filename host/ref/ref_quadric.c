@@ -18,17 +18,17 @@ uint32_t REF(csg_code)(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip) 
   return (leaf << RC_CSG_CODE_LEAF_SHIFT) | (face << 2u) | (leaf_exit ? 2u : 0u) | (flip ? 1u : 0u);
 }
 
-rvec3 REF(quadric_local)(const gpu_quadric *q, rvec3 v) {
+rvec3 REF(quadric_local)(const packed_quadric *q, rvec3 v) {
   return RV(make)(RV(dot)(v3(q->axis_x), v), RV(dot)(v3(q->axis_y), v), RV(dot)(v3(q->axis_z), v));
 }
 
-rvec3 REF(quadric_apply)(const gpu_quadric *q, rvec3 v) {
+rvec3 REF(quadric_apply)(const packed_quadric *q, rvec3 v) {
   rvec3 D = v3(q->diag), O = v3(q->off);
   return RV(make)(D.x * v.x + O.x * v.y + O.y * v.z, O.x * v.x + D.y * v.y + O.z * v.z,
                   O.y * v.x + O.z * v.y + D.z * v.z);
 }
 
-uint32_t REF(quadric_roots)(const gpu_quadric *q, rvec3 f, rvec3 v, real *t_lo, real *t_hi) {
+uint32_t REF(quadric_roots)(const packed_quadric *q, rvec3 f, rvec3 v, real *t_lo, real *t_hi) {
   const real far = (real)RC_T_FAR;
   *t_lo = -far;
   *t_hi = far;
@@ -102,7 +102,7 @@ void REF(box_span)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d, real *t_in, real *t_out
   REF(box_slab)(lo.z, hi.z, o.z, d.z, 3, t_in, t_out, axis_in, axis_out);
 }
 
-uint32_t REF(solid_intervals)(uint32_t leaf, const gpu_quadric *q, rvec3 o, rvec3 d, bool flip, uint32_t base) {
+uint32_t REF(solid_intervals)(uint32_t leaf, const packed_quadric *q, rvec3 o, rvec3 d, bool flip, uint32_t base) {
   const real far = (real)RC_T_FAR;
   rvec3 f = REF(quadric_local)(q, RV(sub)(o, v3(q->center)));
   rvec3 v = REF(quadric_local)(q, d);
@@ -142,14 +142,14 @@ bool REF(line_meets_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d) {
   return t_in <= t_out + 2 * REF(gamma_bound)(3) * (R_ABS(t_in) + R_ABS(t_out));
 }
 
-uint32_t REF(mesh_intervals)(const ref_scene *sc, uint32_t csg, const gpu_quadric *q, rvec3 o, rvec3 d, bool flip,
+uint32_t REF(mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d, bool flip,
                              uint32_t base) {
-  const gpu_frame *f = sc->frame;
+  const packed_frame *f = sc->frame;
   ref_shear sh = REF(ray_shear_for)(d);
   uint32_t n = 0;
   uint32_t node = q->mesh_root;
   while (node < q->mesh_end) {
-    const gpu_bvh_node *b = &sc->bvh_nodes[node];
+    const packed_bvh_node *b = &sc->bvh_nodes[node];
     if (!REF(line_meets_box)(v3(b->lo), v3(b->hi), o, d)) {
       node = b->skip;
       continue;
@@ -188,7 +188,7 @@ uint32_t REF(mesh_intervals)(const ref_scene *sc, uint32_t csg, const gpu_quadri
   return n;
 }
 
-real REF(intersect_quadric_surface)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
+real REF(intersect_quadric_surface)(const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   const real far = (real)RC_T_FAR;
   rvec3 f = REF(quadric_local)(q, RV(sub)(o, v3(q->center)));
   rvec3 v = REF(quadric_local)(q, d);
@@ -215,7 +215,7 @@ real REF(first_interval_end)(uint32_t base, uint32_t n, real t_max, uint32_t *co
   return (real)RC_T_FAR;
 }
 
-real REF(intersect_plane)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
+real REF(intersect_plane)(const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   const real far = (real)RC_T_FAR;
   real fz = RV(dot)(v3(q->axis_z), RV(sub)(o, v3(q->center)));
   real vz = RV(dot)(v3(q->axis_z), d);
@@ -227,7 +227,7 @@ real REF(intersect_plane)(const gpu_quadric *q, rvec3 o, rvec3 d, real t_max) {
 
 real REF(intersect_quadric)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max, uint32_t *code) {
   *code = 0;
-  const gpu_quadric *q = &sc->quadrics[index];
+  const packed_quadric *q = &sc->quadrics[index];
   if (q->flags & RC_QUADRIC_UNBOUNDED) {
     *code = REF(csg_code)(index, 0, false, false);
     return REF(intersect_plane)(q, o, d, t_max);
@@ -275,7 +275,7 @@ uint32_t REF(combine_intervals)(uint32_t op, uint32_t a, uint32_t na, uint32_t b
 
 real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max, uint32_t *code) {
   *code = 0;
-  const gpu_csg *c = &sc->csg[index];
+  const packed_csg *c = &sc->csg[index];
   uint32_t count[RC_CSG_STACK];
   uint32_t sp = 0;
   for (uint32_t k = 0; k < c->count; k++) {
@@ -283,7 +283,7 @@ real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, r
     uint32_t op = ins >> RC_CSG_OP_SHIFT;
     uint32_t operand = ins & RC_CSG_OPERAND_MASK;
     if (op == RC_CSG_LEAF) {
-      const gpu_quadric *q = &sc->quadrics[operand];
+      const packed_quadric *q = &sc->quadrics[operand];
       if (q->flags & RC_QUADRIC_MESH) {
         count[sp] = REF(mesh_intervals)(sc, index, q, o, d, false, sp * RC_CSG_SLOT);
         if (ref_crossing_blame != 0) return (real)RC_T_FAR;
@@ -305,7 +305,7 @@ real REF(intersect_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, r
   return REF(first_interval_end)(0, count[0], t_max, code);
 }
 
-rvec3 REF(quadric_normal)(const gpu_quadric *q, uint32_t code, rvec3 p, rvec3 d) {
+rvec3 REF(quadric_normal)(const packed_quadric *q, uint32_t code, rvec3 p, rvec3 d) {
   uint32_t face = (code >> 2u) & 3u;
   rvec3 g;
   if (face == 0) {
@@ -319,7 +319,7 @@ rvec3 REF(quadric_normal)(const gpu_quadric *q, uint32_t code, rvec3 p, rvec3 d)
   return (code & 1u) ? RV(neg)(n) : n;
 }
 
-rvec3 REF(mesh_normal)(gpu_triangle tri, uint32_t code, rvec3 d) {
+rvec3 REF(mesh_normal)(packed_triangle tri, uint32_t code, rvec3 d) {
   rvec3 g = RV(cross)(RV(sub)(v3(tri.v1), v3(tri.v0)), RV(sub)(v3(tri.v2), v3(tri.v0)));
   bool leaving = (code & 2u) != 0;
   if ((RV(dot)(g, d) > 0) != leaving) g = RV(neg)(g);

@@ -11,7 +11,7 @@ uint32_t ref_hash_pcg(uint32_t v) {
 float ref_hash_to_unit(uint32_t h) { return (float)(h >> 8u) * (1.0f / 16777216.0f); }
 
 ref_vec2 ref_sample_offset(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s) {
-  const gpu_frame *f = sc->frame;
+  const packed_frame *f = sc->frame;
   if (f->samples_per_pixel == 1u) return (ref_vec2){0.5f, 0.5f};
   uint32_t h = ref_hash_pcg(px ^ ref_hash_pcg(py ^ ref_hash_pcg(s ^ ref_hash_pcg(f->seed))));
   float jx = ref_hash_to_unit(h), jy = ref_hash_to_unit(ref_hash_pcg(h));

@@ -16,16 +16,16 @@
 _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays, ref_work;
 _Thread_local bool ref_spawned_ray;
 _Thread_local bool ref_aov_enabled, ref_aov_recording;
-_Thread_local gpu_aov ref_aov_record;
+_Thread_local packed_aov ref_aov_record;
 
 #define ROWS_PER_JOB 4
 
 typedef struct {
   ref_scene scene;
-  const gpu_frame *frame;
+  const packed_frame *frame;
   bool f64;
   float *rgb;
-  gpu_aov *aov;
+  packed_aov *aov;
   rc_region region;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays, reflection_rays;
@@ -119,7 +119,7 @@ static ref_scene scene_of(const rc_packed_scene *p) {
 }
 
 rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
-                        gpu_aov *aov, rc_ref_stats *stats) {
+                        packed_aov *aov, rc_ref_stats *stats) {
   job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = opts->f64, .rgb = rgb, .aov = aov, .region = region,
            .flush_subnormals = opts->flush_subnormals};
   atomic_init(&j.next_row, 0);

@@ -30,10 +30,10 @@ typedef struct rc_ref_stats {
 } rc_ref_stats;
 
 /* Renders the pixels of `region` (of the full frame) into rgb (its pixels * 3 floats,
- * rows top to bottom) and, if aov is not NULL, the gpu_aov records of each pixel's first
+ * rows top to bottom) and, if aov is not NULL, the packed_aov records of each pixel's first
  * sample. The stats add up over calls. */
 rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
-                        gpu_aov *aov, rc_ref_stats *stats);
+                        packed_aov *aov, rc_ref_stats *stats);
 
 /* An estimate of each row's cost (row_cost: one value per row of the frame), for cutting
  * shards (region.h): the loop steps (BVH nodes visited, objects tested) of the first

@@ -6,7 +6,7 @@
 #include "ref/ref_shader.h"
 
 
-rvec3 REF(quadric_refine)(const gpu_quadric *q, rvec3 p, rvec3 *p_error) {
+rvec3 REF(quadric_refine)(const packed_quadric *q, rvec3 p, rvec3 *p_error) {
   rvec3 L = rvec3_from(q->linear);
   rvec3 pc = RV(sub)(p, rvec3_from(q->center));
   rvec3 f = REF(quadric_local)(q, pc);
@@ -30,11 +30,11 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
   ref_surface sf;
   rvec3 n;
   if (h->kind == RC_HIT_SPHERE) {
-    gpu_sphere s = sc->spheres[h->index];
+    packed_sphere s = sc->spheres[h->index];
     real r = (real)s.radius;
     rvec3 oo = o, dd = d;
     real t_obj = h->t;
-    const gpu_transform *m = NULL;
+    const packed_transform *m = NULL;
     if (s.transform != RC_NO_TRANSFORM) {
       m = &sc->transforms[s.transform];
       oo = REF(transform_point)(m, o);
@@ -72,17 +72,17 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
     uint32_t leaf = h->part >> RC_CSG_CODE_LEAF_SHIFT;
     if (h->part & RC_CSG_CODE_MESH) {
-      gpu_triangle tri = sc->triangles[leaf];
+      packed_triangle tri = sc->triangles[leaf];
       n = RV(normalize)(REF(mesh_normal)(tri, h->part, d));
       sf.material = tri.material;
     } else {
-      const gpu_quadric *q = &sc->quadrics[leaf];
+      const packed_quadric *q = &sc->quadrics[leaf];
       if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
       n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
       sf.material = q->material;
     }
   } else {
-    gpu_triangle tri = sc->triangles[h->index];
+    packed_triangle tri = sc->triangles[h->index];
     rvec3 v0 = rvec3_from(tri.v0), v1 = rvec3_from(tri.v1), v2 = rvec3_from(tri.v2);
     rvec3 p0 = RV(scale)(v0, h->bary.x), p1 = RV(scale)(v1, h->bary.y), p2 = RV(scale)(v2, h->bary.z);
     sf.p = RV(add)(RV(add)(p0, p1), p2);
@@ -90,7 +90,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     n = RV(normalize)(RV(cross)(RV(sub)(v1, v0), RV(sub)(v2, v0)));
     sf.material = tri.material;
     if (tri.normals != RC_NO_NORMALS) {
-      const gpu_vertex_normals *vn = &sc->normals[tri.normals];
+      const packed_vertex_normals *vn = &sc->normals[tri.normals];
       rvec3 ng = (RV(dot)(n, d) > 0) ? RV(neg)(n) : n;
       rvec3 ns = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(vn->n0), h->bary.x), RV(scale)(rvec3_from(vn->n1), h->bary.y)),
                                        RV(scale)(rvec3_from(vn->n2), h->bary.z)));
@@ -173,7 +173,7 @@ real REF(specular_term)(const ref_scene *sc, rvec3 n, rvec3 l, rvec3 v, float sh
 #endif
 }
 
-bool REF(light_at)(gpu_light light, rvec3 p, rvec3 origin, rvec3 *l, rvec3 *irradiance, rvec3 *to_light,
+bool REF(light_at)(packed_light light, rvec3 p, rvec3 origin, rvec3 *l, rvec3 *irradiance, rvec3 *to_light,
                    real *shadow_t_max) {
   if (light.type == RC_LIGHT_POINT) {
     rvec3 lp = rvec3_from(light.position);
@@ -197,14 +197,14 @@ bool REF(light_at)(gpu_light light, rvec3 p, rvec3 origin, rvec3 *l, rvec3 *irra
   return true;
 }
 
-rvec3 REF(light_contribution)(const ref_scene *sc, gpu_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l,
+rvec3 REF(light_contribution)(const ref_scene *sc, packed_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l,
                               rvec3 irradiance) {
   return RV(mul)(irradiance, RV(add)(RV(scale)(rvec3_from(m.diffuse), n_dot_l),
                                     RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, n, l, v, m.shininess))));
 }
 
 rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
-  gpu_material m = sc->materials[sf->material];
+  packed_material m = sc->materials[sf->material];
   rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
   rvec3 v = RV(neg)(d);
   rvec3 origin = REF(spawn_origin)(sc, sf);

@@ -18,12 +18,12 @@ extern _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
 /* Loop steps taken (BVH nodes visited, objects tested): the shard cost estimate. */
 extern _Thread_local uint64_t ref_work;
 extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
-extern _Thread_local gpu_aov ref_aov_record;
+extern _Thread_local packed_aov ref_aov_record;
 
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
   typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; } ref_surface_##S;  \
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
-  V ref_quadric_refine_##S(const gpu_quadric *q, V p, V *p_error);                              \
+  V ref_quadric_refine_##S(const packed_quadric *q, V p, V *p_error);                              \
   ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \
   R ref_offset_coordinate_##S(R p, R n);                                                        \
   V ref_offset_ray_origin_##S(V p, V n);                                                        \
@@ -32,8 +32,8 @@ extern _Thread_local gpu_aov ref_aov_record;
   V ref_offset_error_bound_##S(V p, V n, V p_error);                                            \
   V ref_spawn_origin_##S(const ref_scene *sc, const ref_surface_##S *sf);                       \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
-  bool ref_light_at_##S(gpu_light light, V p, V origin, V *l, V *irradiance, V *to_light, R *shadow_t_max); \
-  V ref_light_contribution_##S(const ref_scene *sc, gpu_material m, V n, V l, V v, R n_dot_l, V irradiance); \
+  bool ref_light_at_##S(packed_light light, V p, V origin, V *l, V *irradiance, V *to_light, R *shadow_t_max); \
+  V ref_light_contribution_##S(const ref_scene *sc, packed_material m, V n, V l, V v, R n_dot_l, V irradiance); \
   V ref_shade_phong_##S(const ref_scene *sc, const ref_surface_##S *sf, V d);                   \
   void ref_aov_begin_##S(const ref_scene *sc, const ref_hit_##S *h);                            \
   V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);

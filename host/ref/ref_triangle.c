@@ -22,7 +22,7 @@ ref_shear REF(ray_shear_for)(rvec3 d) {
 
 rvec3 REF(permute)(rvec3 a, const int k[3]) { return RV(make)(rv_get(a, k[0]), rv_get(a, k[1]), rv_get(a, k[2])); }
 
-ref_sheared REF(shear_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri) {
+ref_sheared REF(shear_triangle)(rvec3 o, const ref_shear *sh, packed_triangle tri) {
   rvec3 a = REF(permute)(RV(sub)(rvec3_from(tri.v0), o), sh->k);
   rvec3 b = REF(permute)(RV(sub)(rvec3_from(tri.v1), o), sh->k);
   rvec3 c = REF(permute)(RV(sub)(rvec3_from(tri.v2), o), sh->k);
@@ -71,7 +71,7 @@ real REF(triangle_t)(const ref_sheared *st, real det) {
   return t_scaled / det;
 }
 
-real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, gpu_triangle tri, real t_max, rvec3 *bary) {
+real REF(intersect_triangle)(rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max, rvec3 *bary) {
   *bary = RV(make)(0, 0, 0);
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
   real det = REF(enclosing_det)(st.e);
@@ -89,7 +89,7 @@ bool REF(edge_owned)(real x0, real y0, real x1, real y1, real det) {
   return ey > 0 || (ey == 0 && ex < 0);
 }
 
-real REF(triangle_crossing)(rvec3 o, const ref_shear *sh, gpu_triangle tri) {
+real REF(triangle_crossing)(rvec3 o, const ref_shear *sh, packed_triangle tri) {
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
   real det = REF(enclosing_det)(st.e);
   if (det == 0) return (real)RC_T_FAR;
@@ -101,7 +101,7 @@ real REF(triangle_crossing)(rvec3 o, const ref_shear *sh, gpu_triangle tri) {
   return t;
 }
 
-real REF(intersect_triangle_moller_trumbore)(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, rvec3 *bary) {
+real REF(intersect_triangle_moller_trumbore)(rvec3 o, rvec3 d, packed_triangle tri, real t_max, rvec3 *bary) {
   *bary = RV(make)(0, 0, 0);
   rvec3 v0 = rvec3_from(tri.v0);
   rvec3 e1 = RV(sub)(rvec3_from(tri.v1), v0);
@@ -122,7 +122,7 @@ real REF(intersect_triangle_moller_trumbore)(rvec3 o, rvec3 d, gpu_triangle tri,
   return t;
 }
 
-real REF(intersect_triangle_cramer)(rvec3 o, rvec3 d, gpu_triangle tri, real t_max, rvec3 *bary) {
+real REF(intersect_triangle_cramer)(rvec3 o, rvec3 d, packed_triangle tri, real t_max, rvec3 *bary) {
   *bary = RV(make)(0, 0, 0);
   rvec3 ab = RV(sub)(rvec3_from(tri.v0), rvec3_from(tri.v1));
   rvec3 ac = RV(sub)(rvec3_from(tri.v0), rvec3_from(tri.v2));

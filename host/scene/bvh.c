@@ -248,7 +248,7 @@ static double box_distance2(const box *b, const float p[3]) {
  * child nearer the eye first: in packed space every primary ray starts at the eye, so
  * the stackless traversal (rc_bvh.glsl) then meets near geometry first and culls more
  * of the far side. Shadow rays start elsewhere; the order never changes a result. */
-static void flatten(const builder *b, uint32_t id, const float eye[3], uint32_t prim_base, gpu_bvh_node *out,
+static void flatten(const builder *b, uint32_t id, const float eye[3], uint32_t prim_base, packed_bvh_node *out,
                     uint32_t *next) {
   const build_node *bn = &b->nodes[id];
   uint32_t at = (*next)++;
@@ -273,7 +273,7 @@ static void flatten(const builder *b, uint32_t id, const float eye[3], uint32_t 
 /* The box of a transformed sphere (an ellipsoid): with M = packed_from_object, the
  * inverse of the f32 object_from_packed the shaders use (inverted here in f64), the box is
  * M(c) +- r |row_i(M)|, widened by a relative 1e-6 for the f32 rounding of the result. */
-static box ellipsoid_box(const gpu_sphere *s, const gpu_transform *t) {
+static box ellipsoid_box(const packed_sphere *s, const packed_transform *t) {
   const vec4 r[3] = {t->row0, t->row1, t->row2};
   double a[3][3] = {{r[0].x, r[0].y, r[0].z}, {r[1].x, r[1].y, r[1].z}, {r[2].x, r[2].y, r[2].z}};
   double m[3][3];
@@ -304,7 +304,7 @@ static box padded_box(const double lo[3], const double hi[3]) {
 }
 
 /* A quadric's proxy: its clip box (in its own frame) carried to the packed space. */
-static box quadric_box(const gpu_quadric *q) {
+static box quadric_box(const packed_quadric *q) {
   const dvec3 axis[3] = {rcm_to_d(q->axis_x), rcm_to_d(q->axis_y), rcm_to_d(q->axis_z)};
   dvec3 lo, hi;
   rc_frame_box_bounds(rcm_to_d(q->center), axis, rcm_to_d(q->lo), rcm_to_d(q->hi), &lo, &hi);
@@ -314,17 +314,17 @@ static box quadric_box(const gpu_quadric *q) {
 /* The geometry of object i as words, without its material; 0 words for a composite (not
  * compared). Two objects with the same words are the same surface. */
 static uint32_t geometry_words(const rc_packed_scene *p, uint32_t i, uint32_t *w) {
-  const gpu_frame *f = &p->frame;
+  const packed_frame *f = &p->frame;
   uint32_t n = 0;
   if (i < f->sphere_count) {
-    gpu_sphere s = p->spheres[i];
+    packed_sphere s = p->spheres[i];
     uint32_t t = s.transform;
     s.material = 0;
     s.transform = t == RC_NO_TRANSFORM ? t : 0; /* a transform is compared by value */
     memcpy(w, &s, sizeof s), n = sizeof s / 4;
     if (t != RC_NO_TRANSFORM) {
-      memcpy(w + n, &p->transforms[t], sizeof(gpu_transform));
-      n += sizeof(gpu_transform) / 4;
+      memcpy(w + n, &p->transforms[t], sizeof(packed_transform));
+      n += sizeof(packed_transform) / 4;
     }
   } else if ((i -= f->sphere_count) < f->triangle_count) {
     memcpy(w, &p->triangles[i].v0, sizeof(vec3));
@@ -332,14 +332,14 @@ static uint32_t geometry_words(const rc_packed_scene *p, uint32_t i, uint32_t *w
     memcpy(w + 6, &p->triangles[i].v2, sizeof(vec3));
     n = 9;
   } else if ((i -= f->triangle_count) < f->quadric_count) {
-    gpu_quadric q = p->quadrics[i];
+    packed_quadric q = p->quadrics[i];
     q.material = 0;
     memcpy(w, &q, sizeof q), n = sizeof q / 4;
   }
   return n;
 }
 
-#define GEOMETRY_WORDS_MAX ((sizeof(gpu_sphere) + sizeof(gpu_transform) + sizeof(gpu_quadric)) / 4)
+#define GEOMETRY_WORDS_MAX ((sizeof(packed_sphere) + sizeof(packed_transform) + sizeof(packed_quadric)) / 4)
 
 /* Whether object i's geometry words `a` equal those of an object already in the table
  * (open addressing over object indices); if not, i goes in. */
@@ -367,7 +367,7 @@ static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t 
   uint32_t *slot = malloc(cap * sizeof *slot); /* without it: every object, only slower */
   if (slot) memset(slot, 0xff, cap * sizeof *slot);
   uint32_t a[GEOMETRY_WORDS_MAX], m = 0;
-  const gpu_frame *f = &p->frame;
+  const packed_frame *f = &p->frame;
   uint32_t planes_end = f->sphere_count + f->triangle_count + f->quadric_count, planes = planes_end - f->plane_count;
   for (uint32_t i = 0; i < n; i++) {
     if (i >= planes && i < planes_end) continue; /* unbounded: every ray tests the planes after the tree */
@@ -380,7 +380,7 @@ static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t 
 }
 
 /* The bounds of triangle t. */
-static box triangle_box(const gpu_triangle *t) {
+static box triangle_box(const packed_triangle *t) {
   box b = empty_box();
   const vec3 v[3] = {t->v0, t->v1, t->v2};
   for (int j = 0; j < 3; j++) grow_point(&b, (const float[3]){v[j].x, v[j].y, v[j].z});
@@ -390,14 +390,14 @@ static box triangle_box(const gpu_triangle *t) {
 /* The object tree's boxes: every object's, planes and repeats included (the tree leaves
  * them out through refs). */
 static void object_boxes(const rc_packed_scene *p, prim_info *info) {
-  const gpu_frame *f = &p->frame;
+  const packed_frame *f = &p->frame;
   for (uint32_t i = 0; i < f->object_count; i++) {
     prim_info *q = &info[i];
     q->bounds = empty_box();
     if (i < f->sphere_count && p->spheres[i].transform != RC_NO_TRANSFORM) {
       q->bounds = ellipsoid_box(&p->spheres[i], &p->transforms[p->spheres[i].transform]);
     } else if (i < f->sphere_count) {
-      const gpu_sphere *s = &p->spheres[i];
+      const packed_sphere *s = &p->spheres[i];
       const float c[3] = {s->center.x, s->center.y, s->center.z};
       for (int k = 0; k < 3; k++) {
         /* One ulp outwards each way: c +- r is rounded. */
@@ -409,7 +409,7 @@ static void object_boxes(const rc_packed_scene *p, prim_info *info) {
     } else if (i < f->sphere_count + f->triangle_count + f->quadric_count) {
       q->bounds = quadric_box(&p->quadrics[i - f->sphere_count - f->triangle_count]);
     } else {
-      const gpu_csg *c = &p->csg[i - f->sphere_count - f->triangle_count - f->quadric_count];
+      const packed_csg *c = &p->csg[i - f->sphere_count - f->triangle_count - f->quadric_count];
       q->bounds = padded_box((const double[3]){c->lo.x, c->lo.y, c->lo.z}, (const double[3]){c->hi.x, c->hi.y, c->hi.z});
     }
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
@@ -429,7 +429,7 @@ static rc_status append_tree(rc_packed_scene *p, prim_info *info, uint32_t *refs
     return RC_ERR_OUT_OF_MEMORY;
   }
   uint32_t nodes = p->bvh_node_total + b->node_count, prims = p->bvh_prim_total + m;
-  gpu_bvh_node *n = realloc(p->bvh_nodes, (size_t)nodes * sizeof *n);
+  packed_bvh_node *n = realloc(p->bvh_nodes, (size_t)nodes * sizeof *n);
   if (n) p->bvh_nodes = n;
   uint32_t *r = realloc(p->bvh_prims, (size_t)(prims + 3) / 4 * 4 * sizeof *r);
   if (r) p->bvh_prims = r;
@@ -439,7 +439,7 @@ static rc_status append_tree(rc_packed_scene *p, prim_info *info, uint32_t *refs
   }
   for (uint32_t i = 0; i < m; i++) p->bvh_prims[p->bvh_prim_total + i] = base + refs[i];
   for (uint32_t i = prims; i < (prims + 3) / 4 * 4; i++) p->bvh_prims[i] = 0;
-  const gpu_camera *cam = &p->frame.camera;
+  const packed_camera *cam = &p->frame.camera;
   const float eye[3] = {cam->eye.x, cam->eye.y, cam->eye.z};
   uint32_t next = p->bvh_node_total;
   flatten(b, root, eye, p->bvh_prim_total, p->bvh_nodes, &next);
@@ -452,7 +452,7 @@ static rc_status append_tree(rc_packed_scene *p, prim_info *info, uint32_t *refs
 
 /* The object tree (the first frame.bvh_node_count nodes). */
 static rc_status build_objects(rc_packed_scene *p, rc_bvh_stats *stats) {
-  gpu_frame *f = &p->frame;
+  packed_frame *f = &p->frame;
   uint32_t n = f->object_count;
   if (n >= (UINT32_MAX >> RC_BVH_LEAF_SHIFT)) {
     rc_refuse_scene("scene too large for the BVH: %u objects, at most %u", n, (UINT32_MAX >> RC_BVH_LEAF_SHIFT) - 1);
@@ -496,7 +496,7 @@ static rc_status build_operands(rc_packed_scene *p) {
       for (int a = 0; a < 3; a++) info[i].centroid[a] = 0.5f * (info[i].bounds.lo[a] + info[i].bounds.hi[a]);
       refs[i] = i;
     }
-    gpu_quadric *q = &p->quadrics[op->leaf];
+    packed_quadric *q = &p->quadrics[op->leaf];
     q->mesh_root = p->bvh_node_total;
     builder b;
     if (st == RC_OK) st = append_tree(p, info, refs, op->count, op->first, &b);

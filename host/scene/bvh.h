@@ -1,6 +1,6 @@
 /* bvh.h: the bounding volume hierarchy over all objects (every primitive kind together),
  * built on the host in the packed (camera-relative f32) space and flattened in
- * depth-first order, near child first as seen from the eye, into gpu_bvh_node[] with skip
+ * depth-first order, near child first as seen from the eye, into packed_bvh_node[] with skip
  * links plus the leaves' object references, which both renderers traverse without a
  * stack (rc_bvh.glsl, ref/ref_bvh.c).
  *

@@ -32,7 +32,7 @@ static double gap(double e, double a, double b, double c) {
 /* Spheres: tiny, far, seen from just above a huge one, or with a centre f32 moves. */
 static void judge_spheres(const rc_packed_scene *p, dvec3 eye, double u, bool algebraic, rc_precision_report *r) {
   for (size_t i = 0; i < p->frame.sphere_count; i++) {
-    const gpu_sphere *s = &p->spheres[i];
+    const packed_sphere *s = &p->spheres[i];
     if (s->transform != RC_NO_TRANSFORM) continue; /* ellipsoids: object space, scale 1 by construction */
     double rad = s->radius;
     double dist = rcm_length_d(rcm_sub_d(rcm_to_d(s->center), eye));
@@ -60,7 +60,7 @@ static void judge_spheres(const rc_packed_scene *p, dvec3 eye, double u, bool al
 /* Triangles, standalone and of composites' mesh operands alike. */
 static void judge_triangles(const rc_packed_scene *p, dvec3 eye, double u, rc_precision_report *r) {
   for (size_t i = 0; i < p->triangle_total; i++) {
-    const gpu_triangle *t = &p->triangles[i];
+    const packed_triangle *t = &p->triangles[i];
     dvec3 a = rcm_to_d(t->v0), b = rcm_to_d(t->v1), c = rcm_to_d(t->v2);
     dvec3 e0 = rcm_sub_d(b, a), e1 = rcm_sub_d(c, b), e2 = rcm_sub_d(a, c);
     double longest = fmax(rcm_length_d(e0), fmax(rcm_length_d(e1), rcm_length_d(e2)));
@@ -100,7 +100,7 @@ static void judge_triangles(const rc_packed_scene *p, dvec3 eye, double u, rc_pr
  * h |column k of R^-1| in packed space. */
 static void judge_quadrics(const rc_packed_scene *p, dvec3 eye, double u, rc_precision_report *r) {
   for (uint32_t i = 0; i < p->quadric_total; i++) {
-    const gpu_quadric *q = &p->quadrics[i];
+    const packed_quadric *q = &p->quadrics[i];
     if (q->flags & RC_QUADRIC_UNBOUNDED) {
       /* An infinite plane is centred on its point nearest the eye (scene_pack.c): a primary
        * ray's t is one division of two inputs rounded once, its hit point is projected onto

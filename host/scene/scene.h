@@ -41,7 +41,7 @@ typedef struct rc_triangle_def {
   dvec3 n[3];
 } rc_triangle_def;
 
-/* A quadric in its own frame (gpu_quadric has the formula): world centre, the rows of the
+/* A quadric in its own frame (packed_quadric has the formula): world centre, the rows of the
  * world-to-frame matrix (the frame's axes; scaled or sheared by a "transform"), M (diag,
  * off), linear, constant, and the clip box [lo, hi] in the frame. */
 typedef struct rc_quadric_def {

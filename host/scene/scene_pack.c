@@ -76,7 +76,7 @@ static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
   /* A parallel window is a length (packed units); a perspective one a slope at focal 1. */
   double half_h = c->projection == RC_PROJECTION_PERSPECTIVE ? tan(c->fov_y_deg * M_PI / 360.0)
                                                              : 0.5 * c->view_height * p->scale;
-  gpu_camera *g = &p->frame.camera;
+  packed_camera *g = &p->frame.camera;
   g->eye = to_packed(p, c->eye);
   g->u = rcm_to_f(u);
   g->v = rcm_to_f(v);
@@ -143,7 +143,7 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
     }
   size_t standalone = s->quadric_count + s->plane_count;
   for (size_t i = 0; i < standalone + s->csg_leaf_count && !field; i++) {
-    const gpu_quadric *q = &p->quadrics[i];
+    const packed_quadric *q = &p->quadrics[i];
     bool bad = !fits(q->center, u) || !finite3(q->diag) || !finite3(q->off) || !fits(q->linear, u) ||
                !fits1(q->constant, u * u) || !fits(q->lo, u) || !fits(q->hi, u);
     if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size or coefficients");
@@ -169,7 +169,7 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
  * / scale), in f64, rounded to f32; object space is measured in packed units too (its
  * points times scale), so only the translation scales. Returns false for a transform that
  * is singular, or becomes so or infinite in f32 (a scale beyond 1e38 or below 1e-38). */
-static bool object_from_packed(const rc_affine *w, dvec3 origin, double scale, gpu_transform *out) {
+static bool object_from_packed(const rc_affine *w, dvec3 origin, double scale, packed_transform *out) {
   const double(*a)[4] = w->m;
   double lin[3][3] = {{a[0][0], a[0][1], a[0][2]}, {a[1][0], a[1][1], a[1][2]}, {a[2][0], a[2][1], a[2][2]}};
   double inv[3][3];
@@ -194,9 +194,9 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, double scale, g
  * rounding, the coefficients and the clip box are already centre-relative. In packed units
  * (x' = s x) the equation is multiplied through by s^2: the second-order coefficients stay,
  * the linear ones scale by s and the constant by s^2. */
-static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, gpu_quadric *g) {
+static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, packed_quadric *g) {
   double s = p->scale;
-  *g = (gpu_quadric){.center = to_packed(p, q->center),
+  *g = (packed_quadric){.center = to_packed(p, q->center),
                      .material = q->material,
                      .axis_x = rcm_to_f(q->axis[0]),
                      .axis_y = rcm_to_f(q->axis[1]),
@@ -210,7 +210,7 @@ static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, gpu_
                      .hi = rcm_to_f(rcm_scale_d(q->hi, s))};
 }
 
-static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_quadric_def *q, gpu_quadric *g) {
+static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_quadric_def *q, packed_quadric *g) {
   rc_quadric_def moved = *q;
   moved.center = plane_point_nearest_eye(s, q);
   pack_quadric(p, &moved, g);
@@ -219,7 +219,7 @@ static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_qua
 
 /* The frame: the quality settings, the image's sampling, the counts. */
 static void pack_frame(const rc_scene *s, rc_packed_scene *p) {
-  gpu_frame *f = &p->frame;
+  packed_frame *f = &p->frame;
   f->sphere_formula = s->quality.sphere;
   f->triangle_formula = s->quality.triangle;
   f->offset_strategy = s->quality.offset;
@@ -308,7 +308,7 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
     p->triangles[i].material = s->triangles[i].material;
     p->triangles[i].normals = RC_NO_NORMALS;
     if (s->triangles[i].smooth) {
-      gpu_vertex_normals *vn = &p->normals[p->normal_count];
+      packed_vertex_normals *vn = &p->normals[p->normal_count];
       vn->n0 = rcm_to_f(s->triangles[i].n[0]);
       vn->n1 = rcm_to_f(s->triangles[i].n[1]);
       vn->n2 = rcm_to_f(s->triangles[i].n[2]);
@@ -316,7 +316,7 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
     }
   }
   for (size_t i = 0; i < s->csg_triangle_count; i++) {
-    gpu_triangle *g = &p->triangles[s->triangle_count + i];
+    packed_triangle *g = &p->triangles[s->triangle_count + i];
     g->v0 = to_packed(p, s->csg_triangles[i].v[0]);
     g->v1 = to_packed(p, s->csg_triangles[i].v[1]);
     g->v2 = to_packed(p, s->csg_triangles[i].v[2]);
@@ -372,7 +372,7 @@ static void pack_quadrics_and_composites(const rc_scene *s, rc_packed_scene *p) 
   uint32_t at = 0;
   for (size_t i = 0; i < s->csg_count; i++) {
     const rc_csg_def *c = &s->csgs[i];
-    p->csg[i] = (gpu_csg){.lo = to_packed(p, c->lo), .hi = to_packed(p, c->hi), .first = at, .count = c->length};
+    p->csg[i] = (packed_csg){.lo = to_packed(p, c->lo), .hi = to_packed(p, c->hi), .first = at, .count = c->length};
     for (uint32_t k = 0; k < c->length; k++) {
       uint32_t ins = c->program[k];
       bool leaf = (ins >> RC_CSG_OP_SHIFT) == RC_CSG_LEAF;
@@ -446,7 +446,7 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
    * heights live there). Its frame rows are left as they are: a rotation, or under a
    * transform also its scale, whose own rounding the band therefore does not cover. */
   for (uint32_t i = 0; i < p->quadric_total; i++) {
-    gpu_quadric *q = &p->quadrics[i];
+    packed_quadric *q = &p->quadrics[i];
     q->center = perturb_vec3(q->center, seed);
     /* The second-order coefficients lean the other way from the constant, so that
      * -constant / diag (a radius squared, after normalization) moves rather than cancels. */
@@ -476,7 +476,7 @@ void rc_packed_scene_free(rc_packed_scene *p) {
 }
 
 uint64_t rc_packed_scene_hash(const rc_packed_scene *p) {
-  const gpu_frame *f = &p->frame;
+  const packed_frame *f = &p->frame;
   const struct {
     const void *data;
     size_t bytes;

@@ -15,23 +15,23 @@ typedef struct rc_mesh_operand {
 } rc_mesh_operand;
 
 typedef struct rc_packed_scene {
-  gpu_frame frame;
-  gpu_sphere *spheres;
-  gpu_triangle *triangles;
+  packed_frame frame;
+  packed_sphere *spheres;
+  packed_triangle *triangles;
   uint32_t triangle_total;   /* the standalone ones (frame.triangle_count), then the mesh operands' */
-  gpu_material *materials;
-  gpu_light *lights;
-  gpu_bvh_node *bvh_nodes; /* NULL until rc_bvh_build (bvh.h): the object tree, then the mesh operands' */
+  packed_material *materials;
+  packed_light *lights;
+  packed_bvh_node *bvh_nodes; /* NULL until rc_bvh_build (bvh.h): the object tree, then the mesh operands' */
   uint32_t *bvh_prims;     /* object (mesh operands: triangle) references of the leaves, padded to a multiple of 4 */
   uint32_t bvh_node_total, bvh_prim_total; /* of both kinds of tree */
   bool bvh;                /* the object tree was built (frame.bvh_node_count of its nodes) */
-  gpu_transform *transforms; /* of the transformed spheres (at least one element) */
+  packed_transform *transforms; /* of the transformed spheres (at least one element) */
   uint32_t transform_count;
-  gpu_vertex_normals *normals; /* of the smooth-shaded triangles (at least one element) */
+  packed_vertex_normals *normals; /* of the smooth-shaded triangles (at least one element) */
   uint32_t normal_count;
-  gpu_quadric *quadrics;   /* the standalone quadrics, then the composites' leaves */
+  packed_quadric *quadrics;   /* the standalone quadrics, then the composites' leaves */
   uint32_t quadric_total;  /* both kinds (frame.quadric_count counts the standalone ones) */
-  gpu_csg *csg;
+  packed_csg *csg;
   uint32_t *csg_program;   /* padded to a multiple of 4 */
   uint32_t csg_program_length;
   rc_mesh_operand *mesh_operands;

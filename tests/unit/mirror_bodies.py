@@ -216,8 +216,8 @@ def reduce(body, c):
             t = "."
         if c and re.fullmatch(r"ref_\w+", t) and nxt not in ("(", "*") and not re.match(r"[A-Za-z_]", nxt):
             t = t[4:]  # a global the shader has without the prefix: ref_spawned_ray
-        elif re.fullmatch(r"(ref|gpu)_\w+|\w+_(triangle|shear|hit|surface)", t) and nxt != "(":
-            prev = "type"  # a struct type: `ref_scene *sc`, `gpu_quadric q`
+        elif re.fullmatch(r"(ref|packed)_\w+|\w+_(triangle|shear|hit|surface)", t) and nxt != "(":
+            prev = "type"  # a struct type: `ref_scene *sc`, `packed_quadric q`
             i += 1
             continue
         if re.match(r"[A-Za-z_]", t):

@@ -5,13 +5,13 @@
 #include "ref/ref_intersect.h"
 #include "rc_test.h"
 
-static gpu_sphere sphere(float x, float y, float z, float r) {
-  gpu_sphere s = {{x, y, z}, r, 0, RC_NO_TRANSFORM, 0, 0};
+static packed_sphere sphere(float x, float y, float z, float r) {
+  packed_sphere s = {{x, y, z}, r, 0, RC_NO_TRANSFORM, 0, 0};
   return s;
 }
 
-static gpu_triangle triangle(vec3 a, vec3 b, vec3 c) {
-  gpu_triangle t = {a, 0, b, RC_NO_NORMALS, c, 0};
+static packed_triangle triangle(vec3 a, vec3 b, vec3 c) {
+  packed_triangle t = {a, 0, b, RC_NO_NORMALS, c, 0};
   return t;
 }
 
@@ -67,13 +67,13 @@ TEST(sphere_far_away_and_small_stays_visible_in_f32) {
   CHECK_NEAR(t, 1e5 - 1, 0.02);
 }
 
-static double tri_t(dvec3 o, dvec3 d, gpu_triangle tri, dvec3 *bary) {
+static double tri_t(dvec3 o, dvec3 d, packed_triangle tri, dvec3 *bary) {
   ref_shear_d sh = ref_ray_shear_for_d(d);
   return ref_intersect_triangle_d(o, &sh, tri, FAR, bary);
 }
 
 TEST(triangle_hit_gives_t_and_barycentrics) {
-  gpu_triangle tri = triangle(rcm_make_f(-1, -1, -5), rcm_make_f(1, -1, -5), rcm_make_f(0, 1, -5));
+  packed_triangle tri = triangle(rcm_make_f(-1, -1, -5), rcm_make_f(1, -1, -5), rcm_make_f(0, 1, -5));
   dvec3 bary;
   double t = tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), tri, &bary);
   CHECK_NEAR(t, 5.0, 1e-12);
@@ -82,14 +82,14 @@ TEST(triangle_hit_gives_t_and_barycentrics) {
 }
 
 TEST(triangle_miss_and_behind) {
-  gpu_triangle tri = triangle(rcm_make_f(-1, -1, -5), rcm_make_f(1, -1, -5), rcm_make_f(0, 1, -5));
+  packed_triangle tri = triangle(rcm_make_f(-1, -1, -5), rcm_make_f(1, -1, -5), rcm_make_f(0, 1, -5));
   dvec3 bary;
   CHECK(tri_t(rcm_make_d(2, 0, 0), rcm_make_d(0, 0, -1), tri, &bary) == FAR);
   CHECK(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, 1), tri, &bary) == FAR);
 }
 
 TEST(triangle_both_windings_hit) {
-  gpu_triangle tri = triangle(rcm_make_f(0, 1, -5), rcm_make_f(1, -1, -5), rcm_make_f(-1, -1, -5));
+  packed_triangle tri = triangle(rcm_make_f(0, 1, -5), rcm_make_f(1, -1, -5), rcm_make_f(-1, -1, -5));
   dvec3 bary;
   CHECK_NEAR(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), tri, &bary), 5.0, 1e-12);
 }
@@ -99,8 +99,8 @@ TEST(triangle_shared_edge_has_no_crack) {
    * (watertight: inclusive edges and exactly negated edge functions). The diagonal's end
    * points are the quad's outer corners, where a rounded direction may rightly miss both,
    * so only its interior is aimed at. */
-  gpu_triangle a = triangle(rcm_make_f(-1, -1, -3), rcm_make_f(1, -1, -3), rcm_make_f(1, 1, -3));
-  gpu_triangle b = triangle(rcm_make_f(-1, -1, -3), rcm_make_f(1, 1, -3), rcm_make_f(-1, 1, -3));
+  packed_triangle a = triangle(rcm_make_f(-1, -1, -3), rcm_make_f(1, -1, -3), rcm_make_f(1, 1, -3));
+  packed_triangle b = triangle(rcm_make_f(-1, -1, -3), rcm_make_f(1, 1, -3), rcm_make_f(-1, 1, -3));
   int leaks = 0;
   for (int i = 1; i < 1000; i++) {
     float s = -1.0f + 2.0f * (float)i / 1000.0f;
@@ -117,17 +117,17 @@ TEST(triangle_shared_edge_has_no_crack) {
 }
 
 TEST(degenerate_triangle_is_missed) {
-  gpu_triangle line = triangle(rcm_make_f(-1, 0, -5), rcm_make_f(0, 0, -5), rcm_make_f(1, 0, -5));
-  gpu_triangle point = triangle(rcm_make_f(0, 0, -5), rcm_make_f(0, 0, -5), rcm_make_f(0, 0, -5));
+  packed_triangle line = triangle(rcm_make_f(-1, 0, -5), rcm_make_f(0, 0, -5), rcm_make_f(1, 0, -5));
+  packed_triangle point = triangle(rcm_make_f(0, 0, -5), rcm_make_f(0, 0, -5), rcm_make_f(0, 0, -5));
   dvec3 bary;
   CHECK(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), line, &bary) == FAR);
   CHECK(tri_t(rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), point, &bary) == FAR);
 }
 
 TEST(closest_hit_takes_the_nearest_and_lowest_index_on_ties) {
-  gpu_sphere spheres[3] = {sphere(0, 0, -10, 1), sphere(0, 0, -5, 1), sphere(0, 0, -5, 1)};
-  gpu_triangle tris[1] = {triangle(rcm_make_f(-1, -1, -3.5f), rcm_make_f(1, -1, -3.5f), rcm_make_f(0, 1, -3.5f))};
-  gpu_frame frame = {0};
+  packed_sphere spheres[3] = {sphere(0, 0, -10, 1), sphere(0, 0, -5, 1), sphere(0, 0, -5, 1)};
+  packed_triangle tris[1] = {triangle(rcm_make_f(-1, -1, -3.5f), rcm_make_f(1, -1, -3.5f), rcm_make_f(0, 1, -3.5f))};
+  packed_frame frame = {0};
   frame.sphere_count = 3;
   frame.triangle_count = 0;
   frame.object_count = 3;
@@ -145,8 +145,8 @@ TEST(closest_hit_takes_the_nearest_and_lowest_index_on_ties) {
 }
 
 TEST(occluded_only_within_t_max) {
-  gpu_sphere spheres[1] = {sphere(0, 0, -5, 1)};
-  gpu_frame frame = {0};
+  packed_sphere spheres[1] = {sphere(0, 0, -5, 1)};
+  packed_frame frame = {0};
   frame.sphere_count = 1;
   frame.object_count = 1;
   ref_scene sc = {.frame = &frame, .spheres = spheres};
@@ -156,8 +156,8 @@ TEST(occluded_only_within_t_max) {
 }
 
 /* A unit cylinder along z, |z| <= 1 (normalized as the loader builds it), solid or open. */
-static gpu_quadric cylinder_z(bool solid) {
-  gpu_quadric q = {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1},
+static packed_quadric cylinder_z(bool solid) {
+  packed_quadric q = {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1},
                    .constant = -1, .flags = solid ? RC_QUADRIC_SOLID : 0u, .diag = {1, 1, 0},
                    .lo = {-1.001f, -1.001f, -1}, .hi = {1.001f, 1.001f, 1}};
   return q;
@@ -166,11 +166,11 @@ static gpu_quadric cylinder_z(bool solid) {
 TEST(quadric_ray_along_a_cylinders_axis_takes_the_a_zero_branch) {
   /* a = 0 exactly: inside the radius the whole line is inside, outside none of it; the
    * solid is then hit on its cap, the open tube not at all. */
-  gpu_quadric q = cylinder_z(true);
+  packed_quadric q = cylinder_z(true);
   double lo, hi;
   CHECK_EQ_INT(ref_quadric_roots_d(&q, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), &lo, &hi), 1u); /* ALL */
   CHECK_EQ_INT(ref_quadric_roots_d(&q, rcm_make_d(1.5, 0, 5), rcm_make_d(0, 0, -1), &lo, &hi), 0u); /* NONE */
-  gpu_frame f = {0};
+  packed_frame f = {0};
   ref_scene sc = {.frame = &f, .quadrics = &q};
   uint32_t code;
   double t = ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code);
@@ -186,8 +186,8 @@ TEST(quadric_nearly_parallel_rays_stay_finite_and_right) {
   /* Tilted by 1e-6 from the axis: a ~ 1e-12; the far root is pinned, never Inf or NaN.
    * From (0.5, 0, 5) the ray meets the cap z = 1 at t = 4 / cos, and the wall only far
    * beyond the box. */
-  gpu_quadric q = cylinder_z(true);
-  gpu_frame f = {0};
+  packed_quadric q = cylinder_z(true);
+  packed_frame f = {0};
   ref_scene sc = {.frame = &f, .quadrics = &q};
   uint32_t code;
   dvec3 dd = rcm_normalize_d(rcm_make_d(1e-6, 0, -1));
@@ -203,10 +203,10 @@ TEST(quadric_nearly_parallel_rays_stay_finite_and_right) {
 
 TEST(quadric_paraboloid_along_its_axis_has_one_root) {
   /* x^2 + y^2 = z from above along -z at (0.5, 0): a = 0, h != 0, one root at z = 0.25. */
-  gpu_quadric q = {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1},
+  packed_quadric q = {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1},
                    .constant = 0, .flags = 0, .diag = {1, 1, 0}, .linear = {0, 0, -0.5f},
                    .lo = {-2, -2, 0}, .hi = {2, 2, 4}};
-  gpu_frame f = {0};
+  packed_frame f = {0};
   ref_scene sc = {.frame = &f, .quadrics = &q};
   uint32_t code;
   CHECK_NEAR(ref_intersect_quadric_d(&sc, 0, rcm_make_d(0.5, 0, 5), rcm_make_d(0, 0, -1), FAR, &code), 4.75, 1e-12);
@@ -215,7 +215,7 @@ TEST(quadric_paraboloid_along_its_axis_has_one_root) {
 }
 
 /* The cube [-1, 1]^3 as 12 triangles, some wound in, some out (parity needs no winding). */
-static void cube_triangles(gpu_triangle t[12]) {
+static void cube_triangles(packed_triangle t[12]) {
   static const float v[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
   static const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
@@ -228,7 +228,7 @@ static void cube_triangles(gpu_triangle t[12]) {
 
 /* Crossings of the line o + t d with the cube, in f64 and in f32 (must agree). */
 static int cube_crossings(dvec3 o, dvec3 d) {
-  gpu_triangle t[12];
+  packed_triangle t[12];
   cube_triangles(t);
   ref_shear_d sd = ref_ray_shear_for_d(d);
   vec3 of = rcm_to_f(o), df = rcm_to_f(d);
@@ -264,7 +264,7 @@ TEST(csg_difference_and_intersection_give_the_interval_ends) {
   /* Unit sphere at 0 (leaf 0) and radius-0.5 sphere at (0, 0, 0.8) (leaf 1), along -z from
    * z = 5: A is [4, 6], B is [3.7, 4.7]. A - B starts where B ends, 4.7, on B's surface,
    * flipped; A & B starts at 4, on A. */
-  gpu_quadric leaves[2] = {
+  packed_quadric leaves[2] = {
       {.center = {0, 0, 0}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1}, .constant = -1,
        .flags = RC_QUADRIC_SOLID, .diag = {1, 1, 1}, .lo = {-1.01f, -1.01f, -1.01f}, .hi = {1.01f, 1.01f, 1.01f}},
       {.center = {0, 0, 0.8f}, .axis_x = {1, 0, 0}, .axis_y = {0, 1, 0}, .axis_z = {0, 0, 1}, .constant = -0.25f,
@@ -272,8 +272,8 @@ TEST(csg_difference_and_intersection_give_the_interval_ends) {
   const uint32_t program[6] = {RC_CSG_LEAF << RC_CSG_OP_SHIFT,       (RC_CSG_LEAF << RC_CSG_OP_SHIFT) | 1u,
                                RC_CSG_DIFFERENCE << RC_CSG_OP_SHIFT, RC_CSG_LEAF << RC_CSG_OP_SHIFT,
                                (RC_CSG_LEAF << RC_CSG_OP_SHIFT) | 1u, RC_CSG_INTERSECTION << RC_CSG_OP_SHIFT};
-  const gpu_csg csg[2] = {{.first = 0, .count = 3}, {.first = 3, .count = 3}};
-  gpu_frame f = {0};
+  const packed_csg csg[2] = {{.first = 0, .count = 3}, {.first = 3, .count = 3}};
+  packed_frame f = {0};
   ref_scene sc = {.frame = &f, .quadrics = leaves, .csg = csg, .csg_program = program};
   uint32_t code;
   /* (B's centre is the float nearest 0.8, 1.2e-8 above it.) */

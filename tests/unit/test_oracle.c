@@ -74,7 +74,7 @@ TEST(f64_sphere_reference_matches_the_oracle_at_s03_distances) {
   const double distances[4] = {10, 1e3, 1e5, 1e8};
   for (int k = 0; k < 4; k++) {
     double D = distances[k];
-    gpu_sphere s = {{0, 0, (float)-D}, 1, 0, RC_NO_TRANSFORM, 0, 0};
+    packed_sphere s = {{0, 0, (float)-D}, 1, 0, RC_NO_TRANSFORM, 0, 0};
     dvec3 c = rcm_make_d(0, 0, -D);
     tally a = {0};
     for (int i = 0; i < 20000; i++) {
@@ -139,7 +139,7 @@ TEST(f64_watertight_reference_matches_the_oracle_at_s07_positions) {
         fv[j].y = (float)(base.y + uniform() - 0.5);
         fv[j].z = (float)(base.z - 2 + uniform() - 0.5);
       }
-      gpu_triangle tri = {fv[0], 0, fv[1], RC_NO_NORMALS, fv[2], 0};
+      packed_triangle tri = {fv[0], 0, fv[1], RC_NO_NORMALS, fv[2], 0};
       for (int j = 0; j < 3; j++) v[j] = rcm_make_d(fv[j].x, fv[j].y, fv[j].z);
       double b1 = uniform() * 1.4 - 0.2, b2 = uniform() * 1.4 - 0.2;
       if (i % 8 == 0) b1 = (i / 8) % 2, b2 = 0;

@@ -4,7 +4,7 @@
 #include "scene/scene.h"
 
 TEST(steps_per_sample_counts_every_loop) {
-  gpu_frame f = {0};
+  packed_frame f = {0};
   f.sphere_count = 3;
   f.triangle_count = 4;
   f.light_count = 2;
@@ -16,7 +16,7 @@ TEST(steps_per_sample_counts_every_loop) {
 }
 
 TEST(batch_fits_the_budget_and_the_samples) {
-  gpu_frame f = {0};
+  packed_frame f = {0};
   f.sphere_count = 100;
   f.light_count = 1;
   f.samples_per_pixel = 1024;
@@ -31,7 +31,7 @@ TEST(batch_fits_the_budget_and_the_samples) {
 }
 
 TEST(one_sample_over_budget_is_refused) {
-  gpu_frame f = {0};
+  packed_frame f = {0};
   f.triangle_count = 30000;
   f.light_count = 1;
   f.samples_per_pixel = 1;
@@ -42,7 +42,7 @@ TEST(one_sample_over_budget_is_refused) {
 TEST(lights_beyond_one_dispatch_go_in_passes_that_fit_the_budget) {
   /* 100 spheres and 5,000 lights by brute force: a sample's rays cost 1 + (1 + 100) and
    * each light 1 + 100 more; a pass takes as many lights as the rest of the budget pays. */
-  gpu_frame f = {0};
+  packed_frame f = {0};
   f.sphere_count = 100;
   f.light_count = 5000;
   f.samples_per_pixel = 4;
@@ -78,7 +78,7 @@ TEST(lights_beyond_one_dispatch_go_in_passes_that_fit_the_budget) {
 }
 
 TEST(bvh_plans_from_the_depth_and_never_refuses) {
-  gpu_frame f = {0};
+  packed_frame f = {0};
   f.triangle_count = 1000000;
   f.object_count = 1000000;
   f.light_count = 2;
@@ -94,7 +94,7 @@ TEST(bvh_plan_counts_composites_by_their_loaders_steps) {
   /* 4 objects (a box and three composites, the longest taking 47 steps per ray), depth 4:
    * a ray tests at most the 4 objects, 47 steps each: 16 + 4 x 47 = 204 per traversal,
    * 1 + (1 + 204 + 2 x 205) = 616 with two lights. */
-  gpu_frame f = {0};
+  packed_frame f = {0};
   f.quadric_count = 1;
   f.csg_count = 3;
   f.object_count = 4;
@@ -151,7 +151,7 @@ TEST(loop_budget_keeps_llvmpipe_under_its_cap_at_every_width) {
     CHECK_EQ_INT(rc_gpu_loop_budget(false, size), RC_LOOP_BUDGET);
     /* The showcase's plan (3 spheres + 5 triangles, 3 lights, 1 bounce, BVH depth 4) fits
      * at least one sample into a dispatch at every width, within the budget. */
-    gpu_frame f = {0};
+    packed_frame f = {0};
     f.sphere_count = 3, f.triangle_count = 5, f.object_count = 8, f.light_count = 3;
     f.reflection_depth = 1, f.samples_per_pixel = 4;
     rc_gpu_plan p;

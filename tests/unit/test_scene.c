@@ -66,7 +66,7 @@ TEST(camera_basis_is_right_handed_and_window_follows_fov_and_aspect) {
                RC_OK);
   rc_packed_scene p;
   CHECK_EQ_INT(rc_scene_pack(&s, &p), RC_OK);
-  const gpu_camera *c = &p.frame.camera;
+  const packed_camera *c = &p.frame.camera;
   CHECK(c->u.x == 1 && c->v.y == 1 && c->w.z == 1);
   CHECK_NEAR(c->top, 1.0, 1e-7); /* tan(45 deg) */
   CHECK_NEAR(c->right, 2.0, 1e-7);
@@ -182,7 +182,7 @@ static char *sphere_scene(int rows, bool floor) {
 /* The tree's surface-area cost (MacDonald and Booth 1990) in absolute area units: each
  * node's box area for its visit, times its object count at a leaf. Divided by a box's
  * area, it is the expected box and object tests of a ray that enters that box. */
-static double node_area(const gpu_bvh_node *n) {
+static double node_area(const packed_bvh_node *n) {
   double dx = (double)n->hi.x - n->lo.x, dy = (double)n->hi.y - n->lo.y, dz = (double)n->hi.z - n->lo.z;
   return 2 * (dx * dy + dy * dz + dz * dx);
 }
@@ -190,7 +190,7 @@ static double node_area(const gpu_bvh_node *n) {
 static double tree_cost(const rc_packed_scene *p) {
   double cost = 0;
   for (uint32_t i = 0; i < p->frame.bvh_node_count; i++) {
-    const gpu_bvh_node *n = &p->bvh_nodes[i];
+    const packed_bvh_node *n = &p->bvh_nodes[i];
     cost += n->leaf ? node_area(n) * (double)(n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u)) : node_area(n);
   }
   return cost;
