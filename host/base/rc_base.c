@@ -297,6 +297,11 @@ rc_status rc_check_distinct(const rc_file_role *f, size_t count) {
   return RC_OK;
 }
 
+bool rc_has_extension(const char *path, const char *ext) {
+  size_t n = strlen(path), m = strlen(ext);
+  return n > m && strcasecmp(path + n - m, ext) == 0;
+}
+
 bool rc_path_within(const char *dir, const char *path) {
   char *d = realpath(dir, NULL), *p = realpath(path, NULL);
   size_t n = d ? strlen(d) : 0;

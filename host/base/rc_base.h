@@ -126,6 +126,9 @@ rc_status rc_check_distinct(const rc_file_role *files, size_t count);
  * keeps a scene from reading files outside its own folder (--allow-outside-paths). A path
  * that does not exist counts as inside; opening it then fails with its own message. */
 bool rc_path_within(const char *dir, const char *path);
+/* Whether the file name ends in `ext` (".test"), in any case, after at least one other
+ * character: the one test every reader and command uses, so that they agree on a name. */
+bool rc_has_extension(const char *path, const char *ext);
 
 /* Fault injection for the tests of the error paths: true when VKRAYCAST_FAULT names this
  * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling

@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -234,11 +233,6 @@ static rc_status check_outputs(const render_args *a) {
   return rc_output_check_format(a->output);
 }
 
-static bool has_extension(const char *path, const char *ext) {
-  size_t n = strlen(path), m = strlen(ext);
-  return n > m && strcasecmp(path + n - m, ext) == 0;
-}
-
 static rc_status check_output_args(const render_args *a);
 
 static rc_status parse_args(int argc, char **argv, render_args *a) {
@@ -289,7 +283,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   }
   if (!a->output) {
     /* A .test scene may name its image (its `output` command): read once it is loaded. */
-    if (strcmp(a->scene, "-") == 0 || has_extension(a->scene, ".test")) return RC_OK;
+    if (strcmp(a->scene, "-") == 0 || rc_has_extension(a->scene, ".test")) return RC_OK;
     rc_usage_error(&rc_render_spec, "no output file given (-o OUT)");
     return RC_ERR_USAGE;
   }

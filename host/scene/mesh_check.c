@@ -4,7 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
+
+#include "base/rc_base.h"
 
 /* The smallest a PLY element can be in the file: every property at least one byte in
  * binary (a char) and two in ASCII (a digit and a separator); a list at least its count. */
@@ -161,13 +162,8 @@ static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
   return NULL;
 }
 
-static bool has_extension(const char *path, const char *ext) {
-  size_t n = strlen(path), m = strlen(ext);
-  return n > m && strcasecmp(path + n - m, ext) == 0;
-}
-
 const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len) {
-  bool ply = has_extension(path, ".ply"), off = has_extension(path, ".off");
+  bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off");
   if (!ply && !off) return NULL;
   FILE *f = fopen(path, "rb");
   if (!f) return NULL; /* the importer's open reports it */

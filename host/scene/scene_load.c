@@ -16,9 +16,8 @@ typedef enum { FORMAT_BY_CONTENT, FORMAT_JSON, FORMAT_TEST } scene_format;
 
 /* The format the name gives; a stream (standard input, a pipe) has no extension. */
 static scene_format format_of_name(const char *path) {
-  size_t n = strlen(path);
-  if (n >= 5 && strcmp(path + n - 5, ".test") == 0) return FORMAT_TEST;
-  if (n >= 5 && strcmp(path + n - 5, ".json") == 0) return FORMAT_JSON;
+  if (rc_has_extension(path, ".test")) return FORMAT_TEST;
+  if (rc_has_extension(path, ".json")) return FORMAT_JSON;
   return FORMAT_BY_CONTENT;
 }
 

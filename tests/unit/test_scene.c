@@ -231,6 +231,17 @@ TEST(a_floor_does_not_spoil_the_tree_of_the_object_on_it) {
   CHECK(added < own * 1.01);
 }
 
+/* One extension test for every reader and command (rc_base.h): any case, and a name
+ * that is only the extension has none. */
+TEST(extensions_are_read_alike_everywhere) {
+  CHECK(rc_has_extension("scene.test", ".test"));
+  CHECK(rc_has_extension("dir/SCENE.TEST", ".test"));
+  CHECK(rc_has_extension("mesh.Ply", ".ply"));
+  CHECK(!rc_has_extension(".test", ".test"));
+  CHECK(!rc_has_extension("scene.test.json", ".test"));
+  CHECK(!rc_has_extension("test", ".test"));
+}
+
 /* The one precision decision (precision_budget.h), for every request, finding and device. */
 TEST(precision_is_decided_once_for_both_backends) {
   rc_precision_report fine = {0}, needs = {.needs_f64 = 3};
@@ -270,5 +281,6 @@ int main(void) {
   RUN(mesh_outside_the_scene_folder_needs_the_option);
   RUN(a_floor_does_not_spoil_the_tree_of_the_object_on_it);
   RUN(precision_is_decided_once_for_both_backends);
+  RUN(extensions_are_read_alike_everywhere);
   TEST_MAIN_END
 }
