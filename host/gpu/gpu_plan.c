@@ -1,8 +1,10 @@
 #include "gpu/gpu_plan.h"
 
-static uint64_t steps_per_sample(const packed_frame *f, uint64_t prims) {
-  uint64_t bounce = 1 + prims + (uint64_t)f->light_count * (1 + prims);
-  return 1 + ((uint64_t)f->reflection_depth + 1) * bounce;
+/* Loop steps of one sample whose rays cost `ray` steps each, shading `lights` lights:
+ * 1 (sample loop) + (depth + 1) x [1 (bounce) + ray + lights x (1 (light) + ray)]. With
+ * every light it is the whole sample; with fewer, one light pass (gpu_plan.h). */
+static uint64_t pass_steps(const packed_frame *f, uint64_t ray, uint64_t lights) {
+  return 1 + ((uint64_t)f->reflection_depth + 1) * (1 + ray + lights * (1 + ray));
 }
 
 /* Loop steps of one ray against one object, at most: 1 for a sphere or triangle; a
@@ -19,14 +21,9 @@ static uint64_t object_steps(const packed_frame *f) {
 static uint64_t leaf_tests(const packed_frame *f) { return f->object_count < 16 ? f->object_count : 16; }
 
 uint64_t rc_gpu_plan_steps_per_sample(const packed_frame *f) {
-  return steps_per_sample(f, ((uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count) *
-                                 object_steps(f));
-}
-
-/* Light passes (gpu_plan.h): what one pass of `lights` lights costs a sample whose rays
- * cost `ray` steps each. */
-static uint64_t pass_steps(const packed_frame *f, uint64_t ray, uint64_t lights) {
-  return 1 + ((uint64_t)f->reflection_depth + 1) * (1 + ray + lights * (1 + ray));
+  return pass_steps(f, ((uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count) *
+                           object_steps(f),
+                    f->light_count);
 }
 
 rc_status rc_gpu_plan_make(const packed_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
