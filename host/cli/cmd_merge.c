@@ -1,6 +1,7 @@
 /* cmd_merge.c: `vkraycast merge PARTS... -o OUT`: the parts of one frame (render --shard,
- * --region) into the image a single render would have written, bit for bit. Every part
- * is checked before anything is written: an EXR of 32-bit float RGB whose header
+ * --region) into the image a single render would have written, bit for bit; or the parts'
+ * AOV files (render --aov) into the single render's AOV file. Every part is checked
+ * before anything is written: an EXR of 32-bit float RGB (or of the AOV channels) whose header
  * (part.h) agrees with the first part's on the frame, the scene and every setting that
  * changes a pixel, and whose regions cover the frame exactly once. The image is then
  * streamed in bands of rows through the same writer as `render` (output.h): no part is
@@ -14,6 +15,7 @@
 #include "cli/options.h"
 #include "cli/output.h"
 #include "cli/part.h"
+#include "compare/aov.h"
 #include "scene/scene.h"
 
 #define MAX_PARTS 4096u
@@ -40,8 +42,9 @@ const rc_command_spec rc_merge_spec = {
     .name = "merge",
     .synopsis = "PART.exr... -o OUT [options]",
     .summary = "Joins the parts of one frame (render --shard I/N or --region, written as .exr) into the image a\n"
-               "single render writes, bit for bit. Refuses parts that leave a pixel uncovered or cover one twice,\n"
-               "or that disagree on the scene or a setting, naming the part or the missing region.",
+               "single render writes, bit for bit; their AOV files (render --aov) into its AOV file. Refuses\n"
+               "parts that leave a pixel uncovered or cover one twice, or that disagree on the scene or a\n"
+               "setting, naming the part or the missing region.",
     .epilogue = "Exit status: 0 written; 2 bad input or usage (nothing written); 3 memory failure.\n",
     .min_positional = 1,
     .max_positional = MAX_PARTS,
@@ -56,7 +59,31 @@ typedef struct {
   rc_part_info info;
   rc_image_reader *reader; /* open while the band being written meets the part */
   float *rows;             /* one band's worth of the part's rows */
+  int channels;            /* 3 (an image) or RC_AOV_CHANNELS (an AOV file) */
+  int from[RC_AOV_CHANNELS]; /* the file's channel holding each channel of the output */
 } part;
+
+/* What a part is, from its channels: an image (3 float channels) or an AOV file (every AOV
+ * channel, in whatever order the file stores them: OpenEXR sorts them by name); fills
+ * p->channels and p->from. False when neither. */
+static bool part_layout(part *p, int c) {
+  p->channels = c;
+  if (c == 3) {
+    for (int i = 0; i < 3; i++) p->from[i] = i;
+    return true;
+  }
+  if (c != RC_AOV_CHANNELS) return false;
+  for (int i = 0; i < RC_AOV_CHANNELS; i++) {
+    p->from[i] = -1;
+    for (int j = 0; j < c; j++) {
+      char name[32];
+      if (rc_image_reader_channel(p->reader, j, name, sizeof name) && strcmp(name, rc_aov_channel_names[i]) == 0)
+        p->from[i] = j;
+    }
+    if (p->from[i] < 0) return false;
+  }
+  return true;
+}
 
 /* Opens a part and reads its header; the reader stays open. */
 static rc_status open_part(part *p) {
@@ -110,9 +137,10 @@ static rc_status open_part(part *p) {
       }
     }
   }
-  if (!f32 || c != 3) {
-    rc_error("%s: the part holds %d channel(s)%s; a part is 3 channels of 32-bit float (write it as .exr)", p->path, c,
-             f32 ? "" : " not all 32-bit float");
+  if (!f32 || !part_layout(p, c)) {
+    rc_error("%s: the part holds %d channel(s)%s; a part is 3 channels of 32-bit float (write it as .exr), or the %d "
+             "channels of an AOV file (render --aov)",
+             p->path, c, f32 ? "" : " not all 32-bit float", RC_AOV_CHANNELS);
     return RC_ERR_INPUT;
   }
   if ((uint32_t)w != rc_region_width(g) || (uint32_t)hgt != rc_region_height(g)) {
@@ -130,6 +158,12 @@ static rc_status check_agreement(const part *parts, size_t n) {
   for (size_t i = 1; i < n; i++) {
     const rc_part_info *b = &parts[i].info;
     char x[128], y[128];
+    if (parts[i].channels != parts[0].channels) {
+      rc_error("%s is %s, but %s is %s: merge the images and the AOV files separately", parts[i].path,
+               parts[i].channels == 3 ? "an image" : "an AOV file", parts[0].path,
+               parts[0].channels == 3 ? "an image" : "an AOV file");
+      return RC_ERR_INPUT;
+    }
     if (b->width != a->width || b->height != a->height) {
       rc_error("%s: a part of a %u x %u frame, but %s is of a %u x %u frame: parts of different renders",
                parts[i].path, b->width, b->height, parts[0].path, a->width, a->height);
@@ -248,7 +282,8 @@ static int first_row_order(const void *a, const void *b) {
  * of their first rows, so that each band looks at the parts that meet it only. */
 static rc_status write_merged(part *parts, size_t n, rc_output *out) {
   const uint32_t w = parts[0].info.width, h = parts[0].info.height;
-  float *band = rc_alloc((size_t)w * BAND_ROWS * 3, sizeof(float), "one band of the image");
+  const int nc = parts[0].channels;
+  float *band = rc_alloc((size_t)w * BAND_ROWS * (size_t)nc, sizeof(float), "one band of the image");
   size_t *order = rc_alloc(n, sizeof *order, "the parts' order"), *active = rc_alloc(n, sizeof *active, "the parts' order");
   if (!band || !order || !active) {
     free(band);
@@ -279,7 +314,7 @@ static rc_status write_merged(part *parts, size_t n, rc_output *out) {
           break;
         }
       }
-      if (!p->rows) p->rows = rc_alloc((size_t)pw * BAND_ROWS * 3, sizeof(float), "one band of a part");
+      if (!p->rows) p->rows = rc_alloc((size_t)pw * BAND_ROWS * (size_t)nc, sizeof(float), "one band of a part");
       if (!p->rows) {
         st = RC_ERR_OUT_OF_MEMORY;
         break;
@@ -289,8 +324,12 @@ static rc_status write_merged(part *parts, size_t n, rc_output *out) {
         st = RC_ERR_IO;
         break;
       }
-      for (uint32_t y = a; y < b; y++)
-        memcpy(band + 3 * ((size_t)(y - y0) * w + r.x0), p->rows + 3 * (size_t)(y - a) * pw, 3 * pw * sizeof(float));
+      for (uint32_t y = a; y < b; y++) {
+        float *dst = band + (size_t)nc * ((size_t)(y - y0) * w + r.x0);
+        const float *src = p->rows + (size_t)nc * (size_t)(y - a) * pw;
+        for (uint32_t x = 0; x < pw; x++)
+          for (int c = 0; c < nc; c++) dst[(size_t)nc * x + c] = src[(size_t)nc * x + p->from[c]];
+      }
       if (r.y1 <= y1) { /* the part's last rows: done with it */
         rc_image_reader_close(p->reader);
         p->reader = NULL;
@@ -301,7 +340,8 @@ static rc_status write_merged(part *parts, size_t n, rc_output *out) {
         j++;
       }
     }
-    if (st == RC_OK) st = rc_output_band(y0, y1 - y0, band, NULL, out);
+    if (st == RC_OK)
+      st = nc == 3 ? rc_output_band(y0, y1 - y0, band, NULL, out) : rc_output_aov_rows(out, y1 - y0, band);
   }
   free(band);
   free(order);
@@ -355,16 +395,23 @@ rc_status rc_cmd_merge(int argc, char **argv) {
     rc_part_setting(whole.settings, "encoding", encoding, sizeof encoding);
     rc_part_setting(whole.settings, "quantize", quantize, sizeof quantize);
     rc_output_install_signal_handlers();
-    st = rc_output_open(a->output, NULL, whole.width, whole.height,
-                        strcmp(encoding, "srgb") == 0 ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
-                        strcmp(quantize, "truncate") == 0, meta, m, &out);
+    const bool aov = parts[0].channels != 3;
+    if (aov && !rc_has_extension(a->output, ".exr")) {
+      rc_error("%s: the parts are AOV files, whose decision channels need a multi-channel float file: name it .exr",
+               a->output);
+      st = RC_ERR_USAGE;
+    }
+    if (st == RC_OK)
+      st = rc_output_open(aov ? NULL : a->output, aov ? a->output : NULL, whole.width, whole.height,
+                          strcmp(encoding, "srgb") == 0 ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+                          strcmp(quantize, "truncate") == 0, meta, m, &out);
   }
   if (st == RC_OK) st = write_merged(parts, n, out);
   rc_status cst = rc_output_close(out, st == RC_OK);
   if (st == RC_OK) st = cst;
   if (st == RC_OK && !a->quiet)
-    fprintf(stderr, "vkraycast: merged %zu part%s into %s (%u x %u)\n", n, n == 1 ? "" : "s", a->output,
-            parts[0].info.width, parts[0].info.height);
+    fprintf(stderr, "vkraycast: merged %zu %spart%s into %s (%u x %u)\n", n, parts[0].channels == 3 ? "" : "AOV ",
+            n == 1 ? "" : "s", a->output, parts[0].info.width, parts[0].info.height);
   if (parts) close_parts(parts, n);
   free(parts);
   free(roles);

@@ -164,10 +164,7 @@ const rc_command_spec rc_render_spec = {
     .option_count = sizeof render_options / sizeof *render_options,
 };
 
-static bool is_exr(const char *path) {
-  size_t n = strlen(path);
-  return n >= 4 && strcmp(path + n - 4, ".exr") == 0;
-}
+static bool is_exr(const char *path) { return rc_has_extension(path, ".exr"); }
 
 /* OUT with ".bandK" before the extension of its last component (x.exr: x.band2.exr). */
 static bool band_path(const char *path, uint32_t k, char *out, size_t cap) {

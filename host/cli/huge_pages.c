@@ -18,6 +18,7 @@
 #define RC_SANITIZED 1
 #endif
 
+#ifndef RC_SANITIZED
 /* "always [madvise] never": hugetlb=1 advises malloc's memory with MADV_HUGEPAGE, which
  * the kernel honours in both the always and the madvise modes. */
 static int thp_available(void) {
@@ -28,6 +29,7 @@ static int thp_available(void) {
   fclose(f);
   return ok && !strstr(mode, "[never]");
 }
+#endif
 
 void rc_huge_pages_reexec(char **argv) {
 #ifdef RC_SANITIZED

@@ -107,14 +107,16 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
   if (!o) return RC_ERR_OUT_OF_MEMORY;
   o->image_path = image_path, o->aov_path = aov_path, o->width = width, o->length_unit = 1;
   char err[512];
-  o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, meta, meta_count, err,
-                                  sizeof err);
-  if (!o->image) {
-    rc_error("%s: cannot write image: %s", image_path, err);
-    free(o);
-    return RC_ERR_IO;
+  if (image_path) {
+    o->image = rc_image_writer_open(image_path, (int)width, (int)height, 3, NULL, enc, truncate, meta, meta_count, err,
+                                    sizeof err);
+    if (!o->image) {
+      rc_error("%s: cannot write image: %s", image_path, err);
+      free(o);
+      return RC_ERR_IO;
+    }
+    remember(0, o->image);
   }
-  remember(0, o->image);
   if (aov_path) {
     o->aov = rc_image_writer_open(aov_path, (int)width, (int)height, RC_AOV_CHANNELS, rc_aov_channel_names,
                                   RC_ENCODING_LINEAR, false, meta, meta_count, err, sizeof err);
@@ -153,7 +155,7 @@ rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const pac
   rc_output *o = output;
   double t0 = rc_now_ms();
   char err[512];
-  if (rc_image_writer_rows(o->image, (int)rows, rgb, err, sizeof err) != 0) {
+  if (o->image && rc_image_writer_rows(o->image, (int)rows, rgb, err, sizeof err) != 0) {
     rc_error("%s: cannot write image: %s", o->image_path, err);
     return RC_ERR_IO;
   }
@@ -169,6 +171,17 @@ rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const pac
       rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
       return RC_ERR_IO;
     }
+  }
+  o->write_ms += rc_now_ms() - t0;
+  return RC_OK;
+}
+
+rc_status rc_output_aov_rows(rc_output *o, uint32_t rows, const float *channels) {
+  double t0 = rc_now_ms();
+  char err[512];
+  if (rc_image_writer_rows(o->aov, (int)rows, channels, err, sizeof err) != 0) {
+    rc_error("%s: cannot write the AOV file: %s", o->aov_path, err);
+    return RC_ERR_IO;
   }
   o->write_ms += rc_now_ms() - t0;
   return RC_OK;

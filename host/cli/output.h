@@ -23,7 +23,8 @@ typedef struct rc_output rc_output;
  * commands call it once their cheaper checks have passed, before anything is written. */
 rc_status rc_output_check_format(const char *path);
 
-/* meta: header attributes of both files (image_io.h). */
+/* meta: header attributes of both files (image_io.h). image_path NULL: the AOV file alone
+ * (merge of AOV parts, written by rc_output_aov_rows). */
 rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t width, uint32_t height,
                          rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, rc_output **out);
 /* Scene units per packed unit (1 / rc_packed_scene.scale): the AOV depth is written in
@@ -31,6 +32,9 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
 void rc_output_set_length_unit(rc_output *o, double unit);
 /* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows). */
 rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *output);
+/* Rows of the AOV file already in its channel layout (aov.h), RC_AOV_CHANNELS floats a
+ * pixel: what `merge` copies from AOV parts. */
+rc_status rc_output_aov_rows(rc_output *o, uint32_t rows, const float *channels);
 /* A band function for frames that are not written (--repeat). */
 rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *unused);
 /* Adds the statistics file (its whole text) to the transaction: written now, renamed

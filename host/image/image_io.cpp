@@ -497,6 +497,13 @@ extern "C" int rc_image_reader_meta(const rc_image_reader *r, const char *name, 
   return 1;
 }
 
+extern "C" int rc_image_reader_channel(const rc_image_reader *r, int c, char *name, size_t len) {
+  const ImageSpec &spec = r->in->spec();
+  if (c < 0 || c >= spec.nchannels) return 0;
+  std::snprintf(name, len, "%s", spec.channel_name(c).c_str());
+  return 1;
+}
+
 /* Rows [y0, y1) counted from the top of the data window, wherever the file puts it. A
  * tiled file is read by whole tiles: OpenImageIO 2.4's scanline emulation over tiles died
  * of SIGFPE on a tiled OpenEXR part. */

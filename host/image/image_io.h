@@ -71,6 +71,8 @@ rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height,
                                       char *err, size_t err_len);
 /* The string attribute `name` into value (truncated to len): 1, or 0 when absent. */
 int rc_image_reader_meta(const rc_image_reader *r, const char *name, char *value, size_t len);
+/* The name of channel c into name (truncated to len): 1, or 0 when c is out of range. */
+int rc_image_reader_channel(const rc_image_reader *r, int c, char *name, size_t len);
 /* Rows [y0, y1), all channels, as float. */
 int rc_image_reader_rows(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len);
 void rc_image_reader_close(rc_image_reader *r);

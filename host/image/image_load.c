@@ -108,6 +108,10 @@ int rc_image_reader_meta(const rc_image_reader *r, const char *name, char *value
   return api->reader_meta(r, name, value, len);
 }
 
+int rc_image_reader_channel(const rc_image_reader *r, int c, char *name, size_t len) {
+  return api->reader_channel(r, c, name, len);
+}
+
 int rc_image_reader_rows(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len) {
   return api->reader_rows(r, y0, y1, pixels, err, err_len);
 }

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#define RC_IMAGE_API_VERSION 2u
+#define RC_IMAGE_API_VERSION 3u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
 
 typedef struct rc_image_api {
@@ -33,6 +33,7 @@ typedef struct rc_image_api {
   rc_image_reader *(*reader_open)(const char *path, int *width, int *height, int *channels, bool *float32, char *err,
                                   size_t err_len);
   int (*reader_meta)(const rc_image_reader *r, const char *name, char *value, size_t len);
+  int (*reader_channel)(const rc_image_reader *r, int c, char *name, size_t len);
   int (*reader_rows)(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len);
   void (*reader_close)(rc_image_reader *r);
 } rc_image_api;

@@ -78,6 +78,50 @@ why=ok
 same_pixels "$work/r-merged.exr" "$work/r-whole.exr" || why="merged regions differ from the whole render"
 check "regions merged" "$why"
 
+# AOV files and band renders of shards (render --aov, --band-renders) merge like the
+# images: every channel of the merged AOV file equals the whole render's bit for bit, in
+# the whole render's channel order, and band render K's shards merge into its band render
+# K; on the GPU in f32 and the CPU in f64 (the CPU's AOVs come from its own band path).
+same_channels() { # every channel, bit for bit, and the same channel list
+  idiff -fail 0 -warn 0 "$1" "$2" >/dev/null 2>&1 || return 1
+  [[ $(oiiotool --info -v "$1" | grep 'channel list') == $(oiiotool --info -v "$2" | grep 'channel list') ]]
+}
+for combo in "gpu f32 4" "cpu f64 2"; do
+  read -r backend precision spp <<<"$combo"
+  tag=aov-$backend
+  args=(--backend "$backend" --precision "$precision" --spp "$spp" "${size[@]}" --quiet --band-renders 2)
+  "$bin" render "$scene" "${args[@]}" -o "$work/$tag-whole.exr" --aov "$work/$tag-whole-aov.exr" ||
+    { check "$tag whole" "render failed"; continue; }
+  for i in 0 1 2; do
+    "$bin" render "$scene" "${args[@]}" --shard $i/3 -o "$work/$tag-$i.exr" --aov "$work/$tag-$i-aov.exr"
+  done
+  for kind in "" .band1 .band2; do
+    "$bin" merge "$work/$tag-2-aov$kind.exr" "$work/$tag-0-aov$kind.exr" "$work/$tag-1-aov$kind.exr" \
+      -o "$work/$tag-merged-aov$kind.exr" --quiet
+    why=ok
+    same_channels "$work/$tag-merged-aov$kind.exr" "$work/$tag-whole-aov$kind.exr" ||
+      why="merged AOV file differs from the whole render's"
+    check "$tag merged AOV$kind" "$why"
+    "$bin" merge "$work/$tag-"{0,1,2}"$kind.exr" -o "$work/$tag-merged$kind.exr" --quiet
+    why=ok
+    same_pixels "$work/$tag-merged$kind.exr" "$work/$tag-whole$kind.exr" || why="merged image differs from the whole render"
+    check "$tag merged image$kind" "$why"
+  done
+done
+# The band renders' parts are of other (perturbed) scenes than the frame's own.
+a=$work/aov-gpu
+expect_merge_refusal() {
+  local name=$1 want=$2
+  shift 2
+  expect_exit2 "$name" "$work/bad.png" "$want" "$bin" merge "$@" -o "$work/bad.png"
+}
+expect_merge_refusal "band render and frame" "rendered with perturb=1, but" "$a-0.exr" "$a-1.band1.exr" "$a-2.exr"
+expect_merge_refusal "AOV and image" "merge the images and the AOV files separately" "$a-0-aov.exr" "$a-1.exr" "$a-2-aov.exr"
+expect_merge_refusal "AOV into png" "name it .exr" "$a-0-aov.exr" "$a-1-aov.exr" "$a-2-aov.exr"
+# An AOV file missing a decision channel is neither kind of part.
+oiiotool "$a-1-aov.exr" --ch R,G,B,hit,object,t,N.X,N.Y,N.Z,N.Z -o "$work/aov-noshadow.exr" 2>/dev/null
+expect_merge_refusal "AOV without shadow" "or the 10 channels of an AOV file" "$a-0-aov.exr" "$work/aov-noshadow.exr" "$a-2-aov.exr"
+
 # `expect_merge_refusal NAME MESSAGE PARTS...`: exit 2, MESSAGE on stderr, no output.
 expect_merge_refusal() {
   local name=$1 want=$2
