@@ -43,33 +43,3 @@ bool rc_shard_parse(const char *text, uint32_t *index, uint32_t *count, const ch
   }
   return true;
 }
-
-void rc_shard_rows(const double *row_cost, uint32_t height, uint32_t index, uint32_t count, uint32_t *y0,
-                   uint32_t *y1) {
-  double total = 0;
-  for (uint32_t y = 0; row_cost && y < height; y++) total += row_cost[y];
-  bool equal = !row_cost || !(total > 0);
-  /* Cuts in order, each at the row where the cost before it (a row counting half on
-   * either side of its middle) reaches k/count of the total, then kept one row past the
-   * previous cut and far enough from the end to leave a row to each later shard. */
-  uint32_t prev = 0, y = 0;
-  double sum = 0;
-  for (uint32_t k = 1; k <= index + 1; k++) {
-    uint32_t c;
-    if (k == count) {
-      c = height;
-    } else if (equal) {
-      c = (uint32_t)((uint64_t)height * k / count);
-    } else {
-      double target = total * k / count;
-      while (y < height && sum + row_cost[y] * 0.5 < target) sum += row_cost[y++];
-      c = y;
-    }
-    if (c < prev + 1) c = prev + 1;
-    if (c > height - (count - k)) c = height - (count - k);
-    if (k == index) *y0 = c;
-    prev = c;
-  }
-  if (index == 0) *y0 = 0;
-  *y1 = prev;
-}

@@ -3,9 +3,9 @@
  * A region is a window of the full frame in pixels, pbrt's crop window: columns
  * [x0, x1) and rows [y0, y1). The camera, the BVH and every pixel's sample seeds are
  * those of the full frame, so a pixel comes out bit-identical whichever region renders
- * it. A shard I/N is one of N full-width bands of rows, cut where an estimate of the
- * rows' cost (ref_cost.c) reaches I/N of the total: a band of sky is taller than a band
- * through a mirror sphere. Pure arithmetic: unit-tested without a device
+ * it. A shard I/N is one of N bands of rows (tiles where a row outweighs a shard), cut by
+ * an estimate of the cost (ref_render.c): a band of sky is taller than a band through a
+ * mirror sphere. Pure arithmetic: unit-tested without a device
  * (tests/unit/test_region.c). */
 #ifndef RC_REGION_H
 #define RC_REGION_H
@@ -27,12 +27,21 @@ bool rc_region_parse(const char *text, rc_region *r, const char **why);
 /* "I/N" with 0 <= I < N; false with the reason. */
 bool rc_shard_parse(const char *text, uint32_t *index, uint32_t *count, const char **why);
 
-/* The rows of shard `index` of `count` over `height` rows whose costs are row_cost[y]
- * (non-negative; NULL: all equal). Every shard gets at least one row (count <= height),
- * the shards tile [0, height) in order, and shard i starts at the first row where the
- * cost before it reaches i/count of the total, so the cuts depend only on the costs. */
-void rc_shard_rows(const double *row_cost, uint32_t height, uint32_t index, uint32_t count, uint32_t *y0,
-                   uint32_t *y1);
+/* A frame's cost estimate: cells of cell_w x cell_h pixels from the top-left corner (the
+ * last row and column of cells may be cut short by the frame's edge), cost[i * cols + j]
+ * the cost of each pixel of cell row i, column j (non-negative). */
+typedef struct rc_cost_grid {
+  const double *cost;
+  uint32_t cols, rows, cell_w, cell_h;
+} rc_cost_grid;
+
+/* The region of shard `index` of `count` over a width x height frame whose costs are
+ * `grid` (NULL: all pixels equal), cut by cost (shard_cut.c): full-width bands of rows,
+ * and tiles of a band where a row outweighs a shard's share. The shards tile the frame,
+ * each at least one pixel (count <= height), and the cuts depend only on the costs, so
+ * every shard of a render computes the same ones. False when out of memory. */
+bool rc_shard_region(const rc_cost_grid *grid, uint32_t width, uint32_t height, uint32_t index, uint32_t count,
+                     rc_region *out);
 
 /* Coverage of a width x height frame by n parts (region_coverage.c: O(n log n), whatever
  * the sizes): 0 when every pixel lies in exactly one part. Otherwise 3 with *overlap_a the

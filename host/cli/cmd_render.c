@@ -100,9 +100,9 @@ static const rc_option render_options[] = {
      .help = "render only columns [X0, X1) and rows [Y0, Y1) of the frame (pbrt's crop\n"
              "window, in pixels); its pixels are bit-identical to the whole frame's"},
     {"--shard", NULL, RC_OPT_STRING, ARG(shard_text), "I/N",
-     .help = "render shard I of N (0 <= I < N): full-width bands of rows balanced by\n"
-             "an estimate of their cost; write it as .exr and join the N parts with\n"
-             "`vkraycast merge`"},
+     .help = "render shard I of N (0 <= I < N): bands of rows, and tiles where a row\n"
+             "outweighs a shard, cut by an estimate of their cost; write it as .exr and\n"
+             "join the N parts with `vkraycast merge`"},
     {"--sphere", NULL, RC_OPT_CHOICE, ARG(sphere), "F", .choices = rc_sphere_formula_names,
      .heading = "speed against accuracy (docs/accuracy.md; each overrides the scene's `quality`):",
      .help = "geometric (default) or algebraic ray/sphere formula"},
@@ -514,11 +514,16 @@ static rc_status resolve_part(render_args *a, const rc_scene *s, const rc_packed
                h, h);
       return RC_ERR_USAGE;
     }
-    double *cost = a->shard_count > 1 ? rc_alloc(h, sizeof *cost, "the shard cost estimate") : NULL;
+    double *cost = a->shard_count > 1 ? rc_alloc(RC_REF_COST_CELLS, sizeof *cost, "the shard cost estimate") : NULL;
     if (a->shard_count > 1 && !cost) return RC_ERR_OUT_OF_MEMORY;
-    if (cost) rc_ref_row_costs(packed, cost);
-    rc_shard_rows(cost, h, a->shard_index, a->shard_count, &p->region.y0, &p->region.y1);
+    rc_cost_grid grid;
+    if (cost) rc_ref_cost_grid(packed, cost, &grid);
+    bool ok = rc_shard_region(cost ? &grid : NULL, w, h, a->shard_index, a->shard_count, &p->region);
     free(cost);
+    if (!ok) {
+      rc_error("out of memory cutting the frame into shards");
+      return RC_ERR_OUT_OF_MEMORY;
+    }
     p->shard_index = a->shard_index, p->shard_count = a->shard_count;
   }
   snprintf(p->scene_hash, sizeof p->scene_hash, "%016llx", (unsigned long long)rc_packed_scene_hash(packed));

@@ -154,28 +154,23 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc
 /* The cost model of a pixel: a fixed part (ray generation, shading, the write) worth this
  * many loop steps, plus the steps its first sample's rays take. */
 #define COST_PIXEL_STEPS 8.0
-/* Sampled at most this many rows and columns. */
-#define COST_ROWS 256u
-#define COST_COLS 64u
-
-void rc_ref_row_costs(const rc_packed_scene *p, double *row_cost) {
+void rc_ref_cost_grid(const rc_packed_scene *p, double cost[RC_REF_COST_CELLS], rc_cost_grid *grid) {
   const ref_scene sc = scene_of(p);
   const uint32_t w = p->frame.camera.width, h = p->frame.camera.height;
-  const uint32_t sy = (h + COST_ROWS - 1) / COST_ROWS, sx = (w + COST_COLS - 1) / COST_COLS;
+  const uint32_t sy = (h + RC_REF_COST_ROWS - 1) / RC_REF_COST_ROWS, sx = (w + RC_REF_COST_COLS - 1) / RC_REF_COST_COLS;
+  *grid = (rc_cost_grid){cost, (w + sx - 1) / sx, (h + sy - 1) / sy, sx, sy};
   bool aov = ref_aov_enabled;
   ref_aov_enabled = false;
-  for (uint32_t b = 0; b < h; b += sy) {
-    /* The middle row and columns of each block stand for the block. */
-    uint32_t y = b + sy / 2 < h ? b + sy / 2 : h - 1;
-    double cost = 0;
-    uint32_t samples = 0;
-    for (uint32_t x = sx / 2; x < w; x += sx, samples++) {
+  for (uint32_t i = 0; i < grid->rows; i++) {
+    for (uint32_t j = 0; j < grid->cols; j++) {
+      /* The middle pixel of each cell (of what the frame's edge leaves of it) stands for it. */
+      uint32_t y = i * sy + sy / 2, x = j * sx + sx / 2;
+      if (y >= h) y = (i * sy + h) / 2;
+      if (x >= w) x = (j * sx + w) / 2;
       ref_work = 0;
       ref_trace_sample_f(&sc, x, y, 0);
-      cost += COST_PIXEL_STEPS + (double)ref_work;
+      cost[(size_t)i * grid->cols + j] = COST_PIXEL_STEPS + (double)ref_work;
     }
-    cost *= (double)w / samples; /* per sampled pixel, times the row */
-    for (uint32_t r = b; r < b + sy && r < h; r++) row_cost[r] = cost;
   }
   ref_aov_enabled = aov;
   ref_crossing_blame = 0;

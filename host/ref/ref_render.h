@@ -35,11 +35,14 @@ typedef struct rc_ref_stats {
 rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
                         packed_aov *aov, rc_ref_stats *stats);
 
-/* An estimate of each row's cost (row_cost: one value per row of the frame), for cutting
- * shards (region.h): the loop steps (BVH nodes visited, objects tested) of the first
- * sample of a grid of at most 256 x 64 pixels, in f32 on this thread, plus a fixed cost
- * per pixel. Integer counts of the same arithmetic on every machine, so that every
- * shard of a render cuts the frame alike. */
-void rc_ref_row_costs(const rc_packed_scene *scene, double *row_cost);
+/* The frame's cost estimate for cutting shards (region.h): the loop steps (BVH nodes
+ * visited, objects tested) of the first sample of the middle pixel of each cell of a grid
+ * of at most 256 x 64 cells, in f32 on this thread, plus a fixed cost per pixel. Integer
+ * counts of the same arithmetic on every machine, so that every shard of a render cuts
+ * the frame alike. grid->cost points into `cost`. */
+#define RC_REF_COST_ROWS 256u
+#define RC_REF_COST_COLS 64u
+#define RC_REF_COST_CELLS (RC_REF_COST_ROWS * RC_REF_COST_COLS)
+void rc_ref_cost_grid(const rc_packed_scene *scene, double cost[RC_REF_COST_CELLS], rc_cost_grid *grid);
 
 #endif

@@ -27,54 +27,98 @@ TEST(parse) {
   for (size_t k = 0; k < sizeof bad_shards / sizeof *bad_shards; k++) CHECK(!rc_shard_parse(bad_shards[k], &i, &n, &why));
 }
 
-/* The shards of one count tile [0, height) in order, each at least one row. */
-static void check_tiling(const double *cost, uint32_t height, uint32_t count) {
-  uint32_t expect = 0;
+/* A grid of one column of 1-pixel-tall cells: the costs of the rows of a frame whose
+ * rows are uniform across. */
+static rc_cost_grid rows_grid(const double *cost, uint32_t height) {
+  return (rc_cost_grid){cost, 1, height, 1u << 20, 1};
+}
+
+/* The shards of one count tile the frame (merge's own coverage check), each at least a
+ * pixel; returns the largest shard's cost over the fair share (total / count). */
+static double check_tiling(const rc_cost_grid *g, uint32_t width, uint32_t height, uint32_t count) {
+  rc_region *r = calloc(count, sizeof *r);
+  double total = 0, worst = 0;
+  for (uint32_t y = 0; y < height; y++)
+    for (uint32_t x = 0; x < width; x++) total += g ? g->cost[(y / g->cell_h) * g->cols + x / g->cell_w] : 1;
   for (uint32_t k = 0; k < count; k++) {
-    uint32_t y0 = 99999, y1 = 0;
-    rc_shard_rows(cost, height, k, count, &y0, &y1);
-    CHECK_EQ_INT(y0, expect);
-    CHECK(y1 > y0);
-    expect = y1;
+    CHECK(rc_shard_region(g, width, height, k, count, &r[k]));
+    CHECK(rc_region_pixels(r[k]) >= 1);
+    double sum = 0;
+    for (uint32_t y = r[k].y0; y < r[k].y1; y++)
+      for (uint32_t x = r[k].x0; x < r[k].x1; x++) sum += g ? g->cost[(y / g->cell_h) * g->cols + x / g->cell_w] : 1;
+    if (total > 0 && sum / (total / count) > worst) worst = sum / (total / count);
   }
-  CHECK_EQ_INT(expect, height);
+  size_t a, b;
+  rc_region gap;
+  CHECK_EQ_INT(rc_region_coverage(r, count, width, height, &a, &b, &gap), 0);
+  free(r);
+  return worst;
 }
 
 TEST(shards_tile_the_frame) {
   double cost[300];
   for (uint32_t y = 0; y < 300; y++) cost[y] = y < 200 ? 1.0 : 50.0; /* sky, then a mirror */
+  rc_cost_grid g = rows_grid(cost, 300);
   for (uint32_t count = 1; count <= 300; count += count < 10 ? 1 : 37) {
-    check_tiling(NULL, 300, count);
-    check_tiling(cost, 300, count);
+    check_tiling(NULL, 40, 300, count);
+    check_tiling(&g, 40, 300, count);
   }
-  check_tiling(cost, 300, 300); /* one row each */
-  /* One row holding all the cost: the others still get a row each. */
+  check_tiling(&g, 40, 300, 300); /* as many shards as rows */
+  check_tiling(&g, 1, 300, 300);  /* one pixel each */
+  /* One row holding all the cost: the others still get a pixel each. */
   double spike[7] = {0, 0, 0, 100, 0, 0, 0};
-  for (uint32_t count = 1; count <= 7; count++) check_tiling(spike, 7, count);
+  rc_cost_grid s = rows_grid(spike, 7);
+  for (uint32_t count = 1; count <= 7; count++) check_tiling(&s, 1, 7, count);
   double zero[5] = {0};
-  check_tiling(zero, 5, 3);
+  rc_cost_grid z = rows_grid(zero, 5);
+  check_tiling(&z, 3, 5, 3);
 }
 
 TEST(shards_balance_cost) {
-  /* 200 cheap rows, then 100 rows 50 times costlier: 4 shards of 1/4 of the cost each
+  /* 200 cheap rows, then 100 rows 50 times costlier: 4 bands of 1/4 of the cost each
    * (5,200 / 4 = 1,300): the first takes all the cheap rows and 22 costly ones. */
   double cost[300], total = 0;
   for (uint32_t y = 0; y < 300; y++) total += cost[y] = y < 200 ? 1.0 : 50.0;
-  double max_share = 0;
+  rc_cost_grid g = rows_grid(cost, 300);
+  rc_region r;
+  CHECK(rc_shard_region(&g, 40, 300, 0, 4, &r));
+  CHECK(r.x0 == 0 && r.x1 == 40 && r.y0 == 0 && r.y1 == 222);
+  /* Every shard a full-width band, within one row's cost of the ideal quarter. */
   for (uint32_t k = 0; k < 4; k++) {
-    uint32_t y0, y1;
-    rc_shard_rows(cost, 300, k, 4, &y0, &y1);
-    double sum = 0;
-    for (uint32_t y = y0; y < y1; y++) sum += cost[y];
-    if (sum / total > max_share) max_share = sum / total;
-    if (k == 0) CHECK_EQ_INT(y1, 222);
+    CHECK(rc_shard_region(&g, 40, 300, k, 4, &r));
+    CHECK(r.x0 == 0 && r.x1 == 40);
   }
-  /* Within one row's cost of the ideal quarter. */
-  CHECK(max_share <= 0.25 + 50.0 / total);
-  /* Equal costs: equal shards, the remainder spread. */
-  uint32_t y0, y1;
-  rc_shard_rows(NULL, 10, 1, 3, &y0, &y1);
-  CHECK(y0 == 3 && y1 == 6);
+  CHECK(check_tiling(&g, 40, 300, 4) <= 1 + 50.0 * 4 / total);
+  /* Equal costs: equal bands, the remainder spread. */
+  CHECK(rc_shard_region(NULL, 8, 10, 1, 3, &r));
+  CHECK(r.y0 == 3 && r.y1 == 6 && r.x0 == 0 && r.x1 == 8);
+}
+
+TEST(hot_rows_become_tiles) {
+  /* A 64 x 48 frame whose row 20 holds 90 % of the cost (a strip of mirrors seen edge on):
+   * bands alone would give 8 shards a worst load of 7.2 times the fair share (the row's
+   * shard); tiles of the hot row bring it to within 10 % of it. */
+  double cost[48];
+  for (uint32_t y = 0; y < 48; y++) cost[y] = y == 20 ? 0.9 * 47 / 0.1 : 1.0;
+  rc_cost_grid g = rows_grid(cost, 48);
+  double worst = check_tiling(&g, 64, 48, 8);
+  CHECK(worst < 1.10);
+  bool tiles = false;
+  for (uint32_t k = 0; k < 8; k++) {
+    rc_region r;
+    CHECK(rc_shard_region(&g, 64, 48, k, 8, &r));
+    tiles = tiles || r.x1 - r.x0 < 64;
+  }
+  CHECK(tiles);
+  /* Cells of a real estimate's shape (4 x 4 pixels, 16 x 12 of them), one hot cell
+   * row, and every count up to the rows. */
+  double cells[16 * 12];
+  for (uint32_t i = 0; i < 16 * 12; i++) cells[i] = i / 16 == 5 ? 400.0 + i % 7 : 8.0 + i % 3;
+  rc_cost_grid c = {cells, 16, 12, 4, 4};
+  for (uint32_t count = 1; count <= 48; count++) {
+    double w = check_tiling(&c, 64, 48, count);
+    CHECK(count < 2 || w < 2.0);
+  }
 }
 
 TEST(coverage) {
@@ -246,6 +290,7 @@ int main(void) {
   RUN(parse);
   RUN(shards_tile_the_frame);
   RUN(shards_balance_cost);
+  RUN(hot_rows_become_tiles);
   RUN(coverage);
   RUN(coverage_generated);
   RUN(coverage_at_scale);
