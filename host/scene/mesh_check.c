@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "base/rc_base.h"
 
@@ -162,12 +163,66 @@ static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
   return NULL;
 }
 
+/* Whether `name`, as an OBJ at `path` names a file (relative to the OBJ's folder unless
+ * absolute), is the OBJ itself. */
+static bool names_itself(const char *path, const char *name, size_t name_len, const struct stat *self) {
+  char other[4200];
+  const char *slash = strrchr(path, '/');
+  int dir = name[0] == '/' || !slash ? 0 : (int)(slash - path + 1);
+  if (snprintf(other, sizeof other, "%.*s%.*s", dir, path, (int)name_len, name) >= (int)sizeof other) return false;
+  struct stat st;
+  return stat(other, &st) == 0 && st.st_dev == self->st_dev && st.st_ino == self->st_ino;
+}
+
+/* An OBJ whose `mtllib` names the OBJ itself: assimp reads its geometry as a material
+ * library, where a map statement before any `newmtl` kills it (rc_mtl_check). The name is
+ * the rest of the line, as assimp 5.2.4 takes it; its first word too, as other readers do. */
+static const char *check_obj(FILE *f, const char *path, char *why, size_t len) {
+  struct stat self;
+  if (fstat(fileno(f), &self) != 0) return NULL;
+  char line[4096];
+  for (unsigned long n = 1; fgets(line, sizeof line, f); n++) {
+    const char *p = line + strspn(line, " \t");
+    if (strncmp(p, "mtllib", 6) != 0 || (p[6] != ' ' && p[6] != '\t')) continue;
+    p += 6 + strspn(p + 6, " \t");
+    size_t all = strcspn(p, "\r\n"), word = strcspn(p, " \t\r\n");
+    while (all > 0 && (p[all - 1] == ' ' || p[all - 1] == '\t')) all--;
+    if ((all && names_itself(path, p, all, &self)) || (word && names_itself(path, p, word, &self))) {
+      snprintf(why, len, "line %lu: `mtllib %.*s` names the OBJ itself as its material library", n,
+               (int)(all < 200 ? all : 200), p);
+      return why;
+    }
+  }
+  return NULL;
+}
+
 const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len) {
-  bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off");
-  if (!ply && !off) return NULL;
+  bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off"),
+       obj = rc_has_extension(path, ".obj");
+  if (!ply && !off && !obj) return NULL;
   FILE *f = fopen(path, "rb");
   if (!f) return NULL; /* the importer's open reports it */
-  const char *problem = ply ? check_ply(f, bytes, why, len) : check_off(f, bytes, why, len);
+  const char *problem = ply   ? check_ply(f, bytes, why, len)
+                        : off ? check_off(f, bytes, why, len)
+                              : check_obj(f, path, why, len);
   fclose(f);
+  return problem;
+}
+
+const char *rc_mtl_check(FILE *f, char *why, size_t len) {
+  char line[1024];
+  const char *problem = NULL;
+  rewind(f);
+  for (unsigned long n = 1; !problem && fgets(line, sizeof line, f); n++) {
+    const char *p = line;
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\v' || *p == '\f') p++;
+    if (*p == '\n' || *p == '\0' || *p == '#') continue;
+    size_t word = strcspn(p, " \t\r\n\v\f");
+    if (word == 6 && strncmp(p, "newmtl", 6) == 0) break;
+    snprintf(why, len, "line %lu: `%.*s` before the first `newmtl` belongs to no material (is it a material library?)",
+             n, (int)(word < 40 ? word : 40), p);
+    problem = why;
+  }
+  rewind(f);
   return problem;
 }

@@ -10,7 +10,16 @@
 
 #include <stddef.h>
 
+#include <stdio.h>
+
 /* NULL when the file may go to the importer; else why not (in why, or a constant). */
 const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len);
+
+/* A file an OBJ names (its `mtllib`, read as a material library): NULL when it may go to
+ * the importer; else why not. A statement before the first `newmtl` belongs to no
+ * material, and assimp 5.2.4 writes a texture map statement there (map_Kd, bump, ...)
+ * through a null material and dies of SIGSEGV (found by fuzz_mesh; an OBJ that names
+ * itself as its library is the same case). Reads f from its start and rewinds it. */
+const char *rc_mtl_check(FILE *f, char *why, size_t len);
 
 #endif

@@ -30,6 +30,18 @@ put("obj_index_negative.obj", tri + "f -1 -2 -99999999\n")
 put("obj_index_overflow.obj", tri + "f 1 2 4294967297\n")
 put("obj_index_zero.obj", tri + "f 0 1 2\n")
 put("obj_vertex_nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+# Found by the fuzzer: a material library whose first statement is a map (before any
+# newmtl) killed assimp 5.2.4 with SIGSEGV; every statement that names a map, and an OBJ
+# that names itself as its library with a map statement in it.
+for kw in ["map_Ka", "map_Kd", "map_Ks", "map_Ke", "map_d", "map_Ns", "map_bump", "bump", "bumpy", "disp", "refl",
+           "norm", "map_Pr", "map_Pm", "map_Ps", "map_Kdx"]:
+    put(f"obj_mtl_{kw}.mtl", f"# a library\n\n{kw} texture.png\nnewmtl m\nKd 1 1 1\n")
+    put(f"obj_mtl_{kw}.obj", f"mtllib obj_mtl_{kw}.mtl\n" + tri + "usemtl m\nf 1 2 3\n")
+put("obj_mtllib_itself.obj", "mtllib obj_mtllib_itself.obj\n" + tri + "map_Kd texture.png\nf 1 2 3\n")
+put("obj_mtllib_itself_dot.obj", "mtllib  ./obj_mtllib_itself_dot.obj \n" + tri + "bump x\nf 1 2 3\n")
+# And a library that is fine: its maps after newmtl (control, renders).
+put("good_mtl.mtl", "# ok\nnewmtl m\nKd 1 0.5 0.5\nmap_Kd texture.png\nbump b.png\n")
+put("good_mtl.obj_", "mtllib good_mtl.mtl\n" + tri + "usemtl m\nf 1 2 3\n")
 head = "ply\nformat {fmt} 1.0\nelement vertex {nv}\nproperty float x\nproperty float y\nproperty float z\n" \
        "element face {nf}\nproperty list uchar int vertex_indices\nend_header\n"
 verts = "0 0 0\n1 0 0\n0 1 0\n"
@@ -92,6 +104,13 @@ for mesh in "$work"/*.obj "$work"/*.ply "$work"/*.off "$work"/*.stl "$work"/*.gl
   [[ ! -e $work/o.png ]] || why="$why; an image was written"
   check "mesh $name" "$why"
 done
+# The control: an OBJ whose library is well formed renders.
+mv "$work/good_mtl.obj_" "$work/good_mtl.obj"
+sed 's/"file": "[^"]*"/"file": "good_mtl.obj"/' "$work/scene.json" >"$work/good.json"
+"$bin" render "$work/good.json" -o "$work/good.png" --backend cpu --quiet 2>"$work/err"
+got=$? why=ok
+[[ $got == 0 && -s $work/good.png ]] || why="exit status $got: $(head -c 300 "$work/err")"
+check "obj with a well-formed material library" "$why"
 
 # compare's inputs: any channel count and layout it can read gives a verdict; what it
 # cannot is refused by name. oiiotool (openimageio-tools) makes them.
