@@ -1,6 +1,8 @@
 /* libFuzzer targets for the input parsers (tools/fuzz.sh builds and runs them):
  *   FUZZ_TARGET=1 the JSON scene parser, =2 the CSE167 .test parser, =3 mesh loading
- * (the input written to a file, its format chosen by the first byte). Any crash, hang,
+ * (the input written to a file, its format chosen by the first byte; for an OBJ with a
+ * material library, the bytes up to the first NUL are the library and the rest the OBJ,
+ * which names it). Any crash, hang,
  * sanitizer report or leak is a finding (tools/fuzz.sh runs them with -close_fd_mask=2:
  * the parsers' error messages are dropped, libFuzzer's own are not). */
 #include <stdio.h>
@@ -18,16 +20,32 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
    * malformed input (tests/fuzz/regressions/; vkraycast bounds the hang with a watchdog,
    * bad_input case mesh_hang.json). FUZZ_PLY=1 puts it back. */
 #ifdef FUZZ_PLY
-  static const char *const ext[] = {".obj", ".ply", ".stl", ".off"};
+  static const char *const ext[] = {".obj", ".ply", ".stl", ".off", ".obj"};
 #else
-  static const char *const ext[] = {".obj", ".obj", ".stl", ".off"};
+  static const char *const ext[] = {".obj", ".obj", ".stl", ".off", ".obj"};
 #endif
+  const unsigned kinds = sizeof ext / sizeof *ext;
   if (size < 1) return 0;
-  char path[64];
-  snprintf(path, sizeof path, "/tmp/vkraycast-fuzz-%d%s", (int)getpid(), ext[data[0] % 4]);
+  const unsigned kind = data[0] % kinds;
+  char path[64], mtl[64] = "";
+  snprintf(path, sizeof path, "/tmp/vkraycast-fuzz-%d%s", (int)getpid(), ext[kind]);
+  const unsigned char *body = data + 1;
+  size_t body_len = size - 1;
+  if (kind == kinds - 1) { /* an OBJ and its material library */
+    const unsigned char *nul = memchr(body, 0, body_len);
+    size_t lib_len = nul ? (size_t)(nul - body) : body_len;
+    snprintf(mtl, sizeof mtl, "/tmp/vkraycast-fuzz-%d.mtl", (int)getpid());
+    FILE *m = fopen(mtl, "wb");
+    if (!m) return 0;
+    fwrite(body, 1, lib_len, m);
+    fclose(m);
+    body += lib_len + (nul != NULL);
+    body_len -= lib_len + (nul != NULL);
+  }
   FILE *f = fopen(path, "wb");
   if (!f) return 0;
-  fwrite(data + 1, 1, size - 1, f);
+  if (mtl[0]) fprintf(f, "mtllib %s\n", strrchr(mtl, '/') + 1);
+  fwrite(body, 1, body_len, f);
   fclose(f);
   memset(&s, 0, sizeof s);
   rc_affine id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
@@ -37,6 +55,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
    * inode and modification time to an old one's import). */
   rc_mesh_cache_clear();
   unlink(path);
+  if (mtl[0]) unlink(mtl);
 #else
   /* The parsers take NUL-terminated text of a given length, as rc_scene_load reads it. */
   char *text = malloc(size + 1);
