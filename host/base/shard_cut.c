@@ -50,7 +50,11 @@ static uint32_t cut_at(const double *p, uint32_t len, uint32_t n, uint32_t n1, u
   bool equal = !(total > 0);
   double target = equal ? (double)len * n1 / n : total * n1 / n, sum = 0;
   uint32_t c = 0;
-  while (c < len && sum + (equal ? 1 : p[c]) * 0.5 < target) sum += equal ? 1 : p[c++];
+  for (; c < len; c++) {
+    const double line = equal ? 1 : p[c];
+    if (sum + line * 0.5 >= target) break;
+    sum += line;
+  }
   if (c < lo) c = lo;
   if (c > hi) c = hi;
   double before = 0;

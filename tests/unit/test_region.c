@@ -69,9 +69,15 @@ TEST(shards_tile_the_frame) {
   double spike[7] = {0, 0, 0, 100, 0, 0, 0};
   rc_cost_grid s = rows_grid(spike, 7);
   for (uint32_t count = 1; count <= 7; count++) check_tiling(&s, 1, 7, count);
-  double zero[5] = {0};
-  rc_cost_grid z = rows_grid(zero, 5);
-  check_tiling(&z, 3, 5, 3);
+  double zero[6] = {0};
+  rc_cost_grid z = rows_grid(zero, 6);
+  check_tiling(&z, 3, 6, 3);
+  /* No cost anywhere: cut by pixels, as with no estimate. */
+  for (uint32_t k = 0; k < 3; k++) {
+    rc_region a, b;
+    CHECK(rc_shard_region(&z, 3, 6, k, 3, &a) && rc_shard_region(NULL, 3, 6, k, 3, &b));
+    CHECK(a.y0 == 2 * k && a.y1 == 2 * k + 2 && b.y0 == a.y0 && b.y1 == a.y1);
+  }
 }
 
 TEST(shards_balance_cost) {
