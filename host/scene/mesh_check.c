@@ -1,6 +1,7 @@
 #include "scene/mesh_check.h"
 
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -113,54 +114,112 @@ static const char *check_ply(FILE *f, size_t bytes, char *why, size_t len) {
   return NULL;
 }
 
-/* OFF: the counts against the file's size, and every face's vertex indices against the
- * vertex count (assimp's reader replaces an index out of range by the last vertex and
- * carries on: a wrong triangle, rendered). */
-static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
-  char word[16];
-  unsigned long long nv, nf;
-  if (fscanf(f, "%15s", word) != 1 || !strstr(word, "OFF")) return NULL;
-  /* The first two numbers after the keyword are what the importer reserves for, whatever
-   * follows them (the fuzzer found "OFF 3 1000000000" and then garbage, which ran it out
-   * of memory); for COFF, NOFF and the like too, counts being counts. */
-  if (fscanf(f, "%llu %llu", &nv, &nf) != 2) return NULL;
-  /* A vertex is at least "0 0 0\n" (6 bytes), a face "3 0 0 0\n" (8). */
-  if (nv > bytes / 6 || nf > bytes / 8) {
-    snprintf(why, len, "its header declares %llu vertices and %llu faces, more than a file of %zu bytes holds", nv,
-             nf, bytes);
+/* OFF, read as assimp 5.2.4's OFFLoader reads it (the header's letters, its counts as
+ * 32-bit integers that wrap, comments between tokens, lines as its GetNextLine cuts
+ * them), so that what is checked is what the importer will see: the counts against the
+ * file's size (it allocates for them first: "OFF1 3000000000000000010000" declared one
+ * vertex and, wrapped, 2.6 billion faces, 42 GB, found by fuzz_mesh), and every face's
+ * vertex indices against the vertex count (it moves an index out of range to the last
+ * vertex and carries on: a wrong triangle, rendered). */
+typedef struct {
+  const char *at, *end;
+} off_text;
+
+static bool off_line_end(char c) { return c == '\r' || c == '\n' || c == '\0' || c == '\f'; }
+
+/* assimp's NextToken: blanks, line ends and comment lines. */
+static void off_next_token(off_text *t) {
+  while (t->at < t->end && (*t->at == ' ' || *t->at == '\t' || *t->at == '\r' || *t->at == '\n')) t->at++;
+  while (t->at < t->end && (*t->at == '#' || *t->at == '\n' || *t->at == '\r')) {
+    while (t->at < t->end && !off_line_end(*t->at)) t->at++;
+    while (t->at < t->end && (*t->at == '\r' || *t->at == '\n')) t->at++;
+    while (t->at < t->end && (*t->at == ' ' || *t->at == '\t' || *t->at == '\r' || *t->at == '\n')) t->at++;
+  }
+}
+
+/* assimp's strtoul10 within [p, end): decimal digits into 32 bits, wrapping. */
+static uint32_t off_uint(const char **p, const char *end) {
+  uint32_t v = 0;
+  while (*p < end && **p >= '0' && **p <= '9') v = v * 10u + (uint32_t)(*(*p)++ - '0');
+  return v;
+}
+
+/* assimp's GetNextLine: up to 4,096 characters to the next line end, then past every line
+ * end; false at the end of the text. */
+static bool off_line(off_text *t, const char **line, const char **line_end) {
+  if (t->at >= t->end || *t->at == '\0') return false;
+  *line = t->at;
+  while (t->at < t->end && !off_line_end(*t->at) && t->at - *line < 4096) t->at++;
+  *line_end = t->at;
+  while (t->at < t->end && off_line_end(*t->at) && *t->at != '\0') t->at++;
+  return true;
+}
+
+static const char *check_off_text(const char *text, size_t bytes, char *why, size_t len) {
+  off_text t = {text, text + bytes};
+  off_next_token(&t);
+  const char *c = t.at, *e = t.end;
+  bool dimension = false;
+  /* The importer's buffer ends in a NUL one past the file: its "car < end - k" is
+   * "c < e - k + 1" here. Without "OFF" it reads the counts (or refuses the file). */
+  if (c < e - 1 && c[0] == 'S' && c[1] == 'T') c += 2;
+  if (c < e && c[0] == 'C') c++;
+  if (c < e && c[0] == 'N') c++;
+  if (c < e && c[0] == '4') c++;
+  if (c < e && c[0] == 'n') dimension = true, c++;
+  if (c < e - 2 && c[0] == 'O' && c[1] == 'F' && c[2] == 'F') c += 3;
+  t.at = c;
+  off_next_token(&t);
+  uint32_t dims = 3;
+  if (dimension) {
+    dims = off_uint(&t.at, t.end);
+    off_next_token(&t);
+  }
+  if (dims > 3) return NULL; /* the importer refuses it */
+  off_next_token(&t);
+  const uint32_t nv = off_uint(&t.at, t.end);
+  off_next_token(&t);
+  const uint32_t nf = off_uint(&t.at, t.end);
+  off_next_token(&t);
+  (void)off_uint(&t.at, t.end); /* the edge count */
+  off_next_token(&t);
+  if (nv == 0 || nf == 0) return NULL; /* the importer refuses it */
+  /* A vertex line holds its coordinates (a digit and a separator each); a face line its
+   * count and a line end. */
+  const size_t per_vertex = 2 * (dims ? dims : 1);
+  if (nv > bytes / per_vertex || nf > bytes / 2) {
+    snprintf(why, len, "its header declares %u vertices and %u faces, more than a file of %zu bytes holds", nv, nf,
+             bytes);
     return why;
   }
-  if (strcmp(word, "OFF") != 0) return NULL; /* the indices of the plain format only */
-  int ch;
-  while ((ch = fgetc(f)) != EOF && ch != '\n') {
-  }
-  for (unsigned long long v = 0; v < nv; v++) {
-    double x, y, z;
-    if (fscanf(f, "%lf %lf %lf", &x, &y, &z) != 3) return NULL;
-    int c;
-    while ((c = fgetc(f)) != EOF && c != '\n') {
-    }
-  }
-  for (unsigned long long i = 0; i < nf; i++) {
-    unsigned long long k;
-    if (fscanf(f, "%llu", &k) != 1) return NULL;
-    if (k > 64) {
-      snprintf(why, len, "face %llu has %llu vertices (at most 64 are read)", i, k);
-      return why;
-    }
-    for (unsigned long long j = 0; j < k; j++) {
-      long long idx;
-      if (fscanf(f, "%lld", &idx) != 1) return NULL;
-      if (idx < 0 || (unsigned long long)idx >= nv) {
-        snprintf(why, len, "face %llu uses vertex %lld of %llu", i, idx, nv);
+  const char *line, *line_end;
+  for (uint32_t v = 0; v < nv; v++)
+    if (!off_line(&t, &line, &line_end)) return NULL; /* short: the importer says so */
+  for (uint32_t i = 0; i < nf; i++) {
+    if (!off_line(&t, &line, &line_end)) return NULL;
+    const char *p = line;
+    while (p < line_end && (*p == ' ' || *p == '\t')) p++;
+    uint32_t k = off_uint(&p, line_end);
+    if (k == 0 || k > 9) continue; /* skipped by the importer */
+    for (uint32_t j = 0; j < k; j++) {
+      while (p < line_end && (*p == ' ' || *p == '\t')) p++;
+      uint32_t idx = off_uint(&p, line_end);
+      if (idx >= nv) {
+        snprintf(why, len, "face %u uses vertex %u of %u", i, idx, nv);
         return why;
       }
     }
-    int c;
-    while ((c = fgetc(f)) != EOF && c != '\n') {
-    }
   }
   return NULL;
+}
+
+static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
+  /* In memory, as the importer reads it (bounded by the file's size, which it reads whole too). */
+  char *text = malloc(bytes ? bytes : 1);
+  if (!text) return "the file does not fit in memory";
+  const char *problem = fread(text, 1, bytes, f) == bytes ? check_off_text(text, bytes, why, len) : NULL;
+  free(text);
+  return problem;
 }
 
 /* Whether `name`, as an OBJ at `path` names a file (relative to the OBJ's folder unless

@@ -60,6 +60,14 @@ put("off_counts_1e9.off", "OFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
 # Found by the fuzzer: the counts, then no third number but bytes assimp skips.
 put("off_counts_then_garbage.off", b"OFF\n3 1000000000 " + b"\xa3" * 89 + b"0\n0 0 0\n1\n")
 put("noff_counts_1e9.off", "NOFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
+# Found by the fuzzer: the importer reads a count glued to "OFF" and wraps one past 2^32
+# (2.6 billion faces, 42 GB asked for); comments between the counts; the n-dimensional
+# header; an index out of range after a comment and on a 4OFF (homogeneous) vertex list.
+put("off_count_glued_wraps.off", "OFF1 3000000000000000010000")
+put("off_comment_between_counts.off", "OFF\n# a comment\n3 # and one more\n1000000000 0\n" + verts + "3 0 1 2\n")
+put("noff_dimension_counts.off", "nOFF\n3\n3 1000000000 0\n" + verts + "3 0 1 2\n")
+put("off_comment_index_past_end.off", "OFF\n#c\n3 1 0\n" + verts + "3 0 1 3\n")
+put("4off_index_past_end.off", "4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 9\n")
 put("stl_binary_count_4e9.stl", b"\0" * 80 + struct.pack("<I", 0xFFFFFFFF) + b"\0" * 50)
 put("stl_binary_truncated.stl", b"\0" * 80 + struct.pack("<I", 2) + b"\0" * 60)
 put("stl_ascii_nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
