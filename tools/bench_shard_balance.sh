@@ -5,7 +5,8 @@
 # given, one shard after another on this machine, each REPEAT times (default 3), and
 # prints every shard's region and its median render_ms (--stats-json: the dispatches or
 # the reference's rows, without the fixed cost), then the slowest shard against the mean:
-# the farm's makespan is its slowest shard.
+# the farm's makespan is its slowest shard. Beside it, each shard process's CPU time
+# (cpu_ms: the whole process, fixed costs included).
 # Usage: tools/bench_shard_balance.sh BASELINE_VKRAYCAST NEW_VKRAYCAST [N] [REPEAT] [render args...]
 set -euo pipefail
 old=$1 new=$2 n=${3:-8} repeat=${4:-3}
@@ -30,15 +31,17 @@ for bin in "$old" "$new"; do
   echo "== $bin, $n shards, median of $repeat runs each"
   times=()
   for ((i = 0; i < n; i++)); do
-    runs=()
+    runs=() cpus=()
     for ((r = 0; r < repeat; r++)); do
       "$bin" render "$work/strip.json" --shard "$i/$n" -o "$work/s.exr" --stats-json "$work/s.json" --quiet "$@"
-      runs+=("$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["render_ms"])' "$work/s.json")")
+      read -r ms cpu < <(python3 -c 'import json,sys; d = json.load(open(sys.argv[1])); print(d["render_ms"], d["cpu_ms"])' "$work/s.json")
+      runs+=("$ms") cpus+=("$cpu")
     done
     median=$(printf '%s\n' "${runs[@]}" | sort -g | sed -n "$(((repeat + 1) / 2))p")
+    cpu=$(printf '%s\n' "${cpus[@]}" | sort -g | sed -n "$(((repeat + 1) / 2))p")
     region=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["region"])' "$work/s.json")
-    printf 'shard %d/%d  region %-22s render_ms %9.1f\n' "$i" "$n" "$region" "$median"
+    printf 'shard %d/%d  region %-22s render_ms %7.1f  process cpu_ms %7.1f\n' "$i" "$n" "$region" "$median" "$cpu"
     times+=("$median")
   done
-  printf '%s\n' "${times[@]}" | awk '{s += $1; if ($1 > m) m = $1} END {printf "slowest %.1f ms, mean %.1f ms, slowest / mean %.2f\n", m, s / NR, m / (s / NR)}'
+  printf '%s\n' "${times[@]}" | awk '{s += $1; if ($1 > m) m = $1} END {printf "slowest %.1f ms, mean %.1f ms, slowest / mean %.2f, sum %.0f ms\n", m, s / NR, m / (s / NR), s}'
 done
