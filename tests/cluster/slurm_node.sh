@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
-# A single-node Slurm cluster in a folder, for the tests (Debian's slurmctld, slurmd and
-# munge; no cgroups, no systemd, no accounting). Sourced:
-#   slurm_start DIR     starts munged, slurmctld and slurmd with their state, sockets
-#                       and logs in DIR, exports SLURM_CONF, and waits for the node
-#   slurm_stop          stops all three (also run on exit)
+# A Slurm cluster of several nodes on one machine, in a folder, for the tests (Debian's
+# slurmctld, slurmd and munge; no cgroups, no systemd, no accounting). Each node is its
+# own slurmd (slurmd -N NAME, its own port, spool and log: Slurm's way of running
+# several daemons on one host for testing). Sourced:
+#   slurm_start DIR [N] starts munged, slurmctld and N slurmd daemons (default 3, nodes
+#                       n1..nN of one CPU each) with their state, sockets and logs in
+#                       DIR, exports SLURM_CONF, and waits for every node
+#   slurm_kill_node NODE  loses a node in the middle of its work: kills its slurmd and
+#                       every process of the jobs running on it, as a crash would
+#   slurm_stop          stops them all (also run on exit)
 #   slurm_wait JOB...   waits until the jobs have left the queue
 slurm_pids=()
+declare -A slurm_node_pid
 
 slurm_stop() {
   local p
@@ -15,11 +21,10 @@ slurm_stop() {
 }
 
 slurm_start() {
-  local d=$1 host cpus port
-  mkdir -p "$d/state" "$d/spool" "$d/munge"
+  local d=$1 nodes=${2:-3} host port k
+  mkdir -p "$d/state" "$d/munge"
   chmod 755 "$d/munge"
   host=$(hostname -s)
-  cpus=$(nproc)
   # Ports away from the defaults (6817/6818), so a real Slurm on the machine is untouched.
   port=$((20000 + ($$ % 20000)))
   mungekey --create --keyfile="$d/munge/munge.key" 2>/dev/null ||
@@ -33,18 +38,17 @@ slurm_start() {
 ClusterName=vkraycast-test
 SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$port
-SlurmdPort=$((port + 1))
 SlurmUser=$(id -un)
 SlurmdUser=root
 AuthType=auth/munge
 AuthInfo=socket=$d/munge/munge.socket
 CredType=cred/munge
 StateSaveLocation=$d/state
-SlurmdSpoolDir=$d/spool
+SlurmdSpoolDir=$d/spool/%n
 SlurmctldPidFile=$d/slurmctld.pid
-SlurmdPidFile=$d/slurmd.pid
+SlurmdPidFile=$d/slurmd-%n.pid
 SlurmctldLogFile=$d/slurmctld.log
-SlurmdLogFile=$d/slurmd.log
+SlurmdLogFile=$d/slurmd-%n.log
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 JobAcctGatherType=jobacct_gather/none
@@ -54,28 +58,54 @@ SchedulerType=sched/builtin
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 ReturnToService=2
-SlurmdTimeout=30
+SlurmdTimeout=5
+SlurmctldTimeout=5
+MessageTimeout=5
 InactiveLimit=0
 KillWait=5
-NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
-PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
+  local names=()
+  for ((k = 1; k <= nodes; k++)); do
+    echo "NodeName=n$k NodeHostname=$host NodeAddr=127.0.0.1 Port=$((port + k)) CPUs=1 State=UNKNOWN" >>"$d/slurm.conf"
+    names+=("n$k")
+    mkdir -p "$d/spool/n$k"
+  done
+  echo "PartitionName=test Nodes=n[1-$nodes] Default=YES MaxTime=INFINITE State=UP" >>"$d/slurm.conf"
   export SLURM_CONF=$d/slurm.conf
   for _ in $(seq 50); do [[ -S $d/munge/munge.socket ]] && break; sleep 0.1; done
   slurmctld -D -i -f "$SLURM_CONF" >"$d/slurmctld.out" 2>&1 &
   slurm_pids+=($!)
-  slurmd -D -f "$SLURM_CONF" >"$d/slurmd.out" 2>&1 &
-  slurm_pids+=($!)
+  for k in "${names[@]}"; do
+    slurmd -D -N "$k" -f "$SLURM_CONF" >"$d/slurmd-$k.out" 2>&1 &
+    slurm_pids+=($!)
+    slurm_node_pid[$k]=$!
+  done
   trap slurm_stop EXIT
-  local state=
+  local idle=0
   for _ in $(seq 300); do
-    state=$(sinfo -h -o %T 2>/dev/null | head -1)
-    [[ $state == idle ]] && return 0
+    idle=$(sinfo -h -N -o %T 2>/dev/null | grep -c '^idle$')
+    ((idle == nodes)) && return 0
     sleep 0.1
   done
-  echo "slurm: the node did not come up (state '$state'); logs in $d" >&2
-  tail -5 "$d/slurmctld.log" "$d/slurmd.log" "$d/munge/munged.log" >&2 2>/dev/null
+  echo "slurm: $idle of $nodes nodes came up; logs in $d" >&2
+  tail -5 "$d/slurmctld.log" "$d"/slurmd-*.log "$d/munge/munged.log" >&2 2>/dev/null
   return 1
+}
+
+slurm_kill_node() {
+  local node=$1 job p
+  kill -9 "${slurm_node_pid[$node]}" 2>/dev/null
+  wait "${slurm_node_pid[$node]}" 2>/dev/null
+  # The jobs' processes outlive their slurmd (slurmstepd runs them): on a lost node they
+  # die with it. Found by the job ID in their environment, and slurmstepd by its title.
+  for job in $(squeue -h -w "$node" -o %A 2>/dev/null); do
+    for p in /proc/[0-9]*; do
+      if tr '\0' '\n' 2>/dev/null <"$p/environ" | grep -qx "SLURM_JOB_ID=$job" ||
+        grep -qF "slurmstepd: [$job." "$p/cmdline" 2>/dev/null; then
+        kill -9 "${p#/proc/}" 2>/dev/null
+      fi
+    done
+  done
 }
 
 slurm_wait() {

@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# The Slurm scripts on a real, single-node Slurm (tests/cluster/slurm_node.sh): the
-# showcase as a 4-task job array plus the dependent merge (tools/slurm/submit.sh) equals
-# a single render byte for byte. Then a shard that fails (its output name is taken by a
-# folder): the merge runs anyway, writes nothing and names the shard and the command
-# that renders it again; tools/slurm/resubmit.sh renders it alone (sbatch --array=2) and
-# merges, and the image equals the single render.
+# The Slurm scripts on a real Slurm cluster of three nodes, each its own slurmd on this
+# machine (tests/cluster/slurm_node.sh): the showcase as a 4-task job array plus the
+# dependent merge (tools/slurm/submit.sh) equals a single render byte for byte. Then a
+# shard that fails (its output name is taken by a folder): the merge runs anyway, writes
+# nothing and names the shard and the command that renders it again;
+# tools/slurm/resubmit.sh renders it alone (sbatch --array=2) and merges, and the image
+# equals the single render. Then a node lost in the middle of a 6-task array (its slurmd
+# and its running shard's processes killed): Slurm marks the node down and the task NODE_FAIL, the
+# merge names the lost shard, resubmit.sh renders it on a surviving node, and the image
+# equals the single render.
 # Usage: test_slurm.sh VKRAYCAST SCENES WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
@@ -56,5 +60,51 @@ slurm_wait "$shard" "$merge"
 why=ok
 cmp -s "$work/failing.png" "$work/whole.png" || why="after the re-run the image differs or is missing"
 check "the shard rendered again alone, merged" "$why"
+
+# A node lost in the middle of the array. The tasks are not requeued (--no-requeue: by
+# default Slurm would requeue a batch task whose node failed, and the merge would wait
+# for it), so the merge finds the shard missing and says how to render it again. On n2
+# the binary is a wrapper that waits a minute before rendering, so that the node is lost
+# while its shard is under way, whatever the machine's speed.
+slow_bin=$work/vkraycast-slow-on-n2
+printf '#!/usr/bin/env bash\n[[ ${SLURMD_NODENAME:-} == n2 ]] && sleep 60\nexec %q "$@"\n' "$(realpath "$bin")" >"$slow_bin"
+chmod +x "$slow_bin"
+parts=$work/lost.parts
+read -r array merge < <(VKRAYCAST=$slow_bin "$tools/submit.sh" -n 6 -p "$parts" -a "--no-requeue" \
+  "$scenes/showcase.json" "$work/lost.png" "${size[@]}")
+lost= task=
+for _ in $(seq 600); do
+  read -r task lost < <(squeue -h -w n2 -t RUNNING -o "%K %A" 2>/dev/null | head -1)
+  [[ -n $lost ]] && break
+  sleep 0.1
+done
+why=ok
+if [[ -z $lost ]]; then
+  why="no shard ran on n2: $(squeue -h -o '%K %N %T' 2>&1 | tr '\n' ' ')"
+else
+  sleep 1 # the task's processes have started
+  slurm_kill_node n2
+  slurm_wait "$array" "$merge"
+  log=$(cat "$parts"/vkraycast-merge-*.log 2>/dev/null)
+  state=$(scontrol show job "${array}_$task" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p')
+  node=$(sinfo -h -n n2 -o %T 2>/dev/null)
+  [[ ! -e $work/lost.png ]] || because "an image was written"
+  grep -qF "shard $task/6 is missing" <<<"$log" || because "the merge did not name shard $task/6: $log"
+  grep -qF "resubmit.sh $parts $task" <<<"$log" || because "no re-run command for shard $task"
+  [[ $state == NODE_FAIL ]] || because "the lost shard's task is $state, expected NODE_FAIL"
+  [[ $node == down* ]] || because "node n2 is '$node', expected down"
+fi
+check "a node lost mid-array: shard ${task:-?} named" "$why"
+why=ok
+if [[ -n $lost ]]; then
+  read -r shard merge < <("$tools/resubmit.sh" "$parts" "$task")
+  slurm_wait "$shard" "$merge"
+  ran_on=$(scontrol show job "$shard" 2>/dev/null | sed -n 's/.* NodeList=\([^ ]*\).*/\1/p' | head -1)
+  [[ $ran_on == n1 || $ran_on == n3 ]] || because "the re-run ran on '$ran_on', not a surviving node"
+  cmp -s "$work/lost.png" "$work/whole.png" || because "after the re-run the image differs or is missing"
+else
+  why="no node was lost"
+fi
+check "the lost shard rendered on a surviving node, merged" "$why"
 slurm_stop
 finish
