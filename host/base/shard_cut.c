@@ -1,7 +1,7 @@
 /* shard_cut.c: the region of shard I of N (region.h), cut from the frame by the cost
- * estimate as a k-d tree is cut by its surface-area heuristic's cost: recursively, each
- * rectangle split in two at the point where the cost before the cut reaches n1/n of its
- * cost, for its n shards split n1 = n/2 and n2 = n - n1. A split runs between rows, so
+ * estimate the way a k-d tree is built by median splits, the median taken in cost:
+ * recursively, each rectangle split in two where the cost before the cut reaches n1/n of
+ * its cost, for its n shards split n1 = n/2 and n2 = n - n1. A split runs between rows, so
  * that ordinary frames get full-width bands, unless that leaves a side more than
  * BAND_SLACK times its fair share and a split between columns does better: a row whose
  * cost outweighs a shard's share (a mesh's silhouette seen edge-on, a strip of mirrors)
