@@ -1,8 +1,8 @@
 /* libFuzzer targets for the input parsers (tools/fuzz.sh builds and runs them):
  *   FUZZ_TARGET=1 the JSON scene parser, =2 the CSE167 .test parser, =3 mesh loading
- * (the input written to a file, its format chosen by the first byte; for an OBJ with a
- * material library, the bytes up to the first NUL are the library and the rest the OBJ,
- * which names it). Any crash, hang,
+ * (the input written to a file, its format chosen by the first byte: OBJ, PLY (FUZZ_PLY;
+ * else OBJ), STL, OFF, an OBJ with a material library (the bytes up to the first NUL are
+ * the library and the rest the OBJ, which names it), glTF, GLB). Any crash, hang,
  * sanitizer report or leak is a finding (tools/fuzz.sh runs them with -close_fd_mask=2:
  * the parsers' error messages are dropped, libFuzzer's own are not). */
 #include <stdio.h>
@@ -19,10 +19,11 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   /* PLY stays out of the smoke run: assimp 5.2.4's PLY importer hangs and leaks on
    * malformed input (tests/fuzz/regressions/; vkraycast bounds the hang with a watchdog,
    * bad_input case mesh_hang.json). FUZZ_PLY=1 puts it back. */
+  enum { OBJ_WITH_MTL = 4 }; /* an OBJ and its material library */
 #ifdef FUZZ_PLY
-  static const char *const ext[] = {".obj", ".ply", ".stl", ".off", ".obj"};
+  static const char *const ext[] = {".obj", ".ply", ".stl", ".off", ".obj", ".gltf", ".glb"};
 #else
-  static const char *const ext[] = {".obj", ".obj", ".stl", ".off", ".obj"};
+  static const char *const ext[] = {".obj", ".obj", ".stl", ".off", ".obj", ".gltf", ".glb"};
 #endif
   const unsigned kinds = sizeof ext / sizeof *ext;
   if (size < 1) return 0;
@@ -31,7 +32,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   snprintf(path, sizeof path, "/tmp/vkraycast-fuzz-%d%s", (int)getpid(), ext[kind]);
   const unsigned char *body = data + 1;
   size_t body_len = size - 1;
-  if (kind == kinds - 1) { /* an OBJ and its material library */
+  if (kind == OBJ_WITH_MTL) {
     const unsigned char *nul = memchr(body, 0, body_len);
     size_t lib_len = nul ? (size_t)(nul - body) : body_len;
     snprintf(mtl, sizeof mtl, "/tmp/vkraycast-fuzz-%d.mtl", (int)getpid());
