@@ -1,10 +1,18 @@
 /* bench_embree: the yardstick of tools/bench_vs_embree.sh. Renders a vkraycast scene with
  * Intel Embree 3 from the very arrays vkraycast packs (same camera rays, f32 camera-relative
  * geometry, Blinn-Phong with one shadow ray per light, 1 spp, no reflections), with single
- * rays (rtcIntersect1/rtcOccluded1) and 8-wide packets (rtcIntersect8/rtcOccluded8), on
+ * rays (rtcIntersect1/rtcOccluded1) and 8-wide primary packets (rtcIntersect8), on
  * all cores (row blocks on pthreads), and prints the timings as JSON.
  *   bench_embree SCENE [--width W] [--height H] [--repeat N] [--threads T] [--out IMAGE]
+ *                [--shading reference|lambert] [--shadow-packets 0|1] [--coherent 0|1]
+ *                [--quality low|medium|high]
  *   bench_embree --bbox MESHFILE        prints the mesh's bounding box
+ * The options are the yardstick's own speed knobs (docs/performance.md, "Two Embree
+ * harnesses"): --shading lambert replaces the reference's Phong terms by n.l times the
+ * irradiance and the diffuse colour (the cheapest shading both sides share: every light,
+ * every shadow ray, no pow); --shadow-packets 1 traces a packet's shadow rays toward each
+ * light as one rtcOccluded8; --coherent 1 marks the primary packets' context coherent;
+ * --quality is the BVH build quality (default medium).
  * Not part of vkraycast: a benchmark tool, built only when libembree-dev is installed. */
 #include <embree3/rtcore.h>
 #include <float.h>
@@ -26,7 +34,7 @@ typedef struct {
   RTCScene scene;
   unsigned tri_geom, sphere_geom;
   float *rgb;
-  bool packets;
+  bool packets, lambert, shadow_packets, coherent;
   atomic_uint next_row;
   atomic_uint_fast64_t shadow_rays;
 } bench;
@@ -39,6 +47,13 @@ static uint32_t material_of(const bench *b, unsigned geom, unsigned prim) {
  * directions, irradiance, shadow-ray extents and the Phong terms are vkraycast's; only the
  * shadow rays' occlusion test is Embree's. The surface is the flat one Embree reports
  * (its geometric normal facing the ray), leaving from the reference's offset origin. */
+/* The colour one light adds: the reference's Phong terms, or (--shading lambert) n.l times
+ * the irradiance and the diffuse colour. */
+static vec3 light_term(const bench *b, packed_material m, vec3 n, vec3 l, vec3 v, float ndl, vec3 irradiance) {
+  if (b->lambert) return rcm_scale_f(rcm_mul_f(m.diffuse, irradiance), ndl);
+  return ref_light_contribution_f(&b->sc, m, n, l, v, ndl, irradiance);
+}
+
 static vec3 shade(bench *b, vec3 o, vec3 d, float t, vec3 ng, uint32_t mat, uint64_t *shadow_rays) {
   const packed_material m = b->p->materials[mat];
   const packed_frame *f = &b->p->frame;
@@ -60,7 +75,7 @@ static vec3 shade(bench *b, vec3 o, vec3 d, float t, vec3 ng, uint32_t mat, uint
     struct RTCRay ray = {origin.x, origin.y, origin.z, 0, to_light.x, to_light.y, to_light.z, 0, t_max, 0xffffffffu, 0, 0};
     rtcOccluded1(b->scene, &ctx, &ray);
     if (ray.tfar < 0) continue; /* blocked */
-    color = rcm_add_f(color, ref_light_contribution_f(&b->sc, m, n, l, v, ndl, irradiance));
+    color = rcm_add_f(color, light_term(b, m, n, l, v, ndl, irradiance));
   }
   return color;
 }
@@ -89,13 +104,66 @@ static void render_row_single(bench *b, uint32_t y, uint64_t *shadow_rays) {
   }
 }
 
+/* A packet's shading with its shadow rays toward each light traced as one rtcOccluded8
+ * of the lanes that need one (--shadow-packets 1); the same terms as shade(). */
+static void shade_packet(bench *b, const struct RTCRayHit8 *rh, const vec3 *o, const vec3 *d, uint32_t x0, uint32_t y,
+                         uint64_t *shadow_rays) {
+  const packed_frame *f = &b->p->frame;
+  const uint32_t w = f->camera.width;
+  vec3 n[8], p[8], origin[8], color[8];
+  packed_material m[8];
+  bool hit[8];
+  for (int k = 0; k < 8; k++) {
+    hit[k] = x0 + (uint32_t)k < w && rh->hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    color[k] = f->background;
+    if (!hit[k]) continue;
+    m[k] = b->p->materials[material_of(b, rh->hit.geomID[k], rh->hit.primID[k])];
+    n[k] = rcm_normalize_f(rcm_make_f(rh->hit.Ng_x[k], rh->hit.Ng_y[k], rh->hit.Ng_z[k]));
+    if (rcm_dot_f(n[k], d[k]) > 0) n[k] = rcm_neg_f(n[k]);
+    p[k] = rcm_add_f(o[k], rcm_scale_f(d[k], rh->ray.tfar[k]));
+    origin[k] = ref_offset_ray_origin_f(p[k], n[k]);
+    color[k] = rcm_add_f(rcm_mul_f(m[k].ambient, f->ambient_light), m[k].emission);
+  }
+  for (uint32_t i = 0; i < f->light_count; i++) {
+    _Alignas(32) int valid[8]; /* Embree reads the mask as one 32-byte vector */
+    vec3 l[8], irradiance[8];
+    float ndl[8];
+    struct RTCRay8 ray;
+    int any = 0;
+    for (int k = 0; k < 8; k++) {
+      valid[k] = 0;
+      vec3 to_light;
+      float t_max;
+      if (!hit[k] || !ref_light_at_f(b->p->lights[i], p[k], origin[k], &l[k], &irradiance[k], &to_light, &t_max))
+        continue;
+      ndl[k] = rcm_dot_f(n[k], l[k]);
+      if (ndl[k] <= 0) continue;
+      valid[k] = -1, any = 1;
+      ray.org_x[k] = origin[k].x, ray.org_y[k] = origin[k].y, ray.org_z[k] = origin[k].z;
+      ray.dir_x[k] = to_light.x, ray.dir_y[k] = to_light.y, ray.dir_z[k] = to_light.z;
+      ray.tnear[k] = 0, ray.tfar[k] = t_max, ray.time[k] = 0, ray.mask[k] = 0xffffffffu, ray.id[k] = (unsigned)k;
+      ray.flags[k] = 0;
+      (*shadow_rays)++;
+    }
+    if (!any) continue;
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcOccluded8(valid, b->scene, &ctx, &ray);
+    for (int k = 0; k < 8; k++)
+      if (valid[k] && ray.tfar[k] >= 0)
+        color[k] = rcm_add_f(color[k], light_term(b, m[k], n[k], l[k], rcm_neg_f(d[k]), ndl[k], irradiance[k]));
+  }
+  for (int k = 0; k < 8 && x0 + (uint32_t)k < w; k++)
+    memcpy(b->rgb + 3 * ((size_t)y * w + x0 + (uint32_t)k), &color[k], sizeof color[k]);
+}
+
 /* Eight pixels of a row at a time through rtcIntersect8; shading and shadow rays per
  * lane as above (the shadow rays of a packet's lanes point to different places). */
 static void render_row_packets(bench *b, uint32_t y, uint64_t *shadow_rays) {
   uint32_t w = b->p->frame.camera.width;
   for (uint32_t x0 = 0; x0 < w; x0 += 8) {
     struct RTCRayHit8 rh;
-    int valid[8];
+    _Alignas(32) int valid[8]; /* Embree reads the mask as one 32-byte vector */
     vec3 o[8], d[8];
     for (int k = 0; k < 8; k++) {
       uint32_t x = x0 + (uint32_t)k;
@@ -109,7 +177,12 @@ static void render_row_packets(bench *b, uint32_t y, uint64_t *shadow_rays) {
     }
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
+    if (b->coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect8(valid, b->scene, &ctx, &rh);
+    if (b->shadow_packets) {
+      shade_packet(b, &rh, o, d, x0, y, shadow_rays);
+      continue;
+    }
     for (int k = 0; k < 8 && x0 + (uint32_t)k < w; k++) {
       vec3 c = b->p->frame.background;
       if (rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID)
@@ -180,14 +253,24 @@ int main(int argc, char **argv) {
     return 2;
   }
   uint32_t width = 0, height = 0, repeat = 5, threads = 2;
-  const char *out = NULL;
+  const char *out = NULL, *shading = "reference", *quality = "medium";
+  int shadow_packets = 0, coherent = 0;
   for (int i = 2; i + 1 < argc; i += 2) {
     if (!strcmp(argv[i], "--width")) width = (uint32_t)atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--height")) height = (uint32_t)atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--repeat")) repeat = (uint32_t)atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--threads")) threads = (uint32_t)atoi(argv[i + 1]);
     else if (!strcmp(argv[i], "--out")) out = argv[i + 1];
+    else if (!strcmp(argv[i], "--shading")) shading = argv[i + 1];
+    else if (!strcmp(argv[i], "--shadow-packets")) shadow_packets = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--coherent")) coherent = atoi(argv[i + 1]);
+    else if (!strcmp(argv[i], "--quality")) quality = argv[i + 1];
+    else {
+      fprintf(stderr, "bench_embree: unknown option %s\n", argv[i]);
+      return 2;
+    }
   }
+  if (strcmp(shading, "reference") && strcmp(shading, "lambert")) return 2;
   if (threads < 1 || threads > 64 || repeat < 1) return 2;
   rc_scene s;
   /* The benchmark's scenes (tools/mesh_scene.sh) frame Debian's model files where they are
@@ -208,9 +291,12 @@ int main(int argc, char **argv) {
   RTCDevice dev = rtcNewDevice("threads=1"); /* our threads drive it; no TBB pool */
   double t0 = rc_now_ms();
   RTCScene scene = rtcNewScene(dev);
-  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneBuildQuality(scene, !strcmp(quality, "high")  ? RTC_BUILD_QUALITY_HIGH
+                                  : !strcmp(quality, "low") ? RTC_BUILD_QUALITY_LOW
+                                                            : RTC_BUILD_QUALITY_MEDIUM);
   bench b = {.p = &p, .sc = {.frame = &p.frame}, .scene = scene, .tri_geom = RTC_INVALID_GEOMETRY_ID,
-             .sphere_geom = RTC_INVALID_GEOMETRY_ID};
+             .sphere_geom = RTC_INVALID_GEOMETRY_ID, .lambert = !strcmp(shading, "lambert"),
+             .shadow_packets = shadow_packets != 0, .coherent = coherent != 0};
   if (p.frame.triangle_count) {
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
