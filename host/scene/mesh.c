@@ -72,8 +72,7 @@ static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char
  * refusal is kept for the error message; assimp only sees a file that will not open. */
 typedef struct {
   const char *root; /* the folder files must lie in; NULL: anywhere */
-  bool obj;         /* the mesh is an OBJ: every other file opened is a material library */
-  struct stat mesh; /* the mesh file's identity (device, inode) */
+  struct stat mesh; /* the mesh file's identity (device, inode): checked before the import */
   char refused[4200];
   rc_scene *scene;  /* records every file opened (rc_scene_note_input) */
 } file_policy;
@@ -109,7 +108,7 @@ static struct aiFile *file_open(struct aiFileIO *io, const char *path, const cha
   FILE *fp = why ? NULL : rc_fopen_regular(path, NULL, &why);
   struct stat id;
   char mtl_why[300];
-  if (fp && policy->obj && fstat(fileno(fp), &id) == 0 &&
+  if (fp && fstat(fileno(fp), &id) == 0 &&
       !(id.st_dev == policy->mesh.st_dev && id.st_ino == policy->mesh.st_ino) &&
       (why = rc_mtl_check(fp, mtl_why, sizeof mtl_why)) != NULL) {
     fclose(fp);
@@ -262,7 +261,7 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
   bool known = stat(file, &id) == 0;
   const struct aiScene *ai = known ? cache_find(file, root, &id) : NULL;
   if (!ai) {
-    file_policy policy = {.root = root, .scene = s, .obj = rc_has_extension(file, ".obj"), .mesh = id};
+    file_policy policy = {.root = root, .scene = s, .mesh = id};
     ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
     if (policy.refused[0]) {
       fprintf(stderr, "%s: cannot load mesh %s: refused to open %s\n", where, file, policy.refused);

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
+#include <strings.h>
 
 #include "base/rc_base.h"
 
@@ -222,65 +222,55 @@ static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
   return problem;
 }
 
-/* Whether `name`, as an OBJ at `path` names a file (relative to the OBJ's folder unless
- * absolute), is the OBJ itself. */
-static bool names_itself(const char *path, const char *name, size_t name_len, const struct stat *self) {
-  char other[4200];
-  const char *slash = strrchr(path, '/');
-  int dir = name[0] == '/' || !slash ? 0 : (int)(slash - path + 1);
-  if (snprintf(other, sizeof other, "%.*s%.*s", dir, path, (int)name_len, name) >= (int)sizeof other) return false;
-  struct stat st;
-  return stat(other, &st) == 0 && st.st_dev == self->st_dev && st.st_ino == self->st_ino;
-}
-
-/* An OBJ whose `mtllib` names the OBJ itself: assimp reads its geometry as a material
- * library, where a map statement before any `newmtl` kills it (rc_mtl_check). The name is
- * the rest of the line, as assimp 5.2.4 takes it; its first word too, as other readers do. */
-static const char *check_obj(FILE *f, const char *path, char *why, size_t len) {
-  struct stat self;
-  if (fstat(fileno(f), &self) != 0) return NULL;
-  char line[4096];
-  for (unsigned long n = 1; fgets(line, sizeof line, f); n++) {
-    const char *p = line + strspn(line, " \t");
-    if (strncmp(p, "mtllib", 6) != 0 || (p[6] != ' ' && p[6] != '\t')) continue;
-    p += 6 + strspn(p + 6, " \t");
-    size_t all = strcspn(p, "\r\n"), word = strcspn(p, " \t\r\n");
-    while (all > 0 && (p[all - 1] == ' ' || p[all - 1] == '\t')) all--;
-    if ((all && names_itself(path, p, all, &self)) || (word && names_itself(path, p, word, &self))) {
-      snprintf(why, len, "line %lu: `mtllib %.*s` names the OBJ itself as its material library", n,
-               (int)(all < 200 ? all : 200), p);
-      return why;
-    }
-  }
-  return NULL;
-}
-
 const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len) {
-  bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off"),
-       obj = rc_has_extension(path, ".obj");
-  if (!ply && !off && !obj) return NULL;
+  bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off");
   FILE *f = fopen(path, "rb");
   if (!f) return NULL; /* the importer's open reports it */
-  const char *problem = ply   ? check_ply(f, bytes, why, len)
-                        : off ? check_off(f, bytes, why, len)
-                              : check_obj(f, path, why, len);
+  const char *problem = ply ? check_ply(f, bytes, why, len) : off ? check_off(f, bytes, why, len) : NULL;
+  /* Whatever its name says, assimp may read a file as an OBJ (it picks an importer by the
+   * content when the extension's declines), and an OBJ may name itself as its library. */
+  if (!problem) problem = rc_mtl_check(f, why, len);
   fclose(f);
   return problem;
+}
+
+/* The statements of assimp 5.2.4's material library reader that set a texture
+ * (ObjFileMtlImporter: map_*, bump, disp, norm, refl; it matches their first four
+ * letters, the rest in any case). */
+static bool map_statement(const char *p) {
+  static const char *const keys[] = {"map_", "bump", "disp", "norm", "refl"};
+  for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
+    if (p[0] == keys[i][0] && strncasecmp(p, keys[i], 4) == 0) return true;
+  return false;
 }
 
 const char *rc_mtl_check(FILE *f, char *why, size_t len) {
   char line[1024];
   const char *problem = NULL;
+  bool line_start = true;
   rewind(f);
-  for (unsigned long n = 1; !problem && fgets(line, sizeof line, f); n++) {
+  for (unsigned long n = 1; !problem && fgets(line, sizeof line, f);) {
+    /* A line longer than the buffer comes in pieces: only its first is a line's start. */
+    const bool start = line_start;
+    const size_t got = strlen(line);
+    line_start = got > 0 && line[got - 1] == '\n';
+    if (!start) {
+      n += line_start;
+      continue;
+    }
     const char *p = line;
-    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\v' || *p == '\f') p++;
-    if (*p == '\n' || *p == '\0' || *p == '#') continue;
-    size_t word = strcspn(p, " \t\r\n\v\f");
-    if (word == 6 && strncmp(p, "newmtl", 6) == 0) break;
-    snprintf(why, len, "line %lu: `%.*s` before the first `newmtl` belongs to no material (is it a material library?)",
-             n, (int)(word < 40 ? word : 40), p);
-    problem = why;
+    while (*p == ' ' || *p == '\t') p++;
+    if (strncmp(p, "newmtl", 6) == 0 && (p[6] == ' ' || p[6] == '\t' || p[6] == '\r' || p[6] == '\n' || !p[6]))
+      break;
+    if (map_statement(p)) {
+      size_t word = strcspn(p, " \t\r\n\v\f");
+      snprintf(why, len,
+               "line %lu: the map statement `%.*s` comes before the first `newmtl` and belongs to no material "
+               "(assimp 5.2.4 dies on it)",
+               n, (int)(word < 40 ? word : 40), p);
+      problem = why;
+    }
+    n += line_start;
   }
   rewind(f);
   return problem;

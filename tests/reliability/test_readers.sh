@@ -30,15 +30,21 @@ put("obj_index_negative.obj", tri + "f -1 -2 -99999999\n")
 put("obj_index_overflow.obj", tri + "f 1 2 4294967297\n")
 put("obj_index_zero.obj", tri + "f 0 1 2\n")
 put("obj_vertex_nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
-# Found by the fuzzer: a material library whose first statement is a map (before any
-# newmtl) killed assimp 5.2.4 with SIGSEGV; every statement that names a map, and an OBJ
-# that names itself as its library with a map statement in it.
+# Found by the fuzzer: a material library with a map statement before any newmtl killed
+# assimp 5.2.4 with SIGSEGV; every statement that sets a map, and an OBJ that names
+# itself as its library with a map statement in it.
 for kw in ["map_Ka", "map_Kd", "map_Ks", "map_Ke", "map_d", "map_Ns", "map_bump", "bump", "bumpy", "disp", "refl",
-           "norm", "map_Pr", "map_Pm", "map_Ps", "map_Kdx"]:
+           "norm", "map_Pr", "map_Pm", "map_Ps", "map_Kdx", "bUMP"]:
     put(f"obj_mtl_{kw}.mtl", f"# a library\n\n{kw} texture.png\nnewmtl m\nKd 1 1 1\n")
     put(f"obj_mtl_{kw}.obj", f"mtllib obj_mtl_{kw}.mtl\n" + tri + "usemtl m\nf 1 2 3\n")
 put("obj_mtllib_itself.obj", "mtllib obj_mtllib_itself.obj\n" + tri + "map_Kd texture.png\nf 1 2 3\n")
 put("obj_mtllib_itself_dot.obj", "mtllib  ./obj_mtllib_itself_dot.obj \n" + tri + "bump x\nf 1 2 3\n")
+# Files whose content assimp reads as an OBJ whatever their name (it picks an importer
+# by content when the extension's declines), naming such a library (found by the fuzzer
+# through a .gltf file).
+for ext in ["gltf", "stl", "dae"]:
+    put(f"obj_content_as_{ext}.mtl", "# a library\nbump b.png\nnewmtl m\n")
+    put(f"obj_content_as.{ext}", f"mtllib obj_content_as_{ext}.mtl\n" + tri + "f 1 2 3\n")
 # And a library that is fine: its maps after newmtl (control, renders).
 put("good_mtl.mtl", "# ok\nnewmtl m\nKd 1 0.5 0.5\nmap_Kd texture.png\nbump b.png\n")
 put("good_mtl.obj_", "mtllib good_mtl.mtl\n" + tri + "usemtl m\nf 1 2 3\n")
@@ -97,7 +103,7 @@ put("glb_chunk_length_lie.glb", struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(
 put("glb_truncated.glb", struct.pack("<III", 0x46546C67, 2, 1000)[:10])
 PY
 
-for mesh in "$work"/*.obj "$work"/*.ply "$work"/*.off "$work"/*.stl "$work"/*.gltf "$work"/*.glb; do
+for mesh in "$work"/*.obj "$work"/*.ply "$work"/*.off "$work"/*.stl "$work"/*.gltf "$work"/*.glb "$work"/*.dae; do
   name=$(basename "$mesh")
   printf '{ "image": {"width": 8, "height": 8}, "camera": {"eye": [0,0,5], "look_at": [0,0,0]},
   "materials": {"m": {"diffuse": [1,1,1]}},
@@ -112,6 +118,27 @@ for mesh in "$work"/*.obj "$work"/*.ply "$work"/*.off "$work"/*.stl "$work"/*.gl
   [[ ! -e $work/o.png ]] || why="$why; an image was written"
   check "mesh $name" "$why"
 done
+# The controls: an OBJ whose library is well formed renders, and so does a glTF whose
+# buffer is a file of its own (binary: read through the same check).
+python3 - "$work" <<'PY'
+import json, struct, sys
+w = sys.argv[1]
+b = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 2) + b"\0\0"
+open(f"{w}/good_buffer.bin", "wb").write(b)
+g = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "scene": 0, "nodes": [{"mesh": 0}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+     "buffers": [{"byteLength": len(b), "uri": "good_buffer.bin"}],
+     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]}
+open(f"{w}/good_buffer.gltf_", "w").write(json.dumps(g))
+PY
+mv "$work/good_buffer.gltf_" "$work/good_buffer.gltf"
+sed 's/"file": "[^"]*"/"file": "good_buffer.gltf"/' "$work/scene.json" >"$work/good_gltf.json"
+"$bin" render "$work/good_gltf.json" -o "$work/good_gltf.png" --backend cpu --quiet 2>"$work/err"
+got=$? why=ok
+[[ $got == 0 && -s $work/good_gltf.png ]] || why="exit status $got: $(head -c 300 "$work/err")"
+check "glTF with a buffer file" "$why"
 # The control: an OBJ whose library is well formed renders.
 mv "$work/good_mtl.obj_" "$work/good_mtl.obj"
 sed 's/"file": "[^"]*"/"file": "good_mtl.obj"/' "$work/scene.json" >"$work/good.json"
