@@ -251,16 +251,17 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
     return RC_ERR_IO;
   }
   if (!rc_scene_note_input(s, file)) return RC_ERR_OUT_OF_MEMORY;
-  char why_not[300];
-  const char *refused = rc_mesh_check(file, bytes, why_not, sizeof why_not);
-  if (refused) {
-    fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, refused);
-    return RC_ERR_INPUT;
-  }
   struct stat id;
   bool known = stat(file, &id) == 0;
   const struct aiScene *ai = known ? cache_find(file, root, &id) : NULL;
   if (!ai) {
+    /* Checked once per import: a cached one (the same file, unchanged) passed. */
+    char why_not[300];
+    const char *refused = rc_mesh_check(file, bytes, why_not, sizeof why_not);
+    if (refused) {
+      fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, refused);
+      return RC_ERR_INPUT;
+    }
     file_policy policy = {.root = root, .scene = s, .mesh = id};
     ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
     if (policy.refused[0]) {
