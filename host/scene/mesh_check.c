@@ -244,34 +244,52 @@ static bool map_statement(const char *p) {
   return false;
 }
 
+/* The head of a line (its first 8 characters after blanks) against the rule: false to go
+ * on, true when the scan is done (problem set when refused). */
+static bool judge_head(char *head, size_t kept, unsigned long line, char *why, size_t len, const char **problem) {
+  head[kept] = '\0';
+  if (strncmp(head, "newmtl", 6) == 0 && (kept == 6 || head[6] == ' ' || head[6] == '\t')) return true;
+  if (!map_statement(head)) return false;
+  snprintf(why, len,
+           "line %lu: the map statement `%.*s` comes before the first `newmtl` and belongs to no material "
+           "(assimp 5.2.4 dies on it)",
+           line, (int)strcspn(head, " \t"), head);
+  *problem = why;
+  return true;
+}
+
+/* Lines as assimp's reader cuts them: at \n, \r, \f or NUL, then past spaces and tabs.
+ * Read in blocks, whatever the file's size; lines counted as an editor does (\r\n, \n
+ * or a lone \r). */
 const char *rc_mtl_check(FILE *f, char *why, size_t len) {
-  char line[1024];
+  enum { START, HEAD, REST } mode = START;
+  char block[65536], head[9];
+  size_t kept = 0, got;
+  unsigned long line = 1;
+  bool done = false, after_cr = false;
   const char *problem = NULL;
-  bool line_start = true;
   rewind(f);
-  for (unsigned long n = 1; !problem && fgets(line, sizeof line, f);) {
-    /* A line longer than the buffer comes in pieces: only its first is a line's start. */
-    const bool start = line_start;
-    const size_t got = strlen(line);
-    line_start = got > 0 && line[got - 1] == '\n';
-    if (!start) {
-      n += line_start;
-      continue;
+  while (!done && (got = fread(block, 1, sizeof block, f)) > 0) {
+    for (size_t i = 0; i < got && !done; i++) {
+      const char c = block[i];
+      if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
+        if (mode == HEAD) done = judge_head(head, kept, line, why, len, &problem);
+        line += c == '\r' || (c == '\n' && !after_cr);
+        after_cr = c == '\r';
+        mode = START, kept = 0;
+        continue;
+      }
+      after_cr = false;
+      if (mode == REST || (mode == START && (c == ' ' || c == '\t'))) continue;
+      mode = HEAD;
+      head[kept++] = c;
+      if (kept == 8) {
+        done = judge_head(head, kept, line, why, len, &problem);
+        mode = REST;
+      }
     }
-    const char *p = line;
-    while (*p == ' ' || *p == '\t') p++;
-    if (strncmp(p, "newmtl", 6) == 0 && (p[6] == ' ' || p[6] == '\t' || p[6] == '\r' || p[6] == '\n' || !p[6]))
-      break;
-    if (map_statement(p)) {
-      size_t word = strcspn(p, " \t\r\n\v\f");
-      snprintf(why, len,
-               "line %lu: the map statement `%.*s` comes before the first `newmtl` and belongs to no material "
-               "(assimp 5.2.4 dies on it)",
-               n, (int)(word < 40 ? word : 40), p);
-      problem = why;
-    }
-    n += line_start;
   }
+  if (!done && mode == HEAD) judge_head(head, kept, line, why, len, &problem);
   rewind(f);
   return problem;
 }

@@ -37,6 +37,11 @@ for kw in ["map_Ka", "map_Kd", "map_Ks", "map_Ke", "map_d", "map_Ns", "map_bump"
            "norm", "map_Pr", "map_Pm", "map_Ps", "map_Kdx", "bUMP"]:
     put(f"obj_mtl_{kw}.mtl", f"# a library\n\n{kw} texture.png\nnewmtl m\nKd 1 1 1\n")
     put(f"obj_mtl_{kw}.obj", f"mtllib obj_mtl_{kw}.mtl\n" + tri + "usemtl m\nf 1 2 3\n")
+# Lines as assimp cuts them: a lone CR, a form feed or a NUL ends one too, and blanks
+# before a statement do not hide it (found by the fuzzer: "OFF\n5\r\r...map_Kn").
+for tag, sep in [("cr", "\r"), ("ff", "\f"), ("nul", "\0"), ("crlf", "\r\n")]:
+    put(f"obj_mtl_{tag}_lines.mtl", f"# a library{sep}5{sep}{sep} \t map_Kd x.png{sep}newmtl m{sep}")
+    put(f"obj_mtl_{tag}_lines.obj", f"mtllib obj_mtl_{tag}_lines.mtl\n" + tri + "f 1 2 3\n")
 put("obj_mtllib_itself.obj", "mtllib obj_mtllib_itself.obj\n" + tri + "map_Kd texture.png\nf 1 2 3\n")
 put("obj_mtllib_itself_dot.obj", "mtllib  ./obj_mtllib_itself_dot.obj \n" + tri + "bump x\nf 1 2 3\n")
 # Files whose content assimp reads as an OBJ whatever their name (it picks an importer
