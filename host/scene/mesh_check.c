@@ -234,11 +234,14 @@ const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len)
   return problem;
 }
 
-/* The statements of assimp 5.2.4's material library reader that set a texture
- * (ObjFileMtlImporter: map_*, bump, disp, norm, refl; it matches their first four
- * letters, the rest in any case). */
-static bool map_statement(const char *p) {
+/* The statements of assimp 5.2.4's material library reader that write to the current
+ * material without asking whether there is one: those that set a texture (map_*, bump,
+ * disp, norm, refl: it matches their first four letters, the rest in any case) and the
+ * anisotropy (any line starting with `a`; "a" alone crashed). Its other statements are
+ * skipped or guarded there. */
+static bool unguarded_statement(const char *p) {
   static const char *const keys[] = {"map_", "bump", "disp", "norm", "refl"};
+  if (p[0] == 'a') return true;
   for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
     if (p[0] == keys[i][0] && strncasecmp(p, keys[i], 4) == 0) return true;
   return false;
@@ -249,9 +252,9 @@ static bool map_statement(const char *p) {
 static bool judge_head(char *head, size_t kept, unsigned long line, char *why, size_t len, const char **problem) {
   head[kept] = '\0';
   if (strncmp(head, "newmtl", 6) == 0 && (kept == 6 || head[6] == ' ' || head[6] == '\t')) return true;
-  if (!map_statement(head)) return false;
+  if (!unguarded_statement(head)) return false;
   snprintf(why, len,
-           "line %lu: the map statement `%.*s` comes before the first `newmtl` and belongs to no material "
+           "line %lu: the statement `%.*s` comes before the first `newmtl` and belongs to no material "
            "(assimp 5.2.4 dies on it)",
            line, (int)strcspn(head, " \t"), head);
   *problem = why;

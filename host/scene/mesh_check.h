@@ -18,9 +18,10 @@ const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len)
 /* A file assimp may read as an OBJ's material library (every file an import opens, and
  * the mesh itself: assimp reads a file as an OBJ when its content says so, whatever its
  * name, and an OBJ may name itself as its library): NULL when it may go to the importer;
- * else why not. A map statement (map_Kd, bump, disp, norm, refl, ...) before the first
- * `newmtl` makes assimp 5.2.4 write through a null material and die of SIGSEGV (found by
- * fuzz_mesh, through an OBJ naming itself and through a .gltf file read as an OBJ).
+ * else why not. A map statement (map_Kd, bump, disp, norm, refl, ...) or an anisotropy
+ * (a line starting with `a`) before the first `newmtl` makes assimp 5.2.4 write through a
+ * null material and die of SIGSEGV (found by fuzz_mesh, through an OBJ naming itself, a
+ * .gltf file read as an OBJ, CR line ends and a bare "a").
  * Reads f from its start and rewinds it. */
 const char *rc_mtl_check(FILE *f, char *why, size_t len);
 

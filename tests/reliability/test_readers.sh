@@ -34,8 +34,8 @@ put("obj_vertex_nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
 # assimp 5.2.4 with SIGSEGV; every statement that sets a map, and an OBJ that names
 # itself as its library with a map statement in it.
 for kw in ["map_Ka", "map_Kd", "map_Ks", "map_Ke", "map_d", "map_Ns", "map_bump", "bump", "bumpy", "disp", "refl",
-           "norm", "map_Pr", "map_Pm", "map_Ps", "map_Kdx", "bUMP"]:
-    put(f"obj_mtl_{kw}.mtl", f"# a library\n\n{kw} texture.png\nnewmtl m\nKd 1 1 1\n")
+           "norm", "map_Pr", "map_Pm", "map_Ps", "map_Kdx", "bUMP", "a", "aniso"]:
+    put(f"obj_mtl_{kw}.mtl", f"# a library\n\n{kw}{'' if kw == 'a' else ' texture.png'}\nnewmtl m\nKd 1 1 1\n")
     put(f"obj_mtl_{kw}.obj", f"mtllib obj_mtl_{kw}.mtl\n" + tri + "usemtl m\nf 1 2 3\n")
 # Lines as assimp cuts them: a lone CR, a form feed or a NUL ends one too, and blanks
 # before a statement do not hide it (found by the fuzzer: "OFF\n5\r\r...map_Kn").
