@@ -73,6 +73,7 @@ static rc_status add_materials(const struct aiScene *ai, rc_scene *s, const char
 typedef struct {
   const char *root; /* the folder files must lie in; NULL: anywhere */
   struct stat mesh; /* the mesh file's identity (device, inode): checked before the import */
+  bool libraries;   /* the mesh names material libraries: the files opened are checked as such */
   char refused[4200];
   rc_scene *scene;  /* records every file opened (rc_scene_note_input) */
 } file_policy;
@@ -108,7 +109,7 @@ static struct aiFile *file_open(struct aiFileIO *io, const char *path, const cha
   FILE *fp = why ? NULL : rc_fopen_regular(path, NULL, &why);
   struct stat id;
   char mtl_why[300];
-  if (fp && fstat(fileno(fp), &id) == 0 &&
+  if (fp && policy->libraries && fstat(fileno(fp), &id) == 0 &&
       !(id.st_dev == policy->mesh.st_dev && id.st_ino == policy->mesh.st_ino) &&
       (why = rc_mtl_check(fp, mtl_why, sizeof mtl_why)) != NULL) {
     fclose(fp);
@@ -257,12 +258,13 @@ rc_status rc_mesh_load(const char *file, const char *root, const rc_affine *worl
   if (!ai) {
     /* Checked once per import: a cached one (the same file, unchanged) passed. */
     char why_not[300];
-    const char *refused = rc_mesh_check(file, bytes, why_not, sizeof why_not);
+    bool libraries = false;
+    const char *refused = rc_mesh_check(file, bytes, &libraries, why_not, sizeof why_not);
     if (refused) {
       fprintf(stderr, "%s: cannot load mesh %s: %s\n", where, file, refused);
       return RC_ERR_INPUT;
     }
-    file_policy policy = {.root = root, .scene = s, .mesh = id};
+    file_policy policy = {.root = root, .scene = s, .mesh = id, .libraries = libraries};
     ai = import_with_watchdog(file, (off_t)bytes, &policy, where);
     if (policy.refused[0]) {
       fprintf(stderr, "%s: cannot load mesh %s: refused to open %s\n", where, file, policy.refused);

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "base/rc_base.h"
 
@@ -222,14 +223,72 @@ static const char *check_off(FILE *f, size_t bytes, char *why, size_t len) {
   return problem;
 }
 
-const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len) {
+/* Whether `name` (name_len bytes), as a file at `path` names a file (relative to its
+ * folder unless absolute), is that file itself. */
+static bool names_itself(const char *path, const char *name, size_t name_len, const struct stat *self) {
+  char other[4200];
+  const char *slash = strrchr(path, '/');
+  int dir = name[0] == '/' || !slash ? 0 : (int)(slash - path + 1);
+  if (snprintf(other, sizeof other, "%.*s%.*s", dir, path, (int)name_len, name) >= (int)sizeof other) return false;
+  struct stat st;
+  return stat(other, &st) == 0 && st.st_dev == self->st_dev && st.st_ino == self->st_ino;
+}
+
+/* One line of a file read as an OBJ: an `mtllib` statement sets *any, and *itself when it
+ * names the file (the name as the rest of the line, trimmed, as assimp 5.2.4 takes it, or
+ * its first word). */
+static void consider_line(const char *line, size_t kept, const char *path, const struct stat *self, bool *any,
+                          bool *itself) {
+  if (kept <= 7 || strncmp(line, "mtllib", 6) != 0 || (line[6] != ' ' && line[6] != '\t')) return;
+  *any = true;
+  const char *name = line + 7 + strspn(line + 7, " \t");
+  size_t all = (size_t)(line + kept - name), word = strcspn(name, " \t");
+  while (all > 0 && (name[all - 1] == ' ' || name[all - 1] == '\t')) all--;
+  *itself = *itself || (all && names_itself(path, name, all, self)) || (word && names_itself(path, name, word, self));
+}
+
+/* The `mtllib` statements of a file read as an OBJ, its lines cut as assimp cuts them (see
+ * rc_mtl_check): whether it has one, and whether one names the file itself. */
+static void find_libraries(FILE *f, const char *path, bool *any, bool *itself) {
+  struct stat self;
+  *any = *itself = false;
+  if (fstat(fileno(f), &self) != 0) return;
+  char block[65536], line[4097];
+  size_t kept = 0, got;
+  bool start = true, skipping = false;
+  rewind(f);
+  while (!*itself && (got = fread(block, 1, sizeof block, f)) > 0) {
+    for (size_t i = 0; i < got; i++) {
+      const char c = block[i];
+      if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
+        if (!skipping) consider_line(line, kept, path, &self, any, itself);
+        kept = 0, start = true, skipping = false;
+        continue;
+      }
+      if (start && (c == ' ' || c == '\t')) continue;
+      start = false;
+      if (skipping || kept == sizeof line - 1) continue;
+      line[kept++] = c;
+      line[kept] = '\0';
+      if (kept == 6 && strncmp(line, "mtllib", 6) != 0) skipping = true; /* only these are kept whole */
+    }
+  }
+  if (!skipping && !*itself) consider_line(line, kept, path, &self, any, itself); /* the last, unended line */
+  rewind(f);
+}
+
+const char *rc_mesh_check(const char *path, size_t bytes, bool *names_library, char *why, size_t len) {
   bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off");
+  *names_library = false;
   FILE *f = fopen(path, "rb");
   if (!f) return NULL; /* the importer's open reports it */
   const char *problem = ply ? check_ply(f, bytes, why, len) : off ? check_off(f, bytes, why, len) : NULL;
   /* Whatever its name says, assimp may read a file as an OBJ (it picks an importer by the
-   * content when the extension's declines), and an OBJ may name itself as its library. */
-  if (!problem) problem = rc_mtl_check(f, why, len);
+   * content when the extension's declines); one that names a material library has that
+   * library checked when it is opened, and one that names itself is checked here. */
+  bool itself = false;
+  if (!problem) find_libraries(f, path, names_library, &itself);
+  if (!problem && itself) problem = rc_mtl_check(f, why, len);
   fclose(f);
   return problem;
 }

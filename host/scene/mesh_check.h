@@ -8,16 +8,20 @@
 #ifndef RC_MESH_CHECK_H
 #define RC_MESH_CHECK_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include <stdio.h>
 
-/* NULL when the file may go to the importer; else why not (in why, or a constant). */
-const char *rc_mesh_check(const char *path, size_t bytes, char *why, size_t len);
+/* NULL when the file may go to the importer; else why not (in why, or a constant).
+ * *names_library: the file has an `mtllib` statement, so the files its import opens are
+ * material libraries to check with rc_mtl_check (a glTF's binary buffers are not). */
+const char *rc_mesh_check(const char *path, size_t bytes, bool *names_library, char *why, size_t len);
 
-/* A file assimp may read as an OBJ's material library (every file an import opens, and
- * the mesh itself: assimp reads a file as an OBJ when its content says so, whatever its
- * name, and an OBJ may name itself as its library): NULL when it may go to the importer;
+/* A file assimp may read as an OBJ's material library (every file the import of a mesh
+ * with an `mtllib` statement opens, and the mesh itself when it names itself: assimp reads
+ * a file as an OBJ when its content says so, whatever its name): NULL when it may go to
+ * the importer;
  * else why not. A map statement (map_Kd, bump, disp, norm, refl, ...) or an anisotropy
  * (a line starting with `a`) before the first `newmtl` makes assimp 5.2.4 write through a
  * null material and die of SIGSEGV (found by fuzz_mesh, through an OBJ naming itself, a
