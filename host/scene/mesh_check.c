@@ -102,6 +102,12 @@ static const char *check_ply(FILE *f, size_t bytes, char *why, size_t len) {
   }
   if (!end) return NULL; /* not a header we read: the importer says what is wrong */
   if (n >= 0 && n < 16 && ascii) return check_ply_ascii_body(f, el, n + 1, why, len);
+  /* assimp 5.2.4 takes a line feed that begins the binary data for the header's line end:
+   * it reads the data one byte late and dies in an assertion (SIGABRT) on a valid file
+   * whose first vertex begins with the byte 0x0A. */
+  if (!ascii && fgetc(f) == '\n')
+    return "its binary data begins with the byte 0x0A, which assimp 5.2.4 reads as part of the header (it then "
+           "misreads the file and aborts); write the file as ASCII PLY or in another format";
   size_t body = bytes > header ? bytes - header : 0;
   for (int i = 0; i <= n; i++) {
     unsigned long long per = (ascii ? 2 : 1) * (unsigned long long)(el[i].scalars + el[i].lists);

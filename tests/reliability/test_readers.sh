@@ -65,6 +65,10 @@ binv = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
 put("ply_binary_index_2e9.ply", head.format(fmt="binary_little_endian", nv=3, nf=1).encode() + binv +
     struct.pack("<B3i", 3, 0, 1, 2000000000))
 put("ply_binary_count_2e9.ply", head.format(fmt="binary_little_endian", nv=2000000000, nf=1).encode() + binv)
+# A valid binary PLY whose data begins with the byte 0x0A: assimp 5.2.4 reads it as the
+# header's line end, misreads the rest and aborts in an assertion (SIGABRT).
+put("ply_binary_data_starts_lf.ply", head.format(fmt="binary_little_endian", nv=3, nf=1).encode() +
+    struct.pack("<9f", struct.unpack("<f", b"\na\x20\x40")[0], 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2))
 put("ply_binary_truncated.ply", head.format(fmt="binary_little_endian", nv=3, nf=1).encode() + binv[:20])
 put("off_index_past_end.off", "OFF\n3 1 0\n" + verts + "3 0 1 77777777\n")
 put("off_counts_1e9.off", "OFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
