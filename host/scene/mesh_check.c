@@ -1,5 +1,6 @@
 #include "scene/mesh_check.h"
 
+#include <ctype.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -283,12 +284,33 @@ static void find_libraries(FILE *f, const char *path, bool *any, bool *itself) {
   rewind(f);
 }
 
+/* What assimp 5.2.4 may read a file as, whatever its name, when the importer of its
+ * extension declines it: its SearchFileHeaderForToken looks for "ply" in the first 200
+ * bytes and for "off" in the first 3, lower-cased, NUL bytes removed (a .gltf file holding
+ * an OFF header was read as OFF: fuzz_mesh, a 16 GB allocation). */
+static void sniff(FILE *f, bool *ply, bool *off) {
+  char head[201];
+  size_t got = fread(head, 1, 200, f), n = 0;
+  for (size_t i = 0; i < got; i++)
+    if (head[i]) head[n++] = (char)tolower((unsigned char)head[i]);
+  head[n] = '\0';
+  *ply = *ply || strstr(head, "ply") != NULL;
+  *off = *off || (n >= 3 && strncmp(head, "off", 3) == 0);
+  rewind(f);
+}
+
 const char *rc_mesh_check(const char *path, size_t bytes, bool *names_library, char *why, size_t len) {
   bool ply = rc_has_extension(path, ".ply"), off = rc_has_extension(path, ".off");
   *names_library = false;
   FILE *f = fopen(path, "rb");
   if (!f) return NULL; /* the importer's open reports it */
-  const char *problem = ply ? check_ply(f, bytes, why, len) : off ? check_off(f, bytes, why, len) : NULL;
+  sniff(f, &ply, &off);
+  const char *problem = ply ? check_ply(f, bytes, why, len) : NULL;
+  if (!problem && off) {
+    rewind(f);
+    problem = check_off(f, bytes, why, len);
+  }
+  rewind(f);
   /* Whatever its name says, assimp may read a file as an OBJ (it picks an importer by the
    * content when the extension's declines); one that names a material library has that
    * library checked when it is opened, and one that names itself is checked here. */

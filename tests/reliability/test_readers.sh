@@ -74,6 +74,10 @@ put("off_index_past_end.off", "OFF\n3 1 0\n" + verts + "3 0 1 77777777\n")
 put("off_counts_1e9.off", "OFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
 # Found by the fuzzer: the counts, then no third number but bytes assimp skips.
 put("off_counts_then_garbage.off", b"OFF\n3 1000000000 " + b"\xa3" * 89 + b"0\n0 0 0\n1\n")
+# Found by the fuzzer: OFF and PLY headers in files of other names, which assimp reads by
+# their content when the extension's importer declines them.
+put("off_in_gltf.gltf", b"OFF\n3 1000000000 " + b"\xa3" * 60 + b"0\n1\n")
+put("ply_in_obj.obj", head.format(fmt="ascii", nv=2000000000, nf=1) + verts + "3 0 1 2\n")
 put("noff_counts_1e9.off", "NOFF\n3 1000000000 0\n" + verts + "3 0 1 2\n")
 # Found by the fuzzer: the importer reads a count glued to "OFF" and wraps one past 2^32
 # (2.6 billion faces, 42 GB asked for); comments between the counts; the n-dimensional
