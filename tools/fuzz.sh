@@ -29,7 +29,7 @@ run_one() {
   # bytes from a malformed STL). The C parsers keep the fast unwinder (50x the executions).
   local unwind=1
   [[ $target == mesh ]] && unwind=0
-  ASAN_OPTIONS=fast_unwind_on_malloc=$unwind build-fuzz/fuzz_$target "$corpus" -max_total_time="$wall" -timeout=10 \
+  ASAN_OPTIONS=fast_unwind_on_malloc=$unwind VKRAYCAST_MESH_TIMEOUT_S=3 build-fuzz/fuzz_$target "$corpus" -max_total_time="$wall" -timeout=10 \
     -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 -close_fd_mask=2 \
     -artifact_prefix=build-fuzz/findings/$target- >"build-fuzz/fuzz-$target.log" 2>&1
 }
@@ -46,6 +46,13 @@ for target in "${targets[@]}"; do
   else
     result="FAILED (see $log and build-fuzz/findings/)"
     failed=1
+    echo "--- the end of $log:"
+    tail -n 60 "$log"
+    for finding in build-fuzz/findings/"$target"-*; do
+      [[ -f $finding ]] || continue
+      echo "--- $finding ($(stat -c %s "$finding") bytes), base64:"
+      head -c 65536 "$finding" | base64 -w 100
+    done
   fi
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   echo "fuzz $target: ${runs:-?} executions in ${wall} s of wall time beside the other two, corpus $(ls "build-fuzz/corpus-$target" | wc -l) inputs: $result"

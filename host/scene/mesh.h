@@ -1,5 +1,5 @@
-/* mesh.h: triangle meshes from files through assimp's C API (OBJ+MTL, PLY, STL, glTF,
- * and the other formats assimp reads). */
+/* mesh.h: triangle meshes from files (OBJ+MTL, PLY, STL, glTF, and the other formats
+ * assimp reads), read by assimp in a process of its own (mesh_import.h). */
 #ifndef RC_MESH_H
 #define RC_MESH_H
 

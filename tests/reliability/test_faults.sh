@@ -43,6 +43,44 @@ expect "host out of memory" 3 "out of memory" -- env VKRAYCAST_FAULT=host-memory
   -o "$work/keep.png" --width 1024 --height 1024 --quiet
 intact "host out of memory"
 
+# The mesh importer (assimp in a process of its own, host/scene/mesh_wire.h): however it
+# ends without a whole answer, the render stops with exit status 2 naming the mesh file
+# (3 when the importer is missing: an installation error, as a missing image module is),
+# and the existing image stays.
+mesh_render=("$bin" render "$scenes/mesh.json" -o "$work/keep.png" --width 64 --height 48 --quiet)
+expect "mesh importer crashes" 2 "the importer (assimp) crashed on it (signal" -- \
+  env VKRAYCAST_FAULT=mesh-import-crash "${mesh_render[@]}"
+intact "mesh importer crashes"
+expect "mesh importer aborts" 2 "the importer (assimp) crashed on it (signal 6" -- \
+  env VKRAYCAST_FAULT=mesh-import-abort "${mesh_render[@]}"
+intact "mesh importer aborts"
+expect "mesh importer answers half" 2 "the mesh importer's answer is not whole" -- \
+  env VKRAYCAST_FAULT=mesh-import-short "${mesh_render[@]}"
+intact "mesh importer answers half"
+expect "mesh importer missing: an installation error" 3 "cannot start the mesh importer /nonexistent/importer" -- \
+  env VKRAYCAST_MESH_IMPORTER=/nonexistent/importer "${mesh_render[@]}"
+intact "mesh importer missing"
+# An import that never ends (assimp 5.2.4 spins on this PLY) dies with the render: kill
+# the render (SIGKILL, no handler runs) while the importer works, and the importer goes too.
+hang=$scenes/../tests/bad_input/scenes/mesh_hang.json
+VKRAYCAST_MESH_TIMEOUT_S=120 "$bin" render "$hang" -o "$work/hang.png" 2>/dev/null &
+pid=$!
+child=
+for _ in $(seq 1 200); do
+  child=$(pgrep -P $pid -f vkraycast-mesh-import) && break
+  sleep 0.05
+done
+kill -KILL $pid
+wait $pid 2>/dev/null
+gone=no
+for _ in $(seq 1 100); do
+  [[ -n $child ]] && ! kill -0 "$child" 2>/dev/null && { gone=yes; break; }
+  sleep 0.05
+done
+check "render killed mid-import: the importer goes too" \
+  "$([[ -z $child ]] && echo 'never saw the importer' || { [[ $gone == yes ]] && echo ok || echo "importer $child still runs"; })"
+[[ -n $child ]] && kill -KILL "$child" 2>/dev/null
+
 # A full disk: a 64 KiB file size limit, and an EXR of about 800 KB.
 expect "disk full" 2 "cannot write image" -- bash -c "ulimit -f 64; exec \"\$@\"" _ "$bin" render \
   "$scenes/shadows.json" -o "$work/keep.exr" --width 256 --height 256 --quiet

@@ -6,6 +6,7 @@
 
 #include "rc_test.h"
 #include "scene/bvh.h"
+#include "scene/mesh_import.h"
 #include "scene/scene_pack.h"
 #include "scene/precision_budget.h"
 
@@ -124,6 +125,56 @@ TEST(obj_mesh_is_triangulated_and_transformed) {
     }
   CHECK(min_x > 98 && max_x < 102 && max_x > min_x);
   rc_scene_free(&s);
+}
+
+/* The importer's answer for that cube (host/scene/mesh_wire.h), and every way it can come
+ * short: each prefix of it, a foreign version, a count past what follows, trailing bytes.
+ * None may be read past its end (the ASan build of this test would report it). */
+static const char *parse_copy(const rc_mesh_data *whole, size_t len, void (*damage)(uint32_t *words, size_t n)) {
+  void *copy = malloc(len ? len : 1);
+  memcpy(copy, whole->buffer, len < whole->length ? len : whole->length);
+  if (len > whole->length) memset((char *)copy + whole->length, 0, len - whole->length);
+  if (damage) damage(copy, len / 4);
+  rc_mesh_data d;
+  const char *wrong = rc_mesh_wire_parse(copy, len, &d);
+  rc_mesh_data_free(&d);
+  return wrong;
+}
+static void foreign_version(uint32_t *w, size_t n) { (void)n, w[1] = RC_MESH_WIRE_VERSION + 1; }
+static size_t damaged_word;
+static void all_ones(uint32_t *w, size_t n) {
+  if (damaged_word < n) w[damaged_word] = 0xffffffffu;
+}
+
+TEST(importer_answer_is_checked_whole) {
+  rc_mesh_data m;
+  char why[4400] = "";
+  const char *box = "/usr/share/assimp/models/OBJ/box.obj";
+  CHECK_EQ_INT(rc_mesh_import(box, NULL, true, 1000, &m, why, sizeof why), RC_OK);
+  CHECK_EQ_INT(m.outcome, RC_MESH_IMPORTED);
+  CHECK(m.input_count >= 1 && strcmp(m.inputs[0], box) == 0);
+  uint32_t triangles = 0;
+  for (uint32_t i = 0; i < m.part_count; i++) triangles += m.parts[i].triangle_count;
+  CHECK_EQ_INT(triangles, 12);
+  CHECK(m.length > 0 && m.length % 4 == 0);
+  CHECK(parse_copy(&m, m.length, NULL) == NULL);
+  size_t refused = 0;
+  for (size_t len = 0; len < m.length; len++) refused += parse_copy(&m, len, NULL) != NULL;
+  CHECK_EQ_INT(refused, m.length);
+  CHECK(parse_copy(&m, m.length + 4, NULL) != NULL);
+  CHECK(parse_copy(&m, m.length, foreign_version) != NULL);
+  /* Each word in turn made 0xffffffff: every count, index of a material, flag, magic
+   * word and the version refused (8 words, and 4 in each part's header); floats, vertex
+   * indices (checked when the triangles are built) and string bytes may pass. */
+  size_t structural = 0;
+  for (damaged_word = 0; damaged_word < m.length / 4; damaged_word++)
+    structural += parse_copy(&m, m.length, all_ones) != NULL;
+  CHECK(structural >= 8 + 4 * (size_t)m.part_count);
+  rc_mesh_data_free(&m);
+  /* A file assimp cannot read: an answer, with assimp's reason. */
+  CHECK_EQ_INT(rc_mesh_import("/usr/share/assimp/models/OBJ/box.mtl", NULL, false, 100, &m, why, sizeof why), RC_OK);
+  CHECK(m.outcome == RC_MESH_FAILED && m.message[0] != '\0');
+  rc_mesh_data_free(&m);
 }
 
 /* By default a mesh outside the scene's folder (here ".") is refused before it is read. */
@@ -279,6 +330,7 @@ int main(void) {
   RUN(transforms_compose_scale_rotate_translate);
   RUN(obj_mesh_is_triangulated_and_transformed);
   RUN(mesh_outside_the_scene_folder_needs_the_option);
+  RUN(importer_answer_is_checked_whole);
   RUN(a_floor_does_not_spoil_the_tree_of_the_object_on_it);
   RUN(precision_is_decided_once_for_both_backends);
   RUN(extensions_are_read_alike_everywhere);
