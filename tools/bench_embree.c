@@ -339,7 +339,7 @@ int main(int argc, char **argv) {
   }
   if (out) {
     char err[256];
-    if (rc_image_write(out, (int)s.width, (int)s.height, 3, b.rgb, RC_ENCODING_LINEAR, false, err, sizeof err))
+    if (rc_image_write(out, (int)s.width, (int)s.height, 3, b.rgb, rc_encoding_linear(), false, err, sizeof err))
       fprintf(stderr, "bench_embree: %s\n", err);
   }
   printf("{ \"embree_build_ms\": %.2f, \"embree_single_mrays_per_s\": %.3f, \"embree_packet8_mrays_per_s\": %.3f, "

@@ -211,7 +211,7 @@ static rc_status write_heat_map(const char *path, const rc_compare_image *im, co
   char err[512];
   *ringed = rc_heat_map_draw(im->px, ref->px, im->w, im->h, im->c, colour, scale, heat);
   rc_status st = RC_OK;
-  if (rc_image_write(path, w, h, 3, heat, RC_ENCODING_LINEAR, false, err, sizeof err) != 0) {
+  if (rc_image_write(path, w, h, 3, heat, rc_encoding_linear(), false, err, sizeof err) != 0) {
     rc_error("%s: cannot write the heat map: %s", path, err);
     st = RC_ERR_IO;
   }

@@ -390,20 +390,24 @@ rc_status rc_cmd_merge(int argc, char **argv) {
     whole.region = (rc_region){0, 0, whole.width, whole.height};
     whole.shard_index = whole.shard_count = 0;
     rc_image_meta meta[RC_PART_FIELDS];
-    char text[RC_PART_FIELDS][64], encoding[16], quantize[16];
+    char text[RC_PART_FIELDS][64], quantize[16];
     int m = rc_part_meta(&whole, meta, text);
-    rc_part_setting(whole.settings, "encoding", encoding, sizeof encoding);
+    rc_encoding encoding;
+    if (!rc_part_encoding(whole.settings, &encoding)) {
+      rc_error("%s: its header's encoding settings are not ones render writes (\"%s\")", parts[0].path, whole.settings);
+      st = RC_ERR_INPUT;
+    }
     rc_part_setting(whole.settings, "quantize", quantize, sizeof quantize);
     rc_output_install_signal_handlers();
     const bool aov = parts[0].channels != 3;
-    if (aov && !rc_has_extension(a->output, ".exr")) {
+    if (st == RC_OK && aov && !rc_has_extension(a->output, ".exr")) {
       rc_error("%s: the parts are AOV files, whose decision channels need a multi-channel float file: name it .exr",
                a->output);
       st = RC_ERR_USAGE;
     }
     if (st == RC_OK)
       st = rc_output_open(aov ? NULL : a->output, aov ? a->output : NULL, whole.width, whole.height,
-                          strcmp(encoding, "srgb") == 0 ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR,
+                          encoding,
                           strcmp(quantize, "truncate") == 0, meta, m, &out);
   }
   if (st == RC_OK) st = write_merged(parts, n, out);

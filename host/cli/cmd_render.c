@@ -1,6 +1,7 @@
 /* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
  * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
 #include <limits.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,6 +34,8 @@ typedef struct {
   int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
       scene_buffers, pipeline;
   double offset_epsilon; /* 0: the scene's */
+  double gamma;          /* 0: the scene's (or 2.2) */
+  double exposure;       /* NAN: the scene's */
   /* derived once parsed */
   bool cpu, no_bvh, stats_stdout;
   rc_region region_asked;
@@ -46,7 +49,7 @@ static const char *const off_on[] = {"off", "on", NULL};
 static const char *const backends[] = {"gpu", "cpu", NULL};
 static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
-static const char *const encodings[] = {"linear", "srgb", NULL};
+static const char *const encodings[] = {"linear", "srgb", "gamma", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
 #define ARG(field) offsetof(render_args, field)
@@ -77,9 +80,15 @@ static const rc_option render_options[] = {
      .help = "Vulkan device index (see `vkraycast devices`); default: discrete >\n"
              "integrated > virtual > CPU"},
     {"--encoding", NULL, RC_OPT_CHOICE, ARG(encoding), "E", .choices = encodings,
-     .help = "8-bit outputs: linear (clamped; the default) or srgb (the transfer\n"
-             "curve); overrides the scene's image.encoding"},
+     .help = "8-bit outputs: linear (clamped; the default), srgb (the transfer\n"
+             "curve) or gamma (a pure power, --gamma); overrides image.encoding"},
     {"--srgb", NULL, RC_OPT_FLAG, ARG(srgb), .help = "--encoding srgb (where both are given, --encoding rules)"},
+    {"--gamma", NULL, RC_OPT_REAL, ARG(gamma), "G", 0.01, 100,
+     .help = "--encoding gamma with this exponent: 8-bit outputs store c^(1/G)\n"
+             "(default: the scene's image.gamma, else 2.2)"},
+    {"--exposure", NULL, RC_OPT_REAL, ARG(exposure), "E", -64, 64,
+     .help = "8-bit outputs scale the linear value by 2^E before the curve (stops;\n"
+             "default: the scene's image.exposure, else 0); float outputs keep it"},
     {"--quantize", NULL, RC_OPT_CHOICE, ARG(quantize), "Q", .choices = quantizers,
      .help = "8-bit outputs: round (JSON scenes' default) or truncate (.test scenes');\n"
              "overrides the scene's image.quantize"},
@@ -236,6 +245,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   memset(a, 0, sizeof *a);
   a->device = a->tile_budget_ms = -1;
   a->repeat = 1;
+  a->exposure = NAN;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
       a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
@@ -255,6 +265,10 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->load.allow_outside_paths = a->allow_outside_paths;
   const char *why = NULL;
   char msg[300];
+  if (a->gamma > 0 && (a->encoding >= 0 ? a->encoding != RC_CURVE_GAMMA : a->srgb)) {
+    rc_usage_error(&rc_render_spec, "--gamma is the exponent of --encoding gamma; it does not go with another encoding");
+    return RC_ERR_USAGE;
+  }
   if (a->region_text && a->shard_text) {
     rc_usage_error(&rc_render_spec, "--region and --shard: a shard is already a region of the frame; give one");
     return RC_ERR_USAGE;
@@ -315,9 +329,19 @@ static double steady(double *v, uint32_t n) {
 }
 
 /* Frames 1..N-1 are rendered and dropped; the last one streams into the output files. */
-/* 8-bit output: the command line's choice, else the scene's. */
-static bool srgb_output(const render_args *a, const rc_scene *s) {
-  return a->encoding >= 0 ? a->encoding == 1 : a->srgb || s->srgb_8bit;
+/* 8-bit output: the command line's choices, else the scene's. */
+_Static_assert(RC_SCENE_ENCODING_LINEAR == (int)RC_CURVE_LINEAR && RC_SCENE_ENCODING_SRGB == (int)RC_CURVE_SRGB &&
+                   RC_SCENE_ENCODING_GAMMA == (int)RC_CURVE_GAMMA,
+               "image.encoding's names in the order of rc_curve");
+static rc_encoding output_encoding(const render_args *a, const rc_scene *s) {
+  rc_encoding e = rc_encoding_linear();
+  e.curve = a->encoding >= 0 ? (rc_curve)a->encoding
+            : a->gamma > 0   ? RC_CURVE_GAMMA
+            : a->srgb        ? RC_CURVE_SRGB
+                             : (rc_curve)s->encoding_8bit;
+  e.gamma = (float)(a->gamma > 0 ? a->gamma : s->gamma_8bit > 0 ? s->gamma_8bit : RC_DEFAULT_GAMMA);
+  e.exposure = (float)(isnan(a->exposure) ? s->exposure_8bit : a->exposure);
+  return e;
 }
 static bool truncate_output(const render_args *a, const rc_scene *s) {
   return a->quantize < 0 ? s->truncate_8bit : a->quantize == 1;
@@ -330,7 +354,7 @@ static rc_status open_output(const render_args *a, const rc_scene *scene, const 
   int n = rc_part_meta(&a->part, meta, text);
   const rc_region r = a->part.region;
   rc_status st = rc_output_open(a->output, a->aov, rc_region_width(r), rc_region_height(r),
-                        srgb_output(a, scene) ? RC_ENCODING_SRGB : RC_ENCODING_LINEAR, truncate_output(a, scene),
+                        output_encoding(a, scene), truncate_output(a, scene),
                         meta, n, out);
   if (st == RC_OK) rc_output_set_length_unit(*out, 1.0 / packed->scale);
   return st;
@@ -534,13 +558,15 @@ static rc_status resolve_part(render_args *a, const rc_scene *s, const rc_packed
  * parts that disagree on one are never merged. */
 static void part_settings(render_args *a, const rc_scene *s, const char *backend, const char *precision) {
   const rc_quality *q = &s->quality;
+  char encoding[96];
+  rc_part_encoding_text(output_encoding(a, s), encoding, sizeof encoding);
   snprintf(a->part.settings, sizeof a->part.settings,
            "backend=%s precision=%s spp=%u accel=%s sphere=%s triangle=%s shadow_offset=%s shadow_epsilon=%.9g "
-           "camera_relative=%s reflection_depth=%u shadows=%s perturb=%u encoding=%s quantize=%s",
+           "camera_relative=%s reflection_depth=%u shadows=%s perturb=%u %s quantize=%s",
            backend, precision, s->samples_per_pixel, a->no_bvh ? "none" : "bvh", rc_sphere_formula_names[q->sphere],
            rc_triangle_formula_names[q->triangle], rc_offset_names[q->offset], q->offset_epsilon,
            q->camera_relative ? "on" : "off", s->reflection_depth, q->shadows ? "on" : "off", a->perturb,
-           srgb_output(a, s) ? "srgb" : "linear", truncate_output(a, s) ? "truncate" : "round");
+           encoding, truncate_output(a, s) ? "truncate" : "round");
 }
 
 static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *ctx, double parse_ms, bool warn);

@@ -119,7 +119,7 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
   }
   if (aov_path) {
     o->aov = rc_image_writer_open(aov_path, (int)width, (int)height, RC_AOV_CHANNELS, rc_aov_channel_names,
-                                  RC_ENCODING_LINEAR, false, meta, meta_count, err, sizeof err);
+                                  rc_encoding_linear(), false, meta, meta_count, err, sizeof err);
     if (!o->aov) {
       rc_error("%s: cannot write the AOV file: %s", aov_path, err);
       rc_output_close(o, false);

@@ -3,6 +3,8 @@
 #include "compare/compare_header.h"
 
 #include <inttypes.h>
+#include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -71,4 +73,40 @@ bool rc_part_settings_differ(const char *x, const char *y, char *a, size_t a_len
 
 void rc_part_setting(const char *settings, const char *name, char *value, size_t len) {
   rc_settings_value(settings, name, value, len);
+}
+
+void rc_part_encoding_text(rc_encoding e, char *out, size_t len) {
+  char curve[32];
+  if (e.curve == RC_CURVE_GAMMA)
+    snprintf(curve, sizeof curve, "gamma%.9g", (double)e.gamma);
+  else
+    snprintf(curve, sizeof curve, "%s", e.curve == RC_CURVE_SRGB ? "srgb" : "linear");
+  snprintf(out, len, "encoding=%s exposure=%.9g", curve, (double)e.exposure);
+}
+
+/* A whole number text: strtod's, with nothing left over. */
+static bool whole_number(const char *text, double *out) {
+  char *end;
+  *out = strtod(text, &end);
+  return end != text && *end == '\0' && isfinite(*out);
+}
+
+bool rc_part_encoding(const char *settings, rc_encoding *e) {
+  *e = rc_encoding_linear();
+  char v[64];
+  double x = 0;
+  rc_part_setting(settings, "encoding", v, sizeof v);
+  if (strcmp(v, "srgb") == 0) {
+    e->curve = RC_CURVE_SRGB;
+  } else if (strncmp(v, "gamma", 5) == 0) {
+    if (!whole_number(v + 5, &x) || !(x >= 0.01 && x <= 100)) return false;
+    e->curve = RC_CURVE_GAMMA, e->gamma = (float)x;
+  } else if (v[0] && strcmp(v, "linear") != 0) {
+    return false;
+  }
+  rc_part_setting(settings, "exposure", v, sizeof v);
+  double stops = 0;
+  if (v[0] && (!whole_number(v, &stops) || fabs(stops) > 64)) return false;
+  e->exposure = (float)stops;
+  return true;
 }

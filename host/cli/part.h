@@ -34,4 +34,10 @@ bool rc_part_settings_differ(const char *x, const char *y, char *a, size_t a_len
  * value (truncated to len); "" when absent. */
 void rc_part_setting(const char *settings, const char *name, char *value, size_t len);
 
+/* An 8-bit encoding as settings say it: "encoding=linear|srgb|gammaG exposure=E", and
+ * back (a setting absent, as in parts of older builds: linear, exposure 0); false when
+ * what the settings say is not an encoding render writes. */
+void rc_part_encoding_text(rc_encoding e, char *out, size_t len);
+bool rc_part_encoding(const char *settings, rc_encoding *e);
+
 #endif

@@ -44,6 +44,27 @@ float srgb_encode(float x) {
   return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
+// What an 8-bit format stores for the linear value x (image_io.h, rc_encoding), in [0, 1].
+// scale is 2^exposure. Exposure 0 multiplies by exactly 1, so the linear and sRGB curves
+// store what they stored before exposure existed.
+float encode_8bit(const rc_encoding &e, float scale, float x) {
+  x *= scale;
+  if (e.curve == RC_CURVE_SRGB) return srgb_encode(x);
+  x = x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f);
+  return e.curve == RC_CURVE_GAMMA ? std::pow(x, 1.0f / e.gamma) : x;
+}
+
+// The colour space OIIO records for an 8-bit file ("Gamma2.2" is OIIO's name for a power).
+std::string color_space(const rc_encoding &e) {
+  if (e.curve == RC_CURVE_SRGB) return "sRGB";
+  if (e.curve == RC_CURVE_GAMMA) {
+    char name[32];
+    std::snprintf(name, sizeof name, "Gamma%g", static_cast<double>(e.gamma));
+    return name;
+  }
+  return "Linear";
+}
+
 // The folder a path names its file in ("." for a bare name).
 std::string dir_of(const std::string &path) {
   size_t slash = path.find_last_of('/');
@@ -111,7 +132,8 @@ struct rc_image_writer {
   std::string path, dir, tmp; // tmp: the named temporary; empty while the file has no name
   int width = 0, height = 0, channels = 0, next_row = 0;
   bool fp = false, truncate = false;
-  rc_encoding enc = RC_ENCODING_LINEAR;
+  rc_encoding enc = rc_encoding_linear();
+  float scale = 1.0f; // 2^enc.exposure
   std::vector<float> encoded;
 };
 
@@ -250,7 +272,7 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
       spec.channelnames.clear();
       for (int i = 0; i < channels; i++) spec.channelnames.emplace_back(names[i]);
     }
-    spec.attribute("oiio:ColorSpace", w->fp || enc == RC_ENCODING_LINEAR ? "Linear" : "sRGB");
+    spec.attribute("oiio:ColorSpace", w->fp ? std::string("Linear") : color_space(enc));
     spec.attribute("Software", "vkraycast");
     if (format == "png") {
       // libpng's default adaptive filtering at zlib level 6 took 27.5 ms to encode the
@@ -264,7 +286,7 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     w->path = path;
     w->dir = dir_of(path);
     w->width = width, w->height = height, w->channels = channels;
-    w->enc = enc, w->truncate = truncate;
+    w->enc = enc, w->truncate = truncate, w->scale = std::exp2(enc.exposure);
     std::string e;
     if (!open_temp(w.get(), e)) {
       set_error(err, err_len, e);
@@ -300,7 +322,7 @@ extern "C" int rc_image_writer_rows(rc_image_writer *w, int rows, const float *p
       w->encoded.resize(n);
       for (size_t i = 0; i < n; i++) {
         float x = pixels[i];
-        float e = w->enc == RC_ENCODING_SRGB ? srgb_encode(x) : (x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f));
+        float e = encode_8bit(w->enc, w->scale, x);
         // OIIO rounds x * 255; a value already on a level stays there.
         w->encoded[i] = w->truncate ? std::floor(e * 255.0f) / 255.0f : e;
       }

@@ -10,10 +10,24 @@
 extern "C" {
 #endif
 
+/* How 8-bit formats store a linear value v: the curve applied to v * 2^exposure clamped
+ * to [0, 1]. Float formats (EXR, HDR, TIFF) store v itself: exposure and curve are a
+ * display's, not the render's. */
 typedef enum {
-  RC_ENCODING_LINEAR, /* 8-bit formats store the clamped linear value (classic ray casters) */
-  RC_ENCODING_SRGB,   /* 8-bit formats store the sRGB-encoded value */
+  RC_CURVE_LINEAR, /* the clamped value as it is (classic ray casters) */
+  RC_CURVE_SRGB,   /* the sRGB transfer curve (IEC 61966-2-1) */
+  RC_CURVE_GAMMA,  /* a pure power, c^(1/gamma), as course frameworks encode (gamma 2.2) */
+} rc_curve;
+typedef struct rc_encoding {
+  rc_curve curve;
+  float gamma;    /* RC_CURVE_GAMMA's exponent's inverse; > 0 */
+  float exposure; /* in stops: v is scaled by 2^exposure first */
 } rc_encoding;
+
+static inline rc_encoding rc_encoding_linear(void) {
+  rc_encoding e = {RC_CURVE_LINEAR, 1.0f, 0.0f};
+  return e;
+}
 
 /* A named string attribute of an image file (EXR header attributes): how the parts of a
  * render carry their region, scene hash and settings (region.h). */

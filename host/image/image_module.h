@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#define RC_IMAGE_API_VERSION 3u
+#define RC_IMAGE_API_VERSION 4u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
 
 typedef struct rc_image_api {

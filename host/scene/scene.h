@@ -116,6 +116,10 @@ int rc_name_index(const char *const *names, const char *name);
 #define RC_MAX_SAMPLES_PER_PIXEL 1024u
 #define RC_MAX_REFLECTION_DEPTH 16u
 
+enum { RC_SCENE_ENCODING_LINEAR, RC_SCENE_ENCODING_SRGB, RC_SCENE_ENCODING_GAMMA };
+#define RC_DEFAULT_GAMMA 2.2
+#define RC_MAX_EXPOSURE 64.0 /* stops either way: 2^64 takes any f32 radiance past white */
+
 typedef struct rc_scene {
   char *path;
   uint32_t width, height, samples_per_pixel;
@@ -146,7 +150,11 @@ typedef struct rc_scene {
   rc_triangle_def *csg_triangles; /* of the composites' mesh operands, packed after the triangles */
   size_t csg_triangle_count, csg_triangle_capacity;
   bool truncate_8bit;          /* the format's 8-bit rule: truncate (CSE167) or round (JSON) */
-  bool srgb_8bit;              /* 8-bit outputs sRGB-encoded (JSON image.encoding); else linear */
+  /* How 8-bit outputs store a linear value (JSON image.encoding, gamma, exposure): the
+   * curve (RC_SCENE_ENCODING_*, the order of image_io.h's rc_curve), the exponent of
+   * the gamma curve, and an exposure in stops. */
+  uint32_t encoding_8bit;
+  double gamma_8bit, exposure_8bit;
   char output_name[256];       /* a .test scene's `output` file name ("" when none): a bare name, no folder */
   /* Every file the scene read besides itself (its meshes and the files they name), as
    * opened: the outputs of a run may name none of them (cli/cmd_render.c). */

@@ -37,16 +37,23 @@ static rc_status parse_image(jctx *c, const cJSON *root, rc_scene *s) {
   if (!img) return js_fail(c, "missing field \"image\"");
   js_push_key(c, "image");
   RC_TRY(js_expect_object(c, img));
-  static const char *const allowed[] = {"width", "height", "samples_per_pixel", "encoding", "quantize", NULL};
+  static const char *const allowed[] = {"width",    "height",   "samples_per_pixel", "encoding", "gamma",
+                                        "exposure", "quantize", NULL};
   RC_TRY(js_check_members(c, img, allowed));
   RC_TRY(js_get_uint(c, img, "width", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->width));
   RC_TRY(js_get_uint(c, img, "height", true, 0, 1, RC_MAX_IMAGE_SIDE, &s->height));
   RC_TRY(js_get_uint(c, img, "samples_per_pixel", false, 1, 1, RC_MAX_SAMPLES_PER_PIXEL, &s->samples_per_pixel));
   /* How 8-bit outputs store a linear value (render --encoding and --quantize override). */
-  static const char *const encodings[] = {"linear", "srgb", NULL}, *const quantizers[] = {"round", "truncate", NULL};
+  static const char *const encodings[] = {"linear", "srgb", "gamma", NULL},
+                           *const quantizers[] = {"round", "truncate", NULL};
   uint32_t k;
-  RC_TRY(js_get_enum(c, img, "encoding", encodings, 0, &k));
-  s->srgb_8bit = k == 1;
+  RC_TRY(js_get_enum(c, img, "encoding", encodings, RC_SCENE_ENCODING_LINEAR, &s->encoding_8bit));
+  if (s->encoding_8bit != RC_SCENE_ENCODING_GAMMA && cJSON_GetObjectItemCaseSensitive(img, "gamma")) {
+    js_push_key(c, "gamma");
+    return js_fail(c, "applies only with \"encoding\": \"gamma\"");
+  }
+  RC_TRY(js_get_number(c, img, "gamma", false, RC_DEFAULT_GAMMA, 0.01, 100, &s->gamma_8bit));
+  RC_TRY(js_get_number(c, img, "exposure", false, 0, -RC_MAX_EXPOSURE, RC_MAX_EXPOSURE, &s->exposure_8bit));
   RC_TRY(js_get_enum(c, img, "quantize", quantizers, 0, &k));
   s->truncate_8bit = k == 1;
   js_pop(c);

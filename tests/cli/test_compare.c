@@ -39,7 +39,7 @@ static void write_exr_meta(const char *name, const float (*px)[C], int channels,
   for (int i = 0; i < W * H; i++)
     for (int k = 0; k < channels; k++) rows[i * channels + k] = px[i][k];
   rc_image_writer *w =
-      rc_image_writer_open(path, W, H, channels, names, RC_ENCODING_LINEAR, false, meta, meta_count, err, sizeof err);
+      rc_image_writer_open(path, W, H, channels, names, rc_encoding_linear(), false, meta, meta_count, err, sizeof err);
   CHECK(w != NULL);
   if (!w) return;
   CHECK_EQ_INT(rc_image_writer_rows(w, H, rows, err, sizeof err), 0);
@@ -350,6 +350,40 @@ done:
   free(p2);
 }
 
+/* What an 8-bit file stores under each encoding (image_io.h): one pixel through a PNG and
+ * back, as levels of 255. Values chosen to land on a level, away from rounding's edge:
+ * gamma 2 takes 0.16 to 0.4 (102); exposure +1 takes 0.2 to 0.4, -2 takes 0.8 to 0.2
+ * (51); sRGB takes 0.2 to 0.4845 (123.55, so 124) with exposure 0 as before exposure
+ * existed; a float file keeps the linear value whatever the encoding. */
+static int level_after(rc_encoding e, float linear, const char *ext) {
+  char path[300], err[256];
+  snprintf(path, sizeof path, "%s/level%s", tmp, ext);
+  const float px[3] = {linear, linear, linear};
+  if (rc_image_write(path, 1, 1, 3, px, e, false, err, sizeof err) != 0) return -1;
+  int w, h, c;
+  float *back = NULL;
+  if (rc_image_read(path, &w, &h, &c, &back, err, sizeof err) != 0) return -1;
+  float v = back[0];
+  free(back);
+  return strcmp(ext, ".png") == 0 ? (int)lroundf(v * 255.0f) : (v == linear ? 1 : 0);
+}
+
+TEST(eight_bit_encodings) {
+  rc_encoding gamma2 = {RC_CURVE_GAMMA, 2.0f, 0.0f}, up = {RC_CURVE_LINEAR, 1.0f, 1.0f},
+              down = {RC_CURVE_LINEAR, 1.0f, -2.0f}, srgb = {RC_CURVE_SRGB, 1.0f, 0.0f},
+              gamma22 = {RC_CURVE_GAMMA, 2.2f, 0.0f}, all = {RC_CURVE_GAMMA, 2.2f, 3.0f};
+  CHECK_EQ_INT(level_after(gamma2, 0.16f, ".png"), 102);
+  CHECK_EQ_INT(level_after(rc_encoding_linear(), 0.16f, ".png"), 41);
+  CHECK_EQ_INT(level_after(up, 0.2f, ".png"), 102);
+  CHECK_EQ_INT(level_after(down, 0.8f, ".png"), 51);
+  CHECK_EQ_INT(level_after(up, 0.9f, ".png"), 255); /* past white: clamped after the scale */
+  CHECK_EQ_INT(level_after(srgb, 0.2f, ".png"), 124);
+  CHECK_EQ_INT(level_after(gamma22, 1.0f, ".png"), 255);
+  CHECK_EQ_INT(level_after(gamma22, 0.0f, ".png"), 0);
+  CHECK_EQ_INT(level_after(gamma22, -0.5f, ".png"), 0);
+  CHECK_EQ_INT(level_after(all, 0.3f, ".exr"), 1);
+}
+
 int main(int argc, char **argv) {
   if (argc != 2) {
     fprintf(stderr, "usage: test_compare VKRAYCAST\n");
@@ -374,6 +408,7 @@ int main(int argc, char **argv) {
   RUN(non_finite_values);
   RUN(header_aware);
   RUN(heat_map_readable);
+  RUN(eight_bit_encodings);
   char cleanup[300];
   snprintf(cleanup, sizeof cleanup, "rm -rf '%s'", tmp);
   if (!getenv("KEEP") && system(cleanup) != 0) printf("could not remove %s\n", tmp);

@@ -58,6 +58,17 @@ for combo in "${combos[@]}"; do
   cmp -s "$work/$tag-merged.png" "$work/$tag-whole.png" || why="merged PNG differs from the whole render"
   check "$tag merged png" "$why"
 done
+# The 8-bit encoding travels in the parts' headers: shards rendered with a gamma and an
+# exposure merge into the PNG a whole render with them writes.
+enc=(--backend cpu --precision f32 --spp 1 "${size[@]}" --quiet --gamma 2.2 --exposure 0.5)
+"$bin" render "$scene" "${enc[@]}" -o "$work/gamma-whole.png"
+"$bin" render "$scene" "${enc[@]}" --shard 0/2 -o "$work/gamma-0.exr"
+"$bin" render "$scene" "${enc[@]}" --shard 1/2 -o "$work/gamma-1.exr"
+"$bin" merge "$work/gamma-0.exr" "$work/gamma-1.exr" -o "$work/gamma-merged.png" --quiet
+why=ok
+cmp -s "$work/gamma-merged.png" "$work/gamma-whole.png" || why="merged PNG differs from the whole render"
+cmp -s "$work/gamma-whole.png" "$work/cpu-f32-1-whole.png" && why="the gamma render equals the default one"
+check "gamma 2.2 and exposure 0.5 carried through merge" "$why"
 # The cuts depend on the scene only (the f32 reference's estimate), not on the backend,
 # the precision or the sample count: every shard of one render cuts the frame alike.
 why=ok

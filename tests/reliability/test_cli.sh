@@ -151,6 +151,19 @@ check "image.encoding srgb + quantize truncate = --srgb --quantize truncate, and
   "$(cmp -s "$work/e_scene.png" "$work/e_cli.png" && ! cmp -s "$work/e_scene.png" "$work/ref.png" && echo ok || echo differs)"
 "$bin" render "$work/srgb.json" -o "$work/e_back.png" --encoding linear --quantize round "${small[@]}"
 same "--encoding linear --quantize round override the scene's image settings" "$work/e_back.png"
+# The course's display conventions: a pure gamma and an exposure in stops, from the scene
+# or the command line, alike; float outputs keep the linear value whatever they say.
+scene_with "$work/gamma.json" 's/"image": *{/&"encoding": "gamma", "gamma": 2.2, "exposure": 0.5, /'
+"$bin" render "$work/gamma.json" -o "$work/g_scene.png" "${small[@]}"
+"$bin" render "$S" -o "$work/g_cli.png" --gamma 2.2 --exposure 0.5 "${small[@]}"
+check "image.encoding gamma, gamma 2.2, exposure 0.5 = --gamma 2.2 --exposure 0.5, and differ from the defaults" \
+  "$(cmp -s "$work/g_scene.png" "$work/g_cli.png" && ! cmp -s "$work/g_scene.png" "$work/ref.png" && echo ok || echo differs)"
+"$bin" render "$work/gamma.json" -o "$work/g_back.png" --encoding linear --exposure 0 "${small[@]}"
+same "--encoding linear --exposure 0 override the scene's gamma and exposure" "$work/g_back.png"
+"$bin" render "$work/gamma.json" -o "$work/g_scene.exr" "${small[@]}"
+"$bin" render "$S" -o "$work/g_plain.exr" "${small[@]}"
+"$bin" compare "$work/g_scene.exr" "$work/g_plain.exr" --fail 0 >"$work/g_cmp.txt" 2>&1
+check "an EXR holds the linear value whatever the 8-bit encoding" "$([[ $? == 0 ]] && echo ok || head -5 "$work/g_cmp.txt")"
 
 # OpenImageIO (and its ~260 libraries) is loaded at the first image, not before
 # (host/image/image_module.h): --help, --version and a refused command line never load

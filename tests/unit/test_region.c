@@ -291,6 +291,26 @@ TEST(part_settings) {
   CHECK(strcmp(a, "spp=16") == 0 && b[0] == '\0');
 }
 
+/* The 8-bit encoding in a part's settings: written, read back the same; absent (parts of
+ * older builds) is linear at exposure 0; anything render does not write is refused. */
+TEST(part_encoding) {
+  char text[96], settings[160];
+  rc_encoding in = {RC_CURVE_GAMMA, 2.2f, 0.5f}, out;
+  rc_part_encoding_text(in, text, sizeof text);
+  CHECK(strcmp(text, "encoding=gamma2.20000005 exposure=0.5") == 0);
+  snprintf(settings, sizeof settings, "backend=gpu %s quantize=round", text);
+  CHECK(rc_part_encoding(settings, &out));
+  CHECK(out.curve == RC_CURVE_GAMMA && out.gamma == in.gamma && out.exposure == in.exposure);
+  CHECK(rc_part_encoding("backend=gpu encoding=srgb quantize=round", &out));
+  CHECK(out.curve == RC_CURVE_SRGB && out.exposure == 0);
+  CHECK(rc_part_encoding("backend=gpu quantize=round", &out));
+  CHECK(out.curve == RC_CURVE_LINEAR && out.exposure == 0);
+  const char *refused[] = {"encoding=gamma0", "encoding=gamma", "encoding=gammax", "encoding=gamma2.2x",
+                           "encoding=gamma1e999", "encoding=cie", "encoding=linear exposure=65",
+                           "encoding=linear exposure=nan"};
+  for (size_t i = 0; i < sizeof refused / sizeof *refused; i++) CHECK(!rc_part_encoding(refused[i], &out));
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(parse);
@@ -301,5 +321,6 @@ int main(void) {
   RUN(coverage_generated);
   RUN(coverage_at_scale);
   RUN(part_settings);
+  RUN(part_encoding);
   TEST_MAIN_END
 }
