@@ -116,6 +116,8 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
   if (has_kind(RC_KIND_SPHERES) && kind == RC_HIT_SPHERE) return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
   if (has_kind(RC_KIND_TRIANGLES) && kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = load_triangle(index);
+    if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u && !triangle_faces_ray(tri, d))
+      return real(RC_T_FAR);
     if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
     if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
     return intersect_triangle(o, sh, tri, t_max, bary);

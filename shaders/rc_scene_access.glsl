@@ -70,6 +70,7 @@ packed_triangle load_triangle(uint i) {
   t.v1 = uintBitsToFloat(b.xyz);
   t.normals = b.w;
   t.v2 = uintBitsToFloat(c.xyz);
+  t.flags = c.w;
   return t;
 }
 

@@ -87,7 +87,8 @@ typedef struct packed_csg packed_csg;
 #define RC_KIND_CSG_MESHES 32u /* a composite has a closed mesh operand (RC_QUADRIC_MESH) */
 #define RC_KIND_SPHERE_TRANSFORMS 64u /* a sphere has a transform (an ellipsoid) */
 #define RC_KIND_VERTEX_NORMALS 128u   /* a triangle has vertex normals (smooth shading) */
-#define RC_KIND_ALL 255u
+#define RC_KIND_ONE_SIDED_TRIANGLES 256u /* a triangle has RC_TRIANGLE_ONE_SIDED */
+#define RC_KIND_ALL 511u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -205,12 +206,16 @@ struct packed_transform {
 
 /* Vertices in the packed space; the geometric normal is cross(v1 - v0, v2 - v0). With
  * normals != RC_NO_NORMALS the triangle is smooth shaded: its shading normal interpolates
- * packed_vertex_normals[normals] by the barycentrics (mesh files with vertex normals). */
+ * packed_vertex_normals[normals] by the barycentrics (mesh files with vertex normals).
+ * flags: RC_TRIANGLE_ONE_SIDED, a triangle there only for rays that meet its front (the
+ * side its geometric normal points to, counter-clockwise winding) and transparent to every
+ * other ray, shadow rays included, as a one-sided plane is. */
 #define RC_NO_NORMALS 0xffffffffu
+#define RC_TRIANGLE_ONE_SIDED 1u
 struct packed_triangle {
   vec3 v0; uint material;
   vec3 v1; uint normals;
-  vec3 v2; float pad1;
+  vec3 v2; uint flags;
 };
 
 struct packed_vertex_normals {
@@ -423,7 +428,7 @@ RC_ASSERT_SIZE(packed_sphere, 16 * RC_TEXELS_PER_SPHERE);
 
 RC_ASSERT_LAYOUT(packed_triangle, v0, 0);  RC_ASSERT_LAYOUT(packed_triangle, material, 12);
 RC_ASSERT_LAYOUT(packed_triangle, v1, 16); RC_ASSERT_LAYOUT(packed_triangle, normals, 28);
-RC_ASSERT_LAYOUT(packed_triangle, v2, 32);
+RC_ASSERT_LAYOUT(packed_triangle, v2, 32); RC_ASSERT_LAYOUT(packed_triangle, flags, 44);
 RC_ASSERT_LAYOUT(packed_vertex_normals, n0, 0); RC_ASSERT_LAYOUT(packed_vertex_normals, n1, 16);
 RC_ASSERT_LAYOUT(packed_vertex_normals, n2, 32);
 RC_ASSERT_SIZE(packed_vertex_normals, 16 * RC_TEXELS_PER_VERTEX_NORMALS);

@@ -19,6 +19,7 @@ struct rc_gpu_renderer {
   rc_region region; /* the pixels rendered, within the frame */
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
   bool sphere_transforms, vertex_normals; /* RC_KIND_SPHERE_TRANSFORMS, RC_KIND_VERTEX_NORMALS */
+  bool one_sided_triangles;               /* RC_KIND_ONE_SIDED_TRIANGLES */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];

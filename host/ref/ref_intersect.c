@@ -97,6 +97,7 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
   if (kind == RC_HIT_SPHERE) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
   if (kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = sc->triangles[index];
+    if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0 && !REF(triangle_faces_ray)(tri, d)) return (real)RC_T_FAR;
     if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
       return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
     if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);

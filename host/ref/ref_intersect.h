@@ -52,6 +52,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, V *bary); \
   R ref_intersect_triangle_moller_trumbore_##S(V o, V d, packed_triangle tri, R t_max, V *bary);   \
   R ref_intersect_triangle_cramer_##S(V o, V d, packed_triangle tri, R t_max, V *bary);            \
+  bool ref_triangle_faces_ray_##S(packed_triangle tri, V d);                                      \
   uint32_t ref_object_kind_##S(const ref_scene *sc, uint32_t object, uint32_t *index);           \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
                              R *side, V *bary, uint32_t *part);                                 \

@@ -330,7 +330,8 @@ static uint32_t geometry_words(const rc_packed_scene *p, uint32_t i, uint32_t *w
     memcpy(w, &p->triangles[i].v0, sizeof(vec3));
     memcpy(w + 3, &p->triangles[i].v1, sizeof(vec3));
     memcpy(w + 6, &p->triangles[i].v2, sizeof(vec3));
-    n = 9;
+    w[9] = p->triangles[i].flags; /* a one-sided copy is not a two-sided one's repeat */
+    n = 10;
   } else if ((i -= f->triangle_count) < f->quadric_count) {
     packed_quadric q = p->quadrics[i];
     q.material = 0;

@@ -37,7 +37,8 @@ typedef struct rc_sphere_def {
 typedef struct rc_triangle_def {
   dvec3 v[3];
   uint32_t material;
-  bool smooth;   /* vertex normals below give the shading normal */
+  bool smooth;    /* vertex normals below give the shading normal */
+  bool one_sided; /* there only for rays meeting its front (RC_TRIANGLE_ONE_SIDED) */
   dvec3 n[3];
 } rc_triangle_def;
 

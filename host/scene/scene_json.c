@@ -188,6 +188,21 @@ static rc_status parse_lights(jctx *c, const cJSON *root, rc_scene *s) {
   return RC_OK;
 }
 
+/* A one-sided triangle's front is the side its file or its vertex order faces, counter-
+ * clockwise (docs/scene-format.md): a transform that mirrors (negative determinant)
+ * turns that winding clockwise, so the winding is turned back. */
+static bool mirrors(const rc_affine *m) {
+  double a[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) a[i][j] = m->m[i][j];
+  return rcm_mat3_det_d(a) < 0;
+}
+static void keep_front(rc_triangle_def *t) {
+  dvec3 v = t->v[1], n = t->n[1];
+  t->v[1] = t->v[2], t->n[1] = t->n[2];
+  t->v[2] = v, t->n[2] = n;
+}
+
 static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
   const cJSON *objs = cJSON_GetObjectItemCaseSensitive(root, "objects");
   if (!objs) return RC_OK;
@@ -230,7 +245,7 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       d->transformed = transformed;
       d->world_from_object = m;
     } else if (type == 1) {
-      static const char *const allowed[] = {"type", "vertices", "material", "transform", NULL};
+      static const char *const allowed[] = {"type", "vertices", "material", "one_sided", "transform", NULL};
       RC_TRY(js_check_members(c, o, allowed));
       rc_triangle_def d = {0};
       const cJSON *vs = cJSON_GetObjectItemCaseSensitive(o, "vertices");
@@ -245,14 +260,23 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       }
       js_pop(c);
       RC_TRY(js_get_material_ref(c, o, &d.material));
+      RC_TRY(js_get_bool(c, o, "one_sided", false, &d.one_sided));
       RC_TRY(js_get_transform(c, o, &m, &transformed));
       for (int k = 0; k < 3; k++) d.v[k] = rc_affine_point(&m, d.v[k]);
+      if (d.one_sided && mirrors(&m)) keep_front(&d);
       RC_TRY(rc_scene_add_triangle(s, &d));
     } else {
-      static const char *const allowed[] = {"type", "file", "material", "transform", NULL};
+      static const char *const allowed[] = {"type", "file", "material", "one_sided", "transform", NULL};
       RC_TRY(js_check_members(c, o, allowed));
+      bool one_sided;
+      RC_TRY(js_get_bool(c, o, "one_sided", false, &one_sided));
       RC_TRY(js_get_transform(c, o, &m, &transformed));
+      size_t first = s->triangle_count;
       RC_TRY(js_load_mesh(c, o, s, &m, -1));
+      for (size_t t = first; one_sided && t < s->triangle_count; t++) {
+        s->triangles[t].one_sided = true;
+        if (mirrors(&m)) keep_front(&s->triangles[t]);
+      }
     }
     RC_TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
     js_pop(c);

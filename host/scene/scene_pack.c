@@ -306,6 +306,8 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
     p->triangles[i].v1 = to_packed(p, s->triangles[i].v[1]);
     p->triangles[i].v2 = to_packed(p, s->triangles[i].v[2]);
     p->triangles[i].material = s->triangles[i].material;
+    p->triangles[i].flags = s->triangles[i].one_sided ? RC_TRIANGLE_ONE_SIDED : 0u;
+    p->one_sided_triangle_count += s->triangles[i].one_sided;
     p->triangles[i].normals = RC_NO_NORMALS;
     if (s->triangles[i].smooth) {
       packed_vertex_normals *vn = &p->normals[p->normal_count];
@@ -321,6 +323,7 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
     g->v1 = to_packed(p, s->csg_triangles[i].v[1]);
     g->v2 = to_packed(p, s->csg_triangles[i].v[2]);
     g->material = s->csg_triangles[i].material;
+    g->flags = 0u;
     g->normals = RC_NO_NORMALS;
   }
 }

@@ -29,6 +29,7 @@ typedef struct rc_packed_scene {
   uint32_t transform_count;
   packed_vertex_normals *normals; /* of the smooth-shaded triangles (at least one element) */
   uint32_t normal_count;
+  uint32_t one_sided_triangle_count; /* with RC_TRIANGLE_ONE_SIDED */
   packed_quadric *quadrics;   /* the standalone quadrics, then the composites' leaves */
   uint32_t quadric_total;  /* both kinds (frame.quadric_count counts the standalone ones) */
   packed_csg *csg;

@@ -280,6 +280,58 @@ TEST(one_sided_plane_is_seen_from_its_front_only) {
   }
 }
 
+/* One-sided triangles, in a mesh file and as JSON triangles: the wall is there from its
+ * front only (the side its counter-clockwise winding faces, +z here), also under a
+ * transform that mirrors it, and lets shadow rays through from behind. Pixels are told
+ * apart by their normal (the wall's is +-z, the floor's +y), not by object numbers. */
+static int wall_pixels, shadowed_floor;
+static void count_wall_and_shadow(const image *im, const char *variant) {
+  (void)variant;
+  wall_pixels = shadowed_floor = 0;
+  for (size_t i = 0; i < (size_t)im->w * im->h; i++) {
+    const float *px = im->px + i * im->c;
+    /* The channels as OpenEXR stores them: R G B hit object shadow t N.X N.Y N.Z. */
+    if (px[3] != 1) continue;
+    wall_pixels += fabsf(px[9]) > 0.9f;
+    shadowed_floor += fabsf(px[8]) > 0.9f && px[5] != 0;
+  }
+}
+
+TEST(one_sided_triangles_are_seen_from_their_front_only) {
+  FILE *f = create_tmp("quad", "obj");
+  if (!f) return;
+  fprintf(f, "v -2 0 0\nv 2 0 0\nv 2 2 0\nv -2 2 0\nf 1 2 3 4\n"); /* counter-clockwise seen from +z */
+  fclose(f);
+  static const char *const walls[][2] = {
+      {"mesh", "{\"type\": \"mesh\", \"file\": \"quad.obj\", \"one_sided\": %s, \"material\": \"m\"}"},
+      {"mirrored mesh", "{\"type\": \"mesh\", \"file\": \"quad.obj\", \"one_sided\": %s, \"material\": \"m\", "
+                        "\"transform\": {\"scale\": [-1, 1, 1]}}"},
+      {"triangles", "{\"type\": \"triangle\", \"vertices\": [[-2, 0, 0], [2, 0, 0], [2, 2, 0]], \"one_sided\": %s, "
+                    "\"material\": \"m\"}, {\"type\": \"triangle\", \"vertices\": [[-2, 0, 0], [2, 2, 0], [-2, 2, 0]], "
+                    "\"one_sided\": %s, \"material\": \"m\"}"}};
+  for (size_t w = 0; w < sizeof walls / sizeof *walls; w++)
+    for (int sided = 1; sided <= 2; sided++)
+      for (int k = 0; k < 2; k++) {
+        /* The light is on the wall's front, at z = 3; the camera at z = 5 (front) or -5. */
+        char wall[600], name[32];
+        const char *v = sided == 1 ? "true" : "false";
+        snprintf(wall, sizeof wall, walls[w][1], v, v);
+        snprintf(name, sizeof name, "quad%zu%d%d", w, sided, k);
+        write_json(name, "{\"image\": {\"width\": 32, \"height\": 32},\n"
+                   " \"camera\": {\"eye\": [0, 1, %d], \"look_at\": [0, 0.5, 0]},\n"
+                   " \"materials\": {\"m\": {\"diffuse\": [0.5, 0.5, 0.5]}},\n"
+                   " \"lights\": [{\"type\": \"point\", \"position\": [0, 3, 3], \"intensity\": [10, 10, 10]}],\n"
+                   " \"objects\": [{\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 1, 0], \"material\": \"m\"},\n"
+                   "   %s]}\n", k ? -5 : 5, wall);
+        for_each_variant(name, count_wall_and_shadow);
+        printf("  %s, %s-sided, camera at its %s: %d pixels on the wall, %d of the floor in shadow\n", walls[w][0],
+               sided == 1 ? "one" : "two", k ? "back" : "front", wall_pixels, shadowed_floor);
+        if (sided == 2 || k == 0) CHECK(wall_pixels > 150);
+        if (sided == 1 && k == 1) CHECK(wall_pixels == 0 && shadowed_floor == 0);
+        if (sided == 2 && k == 1) CHECK(shadowed_floor > 50); /* the control: the wall's shadow */
+      }
+}
+
 /* Writes TMP/name.obj: `cubes` cubes [-1, 1]^3 moved by (4 k, 0, 0), 12 triangles each,
  * the first of each face pair wound outwards and the second inwards (parity must not care). */
 static void write_cubes(const char *name, int cubes) {
@@ -362,6 +414,7 @@ int main(int argc, char **argv) {
       {"hyperboloid_two_sheets", test_two_sheet_hyperboloid_is_the_quadric_matrix},
       {"plane_closed_form", test_plane_matches_the_closed_form},
       {"plane_one_sided", test_one_sided_plane_is_seen_from_its_front_only},
+      {"triangles_one_sided", test_one_sided_triangles_are_seen_from_their_front_only},
       {"mesh_cube_minus_sphere", test_mesh_cube_minus_sphere_is_the_box_minus_sphere},
       {"mesh_crossings_bound", test_mesh_crossings_beyond_the_bound_fail_loudly},
   };

@@ -80,7 +80,7 @@ int main(void) {
   OFF("scene_triangles.v1", packed_triangle, v1);
   OFF("scene_triangles.normals", packed_triangle, normals);
   OFF("scene_triangles.v2", packed_triangle, v2);
-  OFF("scene_triangles.pad1", packed_triangle, pad1);
+  OFF("scene_triangles.flags", packed_triangle, flags);
   printf("scene_triangles stride %zu\n", sizeof(packed_triangle));
   OFF("scene_materials.ambient", packed_material, ambient);
   OFF("scene_materials.shininess", packed_material, shininess);
