@@ -178,7 +178,20 @@ rvec3 offset_error_bound(rvec3 p, rvec3 n, rvec3 p_error) {
 rvec3 spawn_origin(surface sf) {
   if (offset_strategy == RC_OFFSET_ULP) return offset_ray_origin(sf.p, sf.ng);
   if (offset_strategy == RC_OFFSET_EPSILON) return sf.p + real(offset_epsilon) * sf.ng;
+  if (offset_strategy == RC_OFFSET_T_MIN) return sf.p;
   return offset_error_bound(sf.p, sf.ng, sf.p_error);
+}
+
+// The t_min strategy: a ray from the hit point that ignores hits nearer than epsilon is,
+// in exact arithmetic, the ray from epsilon along its direction, ending epsilon sooner.
+// The other strategies move the origin off the surface and change nothing here.
+rvec3 t_min_start(rvec3 origin, rvec3 d) {
+  if (offset_strategy == RC_OFFSET_T_MIN) return origin + real(offset_epsilon) * d;
+  return origin;
+}
+real t_min_end(real t_max) {
+  if (offset_strategy == RC_OFFSET_T_MIN) return t_max - real(offset_epsilon);
+  return t_max;
 }
 
 // cos^p of the highlight angle. pow(0, p) and pow(x, 0) are left undefined by GLSL for
@@ -248,7 +261,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
     if (scene_shadows()) shadow_rays++;
-    if (scene_shadows() && occluded(origin, to_light, shadow_t_max)) {
+    if (scene_shadows() && occluded(t_min_start(origin, to_light), to_light, t_min_end(shadow_t_max))) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;
     }

@@ -105,6 +105,8 @@ typedef struct packed_csg packed_csg;
 #define RC_OFFSET_ERROR_BOUND 0u /* pbrt: along the normal by the hit point's rounding-error bound */
 #define RC_OFFSET_ULP 1u         /* Wachter-Binder: a fixed count of ulps along the normal */
 #define RC_OFFSET_EPSILON 2u     /* a fixed distance along the normal (quality.shadow_epsilon) */
+#define RC_OFFSET_T_MIN 3u       /* the course's t_min: from the hit point, hits nearer than
+                                  * quality.shadow_epsilon along the ray ignored */
 #define RC_OFFSET_EPSILON_DEFAULT 1.0e-4
 
 /* The builder caps the BVH's depth (host/scene/bvh.c): the loop plan's traversal estimate grows

@@ -40,6 +40,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     weight *= mirror;
     o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));
+    o = t_min_start(o, d);
     if (light_pass_begin() == 0u) reflection_rays++;
   }
   return color;

@@ -118,7 +118,8 @@ static const rc_option render_options[] = {
     {"--triangle", NULL, RC_OPT_CHOICE, ARG(triangle), "F", .choices = rc_triangle_formula_names,
      .help = "watertight (default), moller-trumbore or cramer ray/triangle test"},
     {"--shadow-offset", NULL, RC_OPT_CHOICE, ARG(offset), "S", .choices = rc_offset_names,
-     .help = "error-bound (default), ulp or epsilon: where shadow/reflection rays start"},
+     .help = "error-bound (default), ulp, epsilon or t-min: where shadow/reflection\n"
+             "rays start (t-min: at the hit, ignoring hits nearer than the epsilon)"},
     {"--shadow-epsilon", NULL, RC_OPT_REAL, ARG(offset_epsilon), "E", 0, 3.4e38, .flags = RC_OPT_LO_OPEN | RC_OPT_F32,
      .help = "the epsilon strategy's offset in scene units (default 1e-4)"},
     {"--camera-relative", NULL, RC_OPT_CHOICE, ARG(camera_relative), "B", .choices = off_on,

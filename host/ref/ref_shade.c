@@ -153,7 +153,21 @@ rvec3 REF(spawn_origin)(const ref_scene *sc, const ref_surface *sf) {
   if (sc->frame->offset_strategy == RC_OFFSET_ULP) return REF(offset_ray_origin)(sf->p, sf->ng);
   if (sc->frame->offset_strategy == RC_OFFSET_EPSILON)
     return RV(add)(sf->p, RV(scale)(sf->ng, (real)sc->frame->offset_epsilon));
+  if (sc->frame->offset_strategy == RC_OFFSET_T_MIN) return sf->p;
   return REF(offset_error_bound)(sf->p, sf->ng, sf->p_error);
+}
+
+/* The t_min strategy: a ray from the hit point that ignores hits nearer than epsilon is,
+ * in exact arithmetic, the ray from epsilon along its direction, ending epsilon sooner.
+ * The other strategies move the origin off the surface and change nothing here. */
+rvec3 REF(t_min_start)(const ref_scene *sc, rvec3 origin, rvec3 d) {
+  if (sc->frame->offset_strategy == RC_OFFSET_T_MIN)
+    return RV(add)(origin, RV(scale)(d, (real)sc->frame->offset_epsilon));
+  return origin;
+}
+real REF(t_min_end)(const ref_scene *sc, real t_max) {
+  if (sc->frame->offset_strategy == RC_OFFSET_T_MIN) return t_max - (real)sc->frame->offset_epsilon;
+  return t_max;
 }
 
 /* The shader raises to the power in f32 (GLSL has no double pow); the f64 reference
@@ -216,7 +230,8 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     real n_dot_l = RV(dot)(sf->n, l);
     if (n_dot_l <= 0) continue;
     if (sc->frame->shadows) ref_shadow_rays++;
-    if (sc->frame->shadows && REF(occluded)(sc, origin, to_light, shadow_t_max)) {
+    if (sc->frame->shadows &&
+        REF(occluded)(sc, REF(t_min_start)(sc, origin, to_light), to_light, REF(t_min_end)(sc, shadow_t_max))) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;
     }

@@ -31,6 +31,8 @@ extern _Thread_local packed_aov ref_aov_record;
   R ref_round_away_##S(R c, R n);                                                               \
   V ref_offset_error_bound_##S(V p, V n, V p_error);                                            \
   V ref_spawn_origin_##S(const ref_scene *sc, const ref_surface_##S *sf);                       \
+  V ref_t_min_start_##S(const ref_scene *sc, V origin, V d);                                     \
+  R ref_t_min_end_##S(const ref_scene *sc, R t_max);                                            \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
   bool ref_light_at_##S(packed_light light, V p, V origin, V *l, V *irradiance, V *to_light, R *shadow_t_max); \
   V ref_light_contribution_##S(const ref_scene *sc, packed_material m, V n, V l, V v, R n_dot_l, V irradiance); \

@@ -39,6 +39,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     weight = RV(mul)(weight, mirror);
     o = REF(spawn_origin)(sc, &sf);
     d = RV(normalize)(RV(reflect)(d, sf.n));
+    o = REF(t_min_start)(sc, o, d);
     ref_reflection_rays++;
   }
   return color;

@@ -108,7 +108,7 @@ const char *rc_scene_camera_problem(const rc_camera_def *c, const char **field) 
 const char *const rc_precision_names[] = {"auto", "f32", "f64", NULL};
 const char *const rc_sphere_formula_names[] = {"geometric", "algebraic", NULL};
 const char *const rc_triangle_formula_names[] = {"watertight", "moller-trumbore", "cramer", NULL};
-const char *const rc_offset_names[] = {"error-bound", "ulp", "epsilon", NULL};
+const char *const rc_offset_names[] = {"error-bound", "ulp", "epsilon", "t-min", NULL};
 
 rc_quality rc_quality_default(void) {
   return (rc_quality){.precision = RC_PRECISION_AUTO,

@@ -106,7 +106,7 @@ typedef struct rc_quality {
 extern const char *const rc_precision_names[];      /* auto, f32, f64 */
 extern const char *const rc_sphere_formula_names[];  /* geometric, algebraic */
 extern const char *const rc_triangle_formula_names[]; /* watertight, moller-trumbore, cramer */
-extern const char *const rc_offset_names[];         /* error-bound, ulp, epsilon */
+extern const char *const rc_offset_names[];         /* error-bound, ulp, epsilon, t-min */
 /* The robust defaults. */
 rc_quality rc_quality_default(void);
 /* The index of `name` in a NULL-terminated name list, or -1. */

@@ -76,6 +76,44 @@ TEST(pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder) {
   free(lit.px);
 }
 
+/* Where shadow rays start, by strategy (docs/scene-format.md, quality.shadow_offset). The
+ * centre pixel sees the floor point (0, 0, 0); the light comes down at 60 degrees from the
+ * vertical, and a slab at height 0.5 covers x in [0.2, 3], so the shadow ray from the
+ * floor meets it 1.0 along the ray (at x = 0.866). The pixel is in shadow (exactly the
+ * ambient term) unless the strategy starts the ray past the slab:
+ * - error-bound and ulp move the origin a few ulps: shadow;
+ * - epsilon 0.25 moves it 0.25 up the normal, whence the ray meets the slab at x = 0.433:
+ *   shadow; epsilon 0.75 moves it above the slab: lit;
+ * - t-min 0.75 ignores hits nearer than 0.75 along the ray, and the slab is 1.0 away:
+ *   shadow (where epsilon 0.75 is lit); t-min 1.25 ignores it: lit. */
+TEST(shadow_offsets_follow_their_definitions) {
+  static const struct {
+    const char *strategy;
+    double epsilon;
+    bool lit;
+  } cases[] = {{"error-bound", 0, false}, {"ulp", 0, false},      {"epsilon", 0.25, false},
+               {"epsilon", 0.75, true},   {"t-min", 0.75, false}, {"t-min", 1.25, true}};
+  const char *backends[2] = {"gpu", "cpu"};
+  const float ka[3] = {0.7f, 0.6f, 0.5f}, ia[3] = {0.3f, 0.4f, 0.5f};
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++)
+    for (int b = 0; b < 2; b++) {
+      char epsilon[48] = "";
+      if (cases[i].epsilon > 0) snprintf(epsilon, sizeof epsilon, "--shadow-epsilon %g", cases[i].epsilon);
+      CHECK_EQ_INT(run("render %s/shadow_offsets.json -o %s/offsets.exr --backend %s --shadow-offset %s %s --quiet",
+                       gpu_dir, tmp, backends[b], cases[i].strategy, epsilon),
+                   0);
+      image im = load("offsets.exr");
+      if (!im.px) { CHECK(false); return; }
+      const float *p = pixel(&im, 16, 16);
+      bool lit = p[0] > ka[0] * ia[0] + 0.1f;
+      bool ambient = true;
+      for (int c = 0; c < 3; c++) ambient = ambient && fabs(p[c] - (double)(ka[c] * ia[c])) < 1e-6;
+      printf("  %s %s %s: %s\n", backends[b], cases[i].strategy, epsilon, lit ? "lit" : ambient ? "in shadow" : "neither");
+      CHECK(cases[i].lit ? lit : ambient);
+      free(im.px);
+    }
+}
+
 /* Parallel projection: pixel (i, row) looks along -z from (x, y); on the unit sphere the
  * normal is (x, y, sqrt(1 - x^2 - y^2)) and the light travels along -z, so L = kd n.z.
  * Pixels within 0.02 of the silhouette are left out (a pixel centre's hit/miss there
@@ -601,6 +639,7 @@ int main(int argc, char **argv) {
       {"head_on", test_head_on_sphere_centre_is_ambient_plus_lambert},
       {"attenuation", test_attenuation_and_emission_follow_their_formulas},
       {"shadow", test_pixel_in_shadow_is_exactly_ambient_and_lit_without_occluder},
+      {"shadow_offsets", test_shadow_offsets_follow_their_definitions},
       {"parallel", test_parallel_camera_matches_the_analytic_sphere},
       {"highlights", test_blinn_phong_and_phong_highlights_follow_their_formulas},
       {"ellipsoid", test_transformed_sphere_is_the_analytic_ellipsoid},
