@@ -20,8 +20,7 @@ scenes=("$@")
 ((${#scenes[@]})) || scenes=(scenes/*.json)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+source tools/bench_common.sh
 echo "A: $a ${ARGS_A:-}"
 echo "B: $b ${ARGS_B:-}"
 echo "$(nproc) cores; $rounds processes each, --repeat $frames${ARGS:+, $ARGS}; medians"

@@ -14,7 +14,7 @@ scenes=("$@")
 ((${#scenes[@]})) || scenes=(scenes/*.json)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+source tools/bench_common.sh
 echo "| scene | f32 ms per 8x8 dispatch | f64 ms per 8x8 dispatch |"
 echo "|---|---|---|"
 for s in "${scenes[@]}"; do

@@ -20,8 +20,7 @@ export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp
 frames=${FRAMES:-6} rounds=${ROUNDS:-3} threads=${THREADS:-$(nproc)}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+source tools/bench_common.sh
 for n in 100000 1000000; do
   build/gen_mesh $n "$work/mesh$n.ply" >/dev/null
   tools/mesh_scene.sh "$work/mesh$n.ply" >"$work/mesh$n.json"

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 bin=${1:-build/vkraycast} n=${N:-50000} rounds=${ROUNDS:-3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+source tools/bench_common.sh
 echo "$bin; $(nproc) cores; median of $rounds processes; parse_ms = read + parse"
 echo
 echo "| kind | count | file MiB | parse ms | ratio to half the count |"

@@ -23,8 +23,7 @@ if ((${#scenes[@]} == 0)); then
   tools/mesh_scene.sh "$work/mesh1000000.ply" >"$work/mesh1000000.json"
   scenes=(scenes/*.json "$work/mesh1000000.json")
 fi
-num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+source tools/bench_common.sh
 # run OUT_PREFIX render-args...: appends "wall_ms cpu_ms" of one process
 run() {
   local out=$1
