@@ -241,6 +241,44 @@ static bool names_itself(const char *path, const char *name, size_t name_len, co
   return stat(other, &st) == 0 && st.st_dev == self->st_dev && st.st_ino == self->st_ino;
 }
 
+/* Lines as assimp 5.2.4's readers cut them: at \n, \r, \f or NUL, then past spaces and
+ * tabs. Each line's first LINE_KEPT characters after the blanks go to `fn`, with their
+ * count and the line's number as an editor counts lines (\r\n, \n or a lone \r), until
+ * fn returns true. Read in blocks from the start, whatever the file's size; f is rewound
+ * after. */
+enum { LINE_KEPT = 4096 };
+typedef bool (*line_fn)(void *ctx, const char *line, size_t kept, unsigned long number);
+
+static void scan_lines(FILE *f, line_fn fn, void *ctx) {
+  char block[65536], line[LINE_KEPT + 1];
+  size_t kept = 0, got;
+  unsigned long number = 1;
+  bool start = true, after_cr = false, done = false;
+  rewind(f);
+  while (!done && (got = fread(block, 1, sizeof block, f)) > 0) {
+    for (size_t i = 0; i < got && !done; i++) {
+      const char c = block[i];
+      if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
+        line[kept] = '\0';
+        done = fn(ctx, line, kept, number);
+        number += c == '\r' || (c == '\n' && !after_cr);
+        after_cr = c == '\r';
+        kept = 0, start = true;
+        continue;
+      }
+      after_cr = false;
+      if (start && (c == ' ' || c == '\t')) continue;
+      start = false;
+      if (kept < LINE_KEPT) line[kept++] = c;
+    }
+  }
+  if (!done && !start) { /* the last line, unended */
+    line[kept] = '\0';
+    fn(ctx, line, kept, number);
+  }
+  rewind(f);
+}
+
 /* One line of a file read as an OBJ: an `mtllib` statement sets *any, and *itself when it
  * names the file (the name as the rest of the line, trimmed, as assimp 5.2.4 takes it, or
  * its first word). */
@@ -254,34 +292,25 @@ static void consider_line(const char *line, size_t kept, const char *path, const
   *itself = *itself || (all && names_itself(path, name, all, self)) || (word && names_itself(path, name, word, self));
 }
 
-/* The `mtllib` statements of a file read as an OBJ, its lines cut as assimp cuts them (see
- * rc_mtl_check): whether it has one, and whether one names the file itself. */
-static void find_libraries(FILE *f, const char *path, bool *any, bool *itself) {
+/* The `mtllib` statements of a file read as an OBJ, its lines cut as assimp cuts them
+ * (scan_lines): whether it has one, and whether one names the file itself. */
+typedef struct {
+  const char *path;
   struct stat self;
+  bool *any, *itself;
+} library_scan;
+
+static bool library_line(void *ctx, const char *line, size_t kept, unsigned long number) {
+  library_scan *scan = ctx;
+  (void)number;
+  consider_line(line, kept, scan->path, &scan->self, scan->any, scan->itself);
+  return *scan->itself;
+}
+
+static void find_libraries(FILE *f, const char *path, bool *any, bool *itself) {
+  library_scan scan = {.path = path, .any = any, .itself = itself};
   *any = *itself = false;
-  if (fstat(fileno(f), &self) != 0) return;
-  char block[65536], line[4097];
-  size_t kept = 0, got;
-  bool start = true, skipping = false;
-  rewind(f);
-  while (!*itself && (got = fread(block, 1, sizeof block, f)) > 0) {
-    for (size_t i = 0; i < got; i++) {
-      const char c = block[i];
-      if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
-        if (!skipping) consider_line(line, kept, path, &self, any, itself);
-        kept = 0, start = true, skipping = false;
-        continue;
-      }
-      if (start && (c == ' ' || c == '\t')) continue;
-      start = false;
-      if (skipping || kept == sizeof line - 1) continue;
-      line[kept++] = c;
-      line[kept] = '\0';
-      if (kept == 6 && strncmp(line, "mtllib", 6) != 0) skipping = true; /* only these are kept whole */
-    }
-  }
-  if (!skipping && !*itself) consider_line(line, kept, path, &self, any, itself); /* the last, unended line */
-  rewind(f);
+  if (fstat(fileno(f), &scan.self) == 0) scan_lines(f, library_line, &scan);
 }
 
 /* What assimp 5.2.4 may read a file as, whatever its name, when the importer of its
@@ -348,38 +377,25 @@ static bool judge_head(char *head, size_t kept, unsigned long line, char *why, s
   return true;
 }
 
-/* Lines as assimp's reader cuts them: at \n, \r, \f or NUL, then past spaces and tabs.
- * Read in blocks, whatever the file's size; lines counted as an editor does (\r\n, \n
- * or a lone \r). */
+/* A material library's lines (scan_lines) up to its first `newmtl`, each judged by its
+ * head, its first 8 characters. */
+typedef struct {
+  char *why;
+  size_t len;
+  const char *problem;
+} library_check;
+
+static bool library_check_line(void *ctx, const char *line, size_t kept, unsigned long number) {
+  library_check *check = ctx;
+  if (kept == 0) return false;
+  char head[9];
+  size_t n = kept < 8 ? kept : 8;
+  memcpy(head, line, n);
+  return judge_head(head, n, number, check->why, check->len, &check->problem);
+}
+
 const char *rc_mtl_check(FILE *f, char *why, size_t len) {
-  enum { START, HEAD, REST } mode = START;
-  char block[65536], head[9];
-  size_t kept = 0, got;
-  unsigned long line = 1;
-  bool done = false, after_cr = false;
-  const char *problem = NULL;
-  rewind(f);
-  while (!done && (got = fread(block, 1, sizeof block, f)) > 0) {
-    for (size_t i = 0; i < got && !done; i++) {
-      const char c = block[i];
-      if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
-        if (mode == HEAD) done = judge_head(head, kept, line, why, len, &problem);
-        line += c == '\r' || (c == '\n' && !after_cr);
-        after_cr = c == '\r';
-        mode = START, kept = 0;
-        continue;
-      }
-      after_cr = false;
-      if (mode == REST || (mode == START && (c == ' ' || c == '\t'))) continue;
-      mode = HEAD;
-      head[kept++] = c;
-      if (kept == 8) {
-        done = judge_head(head, kept, line, why, len, &problem);
-        mode = REST;
-      }
-    }
-  }
-  if (!done && mode == HEAD) judge_head(head, kept, line, why, len, &problem);
-  rewind(f);
-  return problem;
+  library_check check = {why, len, NULL};
+  scan_lines(f, library_check_line, &check);
+  return check.problem;
 }
