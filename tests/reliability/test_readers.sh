@@ -147,18 +147,18 @@ g = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "scene": 0, "nodes
 open(f"{w}/good_buffer.gltf_", "w").write(json.dumps(g))
 PY
 mv "$work/good_buffer.gltf_" "$work/good_buffer.gltf"
-sed 's/"file": "[^"]*"/"file": "good_buffer.gltf"/' "$work/scene.json" >"$work/good_gltf.json"
-"$bin" render "$work/good_gltf.json" -o "$work/good_gltf.png" --backend cpu --quiet 2>"$work/err"
-got=$? why=ok
-[[ $got == 0 && -s $work/good_gltf.png ]] || why="exit status $got: $(head -c 300 "$work/err")"
-check "glTF with a buffer file" "$why"
+expect_renders() { # NAME MESH: the scene with MESH as its mesh renders, exit 0 and an image
+  sed "s/\"file\": \"[^\"]*\"/\"file\": \"$2\"/" "$work/scene.json" >"$work/control.json"
+  rm -f "$work/control.png"
+  "$bin" render "$work/control.json" -o "$work/control.png" --backend cpu --quiet 2>"$work/err"
+  local got=$? why=ok
+  [[ $got == 0 && -s $work/control.png ]] || why="exit status $got: $(head -c 300 "$work/err")"
+  check "$1" "$why"
+}
+expect_renders "glTF with a buffer file" good_buffer.gltf
 # The control: an OBJ whose library is well formed renders.
 mv "$work/good_mtl.obj_" "$work/good_mtl.obj"
-sed 's/"file": "[^"]*"/"file": "good_mtl.obj"/' "$work/scene.json" >"$work/good.json"
-"$bin" render "$work/good.json" -o "$work/good.png" --backend cpu --quiet 2>"$work/err"
-got=$? why=ok
-[[ $got == 0 && -s $work/good.png ]] || why="exit status $got: $(head -c 300 "$work/err")"
-check "obj with a well-formed material library" "$why"
+expect_renders "obj with a well-formed material library" good_mtl.obj
 
 # compare's inputs: any channel count and layout it can read gives a verdict; what it
 # cannot is refused by name. oiiotool (openimageio-tools) makes them.
