@@ -19,19 +19,6 @@
 #include "scene/mesh_wire.h"
 #include "scene/scene.h"
 
-#if FUZZ_TARGET == 3
-/* The importer processes inherit the environment. tools/fuzz.sh gives this process ASan's
- * slow, exact unwinder on every malloc (so that a leak inside assimp shows the frame
- * lsan.supp names); the importer needs neither that nor leak checks (it ends with _exit,
- * and its leaks are assimp's, in a process that ends), and with them each import took
- * about 60 ms of mostly unwinding. ASan has read this process's options already. */
-int LLVMFuzzerInitialize(int *argc, char ***argv) {
-  (void)argc, (void)argv;
-  setenv("ASAN_OPTIONS", "fast_unwind_on_malloc=1:detect_leaks=0", 1);
-  return 0;
-}
-#endif
-
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   rc_scene s;
 #if FUZZ_TARGET == 3
