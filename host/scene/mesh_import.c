@@ -111,7 +111,9 @@ rc_status rc_mesh_import(const char *file, const char *root, bool libraries, siz
   posix_spawnattr_setsigmask(&attr, &none);
   posix_spawnattr_setsigdefault(&attr, &defaults);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  char *argv[] = {importer, (char *)file, (char *)(root ? root : ""), libraries ? "1" : "0", NULL};
+  char parent[24];
+  snprintf(parent, sizeof parent, "%ld", (long)getpid());
+  char *argv[] = {importer, (char *)file, (char *)(root ? root : ""), libraries ? "1" : "0", parent, NULL};
   pid_t pid;
   int spawned = posix_spawn(&pid, importer, &actions, &attr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);

@@ -3,10 +3,11 @@
  * whatever assimp does on a malformed file (crash, abort, loop, exhaust memory) ends this
  * process and not the render (mesh_wire.h says why).
  *
- * Usage: vkraycast-mesh-import FILE ROOT LIBRARIES
+ * Usage: vkraycast-mesh-import FILE ROOT LIBRARIES PARENT
  *   ROOT       the folder every file the import opens must lie in; "" for anywhere
  *   LIBRARIES  1 when FILE names material libraries (mesh_check.h): the files it opens
  *              are checked with rc_mtl_check before assimp reads them
+ *   PARENT     the process id of the render that starts it
  * Exit status 0 with a whole answer; anything else (a signal included) is a failure the
  * caller reports. Nothing is written to stderr: assimp's own messages go nowhere, and its
  * error comes back in the answer. */
@@ -170,13 +171,15 @@ static void put_parts(const struct aiScene *ai) {
 }
 
 int main(int argc, char **argv) {
-  if (argc != 4) {
-    fprintf(stderr, "usage: vkraycast-mesh-import FILE ROOT LIBRARIES (run by vkraycast, see mesh_wire.h)\n");
+  if (argc != 5) {
+    fprintf(stderr, "usage: vkraycast-mesh-import FILE ROOT LIBRARIES PARENT (run by vkraycast, see mesh_wire.h)\n");
     return 2;
   }
-  /* Ends with the render that started it, even if that one is killed mid-import. */
+  /* Ends with the render that started it, even if that one is killed mid-import; one
+   * already gone before the request (the parent is someone else now) ends it here. The
+   * render's id is compared, not 1: in a container the render may be process 1. */
   prctl(PR_SET_PDEATHSIG, SIGKILL);
-  if (getppid() == 1) return 1;
+  if ((long)getppid() != atol(argv[4])) return 1;
   file_policy policy = {.root = argv[2][0] ? argv[2] : NULL, .libraries = strcmp(argv[3], "1") == 0};
   if (stat(argv[1], &policy.mesh) != 0) memset(&policy.mesh, 0, sizeof policy.mesh);
   struct aiFileIO io = {file_open, file_close, (aiUserData)&policy};

@@ -80,6 +80,17 @@ done
 check "render killed mid-import: the importer goes too" \
   "$([[ -z $child ]] && echo 'never saw the importer' || { [[ $gone == yes ]] && echo ok || echo "importer $child still runs"; })"
 [[ -n $child ]] && kill -KILL "$child" 2>/dev/null
+# A render that is process 1 (a container's entry point) still has its meshes imported:
+# the importer checks for its own parent by id, not for 1. Needs a PID namespace
+# (unshare, root): where none can be made, the line says so.
+if unshare -pf true 2>/dev/null; then
+  unshare -pf "$bin" render "$scenes/mesh.json" -o "$work/pid1.png" --width 64 --height 48 --quiet 2>"$work/err"
+  got=$?
+  check "a render as process 1 imports its meshes" \
+    "$([[ $got == 0 && -s $work/pid1.png ]] && echo ok || echo "exit status $got: $(head -c 300 "$work/err")")"
+else
+  echo "  (no PID namespace here: the render as process 1 is not checked)"
+fi
 
 # A full disk: a 64 KiB file size limit, and an EXR of about 800 KB.
 expect "disk full" 2 "cannot write image" -- bash -c "ulimit -f 64; exec \"\$@\"" _ "$bin" render \
