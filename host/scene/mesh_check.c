@@ -279,21 +279,9 @@ static void scan_lines(FILE *f, line_fn fn, void *ctx) {
   rewind(f);
 }
 
-/* One line of a file read as an OBJ: an `mtllib` statement sets *any, and *itself when it
- * names the file (the name as the rest of the line, trimmed, as assimp 5.2.4 takes it, or
- * its first word). */
-static void consider_line(const char *line, size_t kept, const char *path, const struct stat *self, bool *any,
-                          bool *itself) {
-  if (kept <= 7 || strncmp(line, "mtllib", 6) != 0 || (line[6] != ' ' && line[6] != '\t')) return;
-  *any = true;
-  const char *name = line + 7 + strspn(line + 7, " \t");
-  size_t all = (size_t)(line + kept - name), word = strcspn(name, " \t");
-  while (all > 0 && (name[all - 1] == ' ' || name[all - 1] == '\t')) all--;
-  *itself = *itself || (all && names_itself(path, name, all, self)) || (word && names_itself(path, name, word, self));
-}
-
 /* The `mtllib` statements of a file read as an OBJ, its lines cut as assimp cuts them
- * (scan_lines): whether it has one, and whether one names the file itself. */
+ * (scan_lines): whether it has one, and whether one names the file itself (the name as
+ * the rest of the line, trimmed, as assimp 5.2.4 takes it, or its first word). */
 typedef struct {
   const char *path;
   struct stat self;
@@ -303,7 +291,13 @@ typedef struct {
 static bool library_line(void *ctx, const char *line, size_t kept, unsigned long number) {
   library_scan *scan = ctx;
   (void)number;
-  consider_line(line, kept, scan->path, &scan->self, scan->any, scan->itself);
+  if (kept <= 7 || strncmp(line, "mtllib", 6) != 0 || (line[6] != ' ' && line[6] != '\t')) return false;
+  *scan->any = true;
+  const char *name = line + 7 + strspn(line + 7, " \t");
+  size_t all = (size_t)(line + kept - name), word = strcspn(name, " \t");
+  while (all > 0 && (name[all - 1] == ' ' || name[all - 1] == '\t')) all--;
+  *scan->itself = (all && names_itself(scan->path, name, all, &scan->self)) ||
+                  (word && names_itself(scan->path, name, word, &scan->self));
   return *scan->itself;
 }
 
@@ -363,22 +357,8 @@ static bool unguarded_statement(const char *p) {
   return false;
 }
 
-/* The head of a line (its first 8 characters after blanks) against the rule: false to go
- * on, true when the scan is done (problem set when refused). */
-static bool judge_head(char *head, size_t kept, unsigned long line, char *why, size_t len, const char **problem) {
-  head[kept] = '\0';
-  if (strncmp(head, "newmtl", 6) == 0 && (kept == 6 || head[6] == ' ' || head[6] == '\t')) return true;
-  if (!unguarded_statement(head)) return false;
-  snprintf(why, len,
-           "line %lu: the statement `%.*s` comes before the first `newmtl` and belongs to no material "
-           "(assimp 5.2.4 dies on it)",
-           line, (int)strcspn(head, " \t"), head);
-  *problem = why;
-  return true;
-}
-
 /* A material library's lines (scan_lines) up to its first `newmtl`, each judged by its
- * head, its first 8 characters. */
+ * head: refused at the first unguarded statement, with its line. */
 typedef struct {
   char *why;
   size_t len;
@@ -388,10 +368,15 @@ typedef struct {
 static bool library_check_line(void *ctx, const char *line, size_t kept, unsigned long number) {
   library_check *check = ctx;
   if (kept == 0) return false;
-  char head[9];
-  size_t n = kept < 8 ? kept : 8;
-  memcpy(head, line, n);
-  return judge_head(head, n, number, check->why, check->len, &check->problem);
+  if (strncmp(line, "newmtl", 6) == 0 && (kept == 6 || line[6] == ' ' || line[6] == '\t')) return true;
+  if (!unguarded_statement(line)) return false;
+  size_t word = strcspn(line, " \t");
+  snprintf(check->why, check->len,
+           "line %lu: the statement `%.*s` comes before the first `newmtl` and belongs to no material "
+           "(assimp 5.2.4 dies on it)",
+           number, (int)(word < 8 ? word : 8), line);
+  check->problem = check->why;
+  return true;
 }
 
 const char *rc_mtl_check(FILE *f, char *why, size_t len) {
