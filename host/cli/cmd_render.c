@@ -83,10 +83,10 @@ static const rc_option render_options[] = {
      .help = "8-bit outputs: linear (clamped; the default), srgb (the transfer\n"
              "curve) or gamma (a pure power, --gamma); overrides image.encoding"},
     {"--srgb", NULL, RC_OPT_FLAG, ARG(srgb), .help = "--encoding srgb (where both are given, --encoding rules)"},
-    {"--gamma", NULL, RC_OPT_REAL, ARG(gamma), "G", 0.01, 100,
+    {"--gamma", NULL, RC_OPT_REAL, ARG(gamma), "G", RC_MIN_GAMMA, RC_MAX_GAMMA,
      .help = "--encoding gamma with this exponent: 8-bit outputs store c^(1/G)\n"
              "(default: the scene's image.gamma, else 2.2)"},
-    {"--exposure", NULL, RC_OPT_REAL, ARG(exposure), "E", -64, 64,
+    {"--exposure", NULL, RC_OPT_REAL, ARG(exposure), "E", -RC_MAX_EXPOSURE, RC_MAX_EXPOSURE,
      .help = "8-bit outputs scale the linear value by 2^E before the curve (stops;\n"
              "default: the scene's image.exposure, else 0); float outputs keep it"},
     {"--quantize", NULL, RC_OPT_CHOICE, ARG(quantize), "Q", .choices = quantizers,

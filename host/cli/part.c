@@ -1,6 +1,7 @@
 #include "cli/part.h"
 
 #include "compare/compare_header.h"
+#include "scene/scene.h"
 
 #include <inttypes.h>
 #include <math.h>
@@ -99,14 +100,14 @@ bool rc_part_encoding(const char *settings, rc_encoding *e) {
   if (strcmp(v, "srgb") == 0) {
     e->curve = RC_CURVE_SRGB;
   } else if (strncmp(v, "gamma", 5) == 0) {
-    if (!whole_number(v + 5, &x) || !(x >= 0.01 && x <= 100)) return false;
+    if (!whole_number(v + 5, &x) || !(x >= RC_MIN_GAMMA && x <= RC_MAX_GAMMA)) return false;
     e->curve = RC_CURVE_GAMMA, e->gamma = (float)x;
   } else if (v[0] && strcmp(v, "linear") != 0) {
     return false;
   }
   rc_part_setting(settings, "exposure", v, sizeof v);
   double stops = 0;
-  if (v[0] && (!whole_number(v, &stops) || fabs(stops) > 64)) return false;
+  if (v[0] && (!whole_number(v, &stops) || fabs(stops) > RC_MAX_EXPOSURE)) return false;
   e->exposure = (float)stops;
   return true;
 }

@@ -119,6 +119,8 @@ int rc_name_index(const char *const *names, const char *name);
 
 enum { RC_SCENE_ENCODING_LINEAR, RC_SCENE_ENCODING_SRGB, RC_SCENE_ENCODING_GAMMA };
 #define RC_DEFAULT_GAMMA 2.2
+#define RC_MIN_GAMMA 0.01    /* the gamma encoding's exponent, in [RC_MIN_GAMMA, RC_MAX_GAMMA] */
+#define RC_MAX_GAMMA 100.0
 #define RC_MAX_EXPOSURE 64.0 /* stops either way: 2^64 takes any f32 radiance past white */
 
 typedef struct rc_scene {

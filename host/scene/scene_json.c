@@ -52,7 +52,7 @@ static rc_status parse_image(jctx *c, const cJSON *root, rc_scene *s) {
     js_push_key(c, "gamma");
     return js_fail(c, "applies only with \"encoding\": \"gamma\"");
   }
-  RC_TRY(js_get_number(c, img, "gamma", false, RC_DEFAULT_GAMMA, 0.01, 100, &s->gamma_8bit));
+  RC_TRY(js_get_number(c, img, "gamma", false, RC_DEFAULT_GAMMA, RC_MIN_GAMMA, RC_MAX_GAMMA, &s->gamma_8bit));
   RC_TRY(js_get_number(c, img, "exposure", false, 0, -RC_MAX_EXPOSURE, RC_MAX_EXPOSURE, &s->exposure_8bit));
   RC_TRY(js_get_enum(c, img, "quantize", quantizers, 0, &k));
   s->truncate_8bit = k == 1;
@@ -273,9 +273,10 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       RC_TRY(js_get_transform(c, o, &m, &transformed));
       size_t first = s->triangle_count;
       RC_TRY(js_load_mesh(c, o, s, &m, -1));
+      const bool flip = one_sided && mirrors(&m);
       for (size_t t = first; one_sided && t < s->triangle_count; t++) {
         s->triangles[t].one_sided = true;
-        if (mirrors(&m)) keep_front(&s->triangles[t]);
+        if (flip) keep_front(&s->triangles[t]);
       }
     }
     RC_TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
