@@ -9,18 +9,7 @@
 # Usage: tools/bench_embree_harness.sh   (FRAMES=6, ROUNDS=3, THREADS=nproc)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-if ! dpkg-query -W -f='${Status}' libembree-dev 2>/dev/null | grep -q 'install ok installed'; then
-  [ "$(id -u)" -eq 0 ] && sudo= || sudo=sudo
-  $sudo apt-get install -y -qq --no-install-recommends libembree-dev >&2
-fi
-tools/setup.sh
-cmake -S . -B build >/dev/null && cmake --build build --target bench_embree gen_mesh -j"$(nproc)" >&2
-export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
-export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-frames=${FRAMES:-6} rounds=${ROUNDS:-3} threads=${THREADS:-$(nproc)}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-source tools/bench_common.sh
+source tools/bench_embree_env.sh
 for n in 100000 1000000; do
   build/gen_mesh $n "$work/mesh$n.ply" >/dev/null
   tools/mesh_scene.sh "$work/mesh$n.ply" >"$work/mesh$n.json"
