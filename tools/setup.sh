@@ -11,7 +11,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools
   libopenimageio-dev openimageio-tools
-  libcjson-dev
+  libcjson-dev libxxhash-dev
   libassimp-dev assimp-testmodels
   clang libclang-rt-14-dev
   slurmctld slurmd slurm-client munge

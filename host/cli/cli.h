@@ -12,8 +12,10 @@ rc_status rc_cmd_devices(int argc, char **argv);
 rc_status rc_cmd_compare(int argc, char **argv);
 rc_status rc_cmd_merge(int argc, char **argv);
 rc_status rc_cmd_tradeoff(int argc, char **argv);
+rc_status rc_cmd_prepare(int argc, char **argv);
 
-extern const rc_command_spec rc_render_spec, rc_compare_spec, rc_devices_spec, rc_merge_spec, rc_tradeoff_spec;
+extern const rc_command_spec rc_render_spec, rc_compare_spec, rc_devices_spec, rc_merge_spec, rc_tradeoff_spec,
+    rc_prepare_spec;
 
 /* "0.1.0 (git abc123...)": the version, with the git revision when built from a checkout
  * (main.c; --version and the statistics). */

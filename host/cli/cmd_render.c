@@ -15,6 +15,7 @@
 #include "cli/output.h"
 #include "cli/part.h"
 #include "scene/precision_budget.h"
+#include "scene/prepared.h"
 #include "image/image_io.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
@@ -27,6 +28,8 @@ typedef struct {
   const char *scene; /* the positional argument; "-": standard input */
   const char *output, *stats_json, *aov;
   const char *region_text, *shard_text; /* --region, --shard */
+  const char *prepared_path; /* --prepared, or the scene itself when it is a .vkrs file */
+  bool prepared_given;       /* --prepared: the scene is checked against the file's digest */
   uint32_t width, height, spp, repeat, threads, perturb, band_renders, tile, plan_budget;
   int device, tile_budget_ms; /* -1: the default */
   bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
@@ -43,6 +46,7 @@ typedef struct {
   rc_part_info part;                 /* what the image's header says (part.h) */
   rc_gpu_options gpu;
   rc_load_options load;
+  rc_prepared *prepared; /* open while the scene renders */
 } render_args;
 
 static const char *const off_on[] = {"off", "on", NULL};
@@ -100,6 +104,11 @@ static const rc_option render_options[] = {
      .help = "also write the decision outputs of each pixel's first sample: colour,\n"
              "hit, object, t, normal, shadow bits per light (see docs/gpu-vs-cpu.md)"},
     {"--quiet", "-q", RC_OPT_FLAG, ARG(quiet), .help = "no progress or summary on stderr"},
+    {"--prepared", NULL, RC_OPT_STRING, ARG(prepared_path), "FILE.vkrs",
+     .help = "render from FILE.vkrs (`vkraycast prepare SCENE`): its packed arrays and\n"
+             "BVH, mapped, instead of parsing SCENE and building the tree; refused\n"
+             "when SCENE or a file it reads changed since (SCENE FILE.vkrs alone\n"
+             "renders the file without that check); the same image, bit for bit"},
     {"--allow-outside-paths", NULL, RC_OPT_FLAG, ARG(allow_outside_paths),
      .help = "let meshes (and the files a mesh names) lie outside the scene\n"
              "file's folder; off by default, so an untrusted scene cannot read\n"
@@ -185,23 +194,25 @@ static bool band_path(const char *path, uint32_t k, char *out, size_t cap) {
   return len > 0 && (size_t)len < cap;
 }
 
-/* The run's files as rc_check_distinct's roles: the scene (an input), then the outputs:
- * the image, the AOV file, the statistics, and each band render's image and AOV file
- * (their names written into names). Returns the count; 0 after saying that a band
- * render's name is too long. */
-#define RUN_FILES_MAX (4 + 2 * RC_MAX_BAND_RENDERS)
+/* The run's files as rc_check_distinct's roles: the scene and the prepared scene (the
+ * inputs), then the outputs: the image, the AOV file, the statistics, and each band
+ * render's image and AOV file (their names written into names). Returns the count; 0
+ * after saying that a band render's name is too long. */
+#define RUN_FIXED_FILES 5
+#define RUN_FILES_MAX (RUN_FIXED_FILES + 2 * RC_MAX_BAND_RENDERS)
 static size_t run_files(const render_args *a, rc_file_role files[RUN_FILES_MAX],
                         char names[2 * RC_MAX_BAND_RENDERS][PATH_MAX]) {
   files[0] = (rc_file_role){strcmp(a->scene, "-") ? a->scene : NULL, "the scene file", false};
-  files[1] = (rc_file_role){a->output, "the image", true};
-  files[2] = (rc_file_role){a->aov, "the AOV file", true};
-  files[3] = (rc_file_role){a->stats_stdout ? NULL : a->stats_json, "the statistics", true};
-  size_t n = 4;
+  files[1] = (rc_file_role){a->prepared_given ? a->prepared_path : NULL, "the prepared scene", false};
+  files[2] = (rc_file_role){a->output, "the image", true};
+  files[3] = (rc_file_role){a->aov, "the AOV file", true};
+  files[4] = (rc_file_role){a->stats_stdout ? NULL : a->stats_json, "the statistics", true};
+  size_t n = RUN_FIXED_FILES;
   static const char *const band_roles[2] = {"a band image", "a band AOV file"};
   const char *base[2] = {a->output, a->aov};
   for (uint32_t k = 1; k <= a->band_renders; k++)
     for (int f = 0; f < 2 && base[f]; f++) {
-      char *name = names[n - 4];
+      char *name = names[n - RUN_FIXED_FILES];
       if (!band_path(base[f], k, name, PATH_MAX)) {
         rc_error("%s: too long a name for its band renders (--band-renders)", base[f]);
         return 0;
@@ -229,8 +240,8 @@ static rc_status check_outputs(const render_args *a) {
   char band_names[2 * RC_MAX_BAND_RENDERS][PATH_MAX];
   size_t n = run_files(a, files, band_names);
   if (n == 0) return RC_ERR_USAGE;
-  for (size_t i = 1; i < n; i++)
-    if (files[i].path && rc_check_output(files[i].path, files[i].role) != RC_OK) return RC_ERR_IO;
+  for (size_t i = 0; i < n; i++)
+    if (files[i].output && files[i].path && rc_check_output(files[i].path, files[i].role) != RC_OK) return RC_ERR_IO;
   if (rc_check_distinct(files, n) != RC_OK) return RC_ERR_USAGE;
   if (a->aov && !is_exr(a->aov)) {
     rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
@@ -289,13 +300,30 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
                                            : "--flush-subnormals is for --backend cpu: a GPU's mode is its own");
     return RC_ERR_USAGE;
   }
+  a->prepared_given = a->prepared_path != NULL;
+  if (rc_has_extension(a->scene, RC_PREPARED_EXTENSION)) {
+    if (a->prepared_given) {
+      rc_usage_error(&rc_render_spec, "%s is a prepared scene already; --prepared goes with the scene file it was "
+                     "prepared from", a->scene);
+      return RC_ERR_USAGE;
+    }
+    a->prepared_path = a->scene;
+  } else if (a->prepared_given && strcmp(a->scene, "-") == 0) {
+    rc_usage_error(&rc_render_spec, "--prepared with - (standard input): the prepared scene is checked against its "
+                                    "scene file; name the file, or render %s alone", a->prepared_path);
+    return RC_ERR_USAGE;
+  } else if (a->prepared_given && !rc_has_extension(a->prepared_path, RC_PREPARED_EXTENSION)) {
+    rc_usage_error(&rc_render_spec, "--prepared %s: a prepared scene is a .vkrs file (`vkraycast prepare`)",
+                   a->prepared_path);
+    return RC_ERR_USAGE;
+  }
   if (a->band_renders && a->perturb) {
     rc_usage_error(&rc_render_spec, "--band-renders and --perturb: the band renders take seeds 1..N themselves; give one");
     return RC_ERR_USAGE;
   }
   if (!a->output) {
     /* A .test scene may name its image (its `output` command): read once it is loaded. */
-    if (strcmp(a->scene, "-") == 0 || rc_has_extension(a->scene, ".test")) return RC_OK;
+    if (strcmp(a->scene, "-") == 0 || rc_has_extension(a->scene, ".test") || a->prepared_path) return RC_OK;
     rc_usage_error(&rc_render_spec, "no output file given (-o OUT)");
     return RC_ERR_USAGE;
   }
@@ -581,8 +609,8 @@ static rc_status check_outputs_against_inputs(const render_args *a, const rc_sce
   size_t n = run_files(a, files, band_names);
   if (n == 0) return RC_ERR_USAGE;
   for (size_t i = 0; i < scene->input_count; i++)
-    for (size_t k = 1; k < n; k++) {
-      if (!files[k].path) continue;
+    for (size_t k = 0; k < n; k++) {
+      if (!files[k].output || !files[k].path) continue;
       const rc_file_role pair[2] = {{scene->inputs[i], "a file the scene reads", false}, files[k]};
       if (rc_check_distinct(pair, 2) != RC_OK) return RC_ERR_USAGE;
     }
@@ -597,7 +625,12 @@ rc_status rc_cmd_render(int argc, char **argv) {
   rc_scene scene;
   double t0 = rc_now_ms();
   rc_set_scene_path(a.scene);
-  st = rc_scene_load(a.scene, &a.load, &scene);
+  if (a.prepared_path) {
+    st = rc_prepared_open(a.prepared_path, &a.prepared, &scene);
+    if (st == RC_OK && a.prepared_given) st = rc_prepared_check_source(a.prepared, &scene, a.scene);
+  } else {
+    st = rc_scene_load(a.scene, &a.load, &scene);
+  }
   double parse_ms = rc_now_ms() - t0;
   if (st == RC_OK) st = check_outputs_against_inputs(&a, &scene);
   if (st == RC_OK && !a.output) {
@@ -611,6 +644,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
   }
   if (st != RC_OK) {
     rc_scene_free(&scene);
+    rc_prepared_close(a.prepared);
     return st;
   }
   if (a.width) scene.width = a.width;
@@ -635,7 +669,8 @@ rc_status rc_cmd_render(int argc, char **argv) {
     st = render_scene(&band, &scene, &ctx, parse_ms, false);
   }
   rc_status vst = ctx.instance ? rc_vk_destroy(&ctx) : RC_OK;
-  rc_scene_free(&scene);
+  rc_scene_free(&scene); /* before the file: its origins' names lie there */
+  rc_prepared_close(a.prepared);
   return st != RC_OK ? st : vst;
 }
 
@@ -647,10 +682,20 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
                         .backend = "gpu", .repeat = a->repeat, .parse_ms = parse_ms};
   rc_packed_scene packed = {0};
   rc_output *out = NULL;
-  rc_status st = rc_scene_pack(scene, &packed);
-  if (st == RC_OK && a->perturb) rc_packed_scene_perturb(&packed, a->perturb);
+  rc_status st;
+  /* A prepared scene's arrays and tree serve as they lie unless this render changes them. */
+  const bool as_prepared = a->prepared && !a->perturb && !a->no_bvh;
+  rs.prepared = a->prepared_path;
+  if (as_prepared) {
+    st = rc_prepared_packed(a->prepared, scene, &packed);
+    rs.bvh = rc_prepared_bvh_stats(a->prepared);
+    rs.bvh.build_ms = 0; /* built when it was prepared */
+  } else {
+    st = a->prepared ? rc_prepared_packed_copy(a->prepared, scene, &packed) : rc_scene_pack(scene, &packed);
+    if (st == RC_OK && a->perturb) rc_packed_scene_perturb(&packed, a->perturb);
+    if (st == RC_OK) st = rc_bvh_build(&packed, !a->no_bvh, &rs.bvh);
+  }
   if (st == RC_OK) {
-    st = rc_bvh_build(&packed, !a->no_bvh, &rs.bvh);
     /* The plan's traversal estimate uses the depth; 0 means brute force. */
     a->gpu.bvh_depth = packed.bvh && packed.frame.bvh_node_count ? rs.bvh.depth + 1 : 0;
   }

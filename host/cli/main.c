@@ -3,6 +3,7 @@
  *   vkraycast merge PARTS... -o OUT           join the parts of a frame (cmd_merge.c)
  *   vkraycast compare A B [options]           metrics between two images (cmd_compare.c)
  *   vkraycast tradeoff SCENE... --out DIR     speed against accuracy on the user's scenes (cmd_tradeoff.c)
+ *   vkraycast prepare SCENE -o FILE.vkrs      pack a scene and build its BVH once (cmd_prepare.c)
  *   vkraycast devices                         list the Vulkan devices (cmd_devices.c)
  * Exit status: 0 ok, 1 images differ (compare), 2 bad input or usage, 3 device failure.
  * The command-line conventions are in docs/cli.md. */
@@ -31,6 +32,9 @@ static const char usage[] =
     "  tradeoff SCENE... --out DIR\n"
     "                        measure what accuracy costs on your scenes: variants x spp, timed and\n"
     "                        compared with the CPU f64 reference; a CSV and a plot\n"
+    "  prepare SCENE -o FILE.vkrs\n"
+    "                        pack the scene and build its BVH once, for renders (a farm's shards)\n"
+    "                        that map FILE.vkrs instead of parsing: the same image, bit for bit\n"
     "  devices               list Vulkan devices\n"
     "\n"
     "  vkraycast <command> --help   options of a command\n"
@@ -45,6 +49,7 @@ static const struct {
     {"merge", rc_cmd_merge, &rc_merge_spec},
     {"compare", rc_cmd_compare, &rc_compare_spec},
     {"tradeoff", rc_cmd_tradeoff, &rc_tradeoff_spec},
+    {"prepare", rc_cmd_prepare, &rc_prepare_spec},
     {"devices", rc_cmd_devices, &rc_devices_spec},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof *commands)

@@ -132,10 +132,14 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
 }
 
 rc_status rc_output_attach(rc_output *o, const char *path, const char *text) {
+  return rc_output_attach_bytes(o, path, text, strlen(text), "statistics");
+}
+
+rc_status rc_output_attach_bytes(rc_output *o, const char *path, const void *bytes, size_t len, const char *what) {
   char err[512];
-  o->stats = rc_file_writer_open(path, text, strlen(text), err, sizeof err);
+  o->stats = rc_file_writer_open(path, bytes, len, err, sizeof err);
   if (!o->stats) {
-    rc_error("%s: cannot write statistics: %s", path, err);
+    rc_error("%s: cannot write %s: %s", path, what, err);
     return RC_ERR_IO;
   }
   o->stats_path = path;

@@ -40,6 +40,8 @@ rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const 
 /* Adds the statistics file (its whole text) to the transaction: written now, renamed
  * with the image. */
 rc_status rc_output_attach(rc_output *o, const char *path, const char *text);
+/* The same for any bytes (`what` names them in messages): a prepared scene, written alone. */
+rc_status rc_output_attach_bytes(rc_output *o, const char *path, const void *bytes, size_t len, const char *what);
 /* Renames the files into place (commit) or removes them; frees the output. */
 rc_status rc_output_close(rc_output *o, bool commit);
 double rc_output_write_ms(const rc_output *o);

@@ -168,6 +168,7 @@ static void add_fields(cJSON *o, const rc_render_stats *s, const stats_field *f,
 char *rc_stats_json(const rc_render_stats *s) {
   cJSON *o = cJSON_CreateObject();
   ADD_FIELDS(o, s, head_fields);
+  if (s->prepared) cJSON_AddStringToObject(o, "prepared", s->prepared);
   if (s->threads) cJSON_AddNumberToObject(o, "threads", s->threads);
   ADD_FIELDS(o, s, frame_fields);
   const double region[4] = {s->region.x0, s->region.y0, s->region.x1, s->region.y1};

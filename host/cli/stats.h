@@ -26,6 +26,7 @@ typedef struct rc_render_stats {
   size_t spheres, triangles, lights, quadrics, planes, composites, materials;
   bool shadows;
   bool generic_pipeline;
+  const char *prepared; /* the prepared scene rendered (render --prepared, or a .vkrs scene); NULL: parsed */
   double parse_ms, write_ms;
   double first_frame_ms; /* includes the JIT on lavapipe */
   double render_ms;      /* GPU time of one frame: the first, or the median of the others with --repeat */

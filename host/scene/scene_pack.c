@@ -384,14 +384,19 @@ static void pack_quadrics_and_composites(const rc_scene *s, rc_packed_scene *p) 
   }
 }
 
+void rc_scene_pack_frame(const rc_scene *s, rc_packed_scene *p) {
+  memset(&p->frame, 0, sizeof p->frame);
+  pack_camera(s, p);
+  pack_frame(s, p);
+}
+
 rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   memset(p, 0, sizeof *p);
   /* Camera-relative packing is the default; without it the packed space is world space,
    * kept only to measure what the floating origin buys (docs/accuracy.md). */
   p->origin = s->quality.camera_relative ? s->camera.eye : rcm_make_d(0, 0, 0);
   p->scale = packing_scale(s, p->origin);
-  pack_camera(s, p);
-  pack_frame(s, p);
+  rc_scene_pack_frame(s, p);
   if (!alloc_arrays(s, p)) {
     rc_packed_scene_free(p);
     return RC_ERR_OUT_OF_MEMORY;
@@ -463,6 +468,10 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
 }
 
 void rc_packed_scene_free(rc_packed_scene *p) {
+  if (p->borrowed) {
+    memset(p, 0, sizeof *p);
+    return;
+  }
   free(p->spheres);
   free(p->triangles);
   free(p->materials);
@@ -478,27 +487,46 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   memset(p, 0, sizeof *p);
 }
 
-uint64_t rc_packed_scene_hash(const rc_packed_scene *p) {
+/* The parts rc_packed_scene_hash chains: the frame, the packed space, then the arrays. */
+typedef struct {
+  const void *data;
+  size_t bytes;
+} hash_part;
+#define HASH_PARTS (3 + RC_PACKED_ARRAYS)
+static void hash_parts(const rc_packed_scene *p, hash_part parts[HASH_PARTS]) {
   const packed_frame *f = &p->frame;
-  const struct {
-    const void *data;
-    size_t bytes;
-  } parts[] = {{f, sizeof *f},
-               {&p->origin, sizeof p->origin},
-               {&p->scale, sizeof p->scale},
-               {p->spheres, f->sphere_count * sizeof *p->spheres},
-               {p->triangles, p->triangle_total * sizeof *p->triangles},
-               {p->materials, f->material_count * sizeof *p->materials},
-               {p->lights, f->light_count * sizeof *p->lights},
-               {p->transforms, p->transform_count * sizeof *p->transforms},
-               {p->normals, p->normal_count * sizeof *p->normals},
-               {p->quadrics, p->quadric_total * sizeof *p->quadrics},
-               {p->csg, f->csg_count * sizeof *p->csg},
-               {p->csg_program, p->csg_program_length * sizeof *p->csg_program}};
+  const hash_part all[HASH_PARTS] = {{f, sizeof *f},
+                                     {&p->origin, sizeof p->origin},
+                                     {&p->scale, sizeof p->scale},
+                                     {p->spheres, f->sphere_count * sizeof *p->spheres},
+                                     {p->triangles, p->triangle_total * sizeof *p->triangles},
+                                     {p->materials, f->material_count * sizeof *p->materials},
+                                     {p->lights, f->light_count * sizeof *p->lights},
+                                     {p->transforms, p->transform_count * sizeof *p->transforms},
+                                     {p->normals, p->normal_count * sizeof *p->normals},
+                                     {p->quadrics, p->quadric_total * sizeof *p->quadrics},
+                                     {p->csg, f->csg_count * sizeof *p->csg},
+                                     {p->csg_program, p->csg_program_length * sizeof *p->csg_program}};
+  memcpy(parts, all, sizeof all);
+}
+
+static uint64_t part_hash(const hash_part *part, size_t i) {
+  return part->bytes ? rc_hash_bytes(part->data, part->bytes) : i;
+}
+
+void rc_packed_scene_array_hashes(const rc_packed_scene *p, uint64_t hashes[RC_PACKED_ARRAYS]) {
+  hash_part parts[HASH_PARTS];
+  hash_parts(p, parts);
+  for (size_t i = 0; i < RC_PACKED_ARRAYS; i++) hashes[i] = part_hash(&parts[3 + i], 3 + i);
+}
+
+uint64_t rc_packed_scene_hash(const rc_packed_scene *p) {
+  hash_part parts[HASH_PARTS];
+  hash_parts(p, parts);
   /* Each part's hash chained into the next, so that moving bytes between parts counts. */
   uint64_t h[2] = {0, 0};
-  for (size_t i = 0; i < sizeof parts / sizeof *parts; i++) {
-    h[1] = parts[i].bytes ? rc_hash_bytes(parts[i].data, parts[i].bytes) : i;
+  for (size_t i = 0; i < HASH_PARTS; i++) {
+    h[1] = i >= 3 && p->array_hashes ? p->array_hashes[i - 3] : part_hash(&parts[i], i);
     h[0] = rc_hash_bytes(h, sizeof h);
   }
   return h[0];

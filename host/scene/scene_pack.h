@@ -39,9 +39,19 @@ typedef struct rc_packed_scene {
   uint32_t mesh_operand_count;
   dvec3 origin; /* world position of the packed space's origin (the eye) */
   double scale; /* packed units per scene unit: a power of two, 1 unless rescaled (scene_pack.c) */
+  bool borrowed; /* the arrays belong to a prepared file (prepared.h): rc_packed_scene_free leaves them */
+  /* The arrays' own hashes (rc_packed_scene_array_hashes) where a prepared file recorded
+   * them, else NULL: rc_packed_scene_hash then hashes only the frame. */
+  const uint64_t *array_hashes;
 } rc_packed_scene;
 
 rc_status rc_scene_pack(const rc_scene *scene, rc_packed_scene *packed);
+/* The frame alone (camera, settings, counts; no BVH), from the scene's settings, for arrays
+ * already packed at packed->origin and packed->scale: what a prepared scene (prepared.h)
+ * re-derives for the command line's overrides. rc_scene_pack calls it, so the two agree
+ * bit for bit. It reads the scene's scalars, its materials (which mirror) and its
+ * composites' steps. */
+void rc_scene_pack_frame(const rc_scene *scene, rc_packed_scene *packed);
 /* Scales every position and radius by 1 + d, |d| <= 2^-22, d a hash of the seed and the
  * value: the conditioning band's re-renders (render --perturb, compare --band). */
 void rc_packed_scene_perturb(rc_packed_scene *packed, uint32_t seed);
@@ -50,5 +60,8 @@ void rc_packed_scene_free(rc_packed_scene *packed);
  * position; not the BVH, which only speeds them up): the parts of one render agree on it
  * (region.h, `vkraycast merge`). */
 uint64_t rc_packed_scene_hash(const rc_packed_scene *packed);
+/* The hash of each array that rc_packed_scene_hash chains (spheres .. composite programs). */
+#define RC_PACKED_ARRAYS 9
+void rc_packed_scene_array_hashes(const rc_packed_scene *packed, uint64_t hashes[RC_PACKED_ARRAYS]);
 
 #endif
