@@ -242,7 +242,7 @@ rc_status rc_prepared_open(const char *path, rc_prepared **out, rc_scene *scene)
   size_t len = 0;
   FILE *f = rc_open_input(path, "the prepared scene", &len);
   if (!f) return RC_ERR_IO;
-  void *map = len >= sizeof(vkrs_header) ? mmap(NULL, len, PROT_READ, MAP_PRIVATE, fileno(f), 0) : NULL;
+  void *map = len ? mmap(NULL, len, PROT_READ, MAP_PRIVATE, fileno(f), 0) : NULL;
   fclose(f);
   if (map == MAP_FAILED) {
     rc_error("%s: cannot map the prepared scene (%zu bytes)", path, len);

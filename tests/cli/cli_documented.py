@@ -15,7 +15,7 @@ import subprocess
 import sys
 import tempfile
 
-COMMANDS = ["render", "compare", "merge", "tradeoff"]
+COMMANDS = ["render", "compare", "merge", "tradeoff", "prepare"]
 
 
 def help_options(binary, command):

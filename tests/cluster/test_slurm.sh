@@ -9,6 +9,7 @@
 # and its running shard's processes killed): Slurm marks the node down and the task NODE_FAIL, the
 # merge names the lost shard, resubmit.sh renders it on a surviving node, and the image
 # equals the single render.
+# The shards render the scene prepared once by a job before the array (prepare.sbatch).
 # Usage: test_slurm.sh VKRAYCAST SCENES WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
@@ -40,6 +41,12 @@ for i in 0 1 2 3; do rows+=("$(tr -d ' \n\t' <"$work/sharded.png.parts/part-$i.j
 why=ok
 [[ ${#rows[@]} == 4 && -n ${rows[3]} ]] || why="shard regions: ${rows[*]}"
 check "4 shards of rows ${rows[*]}" "$why"
+why=ok
+for i in 0 1 2 3; do
+  grep -qF '"prepared":' "$work/sharded.png.parts/part-$i.json" || because "shard $i did not render the prepared scene"
+done
+[[ -s $work/sharded.png.parts/scene.vkrs ]] || because "no prepared scene in the parts' folder"
+check "the shards rendered the scene prepared once" "$why"
 
 # A shard that fails, found by the merge, rendered again alone.
 parts=$work/failing.parts
@@ -67,14 +74,15 @@ check "the shard rendered again alone, merged" "$why"
 # the binary is a wrapper that waits a minute before rendering, so that the node is lost
 # while its shard is under way, whatever the machine's speed.
 slow_bin=$work/vkraycast-slow-on-n2
-printf '#!/usr/bin/env bash\n[[ ${SLURMD_NODENAME:-} == n2 ]] && sleep 60\nexec %q "$@"\n' "$(realpath "$bin")" >"$slow_bin"
+printf '#!/usr/bin/env bash\n[[ ${SLURMD_NODENAME:-} == n2 && $1 == render ]] && sleep 60\nexec %q "$@"\n' \
+  "$(realpath "$bin")" >"$slow_bin"
 chmod +x "$slow_bin"
 parts=$work/lost.parts
 read -r array merge < <(VKRAYCAST=$slow_bin "$tools/submit.sh" -n 6 -p "$parts" -a "--no-requeue" \
   "$scenes/showcase.json" "$work/lost.png" "${size[@]}")
 lost= task=
 for _ in $(seq 600); do
-  read -r task lost < <(squeue -h -w n2 -t RUNNING -o "%K %A" 2>/dev/null | head -1)
+  read -r task lost < <(squeue -h -w n2 -t RUNNING -o "%K %A" 2>/dev/null | awk '$1 != "N/A"' | head -1)
   [[ -n $lost ]] && break
   sleep 0.1
 done

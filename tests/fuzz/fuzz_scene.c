@@ -1,5 +1,9 @@
 /* libFuzzer targets for the input parsers (tools/fuzz.sh builds and runs them):
- *   FUZZ_TARGET=1 the JSON scene parser, =2 the CSE167 .test parser, =3 mesh loading
+ *   FUZZ_TARGET=1 the JSON scene parser, =2 the CSE167 .test parser, =4 the prepared-scene
+ * reader (scene/prepared.h: when the input's last byte is odd, its size and checksum
+ * fields are rewritten to match, so that mutations reach the summary and the array
+ * checks past the checksum; what it accepts is then turned into a packed scene and read
+ * whole), =3 mesh loading
  * (the input written to a file, its format chosen by the first byte: OBJ, PLY, STL, OFF,
  * an OBJ with a material library (the bytes up to the first NUL are the library and the
  * rest the OBJ, which names it), glTF, GLB; or, for the eighth kind, the bytes are an
@@ -15,13 +19,79 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <xxhash.h>
+
 #include "scene/mesh.h"
 #include "scene/mesh_wire.h"
+#include "scene/prepared.h"
 #include "scene/scene.h"
+
+#if FUZZ_TARGET == 4
+/* Reads every element of every array the renderers read, and every BVH node and reference,
+ * so that an index the checks let through past its array is an ASan report. */
+static uint32_t read_packed(const rc_packed_scene *p) {
+  uint32_t sink = 0;
+  const packed_frame *f = &p->frame;
+  for (uint32_t i = 0; i < f->sphere_count; i++) {
+    const packed_sphere *s = &p->spheres[i];
+    sink += p->materials[s->material].pad0 != 0;
+    if (s->transform != RC_NO_TRANSFORM) sink += p->transforms[s->transform].row0.w != 0;
+  }
+  for (uint32_t i = 0; i < p->triangle_total; i++) {
+    const packed_triangle *t = &p->triangles[i];
+    sink += p->materials[t->material].pad0 != 0;
+    if (t->normals != RC_NO_NORMALS) sink += p->normals[t->normals].pad0 != 0;
+  }
+  for (uint32_t i = 0; i < p->quadric_total; i++) sink += p->materials[p->quadrics[i].material].pad1 != 0;
+  for (uint32_t i = 0; i < f->light_count; i++) sink += p->lights[i].type;
+  for (uint32_t i = 0; i < f->csg_count; i++)
+    for (uint32_t k = 0; k < p->csg[i].count; k++) {
+      uint32_t ins = p->csg_program[p->csg[i].first + k];
+      if (ins >> RC_CSG_OP_SHIFT == RC_CSG_LEAF) sink += p->quadrics[ins & RC_CSG_OPERAND_MASK].flags;
+    }
+  for (uint32_t i = 0; i < f->bvh_node_count; i++) {
+    const packed_bvh_node *n = &p->bvh_nodes[i];
+    if (n->skip < f->bvh_node_count) sink += p->bvh_nodes[n->skip].leaf;
+    uint32_t first = n->leaf >> RC_BVH_LEAF_SHIFT, count = n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1);
+    for (uint32_t k = 0; n->leaf && k < count; k++) sink += p->bvh_prims[first + k] < f->object_count;
+  }
+  for (uint32_t k = 0; k < p->mesh_operand_count; k++) {
+    const packed_quadric *q = &p->quadrics[p->mesh_operands[k].leaf];
+    for (uint32_t i = q->mesh_root; i < q->mesh_end; i++) {
+      const packed_bvh_node *n = &p->bvh_nodes[i];
+      uint32_t first = n->leaf >> RC_BVH_LEAF_SHIFT, count = n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1);
+      for (uint32_t j = 0; n->leaf && j < count; j++) sink += p->triangles[p->bvh_prims[first + j]].flags;
+    }
+  }
+  return sink;
+}
+#endif
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   rc_scene s;
-#if FUZZ_TARGET == 3
+#if FUZZ_TARGET == 4
+  /* A private, 64-byte aligned copy, as a mapping would be. */
+  unsigned char *file = aligned_alloc(64, (size + 63) / 64 * 64 + 64);
+  if (!file) return 0;
+  memcpy(file, data, size);
+  if (size >= 48 && (data[size - 1] & 1)) {
+    const uint64_t len = size, sum = XXH3_64bits(file + 40, size - 40);
+    memcpy(file + 24, &len, sizeof len);
+    memcpy(file + 32, &sum, sizeof sum);
+  }
+  rc_prepared *pf = NULL;
+  if (rc_prepared_decode("fuzz.vkrs", file, size, &pf, &s) == RC_OK) {
+    rc_packed_scene p;
+    volatile uint32_t sink = 0;
+    if (rc_prepared_packed(pf, &s, &p) == RC_OK) sink += read_packed(&p);
+    rc_packed_scene_free(&p);
+    (void)sink;
+    rc_scene_free(&s);
+  }
+  rc_prepared_close(pf);
+  free(file);
+  return 0;
+#elif FUZZ_TARGET == 3
   enum { OBJ_WITH_MTL = 4, ANSWER = 7 }; /* an OBJ and its material library; an importer's answer */
   static const char *const ext[] = {".obj", ".ply", ".stl", ".off", ".obj", ".gltf", ".glb", ""};
   const unsigned kinds = sizeof ext / sizeof *ext;
