@@ -53,9 +53,9 @@ void rc_prepared_close(rc_prepared *pf);
 
 /* The packed scene for `scene` (the summary with the command line's overrides applied):
  * the frame re-derived, the arrays and the tree where they lie in the file (borrowed:
- * rc_packed_scene_free leaves them). `objects`: false for --accel none, which needs the
- * tree built again: use rc_prepared_packed_copy then. Refuses (exit status 2) overrides
- * that would change the packed arrays (--camera-relative, --rescale). */
+ * rc_packed_scene_free leaves them). For --accel none and --perturb, whose trees differ,
+ * use rc_prepared_packed_copy. Refuses (exit status 2) overrides that would change the
+ * packed arrays (--camera-relative, --rescale). */
 rc_status rc_prepared_packed(const rc_prepared *pf, const rc_scene *scene, rc_packed_scene *packed);
 /* The same with arrays of its own and no tree (for --perturb, --accel none): the caller
  * builds it with rc_bvh_build. */

@@ -31,6 +31,12 @@ static bool starts_like_json(const char *text, size_t len) {
 
 rc_status rc_scene_load(const char *path, const rc_load_options *options, rc_scene *scene) {
   memset(scene, 0, sizeof *scene);
+  if (rc_has_extension(path, ".vkrs")) {
+    /* Read as text it would fail at its first byte, with a message about JSON. */
+    fprintf(stderr, "%s: error: a prepared scene (vkraycast prepare) is rendered by `render`; this command reads the "
+            "scene file it was prepared from\n", path);
+    return RC_ERR_INPUT;
+  }
   char *text = NULL;
   size_t len = 0;
   rc_status st = rc_read_input(path, "scene file", RC_MAX_SCENE_FILE_BYTES, &text, &len);

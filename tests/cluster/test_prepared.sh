@@ -160,6 +160,8 @@ expect_exit2 "statistics over the prepared file" "$work/o.png" "name the same fi
   "$bin" render "$scene" --prepared "$work/keep.vkrs" -o "$work/o.png" --stats-json "$work/keep.vkrs"
 cmp -s "$good" "$work/keep.vkrs"
 check "the prepared file is left as it was" "$([[ $? == 0 ]] && echo ok || echo "it changed")"
+expect_exit2 "prepare of a prepared scene" "$work/x2.vkrs" "is rendered by \`render\`" \
+  "$bin" prepare "$good" -o "$work/x2.vkrs"
 expect_exit2 "prepare over its own scene" "$work/o.png" "name the same file" \
   "$bin" prepare "$work/keep.vkrs" -o "$work/keep.vkrs"
 finish
