@@ -3,6 +3,9 @@
 // scene arrays stay f32 either way; loads widen them.
 // RC_UNIT_ROUNDOFF is u of the working precision (pbrt's gamma(n) = n u / (1 - n u));
 // RC_SMALLEST_NORMAL stands in for "the next float above 0", as GPUs may flush subnormals.
+// RL(x): the literal x rounded to f32, in the working precision: the same value in the
+// shader (where a literal without LF is a float) and in the reference (ref_real.h).
+#define RL(x) real(x)
 #if RC_F64
 #define real double
 #define rvec2 dvec2

@@ -23,6 +23,7 @@ layout(binding = RC_BINDING_NORMALS, rgba32ui) readonly uniform uimageBuffer sce
 layout(binding = RC_BINDING_QUADRICS, rgba32ui) readonly uniform uimageBuffer scene_quadrics;
 layout(binding = RC_BINDING_CSG, rgba32ui) readonly uniform uimageBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM, rgba32ui) readonly uniform uimageBuffer scene_csg_program;
+layout(binding = RC_BINDING_TEXELS, rgba32ui) readonly uniform uimageBuffer scene_texels;
 
 #define texel(b, i) imageLoad(b, int(i))
 #else
@@ -37,6 +38,7 @@ layout(binding = RC_BINDING_NORMALS) uniform usamplerBuffer scene_normals;
 layout(binding = RC_BINDING_QUADRICS) uniform usamplerBuffer scene_quadrics;
 layout(binding = RC_BINDING_CSG) uniform usamplerBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM) uniform usamplerBuffer scene_csg_program;
+layout(binding = RC_BINDING_TEXELS) uniform usamplerBuffer scene_texels;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 #endif
@@ -92,6 +94,7 @@ packed_material load_material(uint i) {
   m.ambient = uintBitsToFloat(a.xyz);
   m.shininess = uintBitsToFloat(a.w);
   m.diffuse = uintBitsToFloat(b.xyz);
+  m.texture = b.w;
   m.specular = uintBitsToFloat(c.xyz);
   m.mirror = uintBitsToFloat(d.xyz);
   m.emission = uintBitsToFloat(e.xyz);
@@ -151,6 +154,22 @@ packed_csg load_csg(uint i) {
 
 uint load_csg_instruction(uint i) { return texel(scene_csg_program, i >> 2u)[i & 3u]; }
 
+packed_texture load_texture(uint first) {
+  uvec4 a = texel(scene_texels, first);
+  uvec4 b = texel(scene_texels, first + 1u);
+  packed_texture t;
+  t.width = a.x;
+  t.height = a.y;
+  t.flags = a.z;
+  t.scale_u = uintBitsToFloat(b.x);
+  t.scale_v = uintBitsToFloat(b.y);
+  t.offset_u = uintBitsToFloat(b.z);
+  t.offset_v = uintBitsToFloat(b.w);
+  return t;
+}
+
+vec3 load_texel_rgb(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
+
 packed_light load_light(uint i) {
   uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
   uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
@@ -174,6 +193,7 @@ layout(std430, binding = RC_BINDING_NORMALS) readonly buffer Normals { packed_ve
 layout(std430, binding = RC_BINDING_QUADRICS) readonly buffer Quadrics { packed_quadric scene_quadrics[]; };
 layout(std430, binding = RC_BINDING_CSG) readonly buffer Csg { packed_csg scene_csg[]; };
 layout(std430, binding = RC_BINDING_CSG_PROGRAM) readonly buffer CsgProgram { uint scene_csg_program[]; };
+layout(std430, binding = RC_BINDING_TEXELS) readonly buffer Texels { uvec4 scene_texels[]; };
 
 packed_sphere load_sphere(uint i) { return scene_spheres[i]; }
 packed_triangle load_triangle(uint i) { return scene_triangles[i]; }
@@ -186,4 +206,11 @@ packed_vertex_normals load_vertex_normals(uint i) { return scene_normals[i]; }
 packed_quadric load_quadric(uint i) { return scene_quadrics[i]; }
 packed_csg load_csg(uint i) { return scene_csg[i]; }
 uint load_csg_instruction(uint i) { return scene_csg_program[i]; }
+packed_texture load_texture(uint first) {
+  uvec4 a = scene_texels[first];
+  uvec4 b = scene_texels[first + 1u];
+  return packed_texture(a.x, a.y, a.z, a.w, uintBitsToFloat(b.x), uintBitsToFloat(b.y), uintBitsToFloat(b.z),
+                        uintBitsToFloat(b.w));
+}
+vec3 load_texel_rgb(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
 #endif

@@ -9,7 +9,21 @@ struct surface {
   rvec3 ng;       // unit geometric normal, facing the incoming ray: ray origins move along it
   rvec3 p_error;  // per-coordinate bound on |p - exact hit point| (pbrt's pError), for spawning
   uint material;
+  uint uv_kind;   // RC_UV_*: where its texture coordinates come from (surface_uv)
+  rvec3 uv_at;    // a sphere's unit normal in its own frame; a plane's (u, v, 0)
 };
+
+#if RC_QUADRICS
+// A plane's texture coordinates (u, v, 0): the hit's frame coordinates from the packed
+// centre, in scene units (lo.z per packed unit), from the point the scene gave (lo.xy;
+// scene_pack.c).
+rvec3 plane_uv(packed_quadric q, rvec3 p) {
+  precise rvec3 f = quadric_local(q, p - rvec3(q.center));
+  precise real u = f.x * real(q.lo.z) + real(q.lo.x);
+  precise real v = f.y * real(q.lo.z) + real(q.lo.y);
+  return rvec3(u, v, 0.0);
+}
+#endif
 
 
 #if RC_QUADRICS
@@ -45,6 +59,8 @@ rvec3 quadric_refine(packed_quadric q, rvec3 p, inout rvec3 p_error) {
 
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
+  sf.uv_kind = RC_UV_NONE;
+  sf.uv_at = rvec3(0.0);
   rvec3 n;
   if (has_kind(RC_KIND_SPHERES) && h.kind == RC_HIT_SPHERE) {
     packed_sphere s = load_sphere(h.index);
@@ -72,6 +88,8 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       precise real sq = sqrt(max(r * r - dot(l, l), 0.0));
       n = normalize(l + h.side * sq * dd);
     }
+    sf.uv_kind = RC_UV_SPHERE;
+    sf.uv_at = n;
     if ((!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) && sphere_formula == RC_SPHERE_GEOMETRIC) {
       precise rvec3 rn = r * n;
       sf.p = rvec3(s.center) + rn;
@@ -108,6 +126,10 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
       n = normalize(quadric_normal(q, h.part, sf.p, d));
       sf.material = q.material;
+      if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
+        sf.uv_kind = RC_UV_PLANE;
+        sf.uv_at = plane_uv(q, sf.p);
+      }
     }
 #endif
   } else {
@@ -236,17 +258,118 @@ bool light_at(packed_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 
   return true;
 }
 
+// Texel (x, y) of the texture at `first`, the column and row wrapped (repeat) or clamped
+// onto the image.
+rvec3 texel_at(uint first, packed_texture t, int x, int y) {
+  int w = int(t.width);
+  int hh = int(t.height);
+  if ((t.flags & RC_TEXTURE_CLAMP) != 0u) {
+    x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
+    y = y < 0 ? 0 : (y > hh - 1 ? hh - 1 : y);
+  } else {
+    x = ((x % w) + w) % w;
+    y = ((y % hh) + hh) % hh;
+  }
+  return rvec3(load_texel_rgb(first + uint(RC_TEXELS_PER_TEXTURE_HEADER) + uint(y) * t.width + uint(x)));
+}
+
+// a + (b - a) s: exactly a where b = a, so a constant texture gives exactly its colour.
+rvec3 lerp_color(rvec3 a, rvec3 b, real s) {
+  precise rvec3 c = a + s * (b - a);
+  return c;
+}
+
+// The texture's colour at surface coordinates (u, v) (packed_texture): u' = u scale_u +
+// offset_u across the image, v' = v scale_v + offset_v up it; repeat takes the fraction,
+// clamp the nearest edge. In texel units x = u' W - 1/2, y = (1 - v') H - 1/2 put texel
+// centres on integers: nearest rounds, bilinear blends the four around (x, y).
+rvec3 texture_color(uint first, real u, real v) {
+  packed_texture t = load_texture(first);
+  precise real uu = u * real(t.scale_u) + real(t.offset_u);
+  precise real vv = v * real(t.scale_v) + real(t.offset_v);
+  if ((t.flags & RC_TEXTURE_CLAMP) != 0u) {
+    uu = uu < 0.0 ? 0.0 : (uu > 1.0 ? 1.0 : uu);
+    vv = vv < 0.0 ? 0.0 : (vv > 1.0 ? 1.0 : vv);
+  } else {
+    uu = uu - floor(uu);
+    vv = vv - floor(vv);
+  }
+  if (!(uu >= 0.0 && uu <= 1.0)) uu = 0.0;  // NaN: a surface point at infinity
+  if (!(vv >= 0.0 && vv <= 1.0)) vv = 0.0;
+  precise real x = uu * real(t.width) - 0.5;
+  precise real y = (1.0 - vv) * real(t.height) - 0.5;
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u) return texel_at(first, t, int(floor(x + 0.5)), int(floor(y + 0.5)));
+  real x0 = floor(x);
+  real y0 = floor(y);
+  precise real fx = x - x0;
+  precise real fy = y - y0;
+  int ix = int(x0);
+  int iy = int(y0);
+  rvec3 top = lerp_color(texel_at(first, t, ix, iy), texel_at(first, t, ix + 1, iy), fx);
+  rvec3 bottom = lerp_color(texel_at(first, t, ix, iy + 1), texel_at(first, t, ix + 1, iy + 1), fx);
+  return lerp_color(top, bottom, fy);
+}
+
+// atan2(y, x) in [-pi, pi] from +, *, / alone, so that the shader and the reference compute
+// the same bits where their arithmetic is IEEE (lavapipe; GLSL's atan is an approximation
+// of the driver's own): the octant reduced to a = min/max in [0, 1], then Abramowitz &
+// Stegun 4.4.49, atan a = a (1 + a2 a^2 + ... + a16 a^16), |error| <= 2e-8.
+real atan2_poly(real y, real x) {
+  real ax = abs(x);
+  real ay = abs(y);
+  real hi = select_max(ax, ay);
+  if (hi == 0.0) return 0.0;
+  precise real a = select_min(ax, ay) / hi;
+  precise real s = a * a;
+  precise real p = ((((((RL(0.0028662257) * s - RL(0.0161657367)) * s + RL(0.0429096138)) * s - RL(0.0752896400)) * s +
+                      RL(0.1065626393)) * s - RL(0.1420889944)) * s + RL(0.1999355085)) * s - RL(0.3333314528);
+  precise real r = a + a * (s * p);
+  if (ay > ax) r = RL(1.5707963267948966) - r;
+  if (x < 0.0) r = RL(3.141592653589793) - r;
+  return (y < 0.0) ? -r : r;
+}
+
+// The surface's texture coordinates. A sphere's, from its unit normal n in its own frame:
+// longitude u = 1/2 + atan2(n.x, n.z) / 2 pi, 0.5 facing +z and growing towards +x;
+// latitude v = 1/2 + atan2(n.y, |n.xz|) / pi, 1 at the +y pole (docs/scene-format.md,
+// "Textures"). A plane's were found with its hit (plane_uv).
+void surface_uv(surface sf, out real u, out real v) {
+  if (sf.uv_kind == RC_UV_SPHERE) {
+    rvec3 n = sf.uv_at;
+    precise real across = sqrt(n.x * n.x + n.z * n.z);
+    precise real uu = RL(0.5) + atan2_poly(n.x, n.z) * RL(0.15915494309189535);
+    precise real vv = RL(0.5) + atan2_poly(n.y, across) * RL(0.3183098861837907);
+    u = uu;
+    v = vv;
+  } else {
+    u = sf.uv_at.x;
+    v = sf.uv_at.y;
+  }
+}
+
+// The surface's texture colour, 1 where its material has none or it has no (u, v).
+rvec3 surface_texture(packed_material m, surface sf) {
+  if (m.texture == RC_NO_TEXTURE || sf.uv_kind == RC_UV_NONE) return rvec3(1.0);
+  real u;
+  real v;
+  surface_uv(sf, u, v);
+  return texture_color(m.texture, u, v);
+}
+
 // What an unblocked light adds: Lambert diffuse plus the specular lobe, scaled by its
-// irradiance (n_dot_l = dot(n, l) > 0).
-rvec3 light_contribution(packed_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l, rvec3 irradiance) {
-  return irradiance * (n_dot_l * rvec3(m.diffuse) + specular_term(n, l, v, m.shininess) * rvec3(m.specular));
+// irradiance (n_dot_l = dot(n, l) > 0); kd is the diffuse colour, textured.
+rvec3 light_contribution(packed_material m, rvec3 kd, rvec3 n, rvec3 l, rvec3 v, real n_dot_l, rvec3 irradiance) {
+  return irradiance * (n_dot_l * kd + specular_term(n, l, v, m.shininess) * rvec3(m.specular));
 }
 
 // Direct light at the surface seen along d: ambient, then each light whose shadow ray is
 // unblocked (in a light pass, the pass's lights only: raycast.comp).
 rvec3 shade_phong(surface sf, rvec3 d) {
   packed_material m = load_material(sf.material);
-  rvec3 color = rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
+  rvec3 tex = rvec3(1.0);
+  if (has_kind(RC_KIND_TEXTURES) && m.texture != RC_NO_TEXTURE) tex = surface_texture(m, sf);
+  rvec3 kd = tex * rvec3(m.diffuse);
+  rvec3 color = tex * rvec3(m.ambient) * rvec3(frame.ambient_light) + rvec3(m.emission);
   if (light_pass_begin() != 0u) color = rvec3(0.0);
   rvec3 v = -d;
   rvec3 origin = spawn_origin(sf);
@@ -265,7 +388,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;
     }
-    color += light_contribution(m, sf.n, l, v, n_dot_l, irradiance);
+    color += light_contribution(m, kd, sf.n, l, v, n_dot_l, irradiance);
   }
   return color;
 }

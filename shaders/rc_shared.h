@@ -33,11 +33,12 @@ typedef struct packed_transform packed_transform;
 typedef struct packed_vertex_normals packed_vertex_normals;
 typedef struct packed_quadric packed_quadric;
 typedef struct packed_csg packed_csg;
+typedef struct packed_texture packed_texture;
 #endif
 
 /* Descriptor bindings (set 0). The scene arrays (spheres, triangles, materials, lights,
  * the BVH's nodes and references, transforms, normals, quadrics, composites and their
- * programs: 11 in all) are read either as storage buffers or as RGBA32UI uniform texel
+ * programs, textures: 12 in all) are read either as storage buffers or as RGBA32UI uniform texel
  * buffers (rc_scene_access.glsl); the binding numbers are the same for both kinds. */
 #define RC_BINDING_FRAME 0     /* uniform packed_frame */
 #define RC_BINDING_SPHERES 1   /* packed_sphere[] */
@@ -54,7 +55,8 @@ typedef struct packed_csg packed_csg;
 #define RC_BINDING_QUADRICS 12   /* packed_quadric[]: the standalone ones, then the CSG leaves */
 #define RC_BINDING_CSG 13        /* packed_csg[] */
 #define RC_BINDING_CSG_PROGRAM 14 /* uint[] CSG instructions, 4 per texel */
-#define RC_BINDING_COUNT 15
+#define RC_BINDING_TEXELS 15     /* textures: each a packed_texture, then its texels (RGBA f32) */
+#define RC_BINDING_COUNT 16
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -88,7 +90,8 @@ typedef struct packed_csg packed_csg;
 #define RC_KIND_SPHERE_TRANSFORMS 64u /* a sphere has a transform (an ellipsoid) */
 #define RC_KIND_VERTEX_NORMALS 128u   /* a triangle has vertex normals (smooth shading) */
 #define RC_KIND_ONE_SIDED_TRIANGLES 256u /* a triangle has RC_TRIANGLE_ONE_SIDED */
-#define RC_KIND_ALL 511u
+#define RC_KIND_TEXTURES 512u /* a material has a texture (packed_material.texture) */
+#define RC_KIND_ALL 1023u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -306,13 +309,35 @@ struct packed_csg {
 };
 #define RC_TEXELS_PER_CSG 2
 /* Phong material: L = ambient*Ia + emission + sum(diffuse*E*max(0,n.l) + specular*E*spec^shininess),
- * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel. */
+ * plus mirror * (radiance along the reflected ray). Coefficients are per RGB channel.
+ * texture: RC_NO_TEXTURE, or the first texel of a packed_texture in the texel array,
+ * whose colour at the surface's (u, v) multiplies ambient and diffuse (rc_shade.glsl). */
+#define RC_NO_TEXTURE 0xffffffffu
 struct packed_material {
   vec3 ambient;  float shininess;
-  vec3 diffuse;  float pad0;
+  vec3 diffuse;  uint texture;
   vec3 specular; float pad1;
   vec3 mirror;   float pad2;
   vec3 emission; float pad3; /* added unshadowed, like the ambient term */
+};
+
+/* A texture in the texel array (RC_BINDING_TEXELS): this header (2 texels), then its
+ * width x height texels, row 0 the image's top row, each RGBA f32 (A unused). The colour
+ * at surface coordinates (u, v) is the image's at (u', v') = (u, v) * scale + offset, with
+ * u' across the image from its left edge and v' up from its bottom edge, each texel a unit
+ * square (docs/scene-format.md, "Textures"); nearest or bilinear, repeated or clamped at
+ * the edges (flags). */
+/* Where a surface's (u, v) comes from (rc_shade.glsl, surface.uv_kind): none (the texture
+ * is not applied), a sphere (from its unit normal in its own frame), a plane (its frame). */
+#define RC_UV_NONE 0u
+#define RC_UV_SPHERE 1u
+#define RC_UV_PLANE 2u
+#define RC_TEXTURE_BILINEAR 1u
+#define RC_TEXTURE_CLAMP 2u
+#define RC_TEXELS_PER_TEXTURE_HEADER 2
+struct packed_texture {
+  uint width; uint height; uint flags; uint pad0;
+  float scale_u; float scale_v; float offset_u; float offset_v;
 };
 
 /* Point light: `position` in the packed space, irradiance intensity / (c0 + c1 r + c2 r^2)
@@ -437,7 +462,11 @@ RC_ASSERT_SIZE(packed_vertex_normals, 16 * RC_TEXELS_PER_VERTEX_NORMALS);
 RC_ASSERT_SIZE(packed_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
 
 RC_ASSERT_LAYOUT(packed_material, ambient, 0);   RC_ASSERT_LAYOUT(packed_material, shininess, 12);
-RC_ASSERT_LAYOUT(packed_material, diffuse, 16);  RC_ASSERT_LAYOUT(packed_material, specular, 32);
+RC_ASSERT_LAYOUT(packed_material, diffuse, 16);  RC_ASSERT_LAYOUT(packed_material, texture, 28);
+RC_ASSERT_LAYOUT(packed_material, specular, 32);
+RC_ASSERT_LAYOUT(packed_texture, width, 0);    RC_ASSERT_LAYOUT(packed_texture, flags, 8);
+RC_ASSERT_LAYOUT(packed_texture, scale_u, 16); RC_ASSERT_LAYOUT(packed_texture, offset_v, 28);
+RC_ASSERT_SIZE(packed_texture, 16 * RC_TEXELS_PER_TEXTURE_HEADER);
 RC_ASSERT_LAYOUT(packed_material, mirror, 48);   RC_ASSERT_LAYOUT(packed_material, emission, 64);
 RC_ASSERT_SIZE(packed_material, 16 * RC_TEXELS_PER_MATERIAL);
 

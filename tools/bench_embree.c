@@ -51,7 +51,7 @@ static uint32_t material_of(const bench *b, unsigned geom, unsigned prim) {
  * the irradiance and the diffuse colour. */
 static vec3 light_term(const bench *b, packed_material m, vec3 n, vec3 l, vec3 v, float ndl, vec3 irradiance) {
   if (b->lambert) return rcm_scale_f(rcm_mul_f(m.diffuse, irradiance), ndl);
-  return ref_light_contribution_f(&b->sc, m, n, l, v, ndl, irradiance);
+  return ref_light_contribution_f(&b->sc, m, m.diffuse, n, l, v, ndl, irradiance);
 }
 
 static vec3 shade(bench *b, vec3 o, vec3 d, float t, vec3 ng, uint32_t mat, uint64_t *shadow_rays) {

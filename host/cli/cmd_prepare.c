@@ -7,6 +7,7 @@
 
 #include "cli/cli.h"
 #include "cli/output.h"
+#include "cli/textures.h"
 #include "scene/bvh.h"
 #include "scene/prepared.h"
 #include "scene/scene_pack.h"
@@ -114,8 +115,12 @@ rc_status rc_cmd_prepare(int argc, char **argv) {
   rc_set_scene_path(a.scene);
   double t0 = rc_now_ms();
   st = rc_scene_load(a.scene, &load, &scene);
+  if (st == RC_OK) st = rc_scene_read_textures(&scene);
   double parse_ms = rc_now_ms() - t0;
-  if (st != RC_OK) return st;
+  if (st != RC_OK) {
+    rc_scene_free(&scene);
+    return st;
+  }
   if (a.camera_relative >= 0) scene.quality.camera_relative = a.camera_relative == 1;
   if (a.rescale >= 0) scene.quality.rescale = a.rescale == 1;
   st = prepare(&a, &scene, parse_ms);

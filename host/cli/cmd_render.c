@@ -20,6 +20,7 @@
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
 #include "cli/stats.h"
+#include "cli/textures.h"
 
 /* --band-renders: at most this many perturbed re-renders in one run. */
 #define RC_MAX_BAND_RENDERS 8
@@ -630,6 +631,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
     if (st == RC_OK && a.prepared_given) st = rc_prepared_check_source(a.prepared, &scene, a.scene);
   } else {
     st = rc_scene_load(a.scene, &a.load, &scene);
+    if (st == RC_OK) st = rc_scene_read_textures(&scene);
   }
   double parse_ms = rc_now_ms() - t0;
   if (st == RC_OK) st = check_outputs_against_inputs(&a, &scene);

@@ -111,6 +111,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->sphere_transforms = scene->transform_count > 0;
   r->vertex_normals = scene->normal_count > 0;
   r->one_sided_triangles = scene->one_sided_triangle_count > 0;
+  r->textures = scene->texture_count > 0;
   r->budget = rc_gpu_loop_budget(ctx->llvmpipe, ctx->subgroup_size);
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
   stats->tile_budget_ms = r->tile_budget_ms;

@@ -6,8 +6,8 @@
 
 #include "gpu/gpu_render.h"
 
-#define SCENE_ARRAYS 11 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
-                           quadrics, composites, CSG programs */
+#define SCENE_ARRAYS 12 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
+                           quadrics, composites, CSG programs, textures */
 
 struct rc_gpu_renderer {
   rc_vk_ctx *ctx;
@@ -20,6 +20,7 @@ struct rc_gpu_renderer {
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */
   bool sphere_transforms, vertex_normals; /* RC_KIND_SPHERE_TRANSFORMS, RC_KIND_VERTEX_NORMALS */
   bool one_sided_triangles;               /* RC_KIND_ONE_SIDED_TRIANGLES */
+  bool textures;                          /* RC_KIND_TEXTURES */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];

@@ -17,6 +17,7 @@ typedef dvec3 rvec3;
 #define RV(op) rcm_##op##_d
 #define R_SQRT sqrt
 #define R_ABS fabs
+#define R_FLOOR floor
 #define RC_UNIT_ROUNDOFF 1.1102230246251565e-16
 #define RC_SMALLEST_NORMAL 2.2250738585072014e-308
 static inline rvec3 rvec3_from(vec3 a) { return rcm_to_d(a); }
@@ -29,6 +30,7 @@ typedef vec3 rvec3;
 #define RV(op) rcm_##op##_f
 #define R_SQRT sqrtf
 #define R_ABS fabsf
+#define R_FLOOR floorf
 #define RC_UNIT_ROUNDOFF 5.9604644775390625e-8f
 #define RC_SMALLEST_NORMAL 1.17549435e-38f
 static inline rvec3 rvec3_from(vec3 a) { return a; }
@@ -39,6 +41,8 @@ static inline real rv_get(rvec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y 
 /* Min and max of two reals by comparison: the twins of the shader's select_min and
  * select_max (rc_real.glsl), not of GLSL's min and max, whose result for a NaN operand
  * the specification leaves open. */
+/* rc_real.glsl's RL(x): the literal rounded to f32, then widened to the working precision. */
+#define RL(x) ((real)(float)(x))
 static inline real rmin(real a, real b) { return a < b ? a : b; }
 static inline real rmax(real a, real b) { return a > b ? a : b; }
 

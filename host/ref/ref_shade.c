@@ -5,6 +5,12 @@
 #include "ref/ref_real.h"
 #include "ref/ref_shader.h"
 
+rvec3 REF(plane_uv)(const packed_quadric *q, rvec3 p) {
+  rvec3 f = REF(quadric_local)(q, RV(sub)(p, rvec3_from(q->center)));
+  real u = f.x * (real)q->lo.z + (real)q->lo.x;
+  real v = f.y * (real)q->lo.z + (real)q->lo.y;
+  return RV(make)(u, v, 0);
+}
 
 rvec3 REF(quadric_refine)(const packed_quadric *q, rvec3 p, rvec3 *p_error) {
   rvec3 L = rvec3_from(q->linear);
@@ -28,6 +34,8 @@ rvec3 REF(quadric_refine)(const packed_quadric *q, rvec3 p, rvec3 *p_error) {
 
 ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit *h) {
   ref_surface sf;
+  sf.uv_kind = RC_UV_NONE;
+  sf.uv_at = RV(make)(0, 0, 0);
   rvec3 n;
   if (h->kind == RC_HIT_SPHERE) {
     packed_sphere s = sc->spheres[h->index];
@@ -53,6 +61,8 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       real sq = R_SQRT(disc > 0 ? disc : 0);
       n = RV(normalize)(RV(add)(l, RV(scale)(dd, h->side * sq)));
     }
+    sf.uv_kind = RC_UV_SPHERE;
+    sf.uv_at = n;
     if (!m && !algebraic) {
       rvec3 rn = RV(scale)(n, r);
       sf.p = RV(add)(rvec3_from(s.center), rn);
@@ -80,6 +90,10 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
       n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
       sf.material = q->material;
+      if (q->flags & RC_QUADRIC_UNBOUNDED) {
+        sf.uv_kind = RC_UV_PLANE;
+        sf.uv_at = REF(plane_uv)(q, sf.p);
+      }
     }
   } else {
     packed_triangle tri = sc->triangles[h->index];
@@ -211,15 +225,110 @@ bool REF(light_at)(packed_light light, rvec3 p, rvec3 origin, rvec3 *l, rvec3 *i
   return true;
 }
 
-rvec3 REF(light_contribution)(const ref_scene *sc, packed_material m, rvec3 n, rvec3 l, rvec3 v, real n_dot_l,
-                              rvec3 irradiance) {
-  return RV(mul)(irradiance, RV(add)(RV(scale)(rvec3_from(m.diffuse), n_dot_l),
+/* The shader's accessors of the texel array (rc_scene_access.glsl). */
+static packed_texture load_texture(const ref_scene *sc, uint32_t first) {
+  packed_texture t;
+  memcpy(&t, sc->texels[first], sizeof t);
+  return t;
+}
+
+static vec3 load_texel_rgb(const ref_scene *sc, uint32_t i) {
+  return (vec3){sc->texels[i][0], sc->texels[i][1], sc->texels[i][2]};
+}
+
+rvec3 REF(texel_at)(const ref_scene *sc, uint32_t first, packed_texture t, int x, int y) {
+  int w = (int)t.width;
+  int hh = (int)t.height;
+  if (t.flags & RC_TEXTURE_CLAMP) {
+    x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
+    y = y < 0 ? 0 : (y > hh - 1 ? hh - 1 : y);
+  } else {
+    x = ((x % w) + w) % w;
+    y = ((y % hh) + hh) % hh;
+  }
+  return rvec3_from(load_texel_rgb(sc, first + (uint32_t)RC_TEXELS_PER_TEXTURE_HEADER + (uint32_t)y * t.width + (uint32_t)x));
+}
+
+rvec3 REF(lerp_color)(rvec3 a, rvec3 b, real s) { return RV(add)(a, RV(scale)(RV(sub)(b, a), s)); }
+
+rvec3 REF(texture_color)(const ref_scene *sc, uint32_t first, real u, real v) {
+  packed_texture t = load_texture(sc, first);
+  real uu = u * (real)t.scale_u + (real)t.offset_u;
+  real vv = v * (real)t.scale_v + (real)t.offset_v;
+  if (t.flags & RC_TEXTURE_CLAMP) {
+    uu = uu < 0 ? 0 : (uu > 1 ? 1 : uu);
+    vv = vv < 0 ? 0 : (vv > 1 ? 1 : vv);
+  } else {
+    uu = uu - R_FLOOR(uu);
+    vv = vv - R_FLOOR(vv);
+  }
+  if (!(uu >= 0 && uu <= 1)) uu = 0;
+  if (!(vv >= 0 && vv <= 1)) vv = 0;
+  real x = uu * (real)t.width - (real)0.5;
+  real y = (1 - vv) * (real)t.height - (real)0.5;
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0)
+    return REF(texel_at)(sc, first, t, (int)R_FLOOR(x + (real)0.5), (int)R_FLOOR(y + (real)0.5));
+  real x0 = R_FLOOR(x);
+  real y0 = R_FLOOR(y);
+  real fx = x - x0;
+  real fy = y - y0;
+  int ix = (int)x0;
+  int iy = (int)y0;
+  rvec3 top = REF(lerp_color)(REF(texel_at)(sc, first, t, ix, iy), REF(texel_at)(sc, first, t, ix + 1, iy), fx);
+  rvec3 bottom =
+      REF(lerp_color)(REF(texel_at)(sc, first, t, ix, iy + 1), REF(texel_at)(sc, first, t, ix + 1, iy + 1), fx);
+  return REF(lerp_color)(top, bottom, fy);
+}
+
+real REF(atan2_poly)(real y, real x) {
+  real ax = R_ABS(x);
+  real ay = R_ABS(y);
+  real hi = rmax(ax, ay);
+  if (hi == 0) return 0;
+  real a = rmin(ax, ay) / hi;
+  real s = a * a;
+  real p = ((((((RL(0.0028662257) * s - RL(0.0161657367)) * s + RL(0.0429096138)) * s - RL(0.0752896400)) * s +
+              RL(0.1065626393)) * s - RL(0.1420889944)) * s + RL(0.1999355085)) * s - RL(0.3333314528);
+  real r = a + a * (s * p);
+  if (ay > ax) r = RL(1.5707963267948966) - r;
+  if (x < 0) r = RL(3.141592653589793) - r;
+  return (y < 0) ? -r : r;
+}
+
+void REF(surface_uv)(const ref_surface *sf, real *u, real *v) {
+  if (sf->uv_kind == RC_UV_SPHERE) {
+    rvec3 n = sf->uv_at;
+    real across = R_SQRT(n.x * n.x + n.z * n.z);
+    real uu = RL(0.5) + REF(atan2_poly)(n.x, n.z) * RL(0.15915494309189535);
+    real vv = RL(0.5) + REF(atan2_poly)(n.y, across) * RL(0.3183098861837907);
+    *u = uu;
+    *v = vv;
+  } else {
+    *u = sf->uv_at.x;
+    *v = sf->uv_at.y;
+  }
+}
+
+rvec3 REF(surface_texture)(const ref_scene *sc, packed_material m, const ref_surface *sf) {
+  if (m.texture == RC_NO_TEXTURE || sf->uv_kind == RC_UV_NONE) return RV(make)(1, 1, 1);
+  real u, v;
+  REF(surface_uv)(sf, &u, &v);
+  return REF(texture_color)(sc, m.texture, u, v);
+}
+
+rvec3 REF(light_contribution)(const ref_scene *sc, packed_material m, rvec3 kd, rvec3 n, rvec3 l, rvec3 v,
+                              real n_dot_l, rvec3 irradiance) {
+  return RV(mul)(irradiance, RV(add)(RV(scale)(kd, n_dot_l),
                                     RV(scale)(rvec3_from(m.specular), REF(specular_term)(sc, n, l, v, m.shininess))));
 }
 
 rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
   packed_material m = sc->materials[sf->material];
-  rvec3 color = RV(add)(RV(mul)(rvec3_from(m.ambient), rvec3_from(sc->frame->ambient_light)), rvec3_from(m.emission));
+  rvec3 tex = RV(make)(1, 1, 1);
+  if (m.texture != RC_NO_TEXTURE) tex = REF(surface_texture)(sc, m, sf);
+  rvec3 kd = RV(mul)(tex, rvec3_from(m.diffuse));
+  rvec3 color = RV(add)(RV(mul)(RV(mul)(tex, rvec3_from(m.ambient)), rvec3_from(sc->frame->ambient_light)),
+                        rvec3_from(m.emission));
   rvec3 v = RV(neg)(d);
   rvec3 origin = REF(spawn_origin)(sc, sf);
   ref_spawned_ray = true;
@@ -235,7 +344,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;
     }
-    color = RV(add)(color, REF(light_contribution)(sc, m, sf->n, l, v, n_dot_l, irradiance));
+    color = RV(add)(color, REF(light_contribution)(sc, m, kd, sf->n, l, v, n_dot_l, irradiance));
   }
   return color;
 }

@@ -2,6 +2,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 static const char *say(char *why, size_t cap, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static const char *say(char *why, size_t cap, const char *fmt, ...) {
@@ -74,6 +75,18 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
     one_sided += t->flags & RC_TRIANGLE_ONE_SIDED;
   }
   if (one_sided != p->one_sided_triangle_count) return say(why, cap, "the one-sided triangles are miscounted");
+  for (uint32_t i = 0; i < f->material_count; i++) {
+    uint32_t first = p->materials[i].texture;
+    if (first == RC_NO_TEXTURE) continue;
+    packed_texture h;
+    if (first > p->texel_count || p->texel_count - first < RC_TEXELS_PER_TEXTURE_HEADER)
+      return say(why, cap, "material %u's texture begins past the %u texels", i, p->texel_count);
+    memcpy(&h, &p->texels[4 * (size_t)first], sizeof h);
+    uint64_t end = (uint64_t)first + RC_TEXELS_PER_TEXTURE_HEADER + (uint64_t)h.width * h.height;
+    if (h.width < 1 || h.height < 1 || h.flags > (RC_TEXTURE_BILINEAR | RC_TEXTURE_CLAMP) || end > p->texel_count)
+      return say(why, cap, "material %u's texture (%u x %u, flags %u) does not fit the %u texels", i, h.width,
+                 h.height, h.flags, p->texel_count);
+  }
   for (uint32_t i = 0; i < f->light_count; i++)
     if (p->lights[i].type > RC_LIGHT_DIRECTIONAL) return say(why, cap, "light %u has an unknown type", i);
   uint32_t meshes = 0;

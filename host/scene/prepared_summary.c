@@ -92,7 +92,8 @@ void rc_summary_encode(rc_blob *b, const rc_scene *s, const rc_packed_scene *p, 
   put_f64(b, p->scale);
   const uint32_t sizes[] = {p->triangle_total,    p->transform_count,  p->normal_count,
                             p->one_sided_triangle_count, p->quadric_total, p->csg_program_length,
-                            p->mesh_operand_count, p->bvh_node_total,  p->bvh_prim_total};
+                            p->mesh_operand_count, p->bvh_node_total,  p->bvh_prim_total,
+                            p->texel_count,       p->texture_count};
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) put_u32(b, sizes[i]);
   put_u32(b, p->bvh);
   put_u32(b, tree->object_nodes);
@@ -271,7 +272,8 @@ static const char *decode_packed(reader *r, rc_packed_scene *p, rc_prepared_tree
   p->scale = get_f64(r);
   uint32_t *const sizes[] = {&p->triangle_total, &p->transform_count, &p->normal_count,
                              &p->one_sided_triangle_count, &p->quadric_total, &p->csg_program_length,
-                             &p->mesh_operand_count, &p->bvh_node_total, &p->bvh_prim_total};
+                             &p->mesh_operand_count, &p->bvh_node_total, &p->bvh_prim_total,
+                             &p->texel_count, &p->texture_count};
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) *sizes[i] = get_u32(r);
   uint32_t bvh = get_u32(r);
   tree->object_nodes = get_u32(r);

@@ -44,6 +44,11 @@ dvec3 rc_affine_point(const rc_affine *a, dvec3 p) {
 void rc_scene_free(rc_scene *scene) {
   for (size_t i = 0; i < scene->material_count; i++) free(scene->materials[i].name);
   free(scene->materials);
+  for (size_t i = 0; i < scene->texture_count; i++) {
+    free(scene->textures[i].path);
+    free(scene->textures[i].rgb);
+  }
+  free(scene->textures);
   free(scene->lights);
   free(scene->spheres);
   free(scene->triangles);

@@ -11,7 +11,21 @@ typedef struct rc_material_def {
   char *name;
   dvec3 ambient, diffuse, specular, mirror, emission;
   double shininess;
+  uint32_t texture; /* 1 + its index in rc_scene.textures; 0: none */
 } rc_material_def;
+
+/* A material's texture (JSON "texture", docs/scene-format.md "Textures"): the image file,
+ * read by the command once the scene is loaded (cli/textures.c: the scene stage reads no
+ * images), and how it is sampled (packed_texture). */
+#define RC_MAX_TEXTURE_SIDE 16384u
+typedef struct rc_texture_def {
+  char *path;            /* as opened: relative to the scene file's folder, joined */
+  bool bilinear, clamp;  /* texture_filter, texture_wrap */
+  double scale[2], offset[2];
+  char where[512];       /* "FILE:LINE:COL: error: materials.NAME.texture", for messages */
+  uint32_t width, height;
+  float *rgb;            /* width x height RGB, row 0 the image's top; NULL until read */
+} rc_texture_def;
 
 typedef struct rc_light_def {
   uint32_t type;    /* RC_LIGHT_* */
@@ -134,6 +148,8 @@ typedef struct rc_scene {
   rc_quality quality;
   rc_material_def *materials;
   size_t material_count;
+  rc_texture_def *textures;
+  size_t texture_count;
   rc_light_def *lights;
   size_t light_count;
   rc_sphere_def *spheres;

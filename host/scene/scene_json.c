@@ -13,6 +13,7 @@
 #include "scene/json_locate.h"
 #include "scene/scene.h"
 #include "scene/scene_json_mesh.h"
+#include "scene/scene_json_texture.h"
 #include "scene/scene_quadric.h"
 
 /* A colour that may also be written as one number for all three channels (mirror). */
@@ -121,7 +122,9 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
       return js_fail(c, "material defined twice");
     }
     RC_TRY(js_expect_object(c, m));
-    static const char *const allowed[] = {"ambient", "diffuse", "specular", "shininess", "mirror", "emission", NULL};
+    static const char *const allowed[] = {"ambient",        "diffuse",      "specular",      "shininess",
+                                          "mirror",         "emission",     "texture",       "texture_filter",
+                                          "texture_wrap",   "texture_scale", "texture_offset", NULL};
     RC_TRY(js_check_members(c, m, allowed));
     rc_material_def *d = &s->materials[s->material_count];
     d->name = strdup(m->string);
@@ -134,6 +137,7 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
     RC_TRY(js_get_number(c, m, "shininess", false, 1.0, 0.0, HUGE_VAL, &d->shininess));
     RC_TRY(get_color_or_scalar(c, m, "mirror", &d->mirror));
     RC_TRY(js_get_vec3(c, m, "emission", false, zero, 0.0, &d->emission));
+    RC_TRY(js_parse_texture(c, m, s, &d->texture));
     RC_TRY(js_note_origin(c, s, before, off, "materials", UINT32_MAX));
     js_pop(c);
   }

@@ -210,11 +210,17 @@ static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, pack
                      .hi = rcm_to_f(rcm_scale_d(q->hi, s))};
 }
 
+/* A plane has no clip box: `lo` holds its texture coordinates instead, (u, v) = (f.x, f.y)
+ * lo.z + (lo.x, lo.y) in scene units from the point the scene gave, along its frame's x
+ * and y axes (f: frame coordinates from the packed centre, rc_shade.glsl). The centre's
+ * offset is found in f64, so a texture stays put wherever the eye is. */
 static void pack_plane(const rc_packed_scene *p, const rc_scene *s, const rc_quadric_def *q, packed_quadric *g) {
   rc_quadric_def moved = *q;
   moved.center = plane_point_nearest_eye(s, q);
   pack_quadric(p, &moved, g);
   g->flags |= RC_QUADRIC_UNBOUNDED;
+  dvec3 shift = rcm_sub_d(moved.center, q->center);
+  g->lo = (vec3){(float)rcm_dot_d(shift, q->axis[0]), (float)rcm_dot_d(shift, q->axis[1]), (float)(1.0 / p->scale)};
 }
 
 /* The frame: the quality settings, the image's sampling, the counts. */
@@ -272,7 +278,13 @@ static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   p->quadric_total = (uint32_t)(standalone + s->csg_leaf_count);
   for (size_t i = 0; i < s->csg_leaf_count; i++) p->mesh_operand_count += s->csg_leaves[i].mesh;
   p->mesh_operands = rc_alloc(p->mesh_operand_count + 1, sizeof *p->mesh_operands, "packed mesh operands");
-  return p->mesh_operands && p->spheres && p->triangles && p->materials && p->lights && p->transforms &&
+  size_t texels = 0;
+  for (size_t i = 0; i < s->texture_count; i++)
+    texels += RC_TEXELS_PER_TEXTURE_HEADER + (size_t)s->textures[i].width * s->textures[i].height;
+  p->texel_count = (uint32_t)texels;
+  p->texture_count = (uint32_t)s->texture_count;
+  p->texels = rc_alloc(4 * (texels + 1), sizeof *p->texels, "packed textures");
+  return p->texels && p->mesh_operands && p->spheres && p->triangles && p->materials && p->lights && p->transforms &&
          p->normals && p->quadrics && p->csg && p->csg_program;
 }
 
@@ -328,9 +340,31 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
   }
 }
 
-static void pack_materials(const rc_scene *s, rc_packed_scene *p) {
+/* Each texture's header and texels (packed_texture), in the scene's order; *first gets
+ * where each begins. The images were read by the command (rc_texture_def.rgb). */
+static void pack_textures(const rc_scene *s, rc_packed_scene *p, uint32_t *first) {
+  uint32_t at = 0;
+  for (size_t i = 0; i < s->texture_count; i++) {
+    const rc_texture_def *t = &s->textures[i];
+    RC_ASSERT(t->rgb != NULL);
+    first[i] = at;
+    packed_texture h = {.width = t->width, .height = t->height,
+                        .flags = (t->bilinear ? RC_TEXTURE_BILINEAR : 0u) | (t->clamp ? RC_TEXTURE_CLAMP : 0u),
+                        .scale_u = (float)t->scale[0], .scale_v = (float)t->scale[1],
+                        .offset_u = (float)t->offset[0], .offset_v = (float)t->offset[1]};
+    memcpy(&p->texels[4 * (size_t)at], &h, sizeof h);
+    at += RC_TEXELS_PER_TEXTURE_HEADER;
+    for (size_t k = 0; k < (size_t)t->width * t->height; k++, at++) {
+      const float rgba[4] = {t->rgb[3 * k], t->rgb[3 * k + 1], t->rgb[3 * k + 2], 1.0f};
+      memcpy(&p->texels[4 * (size_t)at], rgba, sizeof rgba);
+    }
+  }
+}
+
+static void pack_materials(const rc_scene *s, rc_packed_scene *p, const uint32_t *texture_first) {
   for (size_t i = 0; i < s->material_count; i++) {
     const rc_material_def *m = &s->materials[i];
+    p->materials[i].texture = m->texture ? texture_first[m->texture - 1] : RC_NO_TEXTURE;
     p->materials[i].ambient = rcm_to_f(m->ambient);
     p->materials[i].diffuse = rcm_to_f(m->diffuse);
     p->materials[i].specular = rcm_to_f(m->specular);
@@ -404,7 +438,14 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
   rc_status st = pack_spheres(s, p);
   if (st == RC_OK) {
     pack_triangles(s, p);
-    pack_materials(s, p);
+    uint32_t *first = rc_alloc(s->texture_count + 1, sizeof *first, "texture offsets");
+    if (!first) {
+      rc_packed_scene_free(p);
+      return RC_ERR_OUT_OF_MEMORY;
+    }
+    pack_textures(s, p, first);
+    pack_materials(s, p, first);
+    free(first);
     pack_lights(s, p);
     pack_quadrics_and_composites(s, p);
     st = check_f32_range(s, p);
@@ -484,6 +525,7 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->csg);
   free(p->csg_program);
   free(p->mesh_operands);
+  free(p->texels);
   memset(p, 0, sizeof *p);
 }
 
@@ -506,7 +548,8 @@ static void hash_parts(const rc_packed_scene *p, hash_part parts[HASH_PARTS]) {
                                      {p->normals, p->normal_count * sizeof *p->normals},
                                      {p->quadrics, p->quadric_total * sizeof *p->quadrics},
                                      {p->csg, f->csg_count * sizeof *p->csg},
-                                     {p->csg_program, p->csg_program_length * sizeof *p->csg_program}};
+                                     {p->csg_program, p->csg_program_length * sizeof *p->csg_program},
+                                     {p->texels, 4 * (size_t)p->texel_count * sizeof *p->texels}};
   memcpy(parts, all, sizeof all);
 }
 

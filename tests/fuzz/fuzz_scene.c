@@ -34,16 +34,24 @@ static uint32_t read_packed(const rc_packed_scene *p) {
   const packed_frame *f = &p->frame;
   for (uint32_t i = 0; i < f->sphere_count; i++) {
     const packed_sphere *s = &p->spheres[i];
-    sink += p->materials[s->material].pad0 != 0;
+    sink += p->materials[s->material].texture != 0;
     if (s->transform != RC_NO_TRANSFORM) sink += p->transforms[s->transform].row0.w != 0;
   }
   for (uint32_t i = 0; i < p->triangle_total; i++) {
     const packed_triangle *t = &p->triangles[i];
-    sink += p->materials[t->material].pad0 != 0;
+    sink += p->materials[t->material].texture != 0;
     if (t->normals != RC_NO_NORMALS) sink += p->normals[t->normals].pad0 != 0;
   }
   for (uint32_t i = 0; i < p->quadric_total; i++) sink += p->materials[p->quadrics[i].material].pad1 != 0;
   for (uint32_t i = 0; i < f->light_count; i++) sink += p->lights[i].type;
+  for (uint32_t i = 0; i < f->material_count; i++) {
+    uint32_t first = p->materials[i].texture;
+    if (first == RC_NO_TEXTURE) continue;
+    packed_texture h;
+    memcpy(&h, &p->texels[4 * (size_t)first], sizeof h);
+    /* The texture's last texel: the one past it is past the array if the checks fail. */
+    sink += p->texels[4 * ((size_t)first + RC_TEXELS_PER_TEXTURE_HEADER + (size_t)h.width * h.height - 1)];
+  }
   for (uint32_t i = 0; i < f->csg_count; i++)
     for (uint32_t k = 0; k < p->csg[i].count; k++) {
       uint32_t ins = p->csg_program[p->csg[i].first + k];

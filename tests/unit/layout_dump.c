@@ -85,7 +85,7 @@ int main(void) {
   OFF("scene_materials.ambient", packed_material, ambient);
   OFF("scene_materials.shininess", packed_material, shininess);
   OFF("scene_materials.diffuse", packed_material, diffuse);
-  OFF("scene_materials.pad0", packed_material, pad0);
+  OFF("scene_materials.texture", packed_material, texture);
   OFF("scene_materials.specular", packed_material, specular);
   OFF("scene_materials.pad1", packed_material, pad1);
   OFF("scene_materials.mirror", packed_material, mirror);
@@ -166,6 +166,7 @@ int main(void) {
   printf("scene_quadrics binding %d\n", RC_BINDING_QUADRICS);
   printf("scene_csg binding %d\n", RC_BINDING_CSG);
   printf("scene_csg_program binding %d\n", RC_BINDING_CSG_PROGRAM);
+  printf("scene_texels binding %d\n", RC_BINDING_TEXELS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
   printf("Aov binding %d\n", RC_BINDING_AOV);

@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# uv textures (docs/scene-format.md, "Textures"), closed forms on both backends and in
+# both precisions:
+# - a constant texture (one texel of exactly representable colour) gives exactly the
+#   untextured render with diffuse and ambient times that colour, nearest and bilinear,
+#   on a sphere, a transformed sphere and a plane;
+# - a two-texel texture's edge lands where the convention says: a sphere seen from +z
+#   (parallel projection) is the left texel for x < 0 and the right one for x > 0 (u =
+#   1/2 + atan2(x, z) / 2 pi), the top texel for y > 0 and the bottom one for y < 0;
+# - a plane's texture stays where the scene puts it: the same floor seen from 10 and from
+#   1000 units above, and with its point moved by (0.3, 0, 0) against a texture offset of
+#   0.3, gives the same pixels;
+# - repeat against clamp, and the scale, at a pixel whose texel is known.
+# Usage: test_textures.sh VKRAYCAST WORKDIR
+set -uo pipefail
+bin=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+source "$(dirname "$0")/../check.sh"
+command -v oiiotool >/dev/null || { echo "FAIL: oiiotool (openimageio-tools) is missing"; exit 1; }
+
+# pixel IMAGE X Y: "r g b" of one pixel of a float image
+pixel() { oiiotool --dumpdata "$1" 2>/dev/null | sed -n "s/^ *Pixel ($2, $3): *//p"; }
+
+variants=("--backend gpu --precision f32" "--backend gpu --precision f64" "--backend cpu --precision f64"
+  "--backend cpu --precision f32")
+[[ -z ${ASAN_OPTIONS:-} ]] || variants=("--backend gpu --precision f32" "--backend cpu --precision f64")
+
+# 1. A constant texture.
+oiiotool --create 1x1 3 --fill:color=0.5,0.25,1 0,0,1,1 -d float -o "$work/constant.exr"
+scene() { # FILE MATERIALS: a sphere, an ellipsoid and a floor plane, each with its material
+  cat >"$1" <<EOF
+{ "image": { "width": 48, "height": 32 },
+  "camera": { "eye": [0, 1.5, 6], "look_at": [0, 0.6, 0], "fov_y_deg": 40 },
+  "materials": { $2 },
+  "lights": [ { "type": "point", "position": [3, 5, 4], "intensity": [30, 30, 30] } ],
+  "objects": [
+    { "type": "sphere", "center": [-1, 0.8, 0], "radius": 0.8, "material": "a" },
+    { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "b",
+      "transform": { "translate": [1.2, 0.7, 0], "rotate_deg": [20, 30, 0], "scale": [0.5, 0.7, 0.4] } },
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "c" } ] }
+EOF
+}
+for filter in nearest bilinear; do
+  tex="\"texture\": \"constant.exr\", \"texture_filter\": \"$filter\", \"texture_scale\": [3, 2]"
+  scene "$work/textured.json" "\"a\": { \"ambient\": [0.2, 0.6, 0.4], \"diffuse\": [0.8, 0.6, 0.3], $tex },
+    \"b\": { \"ambient\": [0.1, 0.1, 0.1], \"diffuse\": [0.9, 0.9, 0.9], \"specular\": [0.5, 0.5, 0.5], $tex },
+    \"c\": { \"ambient\": [0.3, 0.3, 0.3], \"diffuse\": [0.7, 0.7, 0.7], $tex }"
+  scene "$work/plain.json" "\"a\": { \"ambient\": [0.1, 0.15, 0.4], \"diffuse\": [0.4, 0.15, 0.3] },
+    \"b\": { \"ambient\": [0.05, 0.025, 0.1], \"diffuse\": [0.45, 0.225, 0.9], \"specular\": [0.5, 0.5, 0.5] },
+    \"c\": { \"ambient\": [0.15, 0.075, 0.3], \"diffuse\": [0.35, 0.175, 0.7] }"
+  for v in "${variants[@]}"; do
+    why=ok
+    # shellcheck disable=SC2086
+    "$bin" render "$work/textured.json" $v --quiet -o "$work/t.exr" || because "the textured render failed"
+    # shellcheck disable=SC2086
+    "$bin" render "$work/plain.json" $v --quiet -o "$work/p.exr" || because "the plain render failed"
+    "$bin" compare "$work/t.exr" "$work/p.exr" --fail 0 --hardfail 0 >"$work/cmp" 2>&1 ||
+      because "not the same pixels: $(grep -m1 'max error' "$work/cmp")"
+    check "constant texture, $filter, $v: exactly the colour times the material" "$why"
+  done
+done
+
+# 2. Stripes on a sphere seen from +z through a parallel camera: pixel column 31 | 32 is
+# x = 0, row 15 | 16 is y = 0 (64 x 32 pixels over a 4 x 2 window; the sphere, of radius
+# 0.9, spans columns 18-45 and rows 2-29).
+oiiotool --create 2x1 3 --fill:color=1,0,0 0,0,1,1 --fill:color=0,1,0 1,0,2,1 -d float -o "$work/across.exr"
+oiiotool --create 1x2 3 --fill:color=0,0,1 0,0,1,1 --fill:color=1,1,0 0,1,1,2 -d float -o "$work/updown.exr"
+for tex in across updown; do
+  cat >"$work/$tex.json" <<EOF
+{ "image": { "width": 64, "height": 32 },
+  "camera": { "projection": "parallel", "eye": [0, 0, 5], "look_at": [0, 0, 0], "view_height": 2 },
+  "ambient_light": [1, 1, 1],
+  "materials": { "m": { "ambient": [1, 1, 1], "texture": "$tex.exr", "texture_filter": "nearest" } },
+  "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.9, "material": "m" } ] }
+EOF
+done
+for v in "${variants[@]}"; do
+  why=ok
+  # shellcheck disable=SC2086
+  "$bin" render "$work/across.json" $v --quiet -o "$work/across-out.exr" && "$bin" render "$work/updown.json" $v \
+    --quiet -o "$work/updown-out.exr" || because "a render failed"
+  for x in 20 26 31; do [[ $(pixel "$work/across-out.exr" $x 16) == "1.0"* ]] || because "pixel ($x, 16) is not the left texel: $(pixel "$work/across-out.exr" $x 16)"; done
+  for x in 32 37 43; do [[ $(pixel "$work/across-out.exr" $x 16) == "0.0"*" 1.0"* ]] || because "pixel ($x, 16) is not the right texel: $(pixel "$work/across-out.exr" $x 16)"; done
+  for y in 3 10 15; do [[ $(pixel "$work/updown-out.exr" 32 $y) == "0.0"*"0.0"*"1.0"* ]] || because "pixel (32, $y) is not the top texel: $(pixel "$work/updown-out.exr" 32 $y)"; done
+  for y in 16 21 28; do [[ $(pixel "$work/updown-out.exr" 32 $y) == "1.0"*"1.0"*"0.0"* ]] || because "pixel (32, $y) is not the bottom texel: $(pixel "$work/updown-out.exr" 32 $y)"; done
+  check "stripe edges at x = 0 and y = 0, $v" "$why"
+done
+
+# 3. A floor seen straight down through a parallel camera, 32 x 32 pixels over 4 x 4 units:
+# a 2 x 2 checker, nearest, one repeat per 2 units (scale 0.5). Frame of the plane y = 0: u
+# along +x, v along -z (docs/scene-format.md).
+oiiotool --create 2x2 3 --fill:color=1,0,0 0,0,1,1 --fill:color=0,1,0 1,0,2,1 --fill:color=0,0,1 0,1,1,2 \
+  --fill:color=1,1,1 1,1,2,2 -d float -o "$work/checker.exr"
+floor() { # FILE EYE_HEIGHT POINT_X OFFSET_U WRAP SCALE
+  cat >"$1" <<EOF
+{ "image": { "width": 32, "height": 32 },
+  "camera": { "projection": "parallel", "eye": [0, $2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "view_height": 4 },
+  "ambient_light": [1, 1, 1],
+  "materials": { "m": { "ambient": [1, 1, 1], "texture": "checker.exr", "texture_filter": "nearest",
+                        "texture_scale": [$6, $6], "texture_offset": [$4, 0], "texture_wrap": "$5" } },
+  "objects": [ { "type": "plane", "point": [$3, 0, 0], "normal": [0, 1, 0], "material": "m" } ] }
+EOF
+}
+floor "$work/f10.json" 10 0 0 repeat 0.5
+floor "$work/f1000.json" 1000 0 0 repeat 0.5
+floor "$work/fmoved.json" 10 0.3 0.15 repeat 0.5
+floor "$work/fclamp.json" 10 0 0 clamp 0.125
+for v in "${variants[@]}"; do
+  why=ok
+  for f in f10 f1000 fmoved fclamp; do
+    # shellcheck disable=SC2086
+    "$bin" render "$work/$f.json" $v --quiet -o "$work/$f.exr" || because "$f failed"
+  done
+  "$bin" compare "$work/f10.exr" "$work/f1000.exr" --fail 0 --hardfail 0 >/dev/null 2>&1 ||
+    because "the floor moved with the eye (10 against 1000 above it)"
+  "$bin" compare "$work/f10.exr" "$work/fmoved.exr" --fail 0 --hardfail 0 >/dev/null 2>&1 ||
+    because "the point moved by 0.3 with an offset of 0.3 x 0.5 does not give the same floor"
+  # The image's right is +x and its top -z. Pixel (i, j) is world x = (i + 0.5) / 8 - 2,
+  # z = (j + 0.5) / 8 - 2, so u = x, v = -z; at scale 0.5 and repeated: pixel (4, 4) is
+  # (0.28, 0.72), the left column and top row: red; (12, 4) is (0.78, 0.72): green;
+  # (4, 12) is (0.28, 0.22): blue; (12, 12) is (0.78, 0.22): white.
+  for want in "4 4 1.0 0.0 0.0" "12 4 0.0 1.0 0.0" "4 12 0.0 0.0 1.0" "12 12 1.0 1.0 1.0"; do
+    read -r i j r g b <<<"$want"
+    [[ $(pixel "$work/f10.exr" "$i" "$j") == "$r"*" $g"*" $b"* ]] || because "pixel ($i, $j) is not ($r, $g, $b): $(pixel "$work/f10.exr" "$i" "$j")"
+  done
+  # Clamped at scale 1/8: pixel (4, 4) is (-0.18, 0.18) -> (0, 0.18): the left column,
+  # bottom row: blue.
+  [[ $(pixel "$work/fclamp.exr" 4 4) == "0.0"*"0.0"*"1.0"* ]] || because "clamped pixel (4, 4) is not blue: $(pixel "$work/fclamp.exr" 4 4)"
+  check "a plane's texture stays put; repeat, clamp and scale at known texels, $v" "$why"
+done
+finish
