@@ -37,7 +37,16 @@ static bool prepare(const char *name, prepared_case *c) {
   char path[512];
   snprintf(path, sizeof path, "%s/%s", scenes_dir, name);
   memset(c, 0, sizeof *c);
-  if (rc_scene_load(path, NULL, &c->scene) != RC_OK || rc_scene_pack(&c->scene, &c->packed) != RC_OK) return false;
+  if (rc_scene_load(path, NULL, &c->scene) != RC_OK) return false;
+  /* The command reads the textures' images (cli/textures.c); here each is 2 x 2 texels. */
+  for (size_t i = 0; i < c->scene.texture_count; i++) {
+    rc_texture_def *t = &c->scene.textures[i];
+    t->width = t->height = 2;
+    t->rgb = calloc(12, sizeof *t->rgb);
+    for (int k = 0; t->rgb && k < 12; k++) t->rgb[k] = 0.25f * (float)(k % 4);
+    if (!t->rgb) return false;
+  }
+  if (rc_scene_pack(&c->scene, &c->packed) != RC_OK) return false;
   rc_bvh_stats bvh;
   uint64_t digest = 0;
   if (rc_bvh_build(&c->packed, true, &bvh) != RC_OK ||
@@ -108,6 +117,7 @@ static void check_round_trip(const char *name) {
 TEST(showcase_round_trips) { check_round_trip("showcase.json"); }
 TEST(composites_with_mesh_operands_round_trip) { check_round_trip("csg_meshes.json"); }
 TEST(smooth_mesh_round_trips) { check_round_trip("mesh.json"); }
+TEST(textures_round_trip) { check_round_trip("earth.json"); }
 
 static unsigned char *section(unsigned char *f, int s) { return f + *offset_of(f, s); }
 
@@ -193,6 +203,30 @@ TEST(composite_inconsistencies_are_refused) {
   release(&c);
 }
 
+static void texture_past_texels(unsigned char *f) { ((packed_material *)section(f, MATERIALS))[0].texture = 1u << 20; }
+static void texture_wider_than_texels(unsigned char *f) {
+  packed_material *m = (packed_material *)section(f, MATERIALS);
+  ((packed_texture *)(section(f, TEXELS) + 16 * (size_t)m[0].texture))->width = 1u << 16;
+}
+static void texture_flags_unknown(unsigned char *f) {
+  packed_material *m = (packed_material *)section(f, MATERIALS);
+  ((uint32_t *)section(f, TEXELS))[4 * m[0].texture + 2] = 8;
+}
+
+TEST(texture_inconsistencies_are_refused) {
+  prepared_case c;
+  CHECK(prepare("earth.json", &c));
+  if (!c.file) return;
+  CHECK(c.packed.texture_count > 0 && c.packed.materials[0].texture != RC_NO_TEXTURE);
+  void (*const mutations[])(unsigned char *) = {texture_past_texels, texture_wider_than_texels, texture_flags_unknown};
+  for (size_t i = 0; i < sizeof mutations / sizeof *mutations; i++) {
+    rc_status st = decode_mutated(&c, mutations[i]);
+    if (st != RC_ERR_INPUT) printf("  mutation %zu: status %d\n", i, (int)st);
+    CHECK_EQ_INT(st, RC_ERR_INPUT);
+  }
+  release(&c);
+}
+
 TEST(mesh_normals_past_end_are_refused) {
   prepared_case c;
   CHECK(prepare("mesh.json", &c));
@@ -231,8 +265,10 @@ int main(int argc, char **argv) {
   RUN(showcase_round_trips);
   RUN(composites_with_mesh_operands_round_trip);
   RUN(smooth_mesh_round_trips);
+  RUN(textures_round_trip);
   RUN(showcase_inconsistencies_are_refused);
   RUN(composite_inconsistencies_are_refused);
+  RUN(texture_inconsistencies_are_refused);
   RUN(mesh_normals_past_end_are_refused);
   RUN(any_changed_byte_is_refused_without_reseal);
   TEST_MAIN_END
