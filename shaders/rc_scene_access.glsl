@@ -161,6 +161,7 @@ packed_texture load_texture(uint first) {
   t.width = a.x;
   t.height = a.y;
   t.flags = a.z;
+  t.texels = a.w;
   t.scale_u = uintBitsToFloat(b.x);
   t.scale_v = uintBitsToFloat(b.y);
   t.offset_u = uintBitsToFloat(b.z);

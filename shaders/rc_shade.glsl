@@ -258,9 +258,8 @@ bool light_at(packed_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 
   return true;
 }
 
-// Texel (x, y) of the texture at `first`, the column and row wrapped (repeat) or clamped
-// onto the image.
-rvec3 texel_at(uint first, packed_texture t, int x, int y) {
+// Texel (x, y) of texture t's image, the column and row wrapped (repeat) or clamped onto it.
+rvec3 texel_at(packed_texture t, int x, int y) {
   int w = int(t.width);
   int hh = int(t.height);
   if ((t.flags & RC_TEXTURE_CLAMP) != 0u) {
@@ -270,7 +269,7 @@ rvec3 texel_at(uint first, packed_texture t, int x, int y) {
     x = ((x % w) + w) % w;
     y = ((y % hh) + hh) % hh;
   }
-  return rvec3(load_texel_rgb(first + uint(RC_TEXELS_PER_TEXTURE_HEADER) + uint(y) * t.width + uint(x)));
+  return rvec3(load_texel_rgb(t.texels + uint(y) * t.width + uint(x)));
 }
 
 // a + (b - a) s: exactly a where b = a, so a constant texture gives exactly its colour.
@@ -298,15 +297,15 @@ rvec3 texture_color(uint first, real u, real v) {
   if (!(vv >= 0.0 && vv <= 1.0)) vv = 0.0;
   precise real x = uu * real(t.width) - 0.5;
   precise real y = (1.0 - vv) * real(t.height) - 0.5;
-  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u) return texel_at(first, t, int(floor(x + 0.5)), int(floor(y + 0.5)));
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u) return texel_at(t, int(floor(x + 0.5)), int(floor(y + 0.5)));
   real x0 = floor(x);
   real y0 = floor(y);
   precise real fx = x - x0;
   precise real fy = y - y0;
   int ix = int(x0);
   int iy = int(y0);
-  rvec3 top = lerp_color(texel_at(first, t, ix, iy), texel_at(first, t, ix + 1, iy), fx);
-  rvec3 bottom = lerp_color(texel_at(first, t, ix, iy + 1), texel_at(first, t, ix + 1, iy + 1), fx);
+  rvec3 top = lerp_color(texel_at(t, ix, iy), texel_at(t, ix + 1, iy), fx);
+  rvec3 bottom = lerp_color(texel_at(t, ix, iy + 1), texel_at(t, ix + 1, iy + 1), fx);
   return lerp_color(top, bottom, fy);
 }
 

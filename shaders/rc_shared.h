@@ -321,8 +321,9 @@ struct packed_material {
   vec3 emission; float pad3; /* added unshadowed, like the ambient term */
 };
 
-/* A texture in the texel array (RC_BINDING_TEXELS): this header (2 texels), then its
- * width x height texels, row 0 the image's top row, each RGBA f32 (A unused). The colour
+/* A texture in the texel array (RC_BINDING_TEXELS): this header (2 texels), and its
+ * image: width x height texels from `texels` on, row 0 the image's top row, each RGBA f32
+ * (A unused); materials that name one file share its image. The colour
  * at surface coordinates (u, v) is the image's at (u', v') = (u, v) * scale + offset, with
  * u' across the image from its left edge and v' up from its bottom edge, each texel a unit
  * square (docs/scene-format.md, "Textures"); nearest or bilinear, repeated or clamped at
@@ -336,7 +337,7 @@ struct packed_material {
 #define RC_TEXTURE_CLAMP 2u
 #define RC_TEXELS_PER_TEXTURE_HEADER 2
 struct packed_texture {
-  uint width; uint height; uint flags; uint pad0;
+  uint width; uint height; uint flags; uint texels;
   float scale_u; float scale_v; float offset_u; float offset_v;
 };
 
@@ -465,6 +466,7 @@ RC_ASSERT_LAYOUT(packed_material, ambient, 0);   RC_ASSERT_LAYOUT(packed_materia
 RC_ASSERT_LAYOUT(packed_material, diffuse, 16);  RC_ASSERT_LAYOUT(packed_material, texture, 28);
 RC_ASSERT_LAYOUT(packed_material, specular, 32);
 RC_ASSERT_LAYOUT(packed_texture, width, 0);    RC_ASSERT_LAYOUT(packed_texture, flags, 8);
+RC_ASSERT_LAYOUT(packed_texture, texels, 12);
 RC_ASSERT_LAYOUT(packed_texture, scale_u, 16); RC_ASSERT_LAYOUT(packed_texture, offset_v, 28);
 RC_ASSERT_SIZE(packed_texture, 16 * RC_TEXELS_PER_TEXTURE_HEADER);
 RC_ASSERT_LAYOUT(packed_material, mirror, 48);   RC_ASSERT_LAYOUT(packed_material, emission, 64);

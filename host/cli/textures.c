@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "image/image_io.h"
 
@@ -56,6 +57,17 @@ static rc_status read_one(rc_texture_def *t, size_t *total) {
 
 rc_status rc_scene_read_textures(rc_scene *scene) {
   size_t total = 0;
-  for (size_t i = 0; i < scene->texture_count; i++) RC_TRY(read_one(&scene->textures[i], &total));
+  for (size_t i = 0; i < scene->texture_count; i++) {
+    rc_texture_def *t = &scene->textures[i];
+    /* A file several materials name is read, and packed, once. */
+    t->image = (uint32_t)i;
+    for (size_t k = 0; k < i && t->image == i; k++)
+      if (strcmp(scene->textures[k].path, t->path) == 0) t->image = (uint32_t)k;
+    if (t->image != i) {
+      t->width = scene->textures[t->image].width, t->height = scene->textures[t->image].height;
+      continue;
+    }
+    RC_TRY(read_one(t, &total));
+  }
   return RC_OK;
 }

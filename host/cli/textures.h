@@ -7,7 +7,7 @@
 #include "scene/scene.h"
 
 /* Each texture's image as linear RGB floats, as stored (an 8-bit image's level / 255;
- * gray is repeated, alpha dropped). Refused, naming the scene's line, the field and the
+ * gray is repeated, alpha dropped), each file once (rc_texture_def.image). Refused, naming the scene's line, the field and the
  * file (exit status 2): an image that cannot be read, one wider or taller than
  * RC_MAX_TEXTURE_SIDE, textures of more than RC_MAX_TEXELS texels in all, and a texel
  * that is negative, NaN or infinite. */

@@ -236,7 +236,7 @@ static vec3 load_texel_rgb(const ref_scene *sc, uint32_t i) {
   return (vec3){sc->texels[i][0], sc->texels[i][1], sc->texels[i][2]};
 }
 
-rvec3 REF(texel_at)(const ref_scene *sc, uint32_t first, packed_texture t, int x, int y) {
+rvec3 REF(texel_at)(const ref_scene *sc, packed_texture t, int x, int y) {
   int w = (int)t.width;
   int hh = (int)t.height;
   if (t.flags & RC_TEXTURE_CLAMP) {
@@ -246,7 +246,7 @@ rvec3 REF(texel_at)(const ref_scene *sc, uint32_t first, packed_texture t, int x
     x = ((x % w) + w) % w;
     y = ((y % hh) + hh) % hh;
   }
-  return rvec3_from(load_texel_rgb(sc, first + (uint32_t)RC_TEXELS_PER_TEXTURE_HEADER + (uint32_t)y * t.width + (uint32_t)x));
+  return rvec3_from(load_texel_rgb(sc, t.texels + (uint32_t)y * t.width + (uint32_t)x));
 }
 
 rvec3 REF(lerp_color)(rvec3 a, rvec3 b, real s) { return RV(add)(a, RV(scale)(RV(sub)(b, a), s)); }
@@ -267,16 +267,16 @@ rvec3 REF(texture_color)(const ref_scene *sc, uint32_t first, real u, real v) {
   real x = uu * (real)t.width - (real)0.5;
   real y = (1 - vv) * (real)t.height - (real)0.5;
   if ((t.flags & RC_TEXTURE_BILINEAR) == 0)
-    return REF(texel_at)(sc, first, t, (int)R_FLOOR(x + (real)0.5), (int)R_FLOOR(y + (real)0.5));
+    return REF(texel_at)(sc, t, (int)R_FLOOR(x + (real)0.5), (int)R_FLOOR(y + (real)0.5));
   real x0 = R_FLOOR(x);
   real y0 = R_FLOOR(y);
   real fx = x - x0;
   real fy = y - y0;
   int ix = (int)x0;
   int iy = (int)y0;
-  rvec3 top = REF(lerp_color)(REF(texel_at)(sc, first, t, ix, iy), REF(texel_at)(sc, first, t, ix + 1, iy), fx);
+  rvec3 top = REF(lerp_color)(REF(texel_at)(sc, t, ix, iy), REF(texel_at)(sc, t, ix + 1, iy), fx);
   rvec3 bottom =
-      REF(lerp_color)(REF(texel_at)(sc, first, t, ix, iy + 1), REF(texel_at)(sc, first, t, ix + 1, iy + 1), fx);
+      REF(lerp_color)(REF(texel_at)(sc, t, ix, iy + 1), REF(texel_at)(sc, t, ix + 1, iy + 1), fx);
   return REF(lerp_color)(top, bottom, fy);
 }
 

@@ -36,7 +36,7 @@ extern _Thread_local packed_aov ref_aov_record;
   R ref_t_min_end_##S(const ref_scene *sc, R t_max);                                            \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
   bool ref_light_at_##S(packed_light light, V p, V origin, V *l, V *irradiance, V *to_light, R *shadow_t_max); \
-  V ref_texel_at_##S(const ref_scene *sc, uint32_t first, packed_texture t, int x, int y);   \
+  V ref_texel_at_##S(const ref_scene *sc, packed_texture t, int x, int y);                   \
   V ref_lerp_color_##S(V a, V b, R s);                                                          \
   V ref_texture_color_##S(const ref_scene *sc, uint32_t first, R u, R v);                       \
   R ref_atan2_poly_##S(R y, R x);                                                               \

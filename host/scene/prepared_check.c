@@ -82,7 +82,7 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
     if (first > p->texel_count || p->texel_count - first < RC_TEXELS_PER_TEXTURE_HEADER)
       return say(why, cap, "material %u's texture begins past the %u texels", i, p->texel_count);
     memcpy(&h, &p->texels[4 * (size_t)first], sizeof h);
-    uint64_t end = (uint64_t)first + RC_TEXELS_PER_TEXTURE_HEADER + (uint64_t)h.width * h.height;
+    uint64_t end = (uint64_t)h.texels + (uint64_t)h.width * h.height;
     if (h.width < 1 || h.height < 1 || h.flags > (RC_TEXTURE_BILINEAR | RC_TEXTURE_CLAMP) || end > p->texel_count)
       return say(why, cap, "material %u's texture (%u x %u, flags %u) does not fit the %u texels", i, h.width,
                  h.height, h.flags, p->texel_count);

@@ -24,7 +24,10 @@ typedef struct rc_texture_def {
   double scale[2], offset[2];
   char where[512];       /* "FILE:LINE:COL: error: materials.NAME.texture", for messages */
   uint32_t width, height;
-  float *rgb;            /* width x height RGB, row 0 the image's top; NULL until read */
+  /* width x height RGB, row 0 the image's top; NULL until read, and for a texture whose
+   * file an earlier one named: `image` is that one's index (else its own). */
+  float *rgb;
+  uint32_t image;
 } rc_texture_def;
 
 typedef struct rc_light_def {

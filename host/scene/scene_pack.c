@@ -280,7 +280,8 @@ static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   p->mesh_operands = rc_alloc(p->mesh_operand_count + 1, sizeof *p->mesh_operands, "packed mesh operands");
   size_t texels = 0;
   for (size_t i = 0; i < s->texture_count; i++)
-    texels += RC_TEXELS_PER_TEXTURE_HEADER + (size_t)s->textures[i].width * s->textures[i].height;
+    texels += RC_TEXELS_PER_TEXTURE_HEADER +
+              (s->textures[i].image == i ? (size_t)s->textures[i].width * s->textures[i].height : 0);
   p->texel_count = (uint32_t)texels;
   p->texture_count = (uint32_t)s->texture_count;
   p->texels = rc_alloc(4 * (texels + 1), sizeof *p->texels, "packed textures");
@@ -340,20 +341,29 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
   }
 }
 
-/* Each texture's header and texels (packed_texture), in the scene's order; *first gets
- * where each begins. The images were read by the command (rc_texture_def.rgb). */
+/* Each texture's header (packed_texture), then its image unless an earlier texture named
+ * the same file (rc_texture_def.image: the image is shared), in the scene's order; *first
+ * gets where each header is. The images were read by the command (cli/textures.c). */
 static void pack_textures(const rc_scene *s, rc_packed_scene *p, uint32_t *first) {
   uint32_t at = 0;
   for (size_t i = 0; i < s->texture_count; i++) {
     const rc_texture_def *t = &s->textures[i];
-    RC_ASSERT(t->rgb != NULL);
     first[i] = at;
+    at += RC_TEXELS_PER_TEXTURE_HEADER;
+    /* An image shared with an earlier texture: that one's header says where it lies. */
     packed_texture h = {.width = t->width, .height = t->height,
                         .flags = (t->bilinear ? RC_TEXTURE_BILINEAR : 0u) | (t->clamp ? RC_TEXTURE_CLAMP : 0u),
+                        .texels = at,
                         .scale_u = (float)t->scale[0], .scale_v = (float)t->scale[1],
                         .offset_u = (float)t->offset[0], .offset_v = (float)t->offset[1]};
-    memcpy(&p->texels[4 * (size_t)at], &h, sizeof h);
-    at += RC_TEXELS_PER_TEXTURE_HEADER;
+    if (t->image != i) {
+      packed_texture shared;
+      memcpy(&shared, &p->texels[4 * (size_t)first[t->image]], sizeof shared);
+      h.texels = shared.texels;
+    }
+    memcpy(&p->texels[4 * (size_t)first[i]], &h, sizeof h);
+    if (t->image != i) continue;
+    RC_ASSERT(t->rgb != NULL);
     for (size_t k = 0; k < (size_t)t->width * t->height; k++, at++) {
       const float rgba[4] = {t->rgb[3 * k], t->rgb[3 * k + 1], t->rgb[3 * k + 2], 1.0f};
       memcpy(&p->texels[4 * (size_t)at], rgba, sizeof rgba);

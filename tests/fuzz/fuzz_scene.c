@@ -50,7 +50,7 @@ static uint32_t read_packed(const rc_packed_scene *p) {
     packed_texture h;
     memcpy(&h, &p->texels[4 * (size_t)first], sizeof h);
     /* The texture's last texel: the one past it is past the array if the checks fail. */
-    sink += p->texels[4 * ((size_t)first + RC_TEXELS_PER_TEXTURE_HEADER + (size_t)h.width * h.height - 1)];
+    sink += p->texels[4 * ((size_t)h.texels + (size_t)h.width * h.height - 1)];
   }
   for (uint32_t i = 0; i < f->csg_count; i++)
     for (uint32_t k = 0; k < p->csg[i].count; k++) {

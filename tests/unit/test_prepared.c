@@ -42,6 +42,7 @@ static bool prepare(const char *name, prepared_case *c) {
   for (size_t i = 0; i < c->scene.texture_count; i++) {
     rc_texture_def *t = &c->scene.textures[i];
     t->width = t->height = 2;
+    t->image = (uint32_t)i;
     t->rgb = calloc(12, sizeof *t->rgb);
     for (int k = 0; t->rgb && k < 12; k++) t->rgb[k] = 0.25f * (float)(k % 4);
     if (!t->rgb) return false;
