@@ -29,7 +29,8 @@ static const rc_option prepare_options[] = {
     {"--rescale", NULL, RC_OPT_CHOICE, ARG(rescale), "B", .choices = off_on,
      .help = "on (default) or off: as render's, and fixed in the file likewise"},
     {"--allow-outside-paths", NULL, RC_OPT_FLAG, ARG(allow_outside_paths),
-     .help = "let meshes (and the files a mesh names) lie outside the scene file's folder"},
+     .help = "let meshes (and the files a mesh names) and textures lie outside the\n"
+             "scene file's folder"},
     {"--quiet", "-q", RC_OPT_FLAG, ARG(quiet), .help = "no summary on stderr"},
 };
 #undef ARG

@@ -111,9 +111,9 @@ static const rc_option render_options[] = {
              "when SCENE or a file it reads changed since (SCENE FILE.vkrs alone\n"
              "renders the file without that check); the same image, bit for bit"},
     {"--allow-outside-paths", NULL, RC_OPT_FLAG, ARG(allow_outside_paths),
-     .help = "let meshes (and the files a mesh names) lie outside the scene\n"
-             "file's folder; off by default, so an untrusted scene cannot read\n"
-             "other files into the image"},
+     .help = "let meshes (and the files a mesh names) and textures lie outside the\n"
+             "scene file's folder; off by default, so an untrusted scene cannot\n"
+             "read other files into the image"},
     {"--region", NULL, RC_OPT_STRING, ARG(region_text), "X0,Y0,X1,Y1",
      .heading = "render farms (docs/cluster.md):",
      .help = "render only columns [X0, X1) and rows [Y0, Y1) of the frame (pbrt's crop\n"
