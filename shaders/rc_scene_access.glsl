@@ -24,6 +24,7 @@ layout(binding = RC_BINDING_QUADRICS, rgba32ui) readonly uniform uimageBuffer sc
 layout(binding = RC_BINDING_CSG, rgba32ui) readonly uniform uimageBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM, rgba32ui) readonly uniform uimageBuffer scene_csg_program;
 layout(binding = RC_BINDING_TEXELS, rgba32ui) readonly uniform uimageBuffer scene_texels;
+layout(binding = RC_BINDING_UVS, rgba32ui) readonly uniform uimageBuffer scene_uvs;
 
 #define texel(b, i) imageLoad(b, int(i))
 #else
@@ -39,6 +40,7 @@ layout(binding = RC_BINDING_QUADRICS) uniform usamplerBuffer scene_quadrics;
 layout(binding = RC_BINDING_CSG) uniform usamplerBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM) uniform usamplerBuffer scene_csg_program;
 layout(binding = RC_BINDING_TEXELS) uniform usamplerBuffer scene_texels;
+layout(binding = RC_BINDING_UVS) uniform usamplerBuffer scene_uvs;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 #endif
@@ -171,6 +173,12 @@ packed_texture load_texture(uint first) {
 
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
 
+packed_vertex_uvs load_vertex_uvs(uint i) {
+  vec4 a = uintBitsToFloat(texel(scene_uvs, i * RC_TEXELS_PER_VERTEX_UVS));
+  vec4 b = uintBitsToFloat(texel(scene_uvs, i * RC_TEXELS_PER_VERTEX_UVS + 1u));
+  return packed_vertex_uvs(a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w);
+}
+
 packed_light load_light(uint i) {
   uvec4 a = texel(scene_lights, i * RC_TEXELS_PER_LIGHT);
   uvec4 b = texel(scene_lights, i * RC_TEXELS_PER_LIGHT + 1u);
@@ -195,6 +203,7 @@ layout(std430, binding = RC_BINDING_QUADRICS) readonly buffer Quadrics { packed_
 layout(std430, binding = RC_BINDING_CSG) readonly buffer Csg { packed_csg scene_csg[]; };
 layout(std430, binding = RC_BINDING_CSG_PROGRAM) readonly buffer CsgProgram { uint scene_csg_program[]; };
 layout(std430, binding = RC_BINDING_TEXELS) readonly buffer Texels { uvec4 scene_texels[]; };
+layout(std430, binding = RC_BINDING_UVS) readonly buffer Uvs { packed_vertex_uvs scene_uvs[]; };
 
 packed_sphere load_sphere(uint i) { return scene_spheres[i]; }
 packed_triangle load_triangle(uint i) { return scene_triangles[i]; }
@@ -214,4 +223,5 @@ packed_texture load_texture(uint first) {
                         uintBitsToFloat(b.w));
 }
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
+packed_vertex_uvs load_vertex_uvs(uint i) { return scene_uvs[i]; }
 #endif

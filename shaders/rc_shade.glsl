@@ -10,7 +10,7 @@ struct surface {
   rvec3 p_error;  // per-coordinate bound on |p - exact hit point| (pbrt's pError), for spawning
   uint material;
   uint uv_kind;   // RC_UV_*: where its texture coordinates come from (surface_uv)
-  rvec3 uv_at;    // a sphere's unit normal in its own frame; a plane's (u, v, 0)
+  rvec3 uv_at;    // a sphere's unit normal in its own frame; else (u, v, 0)
 };
 
 #if RC_QUADRICS
@@ -56,6 +56,13 @@ rvec3 quadric_refine(packed_quadric q, rvec3 p, inout rvec3 p_error) {
   return pr;
 }
 #endif
+
+// A triangle's texture coordinates (u, v, 0) at barycentrics b, from its vertices'.
+rvec3 triangle_uv(packed_vertex_uvs t, rvec3 b) {
+  precise real u = b.x * real(t.u0) + b.y * real(t.u1) + b.z * real(t.u2);
+  precise real v = b.x * real(t.v0) + b.y * real(t.v1) + b.z * real(t.v2);
+  return rvec3(u, v, 0.0);
+}
 
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
@@ -127,7 +134,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       n = normalize(quadric_normal(q, h.part, sf.p, d));
       sf.material = q.material;
       if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
-        sf.uv_kind = RC_UV_PLANE;
+        sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = plane_uv(q, sf.p);
       }
     }
@@ -142,6 +149,10 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     sf.p_error = gamma_bound(7.0) * (abs(p0) + abs(p1) + abs(p2));
     n = normalize(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
     sf.material = tri.material;
+    if (has_kind(RC_KIND_TEXTURES) && (tri.flags >> RC_TRIANGLE_UV_SHIFT) != 0u) {
+      sf.uv_kind = RC_UV_GIVEN;
+      sf.uv_at = triangle_uv(load_vertex_uvs((tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u), h.bary);
+    }
     if (has_kind(RC_KIND_VERTEX_NORMALS) && tri.normals != RC_NO_NORMALS) {
       packed_vertex_normals vn = load_vertex_normals(tri.normals);
       rvec3 ng = (dot(n, d) > 0.0) ? -n : n;

@@ -34,11 +34,12 @@ typedef struct packed_vertex_normals packed_vertex_normals;
 typedef struct packed_quadric packed_quadric;
 typedef struct packed_csg packed_csg;
 typedef struct packed_texture packed_texture;
+typedef struct packed_vertex_uvs packed_vertex_uvs;
 #endif
 
 /* Descriptor bindings (set 0). The scene arrays (spheres, triangles, materials, lights,
  * the BVH's nodes and references, transforms, normals, quadrics, composites and their
- * programs, textures: 12 in all) are read either as storage buffers or as RGBA32UI uniform texel
+ * programs, textures, triangles' texture coordinates: 13 in all) are read either as storage buffers or as RGBA32UI uniform texel
  * buffers (rc_scene_access.glsl); the binding numbers are the same for both kinds. */
 #define RC_BINDING_FRAME 0     /* uniform packed_frame */
 #define RC_BINDING_SPHERES 1   /* packed_sphere[] */
@@ -56,7 +57,8 @@ typedef struct packed_texture packed_texture;
 #define RC_BINDING_CSG 13        /* packed_csg[] */
 #define RC_BINDING_CSG_PROGRAM 14 /* uint[] CSG instructions, 4 per texel */
 #define RC_BINDING_TEXELS 15     /* textures: each a packed_texture, then its texels (RGBA f32) */
-#define RC_BINDING_COUNT 16
+#define RC_BINDING_UVS 16        /* packed_vertex_uvs[] of triangles with texture coordinates */
+#define RC_BINDING_COUNT 17
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -217,6 +219,9 @@ struct packed_transform {
  * other ray, shadow rays included, as a one-sided plane is. */
 #define RC_NO_NORMALS 0xffffffffu
 #define RC_TRIANGLE_ONE_SIDED 1u
+/* flags >> RC_TRIANGLE_UV_SHIFT: 0, or 1 + the triangle's packed_vertex_uvs (texture
+ * coordinates at its vertices, JSON "uvs" or a mesh file's first uv channel). */
+#define RC_TRIANGLE_UV_SHIFT 1u
 struct packed_triangle {
   vec3 v0; uint material;
   vec3 v1; uint normals;
@@ -229,6 +234,13 @@ struct packed_vertex_normals {
   vec3 n2; float pad2;
 };
 #define RC_TEXELS_PER_VERTEX_NORMALS 3
+
+/* A triangle's texture coordinates at v0, v1, v2 (RC_TRIANGLE_UV_SHIFT). */
+struct packed_vertex_uvs {
+  float u0; float v0; float u1; float v1;
+  float u2; float v2; float pad0; float pad1;
+};
+#define RC_TEXELS_PER_VERTEX_UVS 2
 
 /* A quadric surface Q = 0 clipped to a box, both in the quadric's own frame: f = R (p -
  * center), R's rows axis_x, axis_y, axis_z (orthonormal, unless the scene gave the object a
@@ -329,10 +341,10 @@ struct packed_material {
  * square (docs/scene-format.md, "Textures"); nearest or bilinear, repeated or clamped at
  * the edges (flags). */
 /* Where a surface's (u, v) comes from (rc_shade.glsl, surface.uv_kind): none (the texture
- * is not applied), a sphere (from its unit normal in its own frame), a plane (its frame). */
+ * is not applied), a sphere (from its unit normal in its own frame), or given. */
 #define RC_UV_NONE 0u
 #define RC_UV_SPHERE 1u
-#define RC_UV_PLANE 2u
+#define RC_UV_GIVEN 2u /* (u, v, 0) found with the hit: a plane's frame, a triangle's vertices */
 #define RC_TEXTURE_BILINEAR 1u
 #define RC_TEXTURE_CLAMP 2u
 #define RC_TEXELS_PER_TEXTURE_HEADER 2
@@ -460,6 +472,8 @@ RC_ASSERT_LAYOUT(packed_triangle, v2, 32); RC_ASSERT_LAYOUT(packed_triangle, fla
 RC_ASSERT_LAYOUT(packed_vertex_normals, n0, 0); RC_ASSERT_LAYOUT(packed_vertex_normals, n1, 16);
 RC_ASSERT_LAYOUT(packed_vertex_normals, n2, 32);
 RC_ASSERT_SIZE(packed_vertex_normals, 16 * RC_TEXELS_PER_VERTEX_NORMALS);
+RC_ASSERT_LAYOUT(packed_vertex_uvs, u0, 0); RC_ASSERT_LAYOUT(packed_vertex_uvs, u2, 16);
+RC_ASSERT_SIZE(packed_vertex_uvs, 16 * RC_TEXELS_PER_VERTEX_UVS);
 RC_ASSERT_SIZE(packed_triangle, 16 * RC_TEXELS_PER_TRIANGLE);
 
 RC_ASSERT_LAYOUT(packed_material, ambient, 0);   RC_ASSERT_LAYOUT(packed_material, shininess, 12);

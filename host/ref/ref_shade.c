@@ -32,6 +32,12 @@ rvec3 REF(quadric_refine)(const packed_quadric *q, rvec3 p, rvec3 *p_error) {
   return pr;
 }
 
+rvec3 REF(triangle_uv)(packed_vertex_uvs t, rvec3 b) {
+  real u = b.x * (real)t.u0 + b.y * (real)t.u1 + b.z * (real)t.u2;
+  real v = b.x * (real)t.v0 + b.y * (real)t.v1 + b.z * (real)t.v2;
+  return RV(make)(u, v, 0);
+}
+
 ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit *h) {
   ref_surface sf;
   sf.uv_kind = RC_UV_NONE;
@@ -91,7 +97,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
       sf.material = q->material;
       if (q->flags & RC_QUADRIC_UNBOUNDED) {
-        sf.uv_kind = RC_UV_PLANE;
+        sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = REF(plane_uv)(q, sf.p);
       }
     }
@@ -103,6 +109,10 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     sf.p_error = RV(scale)(RV(add)(RV(add)(RV(abs)(p0), RV(abs)(p1)), RV(abs)(p2)), REF(gamma_bound)(7));
     n = RV(normalize)(RV(cross)(RV(sub)(v1, v0), RV(sub)(v2, v0)));
     sf.material = tri.material;
+    if ((tri.flags >> RC_TRIANGLE_UV_SHIFT) != 0) {
+      sf.uv_kind = RC_UV_GIVEN;
+      sf.uv_at = REF(triangle_uv)(sc->uvs[(tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u], h->bary);
+    }
     if (tri.normals != RC_NO_NORMALS) {
       const packed_vertex_normals *vn = &sc->normals[tri.normals];
       rvec3 ng = (RV(dot)(n, d) > 0) ? RV(neg)(n) : n;

@@ -25,6 +25,7 @@ extern _Thread_local packed_aov ref_aov_record;
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
   V ref_plane_uv_##S(const packed_quadric *q, V p);                                             \
   V ref_quadric_refine_##S(const packed_quadric *q, V p, V *p_error);                              \
+  V ref_triangle_uv_##S(packed_vertex_uvs t, V b);                                              \
   ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \
   R ref_offset_coordinate_##S(R p, R n);                                                        \
   V ref_offset_ray_origin_##S(V p, V n);                                                        \

@@ -105,6 +105,7 @@ static rc_status add_triangles(const rc_mesh_data *m, const rc_affine *world_fro
       rc_triangle_def d = {0};
       d.material = material >= 0 ? (uint32_t)material : first_material + part->material;
       d.smooth = part->has_normals != 0;
+      d.has_uv = part->has_uvs != 0;
       for (int k = 0; k < 3 && st == RC_OK; k++) {
         uint32_t idx = part->indices[3 * (size_t)f + k];
         if (idx >= part->vertex_count) {
@@ -120,6 +121,12 @@ static rc_status add_triangles(const rc_mesh_data *m, const rc_affine *world_fro
           break;
         }
         d.v[k] = rc_affine_point(world_from_object, rcm_make_d(v[0], v[1], v[2]));
+        if (d.has_uv) {
+          const float *uv = &part->uvs[2 * (size_t)idx];
+          d.uv[k][0] = uv[0], d.uv[k][1] = uv[1];
+          /* Coordinates that are not finite leave the triangle untextured. */
+          if (!isfinite(uv[0]) || !isfinite(uv[1]) || fabsf(uv[0]) > 1e30f || fabsf(uv[1]) > 1e30f) d.has_uv = false;
+        }
         if (d.smooth) {
           const float *n = &part->normals[3 * (size_t)idx];
           d.n[k] = apply_normal(world_from_object, rcm_make_d(n[0], n[1], n[2]));

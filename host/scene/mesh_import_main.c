@@ -161,10 +161,15 @@ static void put_parts(const struct aiScene *ai) {
     for (unsigned f = 0; f < mesh->mNumFaces; f++) triangles += mesh->mFaces[f].mNumIndices == 3;
     put_word(mesh->mMaterialIndex);
     put_word(mesh->mNormals != NULL);
+    put_word(mesh->mTextureCoords[0] != NULL);
     put_word(mesh->mNumVertices);
     put_word(triangles);
     put_words(mesh->mVertices, 3 * (size_t)mesh->mNumVertices);
     if (mesh->mNormals) put_words(mesh->mNormals, 3 * (size_t)mesh->mNumVertices);
+    for (unsigned v = 0; mesh->mTextureCoords[0] && v < mesh->mNumVertices; v++) {
+      const float uv[2] = {mesh->mTextureCoords[0][v].x, mesh->mTextureCoords[0][v].y};
+      put_words(uv, 2);
+    }
     for (unsigned f = 0; f < mesh->mNumFaces; f++)
       if (mesh->mFaces[f].mNumIndices == 3) put_words(mesh->mFaces[f].mIndices, 3);
   }

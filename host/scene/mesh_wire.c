@@ -63,14 +63,17 @@ const char *rc_mesh_wire_parse(void *buffer, size_t len, rc_mesh_data *d) {
     if (!d->parts) return "out of memory";
     for (uint32_t i = 0; i < d->part_count; i++) {
       rc_mesh_part *p = &d->parts[i];
-      if (!take_word(&c, &p->material) || !take_word(&c, &p->has_normals) || !take_word(&c, &p->vertex_count) ||
-          !take_word(&c, &p->triangle_count))
+      if (!take_word(&c, &p->material) || !take_word(&c, &p->has_normals) || !take_word(&c, &p->has_uvs) ||
+          !take_word(&c, &p->vertex_count) || !take_word(&c, &p->triangle_count))
         return "a part is cut short";
-      if (p->material >= d->material_count || p->has_normals > 1) return "a part names what is not there";
+      if (p->material >= d->material_count || p->has_normals > 1 || p->has_uvs > 1)
+        return "a part names what is not there";
       p->positions = take_words(&c, 3 * (uint64_t)p->vertex_count);
       if (p->has_normals) p->normals = take_words(&c, 3 * (uint64_t)p->vertex_count);
+      if (p->has_uvs) p->uvs = take_words(&c, 2 * (uint64_t)p->vertex_count);
       p->indices = take_words(&c, 3 * (uint64_t)p->triangle_count);
-      if (!p->positions || (p->has_normals && !p->normals) || !p->indices) return "a part is cut short";
+      if (!p->positions || (p->has_normals && !p->normals) || (p->has_uvs && !p->uvs) || !p->indices)
+        return "a part is cut short";
     }
   }
   if (!take_magic(&c, "MEND")) return "it does not end as an answer";

@@ -20,8 +20,10 @@
  *     materials: a count, then 13 floats each: ambient, diffuse, specular and emission
  *            (RGB, assimp's defaults for an absent colour already applied) and shininess
  *     parts (assimp's meshes): a count, then for each: material (an index into the
- *            materials above), has_normals (0 or 1), vertex count V, triangle count T,
- *            3V floats of positions, 3V floats of normals when has_normals, 3T indices
+ *            materials above), has_normals (0 or 1), has_uvs (0 or 1), vertex count V,
+ *            triangle count T, 3V floats of positions, 3V floats of normals when
+ *            has_normals, 2V floats of texture coordinates (the first uv channel) when
+ *            has_uvs, 3T indices
  *   "MEND"
  * Every array starts on a word, so that the reader's buffer (malloc'd) can be read in
  * place. */
@@ -31,7 +33,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-enum { RC_MESH_WIRE_VERSION = 1 };
+enum { RC_MESH_WIRE_VERSION = 2 };
 enum { RC_MESH_IMPORTED = 0, RC_MESH_REFUSED = 1, RC_MESH_FAILED = 2 };
 
 typedef struct {
@@ -39,8 +41,9 @@ typedef struct {
 } rc_mesh_material;
 
 typedef struct {
-  uint32_t material, has_normals, vertex_count, triangle_count;
+  uint32_t material, has_normals, has_uvs, vertex_count, triangle_count;
   const float *positions, *normals; /* 3 per vertex; normals NULL when has_normals is 0 */
+  const float *uvs;                 /* 2 per vertex; NULL when has_uvs is 0 */
   const uint32_t *indices;          /* 3 per triangle, not yet checked against vertex_count */
 } rc_mesh_part;
 

@@ -68,10 +68,11 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
   uint32_t one_sided = 0;
   for (uint32_t i = 0; i < p->triangle_total; i++) {
     const packed_triangle *t = &p->triangles[i];
+    uint32_t uv = t->flags >> RC_TRIANGLE_UV_SHIFT;
     if (t->material >= f->material_count || (t->normals != RC_NO_NORMALS && t->normals >= p->normal_count) ||
-        (t->flags & ~RC_TRIANGLE_ONE_SIDED))
-      return say(why, cap, "triangle %u names material %u or normals %u past the arrays, or flags %#x", i,
-                 t->material, t->normals, t->flags);
+        uv > p->uv_count)
+      return say(why, cap, "triangle %u names material %u, normals %u or texture coordinates %u past the arrays", i,
+                 t->material, t->normals, uv);
     one_sided += t->flags & RC_TRIANGLE_ONE_SIDED;
   }
   if (one_sided != p->one_sided_triangle_count) return say(why, cap, "the one-sided triangles are miscounted");

@@ -56,7 +56,9 @@ typedef struct rc_triangle_def {
   uint32_t material;
   bool smooth;    /* vertex normals below give the shading normal */
   bool one_sided; /* there only for rays meeting its front (RC_TRIANGLE_ONE_SIDED) */
+  bool has_uv;    /* texture coordinates at the vertices below (JSON "uvs", a mesh's first uv channel) */
   dvec3 n[3];
+  double uv[3][2];
 } rc_triangle_def;
 
 /* A quadric in its own frame (packed_quadric has the formula): world centre, the rows of the

@@ -203,8 +203,11 @@ static bool mirrors(const rc_affine *m) {
 }
 static void keep_front(rc_triangle_def *t) {
   dvec3 v = t->v[1], n = t->n[1];
+  double uv[2] = {t->uv[1][0], t->uv[1][1]};
   t->v[1] = t->v[2], t->n[1] = t->n[2];
   t->v[2] = v, t->n[2] = n;
+  memcpy(t->uv[1], t->uv[2], sizeof uv);
+  memcpy(t->uv[2], uv, sizeof uv);
 }
 
 static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
@@ -249,9 +252,10 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
       d->transformed = transformed;
       d->world_from_object = m;
     } else if (type == 1) {
-      static const char *const allowed[] = {"type", "vertices", "material", "one_sided", "transform", NULL};
+      static const char *const allowed[] = {"type", "vertices", "uvs", "material", "one_sided", "transform", NULL};
       RC_TRY(js_check_members(c, o, allowed));
       rc_triangle_def d = {0};
+      RC_TRY(js_get_triangle_uvs(c, o, &d));
       const cJSON *vs = cJSON_GetObjectItemCaseSensitive(o, "vertices");
       if (!vs) return js_fail(c, "missing field \"vertices\"");
       js_push_key(c, "vertices");

@@ -5,12 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Member `key`: two finite numbers ([u, v]); `def` when absent. */
-static rc_status get_pair(jctx *c, const cJSON *m, const char *key, double def, double out[2]) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(m, key);
-  out[0] = out[1] = def;
-  if (!v) return RC_OK;
-  js_push_key(c, key);
+/* [u, v], the value at the top of the path: two finite numbers. */
+static rc_status pair_value(jctx *c, const cJSON *v, double out[2]) {
   if (!cJSON_IsArray(v)) return js_fail(c, "expected [u, v], got %s", js_type_name(v));
   if (cJSON_GetArraySize(v) != 2) return js_fail(c, "expected [u, v], 2 numbers, got %d", cJSON_GetArraySize(v));
   for (int i = 0; i < 2; i++) {
@@ -19,6 +15,16 @@ static rc_status get_pair(jctx *c, const cJSON *m, const char *key, double def, 
     if (!isfinite(out[i]) || fabs(out[i]) > 1e30) return js_fail(c, "must be finite, at most 1e30 in magnitude");
     js_pop(c);
   }
+  return RC_OK;
+}
+
+/* Member `key`: [u, v]; `def` for both when absent. */
+static rc_status get_pair(jctx *c, const cJSON *m, const char *key, double def, double out[2]) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(m, key);
+  out[0] = out[1] = def;
+  if (!v) return RC_OK;
+  js_push_key(c, key);
+  RC_TRY(pair_value(c, v, out));
   js_pop(c);
   return RC_OK;
 }
@@ -70,5 +76,21 @@ rc_status js_parse_texture(jctx *c, const cJSON *m, rc_scene *s, uint32_t *slot)
   }
   s->textures[s->texture_count++] = t;
   *slot = (uint32_t)s->texture_count;
+  return RC_OK;
+}
+
+rc_status js_get_triangle_uvs(jctx *c, const cJSON *o, rc_triangle_def *t) {
+  const cJSON *uvs = cJSON_GetObjectItemCaseSensitive(o, "uvs");
+  if (!uvs) return RC_OK;
+  js_push_key(c, "uvs");
+  if (!cJSON_IsArray(uvs) || cJSON_GetArraySize(uvs) != 3)
+    return js_fail(c, "expected 3 pairs [u, v], one for each vertex");
+  for (int k = 0; k < 3; k++) {
+    js_push_index(c, (size_t)k);
+    RC_TRY(pair_value(c, cJSON_GetArrayItem(uvs, k), t->uv[k]));
+    js_pop(c);
+  }
+  js_pop(c);
+  t->has_uv = true;
   return RC_OK;
 }

@@ -10,5 +10,8 @@
  * to s->textures and *slot = its index + 1; *slot = 0 when m names no texture (the
  * others are then refused: they would do nothing). The image is read later (cli). */
 rc_status js_parse_texture(jctx *c, const cJSON *m, rc_scene *s, uint32_t *slot);
+/* Member "uvs" of a triangle object: three [u, v], the texture coordinates at its vertices
+ * (t->has_uv set); absent: none. */
+rc_status js_get_triangle_uvs(jctx *c, const cJSON *o, rc_triangle_def *t);
 
 #endif

@@ -41,6 +41,7 @@ static uint32_t read_packed(const rc_packed_scene *p) {
     const packed_triangle *t = &p->triangles[i];
     sink += p->materials[t->material].texture != 0;
     if (t->normals != RC_NO_NORMALS) sink += p->normals[t->normals].pad0 != 0;
+    if (t->flags >> RC_TRIANGLE_UV_SHIFT) sink += p->uvs[(t->flags >> RC_TRIANGLE_UV_SHIFT) - 1].pad0 != 0;
   }
   for (uint32_t i = 0; i < p->quadric_total; i++) sink += p->materials[p->quadrics[i].material].pad1 != 0;
   for (uint32_t i = 0; i < f->light_count; i++) sink += p->lights[i].type;
@@ -119,7 +120,8 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
       for (uint32_t i = 0; i < m.part_count; i++) {
         const rc_mesh_part *p = &m.parts[i];
         for (size_t k = 0; k < 3 * (size_t)p->vertex_count; k++)
-          sink += (uint32_t)(p->positions[k] != 0) + (uint32_t)(p->normals && p->normals[k] != 0);
+          sink += (uint32_t)(p->positions[k] != 0) + (uint32_t)(p->normals && p->normals[k] != 0) +
+                  (uint32_t)(p->uvs && k < 2 * (size_t)p->vertex_count && p->uvs[k] != 0);
         for (size_t k = 0; k < 3 * (size_t)p->triangle_count; k++) sink += p->indices[k];
       }
     }

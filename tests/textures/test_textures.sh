@@ -10,7 +10,9 @@
 # - a plane's texture stays where the scene puts it: the same floor seen from 10 and from
 #   1000 units above, and with its point moved by (0.3, 0, 0) against a texture offset of
 #   0.3, gives the same pixels;
-# - repeat against clamp, and the scale, at a pixel whose texel is known.
+# - repeat against clamp, and the scale, at a pixel whose texel is known;
+# - a quad of two triangles with texture coordinates at its corners, as JSON triangles and
+#   as an OBJ mesh's vt: the texels the convention names, and the same pixels both ways.
 # Usage: test_textures.sh VKRAYCAST WORKDIR
 set -uo pipefail
 bin=$1 work=$2
@@ -127,5 +129,36 @@ for v in "${variants[@]}"; do
   # bottom row: blue.
   [[ $(pixel "$work/fclamp.exr" 4 4) == "0.0"*"0.0"*"1.0"* ]] || because "clamped pixel (4, 4) is not blue: $(pixel "$work/fclamp.exr" 4 4)"
   check "a plane's texture stays put; repeat, clamp and scale at known texels, $v" "$why"
+done
+# 4. A quad x, y in [-1, 1] facing +z, (u, v) = (0, 0) at its bottom left corner and (1, 1)
+# at its top right, seen through a parallel camera (32 x 32 pixels over 2 x 2 units):
+# pixel (i, j) is u = (i + 0.5) / 32, v = 1 - (j + 0.5) / 32. The checker above, nearest:
+# (4, 4) red, (20, 4) green, (4, 20) blue, (20, 20) white. The OBJ quad says the same in
+# v/vt faces.
+quad_scene() { # FILE OBJECTS
+  cat >"$1" <<EOF
+{ "image": { "width": 32, "height": 32 },
+  "camera": { "projection": "parallel", "eye": [0, 0, 5], "look_at": [0, 0, 0], "view_height": 2 },
+  "ambient_light": [1, 1, 1],
+  "materials": { "m": { "ambient": [1, 1, 1], "texture": "checker.exr", "texture_filter": "nearest" } },
+  "objects": [ $2 ] }
+EOF
+}
+quad_scene "$work/quad.json" '{ "type": "triangle", "vertices": [[-1, -1, 0], [1, -1, 0], [1, 1, 0]], "uvs": [[0, 0], [1, 0], [1, 1]], "material": "m" },
+    { "type": "triangle", "vertices": [[-1, -1, 0], [1, 1, 0], [-1, 1, 0]], "uvs": [[0, 0], [1, 1], [0, 1]], "material": "m" }'
+printf 'v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n' >"$work/quad.obj"
+quad_scene "$work/quad_obj.json" '{ "type": "mesh", "file": "quad.obj", "material": "m" }'
+for v in "${variants[@]}"; do
+  why=ok
+  # shellcheck disable=SC2086
+  "$bin" render "$work/quad.json" $v --quiet -o "$work/quad.exr" && "$bin" render "$work/quad_obj.json" $v --quiet \
+    -o "$work/quad_obj.exr" || because "a render failed"
+  for want in "4 4 1.0 0.0 0.0" "20 4 0.0 1.0 0.0" "4 20 0.0 0.0 1.0" "20 20 1.0 1.0 1.0"; do
+    read -r i j r g b <<<"$want"
+    [[ $(pixel "$work/quad.exr" "$i" "$j") == "$r"*" $g"*" $b"* ]] || because "pixel ($i, $j) is not ($r, $g, $b): $(pixel "$work/quad.exr" "$i" "$j")"
+  done
+  "$bin" compare "$work/quad.exr" "$work/quad_obj.exr" --fail 0 --hardfail 0 >/dev/null 2>&1 ||
+    because "the OBJ quad's vt give other pixels than the JSON quad's uvs"
+  check "triangles' texture coordinates, JSON and OBJ, $v" "$why"
 done
 finish
