@@ -24,7 +24,6 @@ layout(binding = RC_BINDING_QUADRICS, rgba32ui) readonly uniform uimageBuffer sc
 layout(binding = RC_BINDING_CSG, rgba32ui) readonly uniform uimageBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM, rgba32ui) readonly uniform uimageBuffer scene_csg_program;
 layout(binding = RC_BINDING_TEXELS, rgba32ui) readonly uniform uimageBuffer scene_texels;
-layout(binding = RC_BINDING_UVS, rgba32ui) readonly uniform uimageBuffer scene_uvs;
 
 #define texel(b, i) imageLoad(b, int(i))
 #else
@@ -40,7 +39,6 @@ layout(binding = RC_BINDING_QUADRICS) uniform usamplerBuffer scene_quadrics;
 layout(binding = RC_BINDING_CSG) uniform usamplerBuffer scene_csg;
 layout(binding = RC_BINDING_CSG_PROGRAM) uniform usamplerBuffer scene_csg_program;
 layout(binding = RC_BINDING_TEXELS) uniform usamplerBuffer scene_texels;
-layout(binding = RC_BINDING_UVS) uniform usamplerBuffer scene_uvs;
 
 uvec4 texel(usamplerBuffer b, uint i) { return texelFetch(b, int(i)); }
 #endif
@@ -173,9 +171,10 @@ packed_texture load_texture(uint first) {
 
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
 
-packed_vertex_uvs load_vertex_uvs(uint i) {
-  vec4 a = uintBitsToFloat(texel(scene_uvs, i * RC_TEXELS_PER_VERTEX_UVS));
-  vec4 b = uintBitsToFloat(texel(scene_uvs, i * RC_TEXELS_PER_VERTEX_UVS + 1u));
+// The packed_vertex_uvs at texel `first` of the texel array.
+packed_vertex_uvs load_vertex_uvs(uint first) {
+  vec4 a = uintBitsToFloat(texel(scene_texels, first));
+  vec4 b = uintBitsToFloat(texel(scene_texels, first + 1u));
   return packed_vertex_uvs(a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w);
 }
 
@@ -203,7 +202,6 @@ layout(std430, binding = RC_BINDING_QUADRICS) readonly buffer Quadrics { packed_
 layout(std430, binding = RC_BINDING_CSG) readonly buffer Csg { packed_csg scene_csg[]; };
 layout(std430, binding = RC_BINDING_CSG_PROGRAM) readonly buffer CsgProgram { uint scene_csg_program[]; };
 layout(std430, binding = RC_BINDING_TEXELS) readonly buffer Texels { uvec4 scene_texels[]; };
-layout(std430, binding = RC_BINDING_UVS) readonly buffer Uvs { packed_vertex_uvs scene_uvs[]; };
 
 packed_sphere load_sphere(uint i) { return scene_spheres[i]; }
 packed_triangle load_triangle(uint i) { return scene_triangles[i]; }
@@ -223,5 +221,9 @@ packed_texture load_texture(uint first) {
                         uintBitsToFloat(b.w));
 }
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
-packed_vertex_uvs load_vertex_uvs(uint i) { return scene_uvs[i]; }
+packed_vertex_uvs load_vertex_uvs(uint first) {
+  vec4 a = uintBitsToFloat(scene_texels[first]);
+  vec4 b = uintBitsToFloat(scene_texels[first + 1u]);
+  return packed_vertex_uvs(a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w);
+}
 #endif

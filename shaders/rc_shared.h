@@ -39,7 +39,7 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 
 /* Descriptor bindings (set 0). The scene arrays (spheres, triangles, materials, lights,
  * the BVH's nodes and references, transforms, normals, quadrics, composites and their
- * programs, textures, triangles' texture coordinates: 13 in all) are read either as storage buffers or as RGBA32UI uniform texel
+ * programs, textures: 12 in all) are read either as storage buffers or as RGBA32UI uniform texel
  * buffers (rc_scene_access.glsl); the binding numbers are the same for both kinds. */
 #define RC_BINDING_FRAME 0     /* uniform packed_frame */
 #define RC_BINDING_SPHERES 1   /* packed_sphere[] */
@@ -57,8 +57,7 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_BINDING_CSG 13        /* packed_csg[] */
 #define RC_BINDING_CSG_PROGRAM 14 /* uint[] CSG instructions, 4 per texel */
 #define RC_BINDING_TEXELS 15     /* textures: each a packed_texture, then its texels (RGBA f32) */
-#define RC_BINDING_UVS 16        /* packed_vertex_uvs[] of triangles with texture coordinates */
-#define RC_BINDING_COUNT 17
+#define RC_BINDING_COUNT 16
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -219,8 +218,10 @@ struct packed_transform {
  * other ray, shadow rays included, as a one-sided plane is. */
 #define RC_NO_NORMALS 0xffffffffu
 #define RC_TRIANGLE_ONE_SIDED 1u
-/* flags >> RC_TRIANGLE_UV_SHIFT: 0, or 1 + the triangle's packed_vertex_uvs (texture
- * coordinates at its vertices, JSON "uvs" or a mesh file's first uv channel). */
+/* flags >> RC_TRIANGLE_UV_SHIFT: 0, or 1 + the texel where the triangle's packed_vertex_uvs
+ * lies in the texel array (RC_BINDING_TEXELS, after the textures: one binding fewer, which
+ * NVIDIA's best practices ask of the storage-buffer path): the texture coordinates at its
+ * vertices, JSON "uvs" or a mesh file's first uv channel. */
 #define RC_TRIANGLE_UV_SHIFT 1u
 struct packed_triangle {
   vec3 v0; uint material;
@@ -235,7 +236,8 @@ struct packed_vertex_normals {
 };
 #define RC_TEXELS_PER_VERTEX_NORMALS 3
 
-/* A triangle's texture coordinates at v0, v1, v2 (RC_TRIANGLE_UV_SHIFT). */
+/* A triangle's texture coordinates at v0, v1, v2 (RC_TRIANGLE_UV_SHIFT), 2 texels of the
+ * texel array. */
 struct packed_vertex_uvs {
   float u0; float v0; float u1; float v1;
   float u2; float v2; float pad0; float pad1;

@@ -6,8 +6,8 @@
 
 #include "gpu/gpu_render.h"
 
-#define SCENE_ARRAYS 13 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
-                           quadrics, composites, CSG programs, textures, texture coordinates */
+#define SCENE_ARRAYS 12 /* spheres, triangles, materials, lights, BVH nodes, BVH references, transforms, normals,
+                           quadrics, composites, CSG programs, textures (and triangles' texture coordinates) */
 
 struct rc_gpu_renderer {
   rc_vk_ctx *ctx;

@@ -9,10 +9,10 @@
 const uint32_t rc_gpu_array_bindings[SCENE_ARRAYS] = {
     RC_BINDING_SPHERES,   RC_BINDING_TRIANGLES, RC_BINDING_MATERIALS, RC_BINDING_LIGHTS,
     RC_BINDING_BVH_NODES, RC_BINDING_BVH_PRIMS, RC_BINDING_TRANSFORMS, RC_BINDING_NORMALS,
-    RC_BINDING_QUADRICS,  RC_BINDING_CSG,       RC_BINDING_CSG_PROGRAM, RC_BINDING_TEXELS, RC_BINDING_UVS};
+    RC_BINDING_QUADRICS,  RC_BINDING_CSG,       RC_BINDING_CSG_PROGRAM, RC_BINDING_TEXELS};
 static const char *const array_names[SCENE_ARRAYS] = {
     "spheres",    "triangles", "materials", "lights", "BVH nodes", "BVH references", "transforms", "normals",
-    "quadrics", "composites", "CSG programs", "textures", "texture coordinates"};
+    "quadrics", "composites", "CSG programs", "textures and texture coordinates"};
 
 /* The shader's descriptors besides the scene arrays: the frame (a uniform buffer) and the
  * accumulation, status and AOV storage buffers. */
@@ -124,8 +124,7 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
   bool bvh = s->bvh_node_total > 0; /* the object tree, or a mesh operand's */
   const void *data[SCENE_ARRAYS] = {s->spheres, s->triangles, s->materials, s->lights,
                                     bvh ? (const void *)s->bvh_nodes : &no_node, bvh ? (const void *)s->bvh_prims : no_refs,
-                                    s->transforms, s->normals, s->quadrics, s->csg, s->csg_program, s->texels,
-                                    s->uvs};
+                                    s->transforms, s->normals, s->quadrics, s->csg, s->csg_program, s->texels};
   /* +1: the packer always allocates one element, as Vulkan has no empty buffers. */
   VkDeviceSize sizes[SCENE_ARRAYS] = {
       (f->sphere_count + 1) * sizeof(packed_sphere), (s->triangle_total + 1) * sizeof(packed_triangle),
@@ -135,8 +134,7 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
       (s->transform_count + 1) * sizeof(packed_transform), (s->normal_count + 1) * sizeof(packed_vertex_normals),
       (s->quadric_total + 1) * sizeof(packed_quadric), (f->csg_count + 1) * sizeof(packed_csg),
       (s->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t),
-      ((VkDeviceSize)s->texel_count + 1) * 4 * sizeof(uint32_t),
-      ((VkDeviceSize)s->uv_count + 1) * sizeof(packed_vertex_uvs)};
+      ((VkDeviceSize)s->texel_count + 1) * 4 * sizeof(uint32_t)};
   rc_status chosen = choose_buffers(ctx, &r->opts.scene_buffers, sizes);
   if (chosen != RC_OK) return chosen;
   /* Everything the render allocates on the device, against its largest device-local heap:

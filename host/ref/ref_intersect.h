@@ -20,7 +20,6 @@ typedef struct ref_scene {
   const packed_csg *csg;
   const uint32_t *csg_program;
   const float (*texels)[4]; /* the textures: each a packed_texture (2 texels), then RGBA texels */
-  const packed_vertex_uvs *uvs;
   bool use_bvh;
 } ref_scene;
 

@@ -116,7 +116,6 @@ static ref_scene scene_of(const rc_packed_scene *p) {
                      .csg = p->csg,
                      .csg_program = p->csg_program,
                      .texels = (const float(*)[4])p->texels,
-                     .uvs = p->uvs,
                      .use_bvh = p->bvh && p->frame.bvh_node_count > 0};
 }
 

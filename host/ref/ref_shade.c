@@ -32,6 +32,13 @@ rvec3 REF(quadric_refine)(const packed_quadric *q, rvec3 p, rvec3 *p_error) {
   return pr;
 }
 
+/* The shader's load_vertex_uvs (rc_scene_access.glsl): 2 texels of the texel array. */
+static packed_vertex_uvs load_vertex_uvs(const ref_scene *sc, uint32_t first) {
+  packed_vertex_uvs t;
+  memcpy(&t, sc->texels[first], sizeof t);
+  return t;
+}
+
 rvec3 REF(triangle_uv)(packed_vertex_uvs t, rvec3 b) {
   real u = b.x * (real)t.u0 + b.y * (real)t.u1 + b.z * (real)t.u2;
   real v = b.x * (real)t.v0 + b.y * (real)t.v1 + b.z * (real)t.v2;
@@ -111,7 +118,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     sf.material = tri.material;
     if ((tri.flags >> RC_TRIANGLE_UV_SHIFT) != 0) {
       sf.uv_kind = RC_UV_GIVEN;
-      sf.uv_at = REF(triangle_uv)(sc->uvs[(tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u], h->bary);
+      sf.uv_at = REF(triangle_uv)(load_vertex_uvs(sc, (tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u), h->bary);
     }
     if (tri.normals != RC_NO_NORMALS) {
       const packed_vertex_normals *vn = &sc->normals[tri.normals];

@@ -14,12 +14,10 @@ static const char magic[8] = {'V', 'K', 'R', 'S', '\r', '\n', 0x1a, '\n'};
 #define BYTE_ORDER_MARK 0x01020304u
 
 enum { SEC_SUMMARY, SEC_SPHERES, SEC_TRIANGLES, SEC_MATERIALS, SEC_LIGHTS, SEC_TRANSFORMS, SEC_NORMALS,
-       SEC_QUADRICS, SEC_CSG, SEC_PROGRAM, SEC_OPERANDS, SEC_TEXELS, SEC_UVS, SEC_NODES, SEC_PRIMS, SEC_HASHES,
-       SECTIONS };
+       SEC_QUADRICS, SEC_CSG, SEC_PROGRAM, SEC_OPERANDS, SEC_TEXELS, SEC_NODES, SEC_PRIMS, SEC_HASHES, SECTIONS };
 static const char *const section_names[SECTIONS] = {
     "summary", "spheres", "triangles", "materials", "lights", "transforms", "vertex normals", "quadrics",
-    "composites", "composite programs", "mesh operands", "textures", "texture coordinates", "BVH nodes",
-    "BVH references", "array hashes"};
+    "composites", "composite programs", "mesh operands", "textures", "BVH nodes", "BVH references", "array hashes"};
 #define SECTION_ALIGN 64u
 
 typedef struct vkrs_header {
@@ -70,7 +68,6 @@ static void section_sizes(const rc_packed_scene *p, uint64_t bytes[SECTIONS]) {
   bytes[SEC_PROGRAM] = ((uint64_t)p->csg_program_length + 4) / 4 * 4 * sizeof(uint32_t);
   bytes[SEC_OPERANDS] = ((uint64_t)p->mesh_operand_count + 1) * sizeof(rc_mesh_operand);
   bytes[SEC_TEXELS] = ((uint64_t)p->texel_count + 1) * 4 * sizeof(uint32_t);
-  bytes[SEC_UVS] = ((uint64_t)p->uv_count + 1) * sizeof(packed_vertex_uvs);
   bytes[SEC_NODES] = (uint64_t)p->bvh_node_total * sizeof(packed_bvh_node);
   bytes[SEC_PRIMS] = ((uint64_t)p->bvh_prim_total + 3) / 4 * 4 * sizeof(uint32_t);
   bytes[SEC_HASHES] = RC_PACKED_ARRAYS * sizeof(uint64_t);
@@ -82,7 +79,7 @@ static void array_slots(rc_packed_scene *p, void **slots[SECTIONS]) {
                         (void **)&p->spheres,    (void **)&p->triangles, (void **)&p->materials,
                         (void **)&p->lights,     (void **)&p->transforms, (void **)&p->normals,
                         (void **)&p->quadrics,   (void **)&p->csg,       (void **)&p->csg_program,
-                        (void **)&p->mesh_operands, (void **)&p->texels, (void **)&p->uvs, (void **)&p->bvh_nodes,
+                        (void **)&p->mesh_operands, (void **)&p->texels, (void **)&p->bvh_nodes,
                         (void **)&p->bvh_prims, NULL};
   memcpy(slots, s, sizeof s);
 }

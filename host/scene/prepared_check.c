@@ -68,9 +68,10 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
   uint32_t one_sided = 0;
   for (uint32_t i = 0; i < p->triangle_total; i++) {
     const packed_triangle *t = &p->triangles[i];
+    /* 1 + the texel of its texture coordinates (2 texels), or 0. */
     uint32_t uv = t->flags >> RC_TRIANGLE_UV_SHIFT;
     if (t->material >= f->material_count || (t->normals != RC_NO_NORMALS && t->normals >= p->normal_count) ||
-        uv > p->uv_count)
+        (uv && (uint64_t)uv - 1 + RC_TEXELS_PER_VERTEX_UVS > p->texel_count))
       return say(why, cap, "triangle %u names material %u, normals %u or texture coordinates %u past the arrays", i,
                  t->material, t->normals, uv);
     one_sided += t->flags & RC_TRIANGLE_ONE_SIDED;

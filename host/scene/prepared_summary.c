@@ -93,7 +93,7 @@ void rc_summary_encode(rc_blob *b, const rc_scene *s, const rc_packed_scene *p, 
   const uint32_t sizes[] = {p->triangle_total,    p->transform_count,  p->normal_count,
                             p->one_sided_triangle_count, p->quadric_total, p->csg_program_length,
                             p->mesh_operand_count, p->bvh_node_total,  p->bvh_prim_total,
-                            p->texel_count,       p->texture_count, p->uv_count};
+                            p->texel_count,       p->texture_count, p->uv_count, p->uv_first};
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) put_u32(b, sizes[i]);
   put_u32(b, p->bvh);
   put_u32(b, tree->object_nodes);
@@ -273,7 +273,7 @@ static const char *decode_packed(reader *r, rc_packed_scene *p, rc_prepared_tree
   uint32_t *const sizes[] = {&p->triangle_total, &p->transform_count, &p->normal_count,
                              &p->one_sided_triangle_count, &p->quadric_total, &p->csg_program_length,
                              &p->mesh_operand_count, &p->bvh_node_total, &p->bvh_prim_total,
-                             &p->texel_count, &p->texture_count, &p->uv_count};
+                             &p->texel_count, &p->texture_count, &p->uv_count, &p->uv_first};
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) *sizes[i] = get_u32(r);
   uint32_t bvh = get_u32(r);
   tree->object_nodes = get_u32(r);

@@ -267,9 +267,7 @@ static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   size_t smooth = 0;
   for (size_t i = 0; i < s->triangle_count; i++) smooth += s->triangles[i].smooth;
   p->normals = rc_alloc(smooth + 1, sizeof *p->normals, "packed normals");
-  size_t with_uv = 0;
-  for (size_t i = 0; i < s->triangle_count; i++) with_uv += s->triangles[i].has_uv;
-  p->uvs = rc_alloc(with_uv + 1, sizeof *p->uvs, "packed texture coordinates");
+
   /* Standalone quadrics, then planes, then the composites' leaves. */
   size_t standalone = s->quadric_count + s->plane_count;
   p->quadrics = rc_alloc(standalone + s->csg_leaf_count + 1, sizeof *p->quadrics, "packed quadrics");
@@ -285,10 +283,13 @@ static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   for (size_t i = 0; i < s->texture_count; i++)
     texels += RC_TEXELS_PER_TEXTURE_HEADER +
               (s->textures[i].image == i ? (size_t)s->textures[i].width * s->textures[i].height : 0);
+  /* Then the triangles' texture coordinates (RC_TRIANGLE_UV_SHIFT). */
+  p->uv_first = (uint32_t)texels;
+  for (size_t i = 0; i < s->triangle_count; i++) texels += s->triangles[i].has_uv ? RC_TEXELS_PER_VERTEX_UVS : 0;
   p->texel_count = (uint32_t)texels;
   p->texture_count = (uint32_t)s->texture_count;
   p->texels = rc_alloc(4 * (texels + 1), sizeof *p->texels, "packed textures");
-  return p->uvs && p->texels && p->mesh_operands && p->spheres && p->triangles && p->materials && p->lights && p->transforms &&
+  return p->texels && p->mesh_operands && p->spheres && p->triangles && p->materials && p->lights && p->transforms &&
          p->normals && p->quadrics && p->csg && p->csg_program;
 }
 
@@ -325,9 +326,11 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
     p->triangles[i].flags = s->triangles[i].one_sided ? RC_TRIANGLE_ONE_SIDED : 0u;
     if (s->triangles[i].has_uv) {
       const double(*uv)[2] = s->triangles[i].uv;
-      p->uvs[p->uv_count] = (packed_vertex_uvs){(float)uv[0][0], (float)uv[0][1], (float)uv[1][0], (float)uv[1][1],
-                                                (float)uv[2][0], (float)uv[2][1], 0.0f, 0.0f};
-      p->triangles[i].flags |= ++p->uv_count << RC_TRIANGLE_UV_SHIFT;
+      const packed_vertex_uvs t = {(float)uv[0][0], (float)uv[0][1], (float)uv[1][0], (float)uv[1][1],
+                                   (float)uv[2][0], (float)uv[2][1], 0.0f, 0.0f};
+      uint32_t at = p->uv_first + RC_TEXELS_PER_VERTEX_UVS * p->uv_count++;
+      memcpy(&p->texels[4 * (size_t)at], &t, sizeof t);
+      p->triangles[i].flags |= (at + 1) << RC_TRIANGLE_UV_SHIFT;
     }
     p->one_sided_triangle_count += s->triangles[i].one_sided;
     p->triangles[i].normals = RC_NO_NORMALS;
@@ -545,7 +548,6 @@ void rc_packed_scene_free(rc_packed_scene *p) {
   free(p->csg_program);
   free(p->mesh_operands);
   free(p->texels);
-  free(p->uvs);
   memset(p, 0, sizeof *p);
 }
 
@@ -569,8 +571,7 @@ static void hash_parts(const rc_packed_scene *p, hash_part parts[HASH_PARTS]) {
                                      {p->quadrics, p->quadric_total * sizeof *p->quadrics},
                                      {p->csg, f->csg_count * sizeof *p->csg},
                                      {p->csg_program, p->csg_program_length * sizeof *p->csg_program},
-                                     {p->texels, 4 * (size_t)p->texel_count * sizeof *p->texels},
-                                     {p->uvs, p->uv_count * sizeof *p->uvs}};
+                                     {p->texels, 4 * (size_t)p->texel_count * sizeof *p->texels}};
   memcpy(parts, all, sizeof all);
 }
 

@@ -40,8 +40,8 @@ typedef struct rc_packed_scene {
   uint32_t *texels;        /* the textures, 4 words a texel: each a packed_texture, then its texels */
   uint32_t texel_count;    /* at least one element */
   uint32_t texture_count;
-  packed_vertex_uvs *uvs;  /* of the triangles with texture coordinates (at least one element) */
-  uint32_t uv_count;
+  uint32_t uv_count;       /* triangles with texture coordinates: their records end the texel array, */
+  uint32_t uv_first;       /* from this texel on */
   dvec3 origin; /* world position of the packed space's origin (the eye) */
   double scale; /* packed units per scene unit: a power of two, 1 unless rescaled (scene_pack.c) */
   bool borrowed; /* the arrays belong to a prepared file (prepared.h): rc_packed_scene_free leaves them */
@@ -66,7 +66,7 @@ void rc_packed_scene_free(rc_packed_scene *packed);
  * (region.h, `vkraycast merge`). */
 uint64_t rc_packed_scene_hash(const rc_packed_scene *packed);
 /* The hash of each array that rc_packed_scene_hash chains (spheres .. textures). */
-#define RC_PACKED_ARRAYS 11
+#define RC_PACKED_ARRAYS 10
 void rc_packed_scene_array_hashes(const rc_packed_scene *packed, uint64_t hashes[RC_PACKED_ARRAYS]);
 
 #endif

@@ -41,7 +41,7 @@ static uint32_t read_packed(const rc_packed_scene *p) {
     const packed_triangle *t = &p->triangles[i];
     sink += p->materials[t->material].texture != 0;
     if (t->normals != RC_NO_NORMALS) sink += p->normals[t->normals].pad0 != 0;
-    if (t->flags >> RC_TRIANGLE_UV_SHIFT) sink += p->uvs[(t->flags >> RC_TRIANGLE_UV_SHIFT) - 1].pad0 != 0;
+    if (t->flags >> RC_TRIANGLE_UV_SHIFT) sink += p->texels[4 * ((size_t)(t->flags >> RC_TRIANGLE_UV_SHIFT) - 1 + 1) + 3];
   }
   for (uint32_t i = 0; i < p->quadric_total; i++) sink += p->materials[p->quadrics[i].material].pad1 != 0;
   for (uint32_t i = 0; i < f->light_count; i++) sink += p->lights[i].type;

@@ -67,15 +67,6 @@ int main(void) {
   OFF("scene_normals.n2", packed_vertex_normals, n2);
   OFF("scene_normals.pad2", packed_vertex_normals, pad2);
   printf("scene_normals stride %zu\n", sizeof(packed_vertex_normals));
-  OFF("scene_uvs.u0", packed_vertex_uvs, u0);
-  OFF("scene_uvs.v0", packed_vertex_uvs, v0);
-  OFF("scene_uvs.u1", packed_vertex_uvs, u1);
-  OFF("scene_uvs.v1", packed_vertex_uvs, v1);
-  OFF("scene_uvs.u2", packed_vertex_uvs, u2);
-  OFF("scene_uvs.v2", packed_vertex_uvs, v2);
-  OFF("scene_uvs.pad0", packed_vertex_uvs, pad0);
-  OFF("scene_uvs.pad1", packed_vertex_uvs, pad1);
-  printf("scene_uvs stride %zu\n", sizeof(packed_vertex_uvs));
 
   OFF("scene_spheres.center", packed_sphere, center);
   OFF("scene_spheres.radius", packed_sphere, radius);
@@ -176,7 +167,6 @@ int main(void) {
   printf("scene_csg binding %d\n", RC_BINDING_CSG);
   printf("scene_csg_program binding %d\n", RC_BINDING_CSG_PROGRAM);
   printf("scene_texels binding %d\n", RC_BINDING_TEXELS);
-  printf("scene_uvs binding %d\n", RC_BINDING_UVS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
   printf("Aov binding %d\n", RC_BINDING_AOV);

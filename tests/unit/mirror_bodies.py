@@ -63,7 +63,7 @@ GLSL_MAP = {
     "load_sphere": "spheres", "load_triangle": "triangles", "load_material": "materials",
     "load_light": "lights", "load_bvh_node": "bvh_nodes", "load_bvh_prim": "bvh_prims",
     "load_transform": "transforms", "load_vertex_normals": "normals", "load_quadric": "quadrics",
-    "load_csg": "csg", "load_csg_instruction": "csg_program", "load_vertex_uvs": "uvs",
+    "load_csg": "csg", "load_csg_instruction": "csg_program",
     "inversesqrt": "rsqrt", "RC_OFFSET_BITS": "bits_of", "RC_OFFSET_FROM_BITS": "from_bits",
     "select_min": "min", "select_max": "max",  # rc_real.glsl's selects: the reference's rmin, rmax
     "pixel": "px py",

@@ -18,7 +18,7 @@ static const char *scenes_dir = ".";
 /* The header's layout (prepared.c): magic, byte order, version, layout, size, checksum,
  * digest (48 bytes), then each section's offset, then each section's size. */
 enum { SUMMARY, SPHERES, TRIANGLES, MATERIALS, LIGHTS, TRANSFORMS, NORMALS, QUADRICS, CSG, PROGRAM, OPERANDS,
-       TEXELS, UVS, NODES, PRIMS, HASHES, SECTIONS };
+       TEXELS, NODES, PRIMS, HASHES, SECTIONS };
 static uint64_t *offset_of(unsigned char *f, int s) { return (uint64_t *)(f + 48 + 8 * s); }
 static uint64_t *size_of(unsigned char *f, int s) { return (uint64_t *)(f + 48 + 8 * SECTIONS + 8 * s); }
 static void reseal(unsigned char *f, size_t len) {
