@@ -124,15 +124,8 @@ rc_status js_load_mesh(jctx *c, const cJSON *o, rc_scene *s, const rc_affine *m,
   const cJSON *f = cJSON_GetObjectItemCaseSensitive(o, "file");
   if (!f) return js_fail(c, "missing field \"file\"");
   js_push_key(c, "file");
-  if (!cJSON_IsString(f) || !f->valuestring[0]) return js_fail(c, "expected a file name");
   char path[4096], folder[4096];
-  const char *slash = strrchr(c->file, '/');
-  int nf = snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - c->file) : 1, slash ? c->file : ".");
-  int np = f->valuestring[0] == '/' || !slash ? snprintf(path, sizeof path, "%s", f->valuestring)
-                                              : snprintf(path, sizeof path, "%s/%s", folder, f->valuestring);
-  if (nf < 0 || np < 0 || (size_t)nf >= sizeof folder || (size_t)np >= sizeof path) return js_fail(c, "path too long");
-  if (!c->allow_outside_paths && !rc_path_within(folder, path))
-    return js_fail(c, "lies outside the scene's folder %s (--allow-outside-paths allows it)", folder);
+  RC_TRY(js_scene_file(c, f, "a file name", path, folder));
   /* Found from the object, counted on from the last place: linear in the file however
    * many meshes it names. */
   size_t off = js_offset_near(c);

@@ -412,3 +412,15 @@ rc_status js_get_transform(jctx *c, const cJSON *obj, rc_affine *out, bool *pres
   js_pop(c);
   return RC_OK;
 }
+
+rc_status js_scene_file(jctx *c, const cJSON *v, const char *what, char path[4096], char folder[4096]) {
+  if (!cJSON_IsString(v) || !v->valuestring[0]) return js_fail(c, "expected %s", what);
+  const char *slash = strrchr(c->file, '/');
+  int nf = snprintf(folder, 4096, "%.*s", slash ? (int)(slash - c->file) : 1, slash ? c->file : ".");
+  int np = v->valuestring[0] == '/' || !slash ? snprintf(path, 4096, "%s", v->valuestring)
+                                              : snprintf(path, 4096, "%s/%s", folder, v->valuestring);
+  if (nf < 0 || np < 0 || nf >= 4096 || np >= 4096) return js_fail(c, "path too long");
+  if (!c->allow_outside_paths && !rc_path_within(folder, path))
+    return js_fail(c, "lies outside the scene's folder %s (--allow-outside-paths allows it)", folder);
+  return RC_OK;
+}

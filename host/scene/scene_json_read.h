@@ -66,6 +66,10 @@ void js_affine_multiply(rc_affine *a, const rc_affine *b);
 size_t js_offset(const jctx *c);
 /* js_offset, found from the current object where the path lies inside it. */
 size_t js_offset_near(const jctx *c);
+/* A file a scene names (the string value `v`, at the top of the path): `path`, relative to
+ * the scene file's folder (`folder`) unless absolute, and inside that folder unless
+ * --allow-outside-paths. Mesh files and textures are found so. */
+rc_status js_scene_file(jctx *c, const cJSON *v, const char *what, char path[4096], char folder[4096]);
 /* Line and column of an offset, counted on from the last offset asked for when it is
  * not before it: walking a file's places in order costs the file once. */
 void js_line_col(jctx *c, size_t off, int *line, int *col);

@@ -51,16 +51,8 @@ rc_status js_parse_texture(jctx *c, const cJSON *m, rc_scene *s, uint32_t *slot)
   RC_TRY(get_pair(c, m, "texture_offset", 0.0, t.offset));
   t.bilinear = filter == 0, t.clamp = wrap == 1;
   js_push_key(c, "texture");
-  if (!cJSON_IsString(f) || !f->valuestring[0]) return js_fail(c, "expected an image file name");
-  /* As a mesh file is found (scene_json_mesh.c): from the scene file's folder, and within it. */
   char path[4096], folder[4096];
-  const char *sep = strrchr(c->file, '/');
-  int nf = snprintf(folder, sizeof folder, "%.*s", sep ? (int)(sep - c->file) : 1, sep ? c->file : ".");
-  int np = f->valuestring[0] == '/' || !sep ? snprintf(path, sizeof path, "%s", f->valuestring)
-                                            : snprintf(path, sizeof path, "%s/%s", folder, f->valuestring);
-  if (nf < 0 || np < 0 || (size_t)nf >= sizeof folder || (size_t)np >= sizeof path) return js_fail(c, "path too long");
-  if (!c->allow_outside_paths && !rc_path_within(folder, path))
-    return js_fail(c, "lies outside the scene's folder %s (--allow-outside-paths allows it)", folder);
+  RC_TRY(js_scene_file(c, f, "an image file name", path, folder));
   int line, col;
   js_line_col(c, js_offset(c), &line, &col);
   char field[256];
