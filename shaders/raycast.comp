@@ -85,6 +85,7 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #include "rc_triangle.glsl"
 #if RC_QUADRICS
 #include "rc_quadric.glsl"
+#include "rc_patch.glsl"
 #endif
 #include "rc_intersect.glsl"
 #include "rc_bvh.glsl"
@@ -147,6 +148,8 @@ void main() {
 #if RC_QUADRICS
     if (crossing_blame != 0u && atomicCompSwap(status.crossing_object, 0u, crossing_blame) == 0u)
       status.crossing_pixel = 1u + pixel.y * frame.camera.width + pixel.x;
+    if (patch_stall_piece != 0u && atomicCompSwap(status.patch_unconverged_object, 0u, first_quadric_object + patch_stall_piece) == 0u)
+      status.patch_unconverged_pixel = 1u + pixel.y * frame.camera.width + pixel.x;
 #endif
     if (budget_exhausted) {
       group_exhausted = true;
@@ -166,5 +169,8 @@ void main() {
   if (aov_write) aov[slot] = aov_record;
   if (target < total) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
+#if RC_QUADRICS
+  if (patch_stalls != 0u) atomicAdd(status.patch_unconverged, patch_stalls);
+#endif
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);
 }

@@ -10,12 +10,14 @@
 #define real double
 #define rvec2 dvec2
 #define rvec3 dvec3
+#define rvec4 dvec4
 #define RC_UNIT_ROUNDOFF 1.1102230246251565e-16LF
 #define RC_SMALLEST_NORMAL 2.2250738585072014e-308LF
 #else
 #define real float
 #define rvec2 vec2
 #define rvec3 vec3
+#define rvec4 vec4
 #define RC_UNIT_ROUNDOFF 5.9604644775390625e-8
 #define RC_SMALLEST_NORMAL 1.17549435e-38
 #endif

@@ -170,6 +170,8 @@ packed_texture load_texture(uint first) {
 }
 
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
+// A patch's control point (RC_QUADRIC_PATCH): texel i of the texel array.
+vec3 load_patch_point(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
 
 // The packed_vertex_uvs at texel `first` of the texel array.
 packed_vertex_uvs load_vertex_uvs(uint first) {
@@ -221,6 +223,7 @@ packed_texture load_texture(uint first) {
                         uintBitsToFloat(b.w));
 }
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
+vec3 load_patch_point(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
 packed_vertex_uvs load_vertex_uvs(uint first) {
   vec4 a = uintBitsToFloat(scene_texels[first]);
   vec4 b = uintBitsToFloat(scene_texels[first + 1u]);

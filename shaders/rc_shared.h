@@ -92,7 +92,8 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_KIND_VERTEX_NORMALS 128u   /* a triangle has vertex normals (smooth shading) */
 #define RC_KIND_ONE_SIDED_TRIANGLES 256u /* a triangle has RC_TRIANGLE_ONE_SIDED */
 #define RC_KIND_TEXTURES 512u /* a material has a texture (packed_material.texture) */
-#define RC_KIND_ALL 1023u
+#define RC_KIND_PATCHES 1024u /* a quadric is a piece of a Bezier patch (RC_QUADRIC_PATCH) */
+#define RC_KIND_ALL 2047u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -188,7 +189,8 @@ struct packed_frame {
   uint csg_max_steps;     /* the most loop steps one ray can take in a composite (the host's plan) */
   uint plane_count;       /* the last plane_count of the quadric_count standalone quadrics are
                              infinite planes: outside the BVH, every ray tests them */
-  uint pad0; uint pad1; uint pad2;
+  uint patch_count;       /* of the standalone quadrics, how many are patch pieces (RC_QUADRIC_PATCH) */
+  uint pad1; uint pad2;
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -275,6 +277,33 @@ struct packed_vertex_uvs {
  * (the scene's "max_crossings"); its inside is where the number of crossings before a point
  * is odd (rc_quadric.glsl, mesh_intervals). */
 #define RC_QUADRIC_MESH 8u
+/* A piece of a bicubic Bezier patch (scene types "bezier_patch", "bezier_patches";
+ * rc_patch.glsl): no quadric. The patch's 16 control points are 16 texels of the texel
+ * array from mesh_root on (x, y, z in the packed space, row r = 0..3 of the net along v,
+ * column c = 0..3 along u: texel mesh_root + 4 r + c); this piece is its part
+ * [diag.x, diag.y] x [off.x, off.y] of the (u, v) square, whose control net lies in the box
+ * lo..hi about `center` (axes identity): the piece's place in the BVH, and the box its rays
+ * must enter. mesh_end: the quadric index of the patch's first piece (the patch's number
+ * in the AOVs, packed_aov.object). A ray is solved by Newton's method on the piece, seeded at its centre
+ * (Martin et al., "Practical Ray Tracing of Trimmed NURBS Surfaces", JGT 5(1), 2000). */
+#define RC_QUADRIC_PATCH 16u
+/* Newton iterations on a patch piece, at most: each evaluates the patch and its
+ * derivatives once, and the last only checks convergence. 6 left rays that graze a patch
+ * (shadow boundaries on the teapot's belly) unconverged, 653 pixels' shadow decisions
+ * apart between f32 and f64; 12 leave 2 (docs/numerics.md §10). The planner counts them
+ * (host/gpu/gpu_plan.c) where a scene has patches. */
+#define RC_PATCH_NEWTON_STEPS 12u
+/* Converged: the patch point lies within this many ulps (of the working precision) of the
+ * control points' largest coordinate from the ray line (docs/numerics.md §10). */
+#define RC_PATCH_TOLERANCE_ULPS 32.0
+/* ... or, at the last step, within 32 f32 ulps (2^-19) in either precision: f64's own
+ * criterion asks for more than 6 steps give a grazing ray, and that ray's hit is no less a
+ * hit than f32's. */
+#define RC_PATCH_LAST_TOLERANCE 1.9073486328125e-06
+/* A converged (u, v) still counts for the piece within this fraction of its width beyond
+ * its edges, so that rounding never drops a hit on an edge two pieces share. */
+#define RC_PATCH_DOMAIN_MARGIN 0.0009765625
+#define RC_TEXELS_PER_PATCH 16u
 struct packed_quadric {
   vec3 center; uint material;
   vec3 axis_x; float constant;
@@ -375,6 +404,13 @@ struct packed_status {
   uint crossing_object;   /* 1 + a composite a ray line crossed more often than its mesh operand's
                              bound, or an odd number of times; 0: none (the render fails) */
   uint crossing_pixel;    /* 1 + y * width + x of that ray's pixel */
+  /* Newton's method on a patch piece that stayed inside the piece without converging in
+   * RC_PATCH_NEWTON_STEPS (a ray taken as missing it that may hit it): how often, and the
+   * first such piece (1 + object) and pixel (1 + y * width + x). The render warns. */
+  uint patch_unconverged;
+  uint patch_unconverged_object;
+  uint patch_unconverged_pixel;
+  uint pad0;
 };
 
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
@@ -443,7 +479,7 @@ RC_ASSERT_LAYOUT(packed_frame, sphere_formula, 160); RC_ASSERT_LAYOUT(packed_fra
 RC_ASSERT_LAYOUT(packed_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(packed_frame, offset_epsilon, 172);
 RC_ASSERT_LAYOUT(packed_frame, quadric_count, 176); RC_ASSERT_LAYOUT(packed_frame, csg_count, 180);
 RC_ASSERT_LAYOUT(packed_frame, shadows, 184); RC_ASSERT_LAYOUT(packed_frame, csg_max_steps, 188);
-RC_ASSERT_LAYOUT(packed_frame, plane_count, 192);
+RC_ASSERT_LAYOUT(packed_frame, plane_count, 192); RC_ASSERT_LAYOUT(packed_frame, patch_count, 196);
 RC_ASSERT_SIZE(packed_frame, 208);
 RC_ASSERT_LAYOUT(packed_quadric, center, 0);   RC_ASSERT_LAYOUT(packed_quadric, material, 12);
 RC_ASSERT_LAYOUT(packed_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(packed_quadric, constant, 28);
@@ -496,7 +532,8 @@ RC_ASSERT_LAYOUT(packed_status, exhausted_pixels, 0); RC_ASSERT_LAYOUT(packed_st
 RC_ASSERT_LAYOUT(packed_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(packed_status, reflection_rays, 12);
 RC_ASSERT_LAYOUT(packed_status, exhausted_object, 16); RC_ASSERT_LAYOUT(packed_status, exhausted_pixel, 20);
 RC_ASSERT_LAYOUT(packed_status, crossing_object, 24); RC_ASSERT_LAYOUT(packed_status, crossing_pixel, 28);
-RC_ASSERT_SIZE(packed_status, 32);
+RC_ASSERT_LAYOUT(packed_status, patch_unconverged, 32); RC_ASSERT_LAYOUT(packed_status, patch_unconverged_pixel, 40);
+RC_ASSERT_SIZE(packed_status, 48);
 
 RC_ASSERT_LAYOUT(packed_aov, hit, 0);    RC_ASSERT_LAYOUT(packed_aov, object, 4);
 RC_ASSERT_LAYOUT(packed_aov, t, 8);      RC_ASSERT_LAYOUT(packed_aov, shadow_bits, 12);

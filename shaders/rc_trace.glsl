@@ -3,8 +3,16 @@
 
 // Starts the AOV record at the primary hit of sample 0.
 void aov_begin(hit_record h) {
+  uint object = h.object;
+#if RC_QUADRICS
+  if (has_kind(RC_KIND_PATCHES) && h.kind == RC_HIT_QUADRIC) {
+    // A patch's pieces are one surface: the record names the patch by its first piece.
+    packed_quadric q = load_quadric(h.index);
+    if ((q.flags & RC_QUADRIC_PATCH) != 0u) object = first_quadric_object + q.mesh_end;
+  }
+#endif
   aov_record.hit = (h.kind == RC_HIT_NONE) ? 0.0 : 1.0;
-  aov_record.object = (h.kind == RC_HIT_NONE) ? -1.0 : float(h.object);
+  aov_record.object = (h.kind == RC_HIT_NONE) ? -1.0 : float(object);
   aov_record.t = (h.kind == RC_HIT_NONE) ? 0.0 : float(h.t);
   aov_record.shadow_bits = 0.0;
   aov_record.normal = vec3(0.0);

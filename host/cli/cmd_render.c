@@ -411,6 +411,9 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
     rs->render_wall_ms = steady(wall_ms, a->repeat);
     rs->rays_shadow = rs->gpu.shadow_rays;
     rs->rays_reflection = rs->gpu.reflection_rays;
+    rs->patch_unconverged = rs->gpu.patch_stalls;
+    rs->patch_stall_object = rs->gpu.patch_stall_object;
+    rs->patch_stall_x = rs->gpu.patch_stall_x, rs->patch_stall_y = rs->gpu.patch_stall_y;
   }
   free(gpu_ms);
   free(wall_ms);
@@ -453,6 +456,9 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     rs->render_ms = rs->render_wall_ms = steady(ms, a->repeat);
     rs->rays_shadow = last_stats.shadow_rays;
     rs->rays_reflection = last_stats.reflection_rays;
+    rs->patch_unconverged = last_stats.patch_stalls;
+    rs->patch_stall_object = last_stats.patch_stall_object;
+    rs->patch_stall_x = last_stats.patch_stall_x, rs->patch_stall_y = last_stats.patch_stall_y;
     rs->threads = last_stats.threads;
   }
   free(ms);
@@ -536,6 +542,21 @@ static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const c
 
 /* A ray line that crossed a composite's mesh operand more often than its max_crossings, or
  * an odd number of times: the composite, the pixel and the way out. Nothing has been written. */
+/* A patch piece where Newton's method stayed near the ray without converging
+ * (rc_patch.glsl): the image may miss a sliver of the patch there. Said, never silent. */
+static void report_patch_stalls(const rc_scene *s, const rc_render_stats *rs) {
+  size_t piece = rs->patch_stall_object - s->sphere_count - s->triangle_count;
+  char what[400];
+  snprintf(what, sizeof what,
+           "on %llu rays (more than 1 in 1000) Newton's method stayed near a Bezier patch piece without converging "
+           "in %u steps, and took the ray as a miss (the first: this patch, pixel (%u, %u)): the image may lack "
+           "slivers of the patches; the count is the statistics' \"patch_unconverged\"",
+           (unsigned long long)rs->patch_unconverged, RC_PATCH_NEWTON_STEPS,
+           rs->patch_stall_x, rs->patch_stall_y);
+  if (piece < s->quadric_count) rc_scene_warning(s, RC_ORIGIN_QUADRIC, piece, "%s", what);
+  else fprintf(stderr, "%s: warning: %s\n", s->path, what);
+}
+
 static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uint32_t y) {
   char what[400];
   snprintf(what, sizeof what,
@@ -756,6 +777,10 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
         report_crossings(scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
     }
   }
+  /* Stalls happen where a ray grazes a patch (silhouettes, shadow terminators), a few in
+   * ten thousand rays on the teapot: above 1 in 1000, say so (docs/numerics.md §10). */
+  uint64_t rays = rs.rays_primary + rs.rays_shadow + rs.rays_reflection;
+  if (st == RC_OK && rs.patch_unconverged * 1000 > rays) report_patch_stalls(scene, &rs);
   rs.write_ms = rc_output_write_ms(out);
   rs.cpu_ms = rc_cpu_ms();
   if (st == RC_OK && a->stats_json && !a->stats_stdout) {

@@ -115,6 +115,7 @@ static const stats_field scene_fields[] = {
     FIELD("rays_primary", F_U64, rays_primary),
     FIELD("rays_shadow", F_U64, rays_shadow),
     FIELD("rays_reflection", F_U64, rays_reflection),
+    FIELD("patch_unconverged", F_U64, patch_unconverged),
 };
 static const stats_field bvh_fields[] = {
     FIELD("bvh_build_ms", F_DOUBLE, bvh.build_ms),

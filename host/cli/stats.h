@@ -34,6 +34,9 @@ typedef struct rc_render_stats {
   double cpu_ms;         /* process CPU time, whole run */
   uint32_t repeat;
   uint64_t rays_primary, rays_shadow, rays_reflection;
+  /* Patch rays Newton's method did not settle (rc_ref_stats.patch_stalls): taken as misses. */
+  uint64_t patch_unconverged;
+  uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
   rc_gpu_stats gpu;
   rc_bvh_stats bvh; /* zero with --accel none */
 } rc_render_stats;

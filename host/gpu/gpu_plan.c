@@ -8,11 +8,13 @@ static uint64_t pass_steps(const packed_frame *f, uint64_t ray, uint64_t lights)
 }
 
 /* Loop steps of one ray against one object, at most: 1 for a sphere or triangle; a
- * quadric's two clipped pieces and its first-end scan; a composite's count from the loader
- * (its program, pieces, merges, copies and scan, from its tree's interval bounds). */
+ * quadric's two clipped pieces and its first-end scan, or, in a scene with patches, a
+ * piece's Newton steps; a composite's count from the loader (its program, pieces, merges,
+ * copies and scan, from its tree's interval bounds). */
 static uint64_t object_steps(const packed_frame *f) {
   uint64_t csg = f->csg_count ? f->csg_max_steps : 0;
   uint64_t quadric = f->quadric_count ? 1 + 2 + 4 : 1;
+  if (f->patch_count && quadric < 1 + RC_PATCH_NEWTON_STEPS) quadric = 1 + RC_PATCH_NEWTON_STEPS;
   return csg > quadric ? csg : quadric;
 }
 

@@ -112,6 +112,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->vertex_normals = scene->normal_count > 0;
   r->one_sided_triangles = scene->one_sided_triangle_count > 0;
   r->textures = scene->texture_count > 0;
+  r->patches = scene->frame.patch_count > 0;
   r->budget = rc_gpu_loop_budget(ctx->llvmpipe, ctx->subgroup_size);
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
   stats->tile_budget_ms = r->tile_budget_ms;
@@ -353,6 +354,12 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     if (r->tile_budget_ms > 0 && ms > r->tile_budget_ms) stats->over_budget++;
     stats->shadow_rays += status.shadow_rays;
     stats->reflection_rays += status.reflection_rays;
+    if (status.patch_unconverged && stats->patch_stalls == 0) {
+      stats->patch_stall_object = status.patch_unconverged_object ? status.patch_unconverged_object - 1 : 0;
+      uint32_t at = status.patch_unconverged_pixel ? status.patch_unconverged_pixel - 1 : 0;
+      stats->patch_stall_x = at % r->frame.camera.width, stats->patch_stall_y = at / r->frame.camera.width;
+    }
+    stats->patch_stalls += status.patch_unconverged;
     if (status.crossing_object) {
       /* A mesh operand crossed more often than its bound, or an odd number of times: no
        * batch size helps, and the pixel would be wrong. Reported by the caller. */
@@ -391,6 +398,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->shadow_rays = stats->reflection_rays = 0;
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
   stats->crossing_object = UINT32_MAX;
+  stats->patch_stalls = 0;
   const rc_region reg = r->region;
   const uint32_t w = rc_region_width(reg), h = rc_region_height(reg), batch = stats->plan.batch_samples;
   const uint64_t total = (uint64_t)w * h;

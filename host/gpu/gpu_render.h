@@ -51,6 +51,8 @@ typedef struct rc_gpu_stats {
   uint32_t budget_x, budget_y; /* and that ray's pixel */
   uint32_t crossing_object;    /* UINT32_MAX, or as rc_ref_stats.crossing_object (ref_render.h) */
   uint32_t crossing_x, crossing_y;
+  uint64_t patch_stalls;       /* as rc_ref_stats.patch_stalls (ref_render.h) */
+  uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
   rc_gpu_plan plan;
   uint32_t lights_per_pass; /* 0: each sample's lights in one dispatch; else the passes' size
                                in the end (plan.light_pass, halved where the shader ran out) */

@@ -21,6 +21,7 @@ struct rc_gpu_renderer {
   bool sphere_transforms, vertex_normals; /* RC_KIND_SPHERE_TRANSFORMS, RC_KIND_VERTEX_NORMALS */
   bool one_sided_triangles;               /* RC_KIND_ONE_SIDED_TRIANGLES */
   bool textures;                          /* RC_KIND_TEXTURES */
+  bool patches;                           /* RC_KIND_PATCHES */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];

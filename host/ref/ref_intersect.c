@@ -103,6 +103,13 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
     if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
     return REF(intersect_triangle)(o, sh, tri, t_max, bary);
   }
+  if (kind == RC_HIT_QUADRIC) {
+    const packed_quadric *q = &sc->quadrics[index];
+    if ((q->flags & RC_QUADRIC_PATCH) != 0) {
+      *part = REF(csg_code)(index, 0, false, false);
+      return REF(intersect_patch)(sc, index, q, o, d, t_max, bary);
+    }
+  }
   if (kind == RC_HIT_QUADRIC) return REF(intersect_quadric)(sc, index, o, d, t_max, part);
   if (kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
   return (real)RC_T_FAR;

@@ -91,6 +91,15 @@ extern _Thread_local uint32_t ref_crossing_blame;
   V ref_quadric_normal_##S(const packed_quadric *q, uint32_t code, V p, V d);                      \
   V ref_mesh_normal_##S(packed_triangle tri, uint32_t code, V d);
 
+/* ref_patch.c, the twin of rc_patch.glsl: the two functions the rest of the reference calls.
+ * ref_patch_stalls, ref_patch_stall_piece: the shader's patch_stalls, patch_stall_piece. */
+extern _Thread_local uint32_t ref_patch_stalls, ref_patch_stall_piece;
+#define REF_DECLARE_PATCH(S, R, V)                                                              \
+  R ref_intersect_patch_##S(const ref_scene *sc, uint32_t index, const packed_quadric *q, V o, V d, R t_max, V *uv); \
+  V ref_patch_surface_##S(const ref_scene *sc, const packed_quadric *q, V uv, V *p, V *p_error);
+REF_DECLARE_PATCH(d, double, dvec3)
+REF_DECLARE_PATCH(f, float, vec3)
+
 REF_DECLARE_QUADRIC(d, double, dvec3)
 REF_DECLARE_QUADRIC(f, float, vec3)
 

@@ -37,6 +37,9 @@ static inline rvec3 rvec3_from(vec3 a) { return a; }
 static inline vec3 vec3_from(rvec3 a) { return a; }
 #endif
 
+/* GLSL's rvec4 (rc_patch.glsl's rows of four control points), a plain struct here. */
+typedef struct { real x, y, z, w; } rvec4;
+
 static inline real rv_get(rvec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }
 /* Min and max of two reals by comparison: the twins of the shader's select_min and
  * select_max (rc_real.glsl), not of GLSL's min and max, whose result for a NaN operand

@@ -32,6 +32,9 @@ typedef struct {
   bool flush_subnormals;
   atomic_uint crossing_object; /* 1 + the composite of the first crossing failure, 0: none */
   uint32_t crossing_x, crossing_y;
+  atomic_uint_fast64_t patch_stalls;
+  atomic_uint patch_stall_object; /* 1 + the object of the first stall, 0: none */
+  uint32_t patch_stall_x, patch_stall_y;
 } job;
 
 static void render_pixel(job *j, uint32_t x, uint32_t y) {
@@ -54,6 +57,12 @@ static void render_pixel(job *j, uint32_t x, uint32_t y) {
     unsigned none = 0;
     if (atomic_compare_exchange_strong(&j->crossing_object, &none, ref_crossing_blame)) j->crossing_x = x, j->crossing_y = y;
     ref_crossing_blame = 0;
+  }
+  if (ref_patch_stalls) {
+    atomic_fetch_add(&j->patch_stalls, ref_patch_stalls);
+    unsigned none = 0, object = j->frame->sphere_count + j->frame->triangle_count + ref_patch_stall_piece;
+    if (atomic_compare_exchange_strong(&j->patch_stall_object, &none, object)) j->patch_stall_x = x, j->patch_stall_y = y;
+    ref_patch_stalls = ref_patch_stall_piece = 0;
   }
 }
 
@@ -127,6 +136,8 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc
   atomic_init(&j.shadow_rays, 0);
   atomic_init(&j.reflection_rays, 0);
   atomic_init(&j.crossing_object, 0);
+  atomic_init(&j.patch_stalls, 0);
+  atomic_init(&j.patch_stall_object, 0);
   long cores = sysconf(_SC_NPROCESSORS_ONLN);
   uint32_t n = opts->threads ? opts->threads : (uint32_t)(cores > 0 ? cores : 1);
   pthread_t *threads = calloc(n, sizeof *threads);
@@ -143,6 +154,12 @@ rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc
   stats->threads = started ? started : 1;
   stats->shadow_rays += atomic_load(&j.shadow_rays);
   stats->reflection_rays += atomic_load(&j.reflection_rays);
+  uint64_t stalls = atomic_load(&j.patch_stalls);
+  if (stalls && stats->patch_stalls == 0) {
+    stats->patch_stall_object = atomic_load(&j.patch_stall_object) - 1;
+    stats->patch_stall_x = j.patch_stall_x, stats->patch_stall_y = j.patch_stall_y;
+  }
+  stats->patch_stalls += stalls;
   uint32_t crossing = atomic_load(&j.crossing_object);
   if (crossing) {
     stats->crossing_object = crossing - 1;
@@ -175,4 +192,5 @@ void rc_ref_cost_grid(const rc_packed_scene *p, double cost[RC_REF_COST_CELLS], 
   }
   ref_aov_enabled = aov;
   ref_crossing_blame = 0;
+  ref_patch_stalls = ref_patch_stall_piece = 0;
 }

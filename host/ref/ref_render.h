@@ -27,6 +27,11 @@ typedef struct rc_ref_stats {
    * odd number of times (rc_quadric.glsl, mesh_intervals): the composite's object number and
    * the pixel; the render then fails with RC_ERR_TOO_LARGE. */
   uint32_t crossing_object, crossing_x, crossing_y;
+  /* Newton runs on patch pieces that stayed in their piece, near the ray, without
+   * converging (rc_patch.glsl, intersect_patch): rays taken as missing a piece they may
+   * hit. With patch_stalls > 0, the first one's object number and pixel. */
+  uint64_t patch_stalls;
+  uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
 } rc_ref_stats;
 
 /* Renders the pixels of `region` (of the full frame) into rgb (its pixels * 3 floats,

@@ -100,8 +100,15 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       sf.material = tri.material;
     } else {
       const packed_quadric *q = &sc->quadrics[leaf];
-      if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
-      n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
+      if ((q->flags & RC_QUADRIC_PATCH) != 0) {
+        rvec3 g = REF(patch_surface)(sc, q, h->bary, &sf.p, &sf.p_error);
+        n = (RV(dot)(g, g) > 0) ? RV(normalize)(g) : RV(neg)(d);
+        sf.uv_kind = RC_UV_GIVEN;
+        sf.uv_at = h->bary;
+      } else {
+        if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
+        n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
+      }
       sf.material = q->material;
       if (q->flags & RC_QUADRIC_UNBOUNDED) {
         sf.uv_kind = RC_UV_GIVEN;

@@ -4,9 +4,13 @@
 
 
 void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
-  (void)sc;
+  uint32_t object = h->object;
+  if (h->kind == RC_HIT_QUADRIC) {
+    const packed_quadric *q = &sc->quadrics[h->index];
+    if ((q->flags & RC_QUADRIC_PATCH) != 0) object = sc->frame->sphere_count + sc->frame->triangle_count + q->mesh_end;
+  }
   ref_aov_record.hit = (h->kind == RC_HIT_NONE) ? 0.0f : 1.0f;
-  ref_aov_record.object = (h->kind == RC_HIT_NONE) ? -1.0f : (float)h->object;
+  ref_aov_record.object = (h->kind == RC_HIT_NONE) ? -1.0f : (float)object;
   ref_aov_record.t = (h->kind == RC_HIT_NONE) ? 0.0f : (float)h->t;
   ref_aov_record.shadow_bits = 0.0f;
   ref_aov_record.normal = rcm_make_f(0, 0, 0);

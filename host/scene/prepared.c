@@ -226,6 +226,7 @@ rc_status rc_prepared_decode(const char *name, const void *bytes, size_t len, rc
   if (st == RC_OK) {
     rc_scene_pack_frame(scene, &pf->packed);
     st = check_arrays(pf, &h, base);
+    if (st == RC_OK) rc_packed_scene_count_patches(&pf->packed);
   }
   if (st != RC_OK) {
     rc_scene_free(scene);
@@ -287,6 +288,7 @@ rc_status rc_prepared_packed(const rc_prepared *pf, const rc_scene *scene, rc_pa
   p->borrowed = true;
   p->array_hashes = pf->array_hashes;
   rc_scene_pack_frame(scene, p);
+  rc_packed_scene_count_patches(p);
   /* As rc_bvh_build leaves the frame (bvh.c, build_operands). */
   p->frame.bvh_node_count = pf->tree.object_nodes;
   uint64_t steps = pf->tree.operand_steps + p->frame.csg_max_steps;
@@ -318,6 +320,7 @@ rc_status rc_prepared_packed_copy(const rc_prepared *pf, const rc_scene *scene, 
     return RC_ERR_OUT_OF_MEMORY;
   }
   rc_scene_pack_frame(scene, p);
+  rc_packed_scene_count_patches(p);
   return RC_OK;
 }
 

@@ -96,6 +96,12 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
     const packed_quadric *q = &p->quadrics[i];
     if (q->material >= f->material_count) return say(why, cap, "quadric %u names material %u", i, q->material);
     meshes += (q->flags & RC_QUADRIC_MESH) != 0;
+    /* A patch piece: a standalone quadric of nothing else, its control points in the texel
+     * array, and its patch's first piece before it (rc_shared.h, RC_QUADRIC_PATCH). */
+    if ((q->flags & RC_QUADRIC_PATCH) &&
+        (q->flags != RC_QUADRIC_PATCH || i >= f->quadric_count - f->plane_count || q->mesh_end > i ||
+         q->mesh_root > p->texel_count || p->texel_count - q->mesh_root < RC_TEXELS_PER_PATCH))
+      return say(why, cap, "quadric %u is a patch piece whose control points or first piece lie past the arrays", i);
   }
   if (meshes != p->mesh_operand_count) return say(why, cap, "the mesh operands are miscounted");
   const char *problem = csg_problem(p, why, cap);

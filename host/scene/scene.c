@@ -53,6 +53,7 @@ void rc_scene_free(rc_scene *scene) {
   free(scene->spheres);
   free(scene->triangles);
   free(scene->quadrics);
+  free(scene->patches);
   free(scene->planes);
   free(scene->csg_leaves);
   free(scene->csg_triangles);
@@ -182,13 +183,8 @@ rc_status rc_scene_note_origin(rc_scene *s, const size_t before[RC_ORIGIN_KINDS]
   return RC_OK;
 }
 
-void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
+static void report(const rc_scene *s, const char *level, uint32_t kind, size_t index, const char *message) {
   static const char *const kinds[] = {"sphere", "triangle", "quadric", "composite", "light", "material", "plane"};
-  char message[512];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(message, sizeof message, fmt, ap);
-  va_end(ap);
   /* A scan: this runs once, for an error message. */
   const rc_origin *found = NULL;
   for (size_t i = 0; i < s->origin_count && !found; i++) {
@@ -197,7 +193,7 @@ void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *
   }
   const char *name = kind < RC_ORIGIN_KINDS ? kinds[kind] : "object";
   if (!found) {
-    fprintf(stderr, "%s: error: %s %zu: %s\n", s->path, name, index, message);
+    fprintf(stderr, "%s: %s: %s %zu: %s\n", s->path, level, name, index, message);
     return;
   }
   char field[200];
@@ -210,5 +206,23 @@ void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *
   if (found->count > 1)
     snprintf(field + strlen(field), sizeof field - strlen(field), " (%s %zu of %zu)", name, index - found->first,
              found->count);
-  fprintf(stderr, "%s:%u:%u: error: %s: %s\n", s->path, found->line, found->col, field, message);
+  fprintf(stderr, "%s:%u:%u: %s: %s: %s\n", s->path, found->line, found->col, level, field, message);
+}
+
+void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
+  char message[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(message, sizeof message, fmt, ap);
+  va_end(ap);
+  report(s, "error", kind, index, message);
+}
+
+void rc_scene_warning(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
+  char message[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(message, sizeof message, fmt, ap);
+  va_end(ap);
+  report(s, "warning", kind, index, message);
 }

@@ -76,7 +76,19 @@ typedef struct rc_quadric_def {
    * mesh_count) of rc_scene.csg_triangles; [lo, hi] about `center` is their box. */
   bool mesh;
   uint32_t mesh_first, mesh_count, max_crossings;
+  /* A piece of a Bezier patch (RC_QUADRIC_PATCH, scene_patch.h): 1 + its rc_scene.patches
+   * index (0: not a piece), and its part [u0, u1] x [v0, v1] of the (u, v) square; [lo, hi]
+   * about `center` (axes identity) is its control net's box. */
+  uint32_t patch, patch_piece0; /* patch_piece0: the quadric index of the patch's first piece */
+  double domain[4];
 } rc_quadric_def;
+
+/* A bicubic Bezier patch, world space: control point p[4 r + c] is row r (along v),
+ * column c (along u); lower degrees are raised to 3 at load. Its pieces are quadrics. */
+typedef struct rc_patch_def {
+  dvec3 p[16];
+  uint32_t material;
+} rc_patch_def;
 
 /* Where primitives came from in the scene file, for errors found after parsing (values
  * beyond f32 once packed, the GPU's loop budget): primitives [first, first + count) of
@@ -165,6 +177,8 @@ typedef struct rc_scene {
   size_t degenerate_in_meshes; /* of which in mesh files (mesh.c warns about those by file) */
   rc_quadric_def *quadrics;    /* standalone quadrics */
   size_t quadric_count, quadric_capacity;
+  rc_patch_def *patches;       /* their pieces are among the quadrics (rc_quadric_def.patch) */
+  size_t patch_count, patch_capacity;
   rc_quadric_def *planes;      /* infinite planes (RC_QUADRIC_UNBOUNDED), packed after the quadrics */
   size_t plane_count, plane_capacity;
   rc_quadric_def *csg_leaves;  /* the solids composites are made of */
@@ -197,6 +211,9 @@ rc_status rc_scene_note_origin(rc_scene *scene, const size_t before[RC_ORIGIN_KI
  * says "triangle K of N" for one of many from the same object, a mesh), or "FILE: error:
  * KIND INDEX: message" when no origin was recorded. */
 void rc_scene_error(const rc_scene *scene, uint32_t kind, size_t index, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+/* The same, as a warning. */
+void rc_scene_warning(const rc_scene *scene, uint32_t kind, size_t index, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
 /* How a scene may be read; NULL means all false. */

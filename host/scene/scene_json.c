@@ -14,6 +14,7 @@
 #include "scene/scene.h"
 #include "scene/scene_json_mesh.h"
 #include "scene/scene_json_texture.h"
+#include "scene/scene_patch.h"
 #include "scene/scene_quadric.h"
 
 /* A colour that may also be written as one number for all three channels (mirror). */
@@ -227,11 +228,12 @@ static rc_status parse_objects(jctx *c, const cJSON *root, rc_scene *s) {
     rc_scene_counts(s, before);
     RC_TRY(js_expect_object(c, o));
     static const char *const types[] = {"sphere",     "triangle",    "mesh", "quadric", "ellipsoid", "cylinder", "cone",
-                                        "paraboloid", "hyperboloid", "box",  "csg",     "plane", NULL};
+                                        "paraboloid", "hyperboloid", "box",  "csg",     "plane", "bezier_patch",
+                                        "bezier_patches", NULL};
     const cJSON *tv = cJSON_GetObjectItemCaseSensitive(o, "type");
     if (!tv) return js_fail(c, "missing field \"type\"");
-    if (cJSON_IsString(tv) && js_is_quadric_type(tv->valuestring)) {
-      RC_TRY(js_parse_quadric_object(c, o, s));
+    if (cJSON_IsString(tv) && (js_is_quadric_type(tv->valuestring) || js_is_patch_type(tv->valuestring))) {
+      RC_TRY(js_is_patch_type(tv->valuestring) ? js_parse_patch_object(c, o, s) : js_parse_quadric_object(c, o, s));
       RC_TRY(js_note_origin(c, s, before, off, "objects", (uint32_t)i));
       js_pop(c);
       continue;

@@ -146,7 +146,12 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
     const packed_quadric *q = &p->quadrics[i];
     bool bad = !fits(q->center, u) || !finite3(q->diag) || !finite3(q->off) || !fits(q->linear, u) ||
                !fits1(q->constant, u * u) || !fits(q->lo, u) || !fits(q->hi, u);
-    if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size or coefficients");
+    for (uint32_t k = 0; (q->flags & RC_QUADRIC_PATCH) && k < RC_TEXELS_PER_PATCH && !bad; k++) {
+      vec3 v;
+      memcpy(&v, &p->texels[4 * (size_t)(q->mesh_root + k)], sizeof v);
+      bad = !fits(v, u);
+    }
+    if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size, coefficients or control points");
     else if (bad && i < standalone) BAD(RC_ORIGIN_PLANE, i - s->quadric_count, "its point nearest the eye (relative to the eye)");
     else if (bad) BAD(RC_ORIGIN_CSG, csg_of_leaf(s, i - standalone), "an operand's centre (relative to the eye), size or coefficients");
   }
@@ -196,6 +201,22 @@ static bool object_from_packed(const rc_affine *w, dvec3 origin, double scale, p
  * the linear ones scale by s and the constant by s^2. */
 static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, packed_quadric *g) {
   double s = p->scale;
+  if (q->patch) {
+    /* A patch piece: its box, its (u, v) part, where its patch's control points are. */
+    *g = (packed_quadric){.center = to_packed(p, q->center),
+                          .material = q->material,
+                          .axis_x = {1, 0, 0},
+                          .axis_y = {0, 1, 0},
+                          .axis_z = {0, 0, 1},
+                          .flags = RC_QUADRIC_PATCH,
+                          .mesh_root = p->patch_first + RC_TEXELS_PER_PATCH * (q->patch - 1),
+                          .mesh_end = q->patch_piece0,
+                          .diag = {(float)q->domain[0], (float)q->domain[1], 0},
+                          .off = {(float)q->domain[2], (float)q->domain[3], 0},
+                          .lo = rcm_to_f(rcm_scale_d(q->lo, s)),
+                          .hi = rcm_to_f(rcm_scale_d(q->hi, s))};
+    return;
+  }
   *g = (packed_quadric){.center = to_packed(p, q->center),
                      .material = q->material,
                      .axis_x = rcm_to_f(q->axis[0]),
@@ -286,6 +307,9 @@ static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   /* Then the triangles' texture coordinates (RC_TRIANGLE_UV_SHIFT). */
   p->uv_first = (uint32_t)texels;
   for (size_t i = 0; i < s->triangle_count; i++) texels += s->triangles[i].has_uv ? RC_TEXELS_PER_VERTEX_UVS : 0;
+  /* Then the patches' control points (RC_QUADRIC_PATCH). */
+  p->patch_first = (uint32_t)texels;
+  texels += RC_TEXELS_PER_PATCH * s->patch_count;
   p->texel_count = (uint32_t)texels;
   p->texture_count = (uint32_t)s->texture_count;
   p->texels = rc_alloc(4 * (texels + 1), sizeof *p->texels, "packed textures");
@@ -412,9 +436,25 @@ static void pack_lights(const rc_scene *s, rc_packed_scene *p) {
   }
 }
 
+/* The patches' control points, in the packed space, 16 texels each (x, y, z, 0). */
+static void pack_patches(const rc_scene *s, rc_packed_scene *p) {
+  for (size_t i = 0; i < s->patch_count; i++)
+    for (uint32_t k = 0; k < RC_TEXELS_PER_PATCH; k++) {
+      vec3 v = to_packed(p, s->patches[i].p[k]);
+      float w[4] = {v.x, v.y, v.z, 0};
+      memcpy(&p->texels[4 * (p->patch_first + RC_TEXELS_PER_PATCH * i + k)], w, sizeof w);
+    }
+}
+
+void rc_packed_scene_count_patches(rc_packed_scene *p) {
+  p->frame.patch_count = 0;
+  for (uint32_t i = 0; i < p->frame.quadric_count; i++) p->frame.patch_count += (p->quadrics[i].flags & RC_QUADRIC_PATCH) != 0;
+}
+
 /* Standalone quadrics, then planes, then the composites' leaves (a mesh operand's leaf
  * names its triangles), and the composites, whose leaf operands index that array. */
 static void pack_quadrics_and_composites(const rc_scene *s, rc_packed_scene *p) {
+  pack_patches(s, p);
   size_t standalone = s->quadric_count + s->plane_count;
   for (size_t i = 0; i < s->quadric_count; i++) pack_quadric(p, &s->quadrics[i], &p->quadrics[i]);
   for (size_t i = 0; i < s->plane_count; i++) pack_plane(p, s, &s->planes[i], &p->quadrics[s->quadric_count + i]);
@@ -470,6 +510,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     free(first);
     pack_lights(s, p);
     pack_quadrics_and_composites(s, p);
+    rc_packed_scene_count_patches(p);
     st = check_f32_range(s, p);
   }
   if (st != RC_OK) rc_packed_scene_free(p);
@@ -518,6 +559,20 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
    * transform also its scale, whose own rounding the band therefore does not cover. */
   for (uint32_t i = 0; i < p->quadric_total; i++) {
     packed_quadric *q = &p->quadrics[i];
+    if (q->flags & RC_QUADRIC_PATCH) {
+      /* A patch's inputs are its control points, moved once, with its first piece; the
+       * pieces' (u, v) parts are not measurements. */
+      q->center = perturb_vec3(q->center, seed);
+      q->lo = perturb_vec3(q->lo, seed);
+      q->hi = perturb_vec3(q->hi, seed);
+      for (uint32_t k = 0; q->diag.x == 0 && q->off.x == 0 && k < RC_TEXELS_PER_PATCH; k++) {
+        vec3 v;
+        memcpy(&v, &p->texels[4 * (size_t)(q->mesh_root + k)], sizeof v);
+        v = perturb_vec3(v, seed);
+        memcpy(&p->texels[4 * (size_t)(q->mesh_root + k)], &v, sizeof v);
+      }
+      continue;
+    }
     q->center = perturb_vec3(q->center, seed);
     /* The second-order coefficients lean the other way from the constant, so that
      * -constant / diag (a radius squared, after normalization) moves rather than cancels. */

@@ -42,6 +42,7 @@ typedef struct rc_packed_scene {
   uint32_t texture_count;
   uint32_t uv_count;       /* triangles with texture coordinates: their records end the texel array, */
   uint32_t uv_first;       /* from this texel on */
+  uint32_t patch_first;    /* then the patches' control points (RC_QUADRIC_PATCH) from this texel on */
   dvec3 origin; /* world position of the packed space's origin (the eye) */
   double scale; /* packed units per scene unit: a power of two, 1 unless rescaled (scene_pack.c) */
   bool borrowed; /* the arrays belong to a prepared file (prepared.h): rc_packed_scene_free leaves them */
@@ -61,6 +62,9 @@ void rc_scene_pack_frame(const rc_scene *scene, rc_packed_scene *packed);
  * value: the conditioning band's re-renders (render --perturb, compare --band). */
 void rc_packed_scene_perturb(rc_packed_scene *packed, uint32_t seed);
 void rc_packed_scene_free(rc_packed_scene *packed);
+/* Sets frame.patch_count from the packed quadrics (rc_scene_pack_frame cannot: a
+ * prepared scene's frame is re-derived without the scene's quadrics). */
+void rc_packed_scene_count_patches(rc_packed_scene *packed);
 /* A hash of everything the renderers read (the frame and every array, the eye's world
  * position; not the BVH, which only speeds them up): the parts of one render agree on it
  * (region.h, `vkraycast merge`). */

@@ -45,7 +45,7 @@ int main(void) {
   OFF("frame.shadows", packed_frame, shadows);
   OFF("frame.csg_max_steps", packed_frame, csg_max_steps);
   OFF("frame.plane_count", packed_frame, plane_count);
-  OFF("frame.pad0", packed_frame, pad0);
+  OFF("frame.patch_count", packed_frame, patch_count);
   OFF("frame.pad1", packed_frame, pad1);
   OFF("frame.pad2", packed_frame, pad2);
   printf("Frame size %zu\n", sizeof(packed_frame));
@@ -144,6 +144,10 @@ int main(void) {
   OFF("status.exhausted_pixel", packed_status, exhausted_pixel);
   OFF("status.crossing_object", packed_status, crossing_object);
   OFF("status.crossing_pixel", packed_status, crossing_pixel);
+  OFF("status.patch_unconverged", packed_status, patch_unconverged);
+  OFF("status.patch_unconverged_object", packed_status, patch_unconverged_object);
+  OFF("status.patch_unconverged_pixel", packed_status, patch_unconverged_pixel);
+  OFF("status.pad0", packed_status, pad0);
   printf("Status size %zu\n", sizeof(packed_status));
 
   OFF("aov.hit", packed_aov, hit);

@@ -1,0 +1,190 @@
+// rc_patch.glsl: pieces of bicubic Bezier patches (RC_QUADRIC_PATCH, rc_shared.h). A ray is
+// the meet of two planes through it (Kajiya, "Ray Tracing Parametric Patches", SIGGRAPH
+// 1982); their signed distances to the patch point S(u, v) are two functions of (u, v)
+// whose common zero Newton's method finds from the piece's centre (Martin et al.,
+// "Practical Ray Tracing of Trimmed NURBS Surfaces", JGT 5(1), 2000). The net is moved to
+// the ray's origin and projected on the planes' normals once, so every iteration works on
+// 2 x 16 numbers. The bound and the criteria are in docs/numerics.md §10.
+
+// Newton runs that stayed in their piece without converging (rc_shared.h, packed_status):
+// how many, and 1 + the first piece's quadric index. Per invocation.
+uint patch_stalls = 0u;
+uint patch_stall_piece = 0u;
+
+// The cubic Bernstein weights at t.
+rvec4 bernstein(real t) {
+  precise real s = 1.0 - t;
+  precise rvec4 w = rvec4(s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t);
+  return w;
+}
+
+// Their derivatives: 3 (B2[i-1] - B2[i]) with B2 the quadratic weights s^2, 2 t s, t^2.
+rvec4 bernstein_slope(real t) {
+  precise real s = 1.0 - t;
+  precise rvec4 w = rvec4(-3.0 * s * s, 3.0 * s * (s - 2.0 * t), 3.0 * t * (2.0 * s - t), 3.0 * t * t);
+  return w;
+}
+
+// A row of four values weighted, in a fixed order (no dot: its order is the driver's).
+real weigh(rvec4 w, rvec4 c) {
+  precise real r = w.x * c.x + w.y * c.y + w.z * c.z + w.w * c.w;
+  return r;
+}
+
+// One coordinate of the net (row r = 0..3 along v, each four values along u) at (u, v):
+// its value, its slopes along u and v, and the mixed slope, from the weights bu, bv and
+// their derivatives su, sv.
+rvec4 net_eval(rvec4 r0, rvec4 r1, rvec4 r2, rvec4 r3, rvec4 bu, rvec4 su, rvec4 bv, rvec4 sv) {
+  rvec4 along = rvec4(weigh(bu, r0), weigh(bu, r1), weigh(bu, r2), weigh(bu, r3));
+  rvec4 slope = rvec4(weigh(su, r0), weigh(su, r1), weigh(su, r2), weigh(su, r3));
+  return rvec4(weigh(bv, along), weigh(bv, slope), weigh(sv, along), weigh(sv, slope));
+}
+
+// A patch's net relative to o along the axes a, b and c: three coordinates of 4 rows each,
+// and the largest coordinate of any control point relative to o (the scale of the
+// arithmetic's rounding).
+struct patch_net {
+  rvec4 a0; rvec4 a1; rvec4 a2; rvec4 a3;
+  rvec4 b0; rvec4 b1; rvec4 b2; rvec4 b3;
+  rvec4 c0; rvec4 c1; rvec4 c2; rvec4 c3;
+  real scale;
+};
+
+// Row `first` .. first + 3 of the net (texels of the texel array), relative to o, on a, b, c.
+void net_row(uint first, rvec3 o, rvec3 a, rvec3 b, rvec3 c, out rvec4 ra, out rvec4 rb, out rvec4 rc,
+             inout real scale) {
+  precise rvec3 p0 = rvec3(load_patch_point(first)) - o;
+  precise rvec3 p1 = rvec3(load_patch_point(first + 1u)) - o;
+  precise rvec3 p2 = rvec3(load_patch_point(first + 2u)) - o;
+  precise rvec3 p3 = rvec3(load_patch_point(first + 3u)) - o;
+  precise rvec4 xa = rvec4(dot(a, p0), dot(a, p1), dot(a, p2), dot(a, p3));
+  precise rvec4 xb = rvec4(dot(b, p0), dot(b, p1), dot(b, p2), dot(b, p3));
+  precise rvec4 xc = rvec4(dot(c, p0), dot(c, p1), dot(c, p2), dot(c, p3));
+  ra = xa;
+  rb = xb;
+  rc = xc;
+  scale = select_max(scale, select_max(select_max(max3_abs(p0), max3_abs(p1)), select_max(max3_abs(p2), max3_abs(p3))));
+}
+
+patch_net load_patch_net(uint first, rvec3 o, rvec3 a, rvec3 b, rvec3 c) {
+  patch_net n;
+  n.scale = 0.0;
+  net_row(first, o, a, b, c, n.a0, n.b0, n.c0, n.scale);
+  net_row(first + 4u, o, a, b, c, n.a1, n.b1, n.c1, n.scale);
+  net_row(first + 8u, o, a, b, c, n.a2, n.b2, n.c2, n.scale);
+  net_row(first + 12u, o, a, b, c, n.a3, n.b3, n.c3, n.scale);
+  return n;
+}
+
+// The ray against a patch piece: t of the converged point in (0, t_max], with (u, v, 0),
+// else RC_T_FAR. Newton's method on F(u, v) = (a.(S - o), b.(S - o)), a and b unit
+// normals of two planes through the ray, stops when |F.x| + |F.y| is within
+// RC_PATCH_TOLERANCE_ULPS ulps of the net's scale (at the last step RC_PATCH_LAST_TOLERANCE
+// of it), when its Jacobian is singular, or when
+// (u, v) leaves the piece by more than the piece's width. Only a converged point inside the
+// piece (within RC_PATCH_DOMAIN_MARGIN of its width) is a hit: never a point off the
+// ray or off the piece. A run that ends still inside the piece, near the ray, and
+// unconverged is counted (patch_stalls) and taken as a miss.
+real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max, out rvec3 uv) {
+  uv = rvec3(0.0);
+  real b_in, b_out;
+  uint a_in, a_out;
+  box_span(rvec3(q.lo), rvec3(q.hi), o - rvec3(q.center), d, b_in, b_out, a_in, a_out);
+  if (b_in > b_out || b_out < 0.0 || b_in > t_max * real(RC_BOX_NEAR_SCALE)) return real(RC_T_FAR);
+  // Unit by a division by sqrt, not normalize (whose inverse square root a driver may
+  // approximate): the planes are the same on both backends.
+  rvec3 w = (abs(d.x) > abs(d.y) && abs(d.x) > abs(d.z)) ? rvec3(d.y, -d.x, 0.0) : rvec3(0.0, d.z, -d.y);
+  precise real len = sqrt(dot(w, w));
+  precise rvec3 a = w / len;
+  precise rvec3 b = cross(a, d);
+  patch_net n = load_patch_net(q.mesh_root, o, a, b, d);
+  precise real tol = real(RC_PATCH_TOLERANCE_ULPS) * RC_UNIT_ROUNDOFF * n.scale;
+  precise real last_tol = real(RC_PATCH_LAST_TOLERANCE) * n.scale;
+  real u0 = real(q.diag.x);
+  real u1 = real(q.diag.y);
+  real v0 = real(q.off.x);
+  real v1 = real(q.off.y);
+  precise real wu = u1 - u0;
+  precise real wv = v1 - v0;
+  precise real u = 0.5 * (u0 + u1);
+  precise real v = 0.5 * (v0 + v1);
+  precise real mu = real(RC_PATCH_DOMAIN_MARGIN) * wu;
+  precise real mv = real(RC_PATCH_DOMAIN_MARGIN) * wv;
+  rvec4 bu = bernstein(u);
+  rvec4 bv = bernstein(v);
+  real residual = real(RC_T_FAR);
+  bool converged = false;
+  bool nearby = true;
+  for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
+    if (!budget_step()) break;
+    bu = bernstein(u);
+    bv = bernstein(v);
+    rvec4 su = bernstein_slope(u);
+    rvec4 sv = bernstein_slope(v);
+    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
+    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
+    residual = abs(fa.x) + abs(fb.x);
+    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
+    if (residual <= tol || (last && residual <= last_tol)) {
+      converged = true;
+      break;
+    }
+    if (last) break;
+    precise real det = fa.y * fb.z - fa.z * fb.y;
+    if (det == 0.0) break;
+    precise real du = (fa.x * fb.z - fa.z * fb.x) / det;
+    precise real dv = (fa.y * fb.x - fa.x * fb.y) / det;
+    u = u - du;
+    v = v - dv;
+    nearby = u >= u0 - wu && u <= u1 + wu && v >= v0 - wv && v <= v1 + wv;
+    if (!nearby) break;
+  }
+  bool in_piece = u >= u0 - mu && u <= u1 + mu && v >= v0 - mv && v <= v1 + mv;
+  if (!converged) {
+    // Near the ray (within a 64th of the piece's box) and inside the piece: a run that
+    // Newton's steps did not settle, where a hit may be.
+    precise rvec3 extent = rvec3(q.hi) - rvec3(q.lo);
+    if (in_piece && nearby && residual <= max3_abs(extent) * 0.015625) {
+      patch_stalls++;
+      if (patch_stall_piece == 0u) patch_stall_piece = 1u + index;
+    }
+    return real(RC_T_FAR);
+  }
+  if (!in_piece) return real(RC_T_FAR);
+  rvec4 along = rvec4(weigh(bu, n.c0), weigh(bu, n.c1), weigh(bu, n.c2), weigh(bu, n.c3));
+  precise real t = weigh(bv, along);
+  if (t <= 0.0 || t > t_max) return real(RC_T_FAR);
+  uv = rvec3(u, v, 0.0);
+  return t;
+}
+
+// The patch point at (u, v) in the packed space, its rounding-error bound, and the normal
+// dS/du x dS/dv (not normalized). Where one derivative vanishes (a net row or column
+// collapsed to a point: the teapot's lid and bottom centres) the normal is the limit along
+// the other parameter: dS/du ~ (v - v_edge) d2S/dudv, so d2S/dudv stands in for it, turned
+// to point into the patch from that edge; the same for dS/dv.
+rvec3 patch_surface(packed_quadric q, rvec3 uv, out rvec3 p, out rvec3 p_error) {
+  patch_net n = load_patch_net(q.mesh_root, rvec3(0.0), rvec3(1.0, 0.0, 0.0), rvec3(0.0, 1.0, 0.0), rvec3(0.0, 0.0, 1.0));
+  rvec4 bu = bernstein(uv.x);
+  rvec4 su = bernstein_slope(uv.x);
+  rvec4 bv = bernstein(uv.y);
+  rvec4 sv = bernstein_slope(uv.y);
+  rvec4 fx = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
+  rvec4 fy = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
+  rvec4 fz = net_eval(n.c0, n.c1, n.c2, n.c3, bu, su, bv, sv);
+  p = rvec3(fx.x, fy.x, fz.x);
+  // Two weighings of 4 terms with weights summing to 1 (plus the weights' own rounding):
+  // within gamma(16) of the net's largest coordinate, doubled for headroom.
+  precise real e = gamma_bound(32.0) * n.scale;
+  p_error = rvec3(e, e, e);
+  rvec3 pu = rvec3(fx.y, fy.y, fz.y);
+  rvec3 pv = rvec3(fx.z, fy.z, fz.z);
+  rvec3 puv = rvec3(fx.w, fy.w, fz.w);
+  // "Vanishes": below 2^-20 (2^-40 squared: 9.09e-13) of the other derivative, where its own rounding rules it.
+  precise real lu = dot(pu, pu);
+  precise real lv = dot(pv, pv);
+  if (lu < 9.094947017729282e-13 * lv) pu = (uv.y < 0.5) ? puv : -puv;
+  else if (lv < 9.094947017729282e-13 * lu) pv = (uv.x < 0.5) ? puv : -puv;
+  precise rvec3 g = cross(pu, pv);
+  return g;
+}
