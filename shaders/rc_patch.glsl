@@ -80,10 +80,10 @@ patch_net load_patch_net(uint first, rvec3 o, rvec3 a, rvec3 b, rvec3 c) {
 // else RC_T_FAR. Newton's method on F(u, v) = (a.(S - o), b.(S - o)), a and b unit
 // normals of two planes through the ray, stops when |F.x| + |F.y| is within
 // RC_PATCH_TOLERANCE_ULPS ulps of the net's scale (at the last step RC_PATCH_LAST_TOLERANCE
-// of it), when its Jacobian is singular, or when
-// (u, v) leaves the piece by more than the piece's width. Only a converged point inside the
-// piece (within RC_PATCH_DOMAIN_MARGIN of its width) is a hit: never a point off the
-// ray or off the piece. A run that ends still inside the piece, near the ray, and
+// of it), when its Jacobian is singular, or when (u, v) leaves the piece by more than the
+// piece's width. Only a converged point inside the piece (within RC_PATCH_DOMAIN_MARGIN of
+// its width, RC_PATCH_EDGE_MARGIN at the patch's own edges) is a hit: never a point off
+// the ray or off the patch. A run that ends still inside the piece, near the ray, and
 // unconverged is counted (patch_stalls) and taken as a miss.
 real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max, out rvec3 uv) {
   uv = rvec3(0.0);
@@ -110,6 +110,11 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
   precise real v = 0.5 * (v0 + v1);
   precise real mu = real(RC_PATCH_DOMAIN_MARGIN) * wu;
   precise real mv = real(RC_PATCH_DOMAIN_MARGIN) * wv;
+  real edge = real(RC_PATCH_EDGE_MARGIN);
+  real lo_u = (u0 == 0.0) ? -edge : u0 - mu;
+  real hi_u = (u1 == 1.0) ? 1.0 + edge : u1 + mu;
+  real lo_v = (v0 == 0.0) ? -edge : v0 - mv;
+  real hi_v = (v1 == 1.0) ? 1.0 + edge : v1 + mv;
   rvec4 bu = bernstein(u);
   rvec4 bv = bernstein(v);
   real residual = real(RC_T_FAR);
@@ -139,7 +144,7 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
     nearby = u >= u0 - wu && u <= u1 + wu && v >= v0 - wv && v <= v1 + wv;
     if (!nearby) break;
   }
-  bool in_piece = u >= u0 - mu && u <= u1 + mu && v >= v0 - mv && v <= v1 + mv;
+  bool in_piece = u >= lo_u && u <= hi_u && v >= lo_v && v <= hi_v;
   if (!converged) {
     // Near the ray (within a 64th of the piece's box) and inside the piece: a run that
     // Newton's steps did not settle, where a hit may be.

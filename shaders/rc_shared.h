@@ -303,6 +303,10 @@ struct packed_vertex_uvs {
 /* A converged (u, v) still counts for the piece within this fraction of its width beyond
  * its edges, so that rounding never drops a hit on an edge two pieces share. */
 #define RC_PATCH_DOMAIN_MARGIN 0.0009765625
+/* At the patch's own edges (u or v 0 or 1) only 2^-20 of the square: no piece of another
+ * patch lies beyond them, and a hit there would stand out of the patch (its square's
+ * triangles, tests/patches). */
+#define RC_PATCH_EDGE_MARGIN 9.5367431640625e-07
 #define RC_TEXELS_PER_PATCH 16u
 struct packed_quadric {
   vec3 center; uint material;

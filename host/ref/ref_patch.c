@@ -99,6 +99,11 @@ real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quad
   real v = (real)0.5 * (v0 + v1);
   real mu = (real)RC_PATCH_DOMAIN_MARGIN * wu;
   real mv = (real)RC_PATCH_DOMAIN_MARGIN * wv;
+  real edge = (real)RC_PATCH_EDGE_MARGIN;
+  real lo_u = (u0 == 0) ? -edge : u0 - mu;
+  real hi_u = (u1 == 1) ? 1 + edge : u1 + mu;
+  real lo_v = (v0 == 0) ? -edge : v0 - mv;
+  real hi_v = (v1 == 1) ? 1 + edge : v1 + mv;
   rvec4 bu = REF(bernstein)(u);
   rvec4 bv = REF(bernstein)(v);
   real residual = far;
@@ -128,7 +133,7 @@ real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quad
     nearby = u >= u0 - wu && u <= u1 + wu && v >= v0 - wv && v <= v1 + wv;
     if (!nearby) break;
   }
-  bool in_piece = u >= u0 - mu && u <= u1 + mu && v >= v0 - mv && v <= v1 + mv;
+  bool in_piece = u >= lo_u && u <= hi_u && v >= lo_v && v <= hi_v;
   if (!converged) {
     rvec3 extent = RV(sub)(v3(q->hi), v3(q->lo));
     if (in_piece && nearby && residual <= REF(max3_abs)(extent) * (real)0.015625) {

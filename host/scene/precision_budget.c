@@ -93,6 +93,28 @@ static void judge_triangles(const rc_packed_scene *p, dvec3 eye, double u, rc_pr
   }
 }
 
+/* A patch piece (RC_QUADRIC_PATCH): Newton's method converges to within 32 f32 ulps of the
+ * net's coordinates relative to the ray's origin (rc_patch.glsl), about the eye's distance,
+ * which must stay well below the piece's size, as a sphere's rounding must below its
+ * radius: the far-sphere rule with the piece's largest half-extent (a flat piece has no
+ * smallest). Its control points' f32 rounding against that size, too. */
+static void judge_patch_piece(const packed_quadric *q, uint32_t i, dvec3 eye, double u, rc_precision_report *r) {
+  dvec3 half = rcm_scale_d(rcm_sub_d(rcm_to_d(q->hi), rcm_to_d(q->lo)), 0.5);
+  double size = fmax(half.x, fmax(half.y, half.z));
+  double dist = rcm_length_d(rcm_sub_d(rcm_to_d(q->center), eye));
+  double reach = rcm_max_abs_comp_f(q->center) + size;
+  if (reach > RC_BUDGET_FAR_COORDINATE || size < RC_BUDGET_TINY_RADIUS)
+    note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "patch piece %u: size %g at |p| %g leaves the f32 range once squared",
+         i, size * u, reach * u);
+  else if (dist / size > RC_BUDGET_FAR_PATCH)
+    note(&r->needs_f64, r->first_f64, sizeof r->first_f64, "patch piece %u: distance %g over size %g (ratio %.3g)", i,
+         dist * u, size * u, dist / size);
+  double qz = 0.5 * ulp_f32(reach) / size;
+  if (qz > RC_BUDGET_QUANTIZATION)
+    note(&r->quantized, r->first_quantized, sizeof r->first_quantized,
+         "patch piece %u: its control points are rounded to f32 by up to %.3g of its size", i, qz);
+}
+
 /* Quadrics (standalone and composite leaves): their math runs on p - centre in their own
  * frame, the sphere's geometric form generalized, so the far-sphere rule applies with
  * the box's smallest half-extent as the radius; and the centre's f32 rounding against it.
@@ -113,6 +135,10 @@ static void judge_quadrics(const rc_packed_scene *p, dvec3 eye, double u, rc_pre
       continue;
     }
     if (q->flags & RC_QUADRIC_MESH) continue; /* a mesh operand: its triangles were judged above */
+    if (q->flags & RC_QUADRIC_PATCH) {
+      judge_patch_piece(q, i, eye, u, r);
+      continue;
+    }
     dvec3 half = rcm_scale_d(rcm_sub_d(rcm_to_d(q->hi), rcm_to_d(q->lo)), 0.5);
     const double w[3][3] = {{q->axis_x.x, q->axis_x.y, q->axis_x.z}, {q->axis_y.x, q->axis_y.y, q->axis_y.z},
                             {q->axis_z.x, q->axis_z.y, q->axis_z.z}};

@@ -12,6 +12,9 @@
 /* |C| / r, geometric form: beyond it the f32 error-bound offset (gamma(10) |p| ~ 6e-7 |p|)
  * passes 6 % of r, and contact shadows between such spheres are lost (S21 at D = 1e3). */
 #define RC_BUDGET_FAR_SPHERE 1.0e5
+/* A patch piece's distance over its size: Newton stops within 2^-19 of the distance
+ * (rc_shared.h), 1 % of the piece's size at this ratio. */
+#define RC_BUDGET_FAR_PATCH 5.0e3
 #define RC_BUDGET_FAR_SPHERE_ALGEBRAIC 1.0e2 /* |C| / r, textbook form: f32 loses the sphere from ~1e3 */
 /* The two range limits are in packed units: a scene tiny or huge as a whole was packed in
  * power-of-two units first (scene_pack.c), so they catch only one that spans both. */

@@ -128,7 +128,7 @@ static void elevate(dvec3 *row, size_t stride, int n) {
 /* The patch file's words, with their lines. */
 typedef struct {
   const char *path, *text, *at;
-  int line;
+  int line, word_line; /* where the reader is, and the line of the last word read */
 } reader;
 
 static bool next_word(reader *r, const char **word, size_t *len) {
@@ -139,6 +139,7 @@ static bool next_word(reader *r, const char **word, size_t *len) {
   }
   if (!*r->at) return false;
   *word = r->at;
+  r->word_line = r->line;
   while (*r->at && *r->at != ' ' && *r->at != '\t' && *r->at != '\r' && *r->at != '\n') r->at++;
   *len = (size_t)(r->at - *word);
   return true;
@@ -157,6 +158,7 @@ static rc_status read_number(reader *r, const char *where, size_t patch, const c
   char msg[160], buf[64];
   if (!next_word(r, &w, &len)) {
     snprintf(msg, sizeof msg, "the file ends where %s should be", what);
+    r->line = r->word_line; /* the file's last line with something on it */
     return file_fail(r, where, msg, patch);
   }
   snprintf(buf, sizeof buf, "%.*s", (int)(len < 63 ? len : 63), w);
@@ -195,7 +197,7 @@ static rc_status read_patches(reader *r, const rc_affine *m, uint32_t material, 
         double x[3];
         char what[64];
         for (int a = 0; a < 3; a++) {
-          snprintf(what, sizeof what, "control point %d's %c", row * (nu + 1) + col, "xyz"[a]);
+          snprintf(what, sizeof what, "control point %d's %c", row * (nu + 1) + col + 1, "xyz"[a]);
           RC_TRY(read_number(r, where, k, what, &x[a]));
         }
         net[4 * row + col] = rc_affine_point(m, rcm_make_d(x[0], x[1], x[2]));
@@ -244,7 +246,7 @@ rc_status rc_patch_file_load(const char *path, const rc_affine *m, uint32_t mate
     free(text);
     return RC_ERR_INPUT;
   }
-  reader r = {path, text, text, 1};
+  reader r = {path, text, text, 1, 1};
   rc_status st = read_patches(&r, m, material, s, where);
   free(text);
   return st;
