@@ -4,7 +4,7 @@
 // whose common zero Newton's method finds from the piece's centre (Martin et al.,
 // "Practical Ray Tracing of Trimmed NURBS Surfaces", JGT 5(1), 2000). The net is moved to
 // the ray's origin and projected on the planes' normals once, so every iteration works on
-// 2 x 16 numbers. The bound and the criteria are in docs/numerics.md §10.
+// 2 x 16 numbers. The bound and the criteria are in docs/numerics.md §8.
 
 // Newton runs that stayed in their piece without converging (rc_shared.h, packed_status):
 // how many, and 1 + the first piece's quadric index. Per invocation.

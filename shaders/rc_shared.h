@@ -290,11 +290,11 @@ struct packed_vertex_uvs {
 /* Newton iterations on a patch piece, at most: each evaluates the patch and its
  * derivatives once, and the last only checks convergence. 6 left rays that graze a patch
  * (shadow boundaries on the teapot's belly) unconverged, 653 pixels' shadow decisions
- * apart between f32 and f64; 12 leave 2 (docs/numerics.md §10). The planner counts them
+ * apart between f32 and f64; 12 leave 2 (docs/numerics.md §8). The planner counts them
  * (host/gpu/gpu_plan.c) where a scene has patches. */
 #define RC_PATCH_NEWTON_STEPS 12u
 /* Converged: the patch point lies within this many ulps (of the working precision) of the
- * control points' largest coordinate from the ray line (docs/numerics.md §10). */
+ * control points' largest coordinate from the ray line (docs/numerics.md §8). */
 #define RC_PATCH_TOLERANCE_ULPS 32.0
 /* ... or, at the last step, within 32 f32 ulps (2^-19) in either precision: f64's own
  * criterion asks for more than 6 steps give a grazing ray, and that ray's hit is no less a

@@ -778,7 +778,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
     }
   }
   /* Stalls happen where a ray grazes a patch (silhouettes, shadow terminators), a few in
-   * ten thousand rays on the teapot: above 1 in 1000, say so (docs/numerics.md §10). */
+   * ten thousand rays on the teapot: above 1 in 1000, say so (docs/numerics.md §8). */
   uint64_t rays = rs.rays_primary + rs.rays_shadow + rs.rays_reflection;
   if (st == RC_OK && rs.patch_unconverged * 1000 > rays) report_patch_stalls(scene, &rs);
   rs.write_ms = rc_output_write_ms(out);

@@ -14,7 +14,7 @@
 /* A piece is cut in four while its control net strays from the bilinear surface through
  * its corners by more than this fraction of its box's diagonal, at most
  * RC_PATCH_MAX_DEPTH times (256 pieces). */
-#define RC_PATCH_FLATNESS 0.02
+#define RC_PATCH_FLATNESS 0.05
 #define RC_PATCH_MAX_DEPTH 4
 
 bool js_is_patch_type(const char *type);
