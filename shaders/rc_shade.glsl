@@ -23,6 +23,36 @@ rvec3 plane_uv(packed_quadric q, rvec3 p) {
   precise real v = f.y * real(q.lo.z) + real(q.lo.y);
   return rvec3(u, v, 0.0);
 }
+
+// A named quadric's texture coordinates at the surface point p of the part `code` names,
+// in its own frame f (so they follow its transform); returns their kind (RC_UV_*). A box
+// face (a cap): across the box, u from the face's next axis and v from the one after (x
+// face: y, z; y face: z, x; z face: x, y). An ellipsoid's surface: the sphere's (the
+// normalized point f / radii). An axial shape's side: u around frame z, 0.5 facing frame
+// -y and growing towards +x (a vertical shape's 0.5 faces +z, as a sphere's does), v up
+// the axis across the box, 0 at its base.
+uint quadric_uv(packed_quadric q, uint code, rvec3 p, out rvec3 uv_at) {
+  uv_at = rvec3(0.0);
+  uint kind = (q.flags >> RC_QUADRIC_UV_SHIFT) & 3u;
+  // Compiled out where no material has a texture (the coordinates would go unused).
+  if (!has_kind(RC_KIND_TEXTURES) || kind == RC_QUADRIC_UV_NONE) return RC_UV_NONE;
+  precise rvec3 f = quadric_local(q, p - rvec3(q.center));
+  precise rvec3 s = (f - rvec3(q.lo)) / (rvec3(q.hi) - rvec3(q.lo));
+  uint face = (code >> 2u) & 3u;
+  if (face != 0u) {
+    uv_at = (face == 1u) ? rvec3(s.y, s.z, 0.0) : ((face == 2u) ? rvec3(s.z, s.x, 0.0) : rvec3(s.x, s.y, 0.0));
+    return RC_UV_GIVEN;
+  }
+  if (kind == RC_QUADRIC_UV_ELLIPSOID) {
+    uv_at = normalize(f * sqrt(rvec3(q.diag)));
+    return RC_UV_SPHERE;
+  }
+  if (kind == RC_QUADRIC_UV_AXIAL) {
+    uv_at = rvec3(f.x, -f.y, s.z);
+    return RC_UV_AXIAL;
+  }
+  return RC_UV_NONE;
+}
 #endif
 
 
@@ -139,6 +169,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       } else {
         if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
         n = normalize(quadric_normal(q, h.part, sf.p, d));
+        sf.uv_kind = quadric_uv(q, h.part, sf.p, sf.uv_at);
       }
       sf.material = q.material;
       if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
@@ -359,6 +390,10 @@ void surface_uv(surface sf, out real u, out real v) {
     precise real vv = RL(0.5) + atan2_poly(n.y, across) * RL(0.3183098861837907);
     u = uu;
     v = vv;
+  } else if (sf.uv_kind == RC_UV_AXIAL) {
+    precise real uu = RL(0.5) + atan2_poly(sf.uv_at.x, sf.uv_at.y) * RL(0.15915494309189535);
+    u = uu;
+    v = sf.uv_at.z;
   } else {
     u = sf.uv_at.x;
     v = sf.uv_at.y;

@@ -287,6 +287,16 @@ struct packed_vertex_uvs {
  * in the AOVs, packed_aov.object). A ray is solved by Newton's method on the piece, seeded at its centre
  * (Martin et al., "Practical Ray Tracing of Trimmed NURBS Surfaces", JGT 5(1), 2000). */
 #define RC_QUADRIC_PATCH 16u
+/* flags >> RC_QUADRIC_UV_SHIFT & 3: how a named shape's surface takes texture coordinates
+ * (rc_shade.glsl, quadric_uv): none (a general matrix), as an ellipsoid (the sphere's
+ * longitude and latitude of its normalized frame point), around its axis (frame z: the
+ * cylinder, cone, paraboloid, hyperboloids), or a box's faces; any shape's box faces (caps)
+ * take the face's two other frame coordinates across the box. */
+#define RC_QUADRIC_UV_SHIFT 5u
+#define RC_QUADRIC_UV_NONE 0u
+#define RC_QUADRIC_UV_ELLIPSOID 1u
+#define RC_QUADRIC_UV_AXIAL 2u
+#define RC_QUADRIC_UV_BOX 3u
 /* Newton iterations on a patch piece, at most: each evaluates the patch and its
  * derivatives once, and the last only checks convergence. 6 left rays that graze a patch
  * (shadow boundaries on the teapot's belly) unconverged, 653 pixels' shadow decisions
@@ -380,6 +390,7 @@ struct packed_material {
 #define RC_UV_NONE 0u
 #define RC_UV_SPHERE 1u
 #define RC_UV_GIVEN 2u /* (u, v, 0) found with the hit: a plane's frame, a triangle's vertices */
+#define RC_UV_AXIAL 3u /* around an axis: (x, y, v), u from the angle of (x, y), v given (a cylinder's side) */
 #define RC_TEXTURE_BILINEAR 1u
 #define RC_TEXTURE_CLAMP 2u
 #define RC_TEXELS_PER_TEXTURE_HEADER 2

@@ -12,6 +12,29 @@ rvec3 REF(plane_uv)(const packed_quadric *q, rvec3 p) {
   return RV(make)(u, v, 0);
 }
 
+uint32_t REF(quadric_uv)(const packed_quadric *q, uint32_t code, rvec3 p, rvec3 *uv_at) {
+  *uv_at = RV(make)(0, 0, 0);
+  uint32_t kind = (q->flags >> RC_QUADRIC_UV_SHIFT) & 3u;
+  if (kind == RC_QUADRIC_UV_NONE) return RC_UV_NONE;
+  rvec3 f = REF(quadric_local)(q, RV(sub)(p, rvec3_from(q->center)));
+  rvec3 s = RV(div)(RV(sub)(f, rvec3_from(q->lo)), RV(sub)(rvec3_from(q->hi), rvec3_from(q->lo)));
+  uint32_t face = (code >> 2u) & 3u;
+  if (face != 0) {
+    *uv_at = (face == 1u) ? RV(make)(s.y, s.z, 0) : ((face == 2u) ? RV(make)(s.z, s.x, 0) : RV(make)(s.x, s.y, 0));
+    return RC_UV_GIVEN;
+  }
+  if (kind == RC_QUADRIC_UV_ELLIPSOID) {
+    rvec3 D = rvec3_from(q->diag);
+    *uv_at = RV(normalize)(RV(mul)(f, RV(make)(R_SQRT(D.x), R_SQRT(D.y), R_SQRT(D.z))));
+    return RC_UV_SPHERE;
+  }
+  if (kind == RC_QUADRIC_UV_AXIAL) {
+    *uv_at = RV(make)(f.x, -f.y, s.z);
+    return RC_UV_AXIAL;
+  }
+  return RC_UV_NONE;
+}
+
 rvec3 REF(quadric_refine)(const packed_quadric *q, rvec3 p, rvec3 *p_error) {
   rvec3 L = rvec3_from(q->linear);
   rvec3 pc = RV(sub)(p, rvec3_from(q->center));
@@ -108,6 +131,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       } else {
         if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
         n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
+        sf.uv_kind = REF(quadric_uv)(q, h->part, sf.p, &sf.uv_at);
       }
       sf.material = q->material;
       if (q->flags & RC_QUADRIC_UNBOUNDED) {
@@ -327,6 +351,10 @@ void REF(surface_uv)(const ref_surface *sf, real *u, real *v) {
     real vv = RL(0.5) + REF(atan2_poly)(n.y, across) * RL(0.3183098861837907);
     *u = uu;
     *v = vv;
+  } else if (sf->uv_kind == RC_UV_AXIAL) {
+    real uu = RL(0.5) + REF(atan2_poly)(sf->uv_at.x, sf->uv_at.y) * RL(0.15915494309189535);
+    *u = uu;
+    *v = sf->uv_at.z;
   } else {
     *u = sf->uv_at.x;
     *v = sf->uv_at.y;

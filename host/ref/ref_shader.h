@@ -24,6 +24,7 @@ extern _Thread_local packed_aov ref_aov_record;
   typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; uint32_t uv_kind; V uv_at; } ref_surface_##S; \
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
   V ref_plane_uv_##S(const packed_quadric *q, V p);                                             \
+  uint32_t ref_quadric_uv_##S(const packed_quadric *q, uint32_t code, V p, V *uv_at);          \
   V ref_quadric_refine_##S(const packed_quadric *q, V p, V *p_error);                              \
   V ref_triangle_uv_##S(packed_vertex_uvs t, V b);                                              \
   ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \

@@ -79,6 +79,7 @@ typedef struct rc_quadric_def {
   /* A piece of a Bezier patch (RC_QUADRIC_PATCH, scene_patch.h): 1 + its rc_scene.patches
    * index (0: not a piece), and its part [u0, u1] x [v0, v1] of the (u, v) square; [lo, hi]
    * about `center` (axes identity) is its control net's box. */
+  uint32_t uv;                  /* RC_QUADRIC_UV_*: how a named shape takes texture coordinates */
   uint32_t patch, patch_piece0; /* patch_piece0: the quadric index of the patch's first piece */
   double domain[4];
 } rc_quadric_def;

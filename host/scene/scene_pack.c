@@ -223,7 +223,8 @@ static void pack_quadric(const rc_packed_scene *p, const rc_quadric_def *q, pack
                      .axis_y = rcm_to_f(q->axis[1]),
                      .axis_z = rcm_to_f(q->axis[2]),
                      .constant = (float)(q->constant * s * s),
-                     .flags = (q->solid ? RC_QUADRIC_SOLID : 0u) | (q->one_sided ? RC_QUADRIC_ONE_SIDED : 0u),
+                     .flags = (q->solid ? RC_QUADRIC_SOLID : 0u) | (q->one_sided ? RC_QUADRIC_ONE_SIDED : 0u) |
+                              (q->uv << RC_QUADRIC_UV_SHIFT),
                      .diag = rcm_to_f(q->diag),
                      .off = rcm_to_f(q->off),
                      .linear = rcm_to_f(rcm_scale_d(q->linear, s)),

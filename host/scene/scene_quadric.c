@@ -296,6 +296,9 @@ static rc_status parse_named(jctx *c, const cJSON *o, uint32_t type, rc_quadric_
   *solid = true;
   q->off = zero;
   q->linear = zero;
+  q->uv = type == T_ELLIPSOID || type == T_SPHERE ? RC_QUADRIC_UV_ELLIPSOID
+          : type == T_BOX                        ? RC_QUADRIC_UV_BOX
+                                                 : RC_QUADRIC_UV_AXIAL;
   if (type == T_ELLIPSOID) return parse_ellipsoid(c, o, q);
   if (type == T_SPHERE) return parse_sphere_operand(c, o, q);
   if (type == T_BOX) return parse_box(c, o, q);

@@ -31,27 +31,40 @@ variants=("--backend gpu --precision f32" "--backend gpu --precision f64" "--bac
 
 # 1. A constant texture.
 oiiotool --create 1x1 3 --fill:color=0.5,0.25,1 0,0,1,1 -d float -o "$work/constant.exr"
-scene() { # FILE MATERIALS: a sphere, an ellipsoid and a floor plane, each with its material
+objects='{ "type": "sphere", "center": [-1, 0.8, 0], "radius": 0.8, "material": "a" },
+    { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "b",
+      "transform": { "translate": [1.2, 0.7, 0], "rotate_deg": [20, 30, 0], "scale": [0.5, 0.7, 0.4] } },
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "c" }'
+# The named quadrics' coordinates: a capped cylinder (side and caps), a cone, an ellipsoid
+# under a transform, a composite (a sphere minus a box), on a box floor.
+quadrics='{ "type": "cylinder", "center": [-1.6, 0.6, 0], "radius": 0.4, "height": 1.2, "material": "a" },
+    { "type": "cone", "apex": [-0.5, 1.4, 0], "axis": [0, -1, 0.3], "angle_deg": 25, "height": 1.2, "material": "b" },
+    { "type": "ellipsoid", "center": [0.5, 0.6, 0], "radii": [0.3, 0.6, 0.4], "material": "a",
+      "transform": { "rotate_deg": [0, 0, 30] } },
+    { "type": "csg", "op": "difference", "material": "b",
+      "left": { "type": "sphere", "center": [1.6, 0.6, 0], "radius": 0.55 },
+      "right": { "type": "box", "min": [1.5, 0.6, -1], "max": [2.5, 1.5, 1] } },
+    { "type": "box", "min": [-3, -0.2, -2], "max": [3, 0, 1.5], "material": "c" }'
+scene() { # FILE MATERIALS [OBJECTS]: by default a sphere, an ellipsoid and a floor plane
   cat >"$1" <<EOF
 { "image": { "width": 48, "height": 32 },
   "camera": { "eye": [0, 1.5, 6], "look_at": [0, 0.6, 0], "fov_y_deg": 40 },
   "materials": { $2 },
   "lights": [ { "type": "point", "position": [3, 5, 4], "intensity": [30, 30, 30] } ],
-  "objects": [
-    { "type": "sphere", "center": [-1, 0.8, 0], "radius": 0.8, "material": "a" },
-    { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "b",
-      "transform": { "translate": [1.2, 0.7, 0], "rotate_deg": [20, 30, 0], "scale": [0.5, 0.7, 0.4] } },
-    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "c" } ] }
+  "objects": [ ${3:-$objects} ] }
 EOF
 }
+for shapes in spheres quadrics; do
+  shape_list=$objects
+  [[ $shapes == spheres ]] || shape_list=$quadrics
 for filter in nearest bilinear; do
   tex="\"texture\": \"constant.exr\", \"texture_filter\": \"$filter\", \"texture_scale\": [3, 2]"
   scene "$work/textured.json" "\"a\": { \"ambient\": [0.2, 0.6, 0.4], \"diffuse\": [0.8, 0.6, 0.3], $tex },
     \"b\": { \"ambient\": [0.1, 0.1, 0.1], \"diffuse\": [0.9, 0.9, 0.9], \"specular\": [0.5, 0.5, 0.5], $tex },
-    \"c\": { \"ambient\": [0.3, 0.3, 0.3], \"diffuse\": [0.7, 0.7, 0.7], $tex }"
+    \"c\": { \"ambient\": [0.3, 0.3, 0.3], \"diffuse\": [0.7, 0.7, 0.7], $tex }" "$shape_list"
   scene "$work/plain.json" "\"a\": { \"ambient\": [0.1, 0.15, 0.4], \"diffuse\": [0.4, 0.15, 0.3] },
     \"b\": { \"ambient\": [0.05, 0.025, 0.1], \"diffuse\": [0.45, 0.225, 0.9], \"specular\": [0.5, 0.5, 0.5] },
-    \"c\": { \"ambient\": [0.15, 0.075, 0.3], \"diffuse\": [0.35, 0.175, 0.7] }"
+    \"c\": { \"ambient\": [0.15, 0.075, 0.3], \"diffuse\": [0.35, 0.175, 0.7] }" "$shape_list"
   for v in "${variants[@]}"; do
     why=ok
     # shellcheck disable=SC2086
@@ -60,22 +73,28 @@ for filter in nearest bilinear; do
     "$bin" render "$work/plain.json" $v --quiet -o "$work/p.exr" || because "the plain render failed"
     "$bin" compare "$work/t.exr" "$work/p.exr" --fail 0 --hardfail 0 >"$work/cmp" 2>&1 ||
       because "not the same pixels: $(grep -m1 'max error' "$work/cmp")"
-    check "constant texture, $filter, $v: exactly the colour times the material" "$why"
+    check "constant texture on $shapes, $filter, $v: exactly the colour times the material" "$why"
   done
+done
 done
 
 # 2. Stripes on a sphere seen from +z through a parallel camera: pixel column 31 | 32 is
 # x = 0, row 15 | 16 is y = 0 (64 x 32 pixels over a 4 x 2 window; the sphere, of radius
-# 0.9, spans columns 18-45 and rows 2-29).
+# 0.9, spans columns 18-45 and rows 2-29). The same on a vertical cylinder of that radius
+# and height 1.8 (its u is 0.5 facing +z too, its v half way up at y = 0).
 oiiotool --create 2x1 3 --fill:color=1,0,0 0,0,1,1 --fill:color=0,1,0 1,0,2,1 -d float -o "$work/across.exr"
 oiiotool --create 1x2 3 --fill:color=0,0,1 0,0,1,1 --fill:color=1,1,0 0,1,1,2 -d float -o "$work/updown.exr"
+for shape in sphere cylinder; do
 for tex in across updown; do
+  object='{ "type": "sphere", "center": [0, 0, 0], "radius": 0.9, "material": "m" }'
+  [[ $shape == sphere ]] ||
+    object='{ "type": "cylinder", "center": [0, 0, 0], "axis": [0, 1, 0], "radius": 0.9, "height": 1.8, "material": "m" }'
   cat >"$work/$tex.json" <<EOF
 { "image": { "width": 64, "height": 32 },
   "camera": { "projection": "parallel", "eye": [0, 0, 5], "look_at": [0, 0, 0], "view_height": 2 },
   "ambient_light": [1, 1, 1],
   "materials": { "m": { "ambient": [1, 1, 1], "texture": "$tex.exr", "texture_filter": "nearest" } },
-  "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.9, "material": "m" } ] }
+  "objects": [ $object ] }
 EOF
 done
 for v in "${variants[@]}"; do
@@ -87,7 +106,8 @@ for v in "${variants[@]}"; do
   for x in 32 37 43; do [[ $(pixel "$work/across-out.exr" $x 16) == "0.0"*" 1.0"* ]] || because "pixel ($x, 16) is not the right texel: $(pixel "$work/across-out.exr" $x 16)"; done
   for y in 3 10 15; do [[ $(pixel "$work/updown-out.exr" 32 $y) == "0.0"*"0.0"*"1.0"* ]] || because "pixel (32, $y) is not the top texel: $(pixel "$work/updown-out.exr" 32 $y)"; done
   for y in 16 21 28; do [[ $(pixel "$work/updown-out.exr" 32 $y) == "1.0"*"1.0"*"0.0"* ]] || because "pixel (32, $y) is not the bottom texel: $(pixel "$work/updown-out.exr" 32 $y)"; done
-  check "stripe edges at x = 0 and y = 0, $v" "$why"
+  check "stripe edges at x = 0 and y = 0 on a $shape, $v" "$why"
+done
 done
 
 # 3. A floor seen straight down through a parallel camera, 32 x 32 pixels over 4 x 4 units:
