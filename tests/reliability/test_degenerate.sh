@@ -33,11 +33,15 @@ pile() { # N kind -> scene
     print "\n  ] }" }'
 }
 stat() { sed -n "s/.*\"$1\":[[:space:]]*\([0-9]*\).*/\1/p" "$2"; }
+# Under the sanitizers (tools/test.sh's second pass) f32 alone: the host code that leaves
+# the repeats out is the same in both precisions; their numbers are the first pass's.
+precisions=(f32 f64)
+[[ -z ${ASAN_OPTIONS:-} ]] || precisions=(f32)
 for kind in triangle sphere scaled-sphere ellipsoid; do
   n=10000
   [[ $kind == triangle ]] || n=2000
   pile $n $kind >"$work/$kind.json"
-  for p in f32 f64; do
+  for p in "${precisions[@]}"; do
     why=ok
     for backend in gpu cpu; do
       "$bin" render "$work/$kind.json" -o "$work/$kind.$backend.exr" --aov "$work/$kind.$backend.aov.exr" \

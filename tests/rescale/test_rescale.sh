@@ -14,10 +14,14 @@
 # Usage: test_rescale.sh VKRAYCAST SCENES_DIR EXTREMES_SCENES_DIR WORK_DIR
 set -u
 bin=$1 scenes=$2 extremes=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cp -r "$scenes/meshes" "$work/" || exit 1
+rm -rf "$work" && mkdir -p "$work" && cp -r "$scenes/meshes" "$scenes/patches" "$scenes/textures" "$work/" || exit 1
 source "$(dirname "$0")/../check.sh"
 
-for name in transforms csg_meshes room quadrics hyperboloids parallel csg showcase; do
+names=(transforms csg_meshes room quadrics hyperboloids parallel csg showcase teapot)
+# Under the sanitizers (tools/test.sh's second pass) two scenes run the packing code at a
+# scale; the bit identity of the others is the first pass's.
+[[ -z ${ASAN_OPTIONS:-} ]] || names=(quadrics teapot)
+for name in "${names[@]}"; do
   python3 - "$scenes/$name.json" "$work/$name.json" <<'EOF' || { check "$name: the variant" "cannot be made"; continue; }
 import json, sys
 scene = json.load(open(sys.argv[1]))
