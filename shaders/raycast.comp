@@ -15,6 +15,12 @@
 #ifndef RC_QUADRICS
 #define RC_QUADRICS 1
 #endif
+// RC_PATCHES=0 builds it without the Bezier patch code (rc_patch.glsl): its Newton
+// iteration, inlined wherever an object is tested, cost lavapipe 150-350 ms more CPU to
+// create every quadric scene's pipeline before specialization removed it.
+#ifndef RC_PATCHES
+#define RC_PATCHES RC_QUADRICS
+#endif
 
 layout(local_size_x_id = RC_SPEC_LOCAL_SIZE_X, local_size_y_id = RC_SPEC_LOCAL_SIZE_Y) in;
 layout(constant_id = RC_SPEC_LOOP_BUDGET) const uint loop_budget = RC_LOOP_BUDGET;
@@ -85,6 +91,8 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #include "rc_triangle.glsl"
 #if RC_QUADRICS
 #include "rc_quadric.glsl"
+#endif
+#if RC_PATCHES
 #include "rc_patch.glsl"
 #endif
 #include "rc_intersect.glsl"
@@ -148,6 +156,8 @@ void main() {
 #if RC_QUADRICS
     if (crossing_blame != 0u && atomicCompSwap(status.crossing_object, 0u, crossing_blame) == 0u)
       status.crossing_pixel = 1u + pixel.y * frame.camera.width + pixel.x;
+#endif
+#if RC_PATCHES
     if (patch_stall_piece != 0u && atomicCompSwap(status.patch_unconverged_object, 0u, first_quadric_object + patch_stall_piece) == 0u)
       status.patch_unconverged_pixel = 1u + pixel.y * frame.camera.width + pixel.x;
 #endif
@@ -169,7 +179,7 @@ void main() {
   if (aov_write) aov[slot] = aov_record;
   if (target < total) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
-#if RC_QUADRICS
+#if RC_PATCHES
   if (patch_stalls != 0u) atomicAdd(status.patch_unconverged, patch_stalls);
 #endif
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);

@@ -123,6 +123,7 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
     return intersect_triangle(o, sh, tri, t_max, bary);
   }
 #if RC_QUADRICS
+#if RC_PATCHES
   if (has_kind(RC_KIND_PATCHES) && kind == RC_HIT_QUADRIC) {
     packed_quadric q = load_quadric(index);
     if ((q.flags & RC_QUADRIC_PATCH) != 0u) {
@@ -130,6 +131,7 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
       return intersect_patch(index, q, o, d, t_max, bary);
     }
   }
+#endif
   if (has_kind(RC_KIND_QUADRICS) && kind == RC_HIT_QUADRIC) return intersect_quadric(index, o, d, t_max, part);
   if (has_kind(RC_KIND_CSG) && kind == RC_HIT_CSG) return intersect_csg(index, o, d, t_max, part);
 #endif

@@ -160,13 +160,16 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       sf.material = tri.material;
     } else {
       packed_quadric q = load_quadric(leaf);
+#if RC_PATCHES
       if (has_kind(RC_KIND_PATCHES) && (q.flags & RC_QUADRIC_PATCH) != 0u) {
         // The point and normal at the converged (u, v), which are also the texture's.
         rvec3 g = patch_surface(q, h.bary, sf.p, sf.p_error);
         n = (dot(g, g) > 0.0) ? normalize(g) : -d;  // a net collapsed to a curve: no normal
         sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = h.bary;
-      } else {
+      } else
+#endif
+      {
         if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
         n = normalize(quadric_normal(q, h.part, sf.p, d));
         sf.uv_kind = quadric_uv(q, h.part, sf.p, sf.uv_at);

@@ -4,7 +4,7 @@
 // Starts the AOV record at the primary hit of sample 0.
 void aov_begin(hit_record h) {
   uint object = h.object;
-#if RC_QUADRICS
+#if RC_PATCHES
   if (has_kind(RC_KIND_PATCHES) && h.kind == RC_HIT_QUADRIC) {
     // A patch's pieces are one surface: the record names the patch by its first piece.
     packed_quadric q = load_quadric(h.index);

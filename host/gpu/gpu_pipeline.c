@@ -73,10 +73,13 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   rc_vk_ctx *ctx = r->ctx;
   RC_TRY(create_layouts(r));
 
-  /* The module without quadric code where the scene has none (and the pipeline is not the
-   * generic one): lavapipe compiles the whole module before specializing it. */
-  bool quadrics = r->opts.generic_pipeline || r->frame.quadric_count || r->frame.csg_count;
-  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, r->opts.f64, quadrics);
+  /* The module without quadric code where the scene has none, and without patch code where
+   * it has no patch (unless the pipeline is the generic one): lavapipe compiles the whole
+   * module before specializing it. */
+  rc_shader_kinds kinds = r->opts.generic_pipeline || r->frame.patch_count ? RC_SHADER_PATCHES
+                          : r->frame.quadric_count || r->frame.csg_count  ? RC_SHADER_QUADRICS
+                                                                           : RC_SHADER_PLAIN;
+  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, r->opts.f64, kinds);
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                   .codeSize = code.size,
                                   .pCode = code.words};

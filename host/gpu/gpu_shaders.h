@@ -22,9 +22,12 @@ typedef enum {
 /* Their names on the command line and in the statistics, in that order; NULL-terminated. */
 extern const char *const rc_scene_buffer_names[];
 
+/* The object code a module carries: none of the quadrics' (RC_QUADRICS=0), the quadrics'
+ * and composites' (RC_PATCHES=0), or that and the Bezier patches' too. */
+typedef enum { RC_SHADER_PLAIN, RC_SHADER_QUADRICS, RC_SHADER_PATCHES } rc_shader_kinds;
+
 /* raycast.comp reading the scene arrays as `buffers`, with f32 or f64 (RC_F64: needs
- * shaderFloat64 and shaderInt64) geometry and shading math, with or without the quadric
- * and composite code (RC_QUADRICS). */
-rc_spirv rc_shader_raycast(rc_scene_buffers buffers, bool f64, bool quadrics);
+ * shaderFloat64 and shaderInt64) geometry and shading math, with `kinds`' code. */
+rc_spirv rc_shader_raycast(rc_scene_buffers buffers, bool f64, rc_shader_kinds kinds);
 
 #endif
