@@ -8,6 +8,8 @@
 #   x and y lie in the pixel; the two forms give the same pixels;
 # - the teapot's lid seen from straight above: the apex, where a row of the net collapses
 #   to a point (dS/du = 0), has the normal straight up, and no pixel has a NaN;
+# - a teapot far away for its size: the precision budget asks for f64, auto renders it,
+#   and f64 matches the CPU reference where forced f32 does not;
 # - a prepared scene (vkraycast prepare) renders the same pixels as the scene.
 # Usage: test_patches.sh VKRAYCAST WORKDIR
 set -uo pipefail
@@ -130,7 +132,42 @@ for v in "${variants[@]}"; do
   check "teapot lid apex: the limit normal is straight up, no NaN, $v" "$why"
 done
 
-# 4. A prepared scene's pixels are the scene's.
+# 4. Far away: the teapot at a thousandth of its size, 40 units off (its pieces 2.8e5 of
+# their size away). The precision budget asks for f64, naming a patch piece, and
+# --precision auto renders in f64 where the device has it; f64 on the GPU then matches the
+# CPU reference in f64, and forced f32 makes more first-sample decisions apart from it
+# (acne and holes on the body: that is what the budget saw).
+cat >"$work/far.json" <<EOF
+{ "image": { "width": 64, "height": 48 },
+  "camera": { "eye": [0, 0.005, 40], "look_at": [0, 0.0015, 0], "fov_y_deg": 0.01 },
+  "materials": { "m": { "diffuse": [0.8, 0.8, 0.8] } },
+  "lights": [ { "type": "directional", "direction": [0.3, -1, -0.5], "intensity": [1, 1, 1] } ],
+  "objects": [ { "type": "bezier_patches", "file": "$root/scenes/patches/teapot.bpt", "material": "m",
+                 "transform": { "rotate_deg": [-90, 0, 0], "scale": [0.001, 0.001, 0.001] } } ] }
+EOF
+why=ok
+far=("$work/far.json" --allow-outside-paths --quiet)
+"$bin" render "${far[@]}" -o "$work/far_auto.exr" --aov "$work/far_auto.aov.exr" --stats-json "$work/far.stats" \
+  2>"$work/far.err" || because "the auto render failed"
+[[ $(json_str precision "$work/far.stats") == f64 ]] || because "auto rendered in $(json_str precision "$work/far.stats")"
+(( $(json_num budget_needs_f64 "$work/far.stats") > 0 )) || because "the budget found nothing"
+grep -q "first patch piece" "$work/far.err" || because "the warning names no patch piece: $(head -c 300 "$work/far.err")"
+if [[ -z ${ASAN_OPTIONS:-} ]]; then
+  "$bin" render "${far[@]}" --backend cpu -o "$work/far_ref.exr" --aov "$work/far_ref.aov.exr" 2>/dev/null ||
+    because "the CPU f64 render failed"
+  "$bin" render "${far[@]}" --precision f32 -o "$work/far32.exr" --aov "$work/far32.aov.exr" 2>/dev/null ||
+    because "the f32 render failed"
+  "$bin" compare "$work/far_auto.aov.exr" "$work/far_ref.aov.exr" --preset same-precision >"$work/cmp" 2>&1 ||
+    because "GPU f64 against CPU f64: $(grep -m1 FAIL "$work/cmp")"
+  "$bin" compare "$work/far_auto.aov.exr" "$work/far_ref.aov.exr" --json >"$work/c64.json" 2>/dev/null
+  "$bin" compare "$work/far32.aov.exr" "$work/far_ref.aov.exr" --json >"$work/c32.json" 2>/dev/null
+  d64=$(( $(json_num hit_mismatch "$work/c64.json") + $(json_num shadow_mismatch "$work/c64.json") ))
+  d32=$(( $(json_num hit_mismatch "$work/c32.json") + $(json_num shadow_mismatch "$work/c32.json") ))
+  (( d32 > d64 )) || because "f32 makes $d32 hit and shadow decisions apart from the f64 reference, f64 $d64"
+fi
+check "a far teapot: the budget asks f64 and auto renders it (f32 apart in ${d32:-?} decisions, f64 in ${d64:-?})" "$why"
+
+# 5. A prepared scene's pixels are the scene's.
 why=ok
 "$bin" prepare "$work/saddle.json" -o "$work/saddle.vkrs" --quiet || because "prepare failed"
 "$bin" render "$work/saddle.vkrs" --quiet -o "$work/sp.exr" || because "rendering the prepared scene failed"
