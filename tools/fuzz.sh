@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Fuzzes the input parsers with libFuzzer (clang), ASan and UBSan: the JSON scene parser,
-# the CSE167 .test parser and the prepared-scene (.vkrs) reader, which share a slot, and
-# mesh loading, each slot for FUZZ_SECONDS (60) from the seed corpus in tests/fuzz/corpus/. Prints the executions per target; exits 1 on
+# Fuzzes the input parsers with libFuzzer (clang), ASan and UBSan: the JSON scene parser
+# and the Bezier patch-file reader, which share a slot, the CSE167 .test parser and the
+# prepared-scene (.vkrs) reader, which share another, and mesh loading, each slot for FUZZ_SECONDS (60) from the seed corpus in tests/fuzz/corpus/. Prints the executions per target; exits 1 on
 # any crash, hang (10 s an input), leak or sanitizer report, leaving the input in
 # build-fuzz/findings/. The three run side by side: -max_total_time is wall time, so each
 # gets FUZZ_SECONDS x cores / 3 of wall time, which is FUZZ_SECONDS of CPU time apiece
@@ -17,7 +17,7 @@ seconds=${FUZZ_SECONDS:-60}
 if [ ! -f build-fuzz/CMakeCache.txt ]; then
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAYCAST_FUZZ=ON >&2
 fi
-cmake --build build-fuzz --target fuzz_json fuzz_test fuzz_mesh fuzz_prepared -j"$(nproc)" >&2
+cmake --build build-fuzz --target fuzz_json fuzz_test fuzz_mesh fuzz_prepared fuzz_patch -j"$(nproc)" >&2
 mkdir -p build-fuzz/findings
 cores=$(nproc)
 wall=$(( cores >= 3 ? seconds : (seconds * 3 + cores - 1) / cores ))
@@ -43,6 +43,12 @@ run_one() {
     # first run's hundreds would take that third through the importer.
     fuzz mesh mesh $((wall * 2 / 3)) VKRAYCAST_MESH_IMPORTER=/bin/false || return 1
     fuzz mesh mesh-import $((wall - wall * 2 / 3))
+  elif [[ $target == json ]]; then
+    # A quarter of the JSON slot goes to the Bezier patch files (their own log and findings).
+    : >"build-fuzz/fuzz-patch.log"
+    rm -f build-fuzz/failed-in-json-slot
+    fuzz json json $((wall - wall / 4)) || return 1
+    fuzz patch patch $((wall / 4)) || { echo patch >build-fuzz/failed-in-json-slot; return 1; }
   elif [[ $target == test ]]; then
     # The .test parser has run over a million inputs a CI run for a long while; half its
     # slot goes to the prepared-scene reader (its own log and findings).
@@ -88,6 +94,11 @@ for target in "${targets[@]}"; do
     if [[ $result != ok && -f build-fuzz/failed-in-slot ]]; then pr=$result result=ok; fi
     report test "$result"
     report prepared "$pr"
+  elif [[ $target == json ]]; then
+    pr=ok
+    if [[ $result != ok && -f build-fuzz/failed-in-json-slot ]]; then pr=$result result=ok; fi
+    report json "$result"
+    report patch "$pr"
   else
     report "$target" "$result"
   fi

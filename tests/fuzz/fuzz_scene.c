@@ -10,7 +10,9 @@
  * answer of the mesh importer, given to its reader). Mesh loading runs assimp in
  * vkraycast-mesh-import, a process of its own (host/scene/mesh_wire.h): what assimp does
  * there (crash, loop, leak) is an error message here, not a finding; what this process
- * does with the file and the answer (mesh_check.c, mesh_wire.c, mesh.c) is fuzzed. Any
+ * does with the file and the answer (mesh_check.c, mesh_wire.c, mesh.c) is fuzzed; =5 a
+ * Bezier patch file (scene/scene_patch.h: the input written to a file, read, its patches
+ * cut into pieces, and the scene packed, control points and all). Any
  * crash, hang, sanitizer report or leak is a finding (tools/fuzz.sh runs them with
  * -close_fd_mask=2: the parsers' error messages are dropped, libFuzzer's own are not). */
 #include <stdint.h>
@@ -25,6 +27,8 @@
 #include "scene/mesh_wire.h"
 #include "scene/prepared.h"
 #include "scene/scene.h"
+#include "scene/scene_pack.h"
+#include "scene/scene_patch.h"
 
 #if FUZZ_TARGET == 4
 /* Reads every element of every array the renderers read, and every BVH node and reference,
@@ -78,7 +82,27 @@ static uint32_t read_packed(const rc_packed_scene *p) {
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size) {
   rc_scene s;
-#if FUZZ_TARGET == 4
+#if FUZZ_TARGET == 5
+  char path[64];
+  snprintf(path, sizeof path, "/tmp/vkraycast-fuzz-%d.bpt", (int)getpid());
+  FILE *f = fopen(path, "wb");
+  if (!f) return 0;
+  fwrite(data, 1, size, f);
+  fclose(f);
+  memset(&s, 0, sizeof s);
+  static rc_material_def material;
+  s.materials = &material, s.material_count = 1;
+  s.width = s.height = s.samples_per_pixel = 1;
+  s.quality = rc_quality_default();
+  s.camera = (rc_camera_def){.projection = RC_PROJECTION_PERSPECTIVE, .eye = {0, 0, 10}, .up = {0, 1, 0}, .fov_y_deg = 45};
+  rc_affine id = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+  if (rc_patch_file_load(path, &id, 0, &s, "fuzz") == RC_OK) {
+    rc_packed_scene p;
+    if (rc_scene_pack(&s, &p) == RC_OK) rc_packed_scene_free(&p);
+  }
+  unlink(path);
+  s.materials = NULL, s.material_count = 0;
+#elif FUZZ_TARGET == 4
   /* A private, 64-byte aligned copy, as a mapping would be. */
   unsigned char *file = aligned_alloc(64, (size + 63) / 64 * 64 + 64);
   if (!file) return 0;
