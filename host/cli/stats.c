@@ -135,6 +135,8 @@ static const stats_field gpu_fields[] = {
     FIELD("pipeline_ms", F_DOUBLE, gpu.pipeline_ms),
     FIELD("pipeline_cache_hit", F_BOOL, gpu.pipeline_cache_hit),
     FIELD("readback_ms", F_DOUBLE, gpu.readback_ms),
+    FIELD("upload_bytes", F_U64, gpu.upload_bytes),
+    FIELD("readback_bytes", F_U64, gpu.readback_bytes),
     FIELD("tiles", F_U32, gpu.tiles),
     FIELD("dispatches", F_U32, gpu.dispatches),
     FIELD("tile_budget_ms", F_DOUBLE, gpu.tile_budget_ms),

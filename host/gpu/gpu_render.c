@@ -142,6 +142,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   if (st == RC_OK) st = rc_gpu_create_descriptors(r);
   if (st == RC_OK) st = create_commands(r);
   stats->upload_ms = t1 - t0;
+  stats->upload_bytes = r->upload_bytes;
   stats->pipeline_ms = t2 - t1;
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
@@ -330,6 +331,7 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
     }
   }
   stats->readback_ms += rc_now_ms() - t0;
+  stats->readback_bytes += (uint64_t)tw * th * (16 + (r->band_aov ? sizeof(packed_aov) : 0));
   stats->tiles++;
   return RC_OK;
 }
@@ -348,6 +350,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     if (st != RC_OK) return st;
     first = false;
     stats->dispatches++;
+    stats->readback_bytes += sizeof status;
     stats->gpu_ms += ms;
     rc_tiles_observe(planner, (double)tw * th, push.batch_samples, ms);
     if (ms > stats->max_dispatch_ms) stats->max_dispatch_ms = ms;
@@ -399,6 +402,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
   stats->crossing_object = UINT32_MAX;
   stats->patch_stalls = 0;
+  stats->readback_bytes = 0;
   const rc_region reg = r->region;
   const uint32_t w = rc_region_width(reg), h = rc_region_height(reg), batch = stats->plan.batch_samples;
   const uint64_t total = (uint64_t)w * h;

@@ -39,6 +39,10 @@ typedef struct rc_gpu_stats {
   double gpu_ms;       /* sum of dispatch times from timestamp queries (wall if none) */
   double render_ms;    /* the whole frame, wall: dispatches, waits, readback */
   double readback_ms;  /* accumulation buffer to the host image, wall */
+  /* Bytes moved between host and device: the scene arrays and the frame, once per
+   * renderer; per frame, what the host reads back (each dispatch's status, each tile's
+   * accumulated sums, 16 bytes a pixel, and AOV records, 32). */
+  uint64_t upload_bytes, readback_bytes;
   uint64_t shadow_rays, reflection_rays;
   uint32_t dispatches, tiles;
   double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */

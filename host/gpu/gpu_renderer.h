@@ -22,6 +22,7 @@ struct rc_gpu_renderer {
   bool one_sided_triangles;               /* RC_KIND_ONE_SIDED_TRIANGLES */
   bool textures;                          /* RC_KIND_TEXTURES */
   bool patches;                           /* RC_KIND_PATCHES */
+  uint64_t upload_bytes;                  /* the scene arrays and the frame, as uploaded */
   rc_buffer frame_buf;
   rc_buffer arrays[SCENE_ARRAYS];
   VkBufferView views[SCENE_ARRAYS];

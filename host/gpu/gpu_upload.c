@@ -157,6 +157,7 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
     rc_status st = rc_buffer_create(ctx, sizes[i], usage, RC_MEM_DEVICE, &r->arrays[i]);
     if (st == RC_OK) st = rc_buffer_upload(ctx, &r->arrays[i], data[i], sizes[i], r->opts.force_staging);
     if (st != RC_OK) return st;
+    r->upload_bytes += sizes[i];
     if (texel) {
       VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
                                    .buffer = r->arrays[i].buffer,
@@ -168,6 +169,7 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
   rc_status st = rc_buffer_create(ctx, sizeof(packed_frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                   RC_MEM_DEVICE, &r->frame_buf);
   if (st == RC_OK) st = rc_buffer_upload(ctx, &r->frame_buf, f, sizeof *f, r->opts.force_staging);
+  r->upload_bytes += sizeof *f;
   return st;
 }
 

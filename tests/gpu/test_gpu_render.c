@@ -417,6 +417,9 @@ TEST(stats_json_reports_rays_and_timings) {
   CHECK(json_number(s, "rays_shadow") > 0);
   CHECK(json_number(s, "render_ms") > 0 && json_number(s, "mrays_per_s") > 0);
   CHECK_EQ_INT(json_number(s, "repeat"), 3);
+  /* One frame's readback: each dispatch's status record, and 16 bytes a pixel of sums. */
+  CHECK_EQ_INT(json_number(s, "readback_bytes"), 80 * 50 * 16 + json_number(s, "dispatches") * (int)sizeof(packed_status));
+  CHECK(json_number(s, "upload_bytes") > (int)sizeof(packed_frame));
   cJSON_Delete(s);
 }
 
