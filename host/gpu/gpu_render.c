@@ -287,6 +287,13 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   return RC_OK;
 }
 
+/* A pixel the shader names in the status record, 1 + y * width + x of the frame (0: none
+ * named, read as pixel (0, 0)). */
+static void status_pixel(const rc_gpu_renderer *r, uint32_t encoded, uint32_t *x, uint32_t *y) {
+  uint32_t at = encoded ? encoded - 1 : 0;
+  *x = at % r->frame.camera.width, *y = at / r->frame.camera.width;
+}
+
 /* Renders one tile (a piece of the current band): batches until every pixel has all its
  * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
  * with half the batch; exhaustion at one sample per batch is an error, never a silently
@@ -359,16 +366,14 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     stats->reflection_rays += status.reflection_rays;
     if (status.patch_unconverged && stats->patch_stalls == 0) {
       stats->patch_stall_object = status.patch_unconverged_object ? status.patch_unconverged_object - 1 : 0;
-      uint32_t at = status.patch_unconverged_pixel ? status.patch_unconverged_pixel - 1 : 0;
-      stats->patch_stall_x = at % r->frame.camera.width, stats->patch_stall_y = at / r->frame.camera.width;
+      status_pixel(r, status.patch_unconverged_pixel, &stats->patch_stall_x, &stats->patch_stall_y);
     }
     stats->patch_stalls += status.patch_unconverged;
     if (status.crossing_object) {
       /* A mesh operand crossed more often than its bound, or an odd number of times: no
        * batch size helps, and the pixel would be wrong. Reported by the caller. */
       stats->crossing_object = status.crossing_object - 1;
-      uint32_t at = status.crossing_pixel ? status.crossing_pixel - 1 : 0;
-      stats->crossing_x = at % r->frame.camera.width, stats->crossing_y = at / r->frame.camera.width;
+      status_pixel(r, status.crossing_pixel, &stats->crossing_x, &stats->crossing_y);
       return RC_ERR_TOO_LARGE;
     }
     if (status.exhausted_pixels) {
@@ -385,8 +390,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
         stats->lights_per_pass = push.light_pass;
         stats->budget_pixels = status.exhausted_pixels;
         stats->budget_object = status.exhausted_object ? status.exhausted_object - 1 : UINT32_MAX;
-        uint32_t at = status.exhausted_pixel ? status.exhausted_pixel - 1 : 0;
-        stats->budget_x = at % r->frame.camera.width, stats->budget_y = at / r->frame.camera.width;
+        status_pixel(r, status.exhausted_pixel, &stats->budget_x, &stats->budget_y);
         return RC_ERR_TOO_LARGE;
       }
       stats->budget_retries++;

@@ -226,7 +226,6 @@ rc_status rc_prepared_decode(const char *name, const void *bytes, size_t len, rc
   if (st == RC_OK) {
     rc_scene_pack_frame(scene, &pf->packed);
     st = check_arrays(pf, &h, base);
-    if (st == RC_OK) rc_packed_scene_count_patches(&pf->packed);
   }
   if (st != RC_OK) {
     rc_scene_free(scene);

@@ -183,7 +183,9 @@ rc_status rc_scene_note_origin(rc_scene *s, const size_t before[RC_ORIGIN_KINDS]
   return RC_OK;
 }
 
-static void report(const rc_scene *s, const char *level, uint32_t kind, size_t index, const char *message) {
+static void report(const rc_scene *s, const char *level, uint32_t kind, size_t index, const char *fmt, va_list ap) {
+  char message[512];
+  vsnprintf(message, sizeof message, fmt, ap);
   static const char *const kinds[] = {"sphere", "triangle", "quadric", "composite", "light", "material", "plane"};
   /* A scan: this runs once, for an error message. */
   const rc_origin *found = NULL;
@@ -210,19 +212,15 @@ static void report(const rc_scene *s, const char *level, uint32_t kind, size_t i
 }
 
 void rc_scene_error(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
-  char message[512];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(message, sizeof message, fmt, ap);
+  report(s, "error", kind, index, fmt, ap);
   va_end(ap);
-  report(s, "error", kind, index, message);
 }
 
 void rc_scene_warning(const rc_scene *s, uint32_t kind, size_t index, const char *fmt, ...) {
-  char message[512];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(message, sizeof message, fmt, ap);
+  report(s, "warning", kind, index, fmt, ap);
   va_end(ap);
-  report(s, "warning", kind, index, message);
 }
