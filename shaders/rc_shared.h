@@ -84,7 +84,10 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_SPEC_COUNT 16 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
 #define RC_KIND_SPHERES 1u
 #define RC_KIND_TRIANGLES 2u
-#define RC_KIND_QUADRICS 4u
+#define RC_KIND_QUADRICS 4u /* the quadric test: a standalone quadric that is not a plane, or planes
+                             * without the BVH (with it, test_planes tests them; the quadric test in
+                             * the leaf loop cost a scene of planes and a mesh 4x the loop's
+                             * instructions, docs/performance.md) */
 #define RC_KIND_CSG 8u
 #define RC_KIND_PLANES 16u /* frame.plane_count > 0: a plane loop after every traversal */
 #define RC_KIND_CSG_MESHES 32u /* a composite has a closed mesh operand (RC_QUADRIC_MESH) */

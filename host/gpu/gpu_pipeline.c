@@ -53,9 +53,14 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
   v[RC_SPEC_TRIANGLE_FORMULA] = f->triangle_formula;
   v[RC_SPEC_OFFSET_STRATEGY] = f->offset_strategy;
   memcpy(&v[RC_SPEC_OFFSET_EPSILON], &epsilon, sizeof epsilon);
+  /* A plane is tested by the quadric test only in brute force: with the BVH, test_planes
+   * tests it (rc_bvh.glsl), so a scene whose quadrics are all planes leaves the quadric
+   * test out of the leaf loop. */
+  const bool quadric_test = f->quadric_count > f->plane_count || (f->plane_count && !r->opts.bvh_depth);
   v[RC_SPEC_KINDS] = generic ? RC_KIND_ALL
                              : (f->sphere_count ? RC_KIND_SPHERES : 0) | (f->triangle_count ? RC_KIND_TRIANGLES : 0) |
-                                   (f->quadric_count ? RC_KIND_QUADRICS : 0) | (f->csg_count ? RC_KIND_CSG : 0) |
+                                   (quadric_test ? RC_KIND_QUADRICS : 0) |
+                                   (f->csg_count ? RC_KIND_CSG : 0) |
                                    (f->plane_count ? RC_KIND_PLANES : 0) | (r->mesh_operands ? RC_KIND_CSG_MESHES : 0) |
                                    (r->sphere_transforms ? RC_KIND_SPHERE_TRANSFORMS : 0) |
                                    (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0) |
