@@ -48,11 +48,13 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
 // a real GPU spills them), one box and one fetch of two texels per step. Children are
 // ordered near-to-far from the eye at build time (host/scene/bvh.c), which is what a primary
 // ray needs; the tie rule (consider_hit) makes the result independent of the order.
-bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
+// The walk covers the nodes [first, end): the whole object tree, or the range a light
+// buffer's cell names (shadow_nodes), which is a subtree or a leaf made for the cell.
+bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, uint first, uint end, inout hit_record h) {
   ray_shear sh = ray_shear_for(d);
   rvec3 inv_d = safe_inverse(d);
-  uint node = 0u;
-  uint node_count = frame.bvh_node_count;
+  uint node = first;
+  uint node_count = end;
   while (node < node_count) {
     // "While-while" (Aila & Laine, "Understanding the Efficiency of Ray Traversal on
     // GPUs", HPG 2009): walk boxes until this ray holds a leaf, then test it. A SIMD
@@ -113,7 +115,7 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
 bool closest_hit(rvec3 o, rvec3 d, out hit_record h) {
   h = no_hit();
   if (use_bvh) {
-    traverse_bvh(o, d, false, real(RC_T_FAR), h);
+    traverse_bvh(o, d, false, real(RC_T_FAR), 0u, frame.bvh_node_count, h);
     test_planes(o, d, false, real(RC_T_FAR), h);
   } else {
     closest_hit_linear(o, d, h);
@@ -121,8 +123,35 @@ bool closest_hit(rvec3 o, rvec3 d, out hit_record h) {
   return h.kind != RC_HIT_NONE;
 }
 
-bool occluded(rvec3 o, rvec3 d, real t_max) {
+// The nodes a shadow ray along d towards light `light` must walk, at most t_max long: its
+// light buffer's cell (RC_LIGHT_BUFFER_RES, host/scene/light_buffer.h), or the whole tree
+// where the light has no buffer or the ray starts beyond the buffer's reach. The cell is
+// the face of d's largest component and d's other two over it, in f32 on both backends (the
+// buffer is conservative by more than that rounding: docs/numerics.md §9).
+uvec2 shadow_nodes(uint light, rvec3 d, real t_max) {
+  uvec2 whole = uvec2(0u, frame.bvh_node_count);
+  if (frame.light_buffers == 0u) return whole;
+  uvec2 entry = load_bvh_prim_pair(frame.light_buffers + 2u * light);
+  if (entry.x == 0u || !(t_max <= real(uintBitsToFloat(entry.y)))) return whole;
+  vec3 v = vec3(d);
+  vec3 a = abs(v);
+  uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+  float major = axis == 0u ? a.x : (axis == 1u ? a.y : a.z);
+  if (!(major > 0.0)) return whole;
+  float sign_of = axis == 0u ? v.x : (axis == 1u ? v.y : v.z);
+  uint face = 2u * axis + (sign_of < 0.0 ? 1u : 0u);
+  float s = (axis == 0u ? v.y : v.x) / major;
+  float t = (axis == 2u ? v.y : v.z) / major;
+  if (!(abs(s) <= 1.5 && abs(t) <= 1.5)) return whole;  // NaN
+  float res = float(RC_LIGHT_BUFFER_RES);
+  uint i = uint(clamp(floor((s + 1.0) * 0.5 * res), 0.0, res - 1.0));
+  uint j = uint(clamp(floor((t + 1.0) * 0.5 * res), 0.0, res - 1.0));
+  return load_bvh_prim_pair(entry.x + 2u * ((face * RC_LIGHT_BUFFER_RES + j) * RC_LIGHT_BUFFER_RES + i));
+}
+
+bool occluded(rvec3 o, rvec3 d, real t_max, uint light) {
   if (!use_bvh) return occluded_linear(o, d, t_max);
   hit_record h = no_hit();
-  return traverse_bvh(o, d, true, t_max, h) || test_planes(o, d, true, t_max, h);
+  uvec2 nodes = shadow_nodes(light, d, t_max);
+  return traverse_bvh(o, d, true, t_max, nodes.x, nodes.y, h) || test_planes(o, d, true, t_max, h);
 }

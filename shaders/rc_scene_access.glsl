@@ -113,6 +113,11 @@ packed_bvh_node load_bvh_node(uint i) {
 }
 
 uint load_bvh_prim(uint i) { return texel(scene_bvh_prims, i >> 2u)[i & 3u]; }
+// Entries i and i + 1 of the reference array, i even (one texel: the light buffers' pairs).
+uvec2 load_bvh_prim_pair(uint i) {
+  uvec4 t = texel(scene_bvh_prims, i >> 2u);
+  return (i & 2u) != 0u ? t.zw : t.xy;
+}
 
 packed_quadric load_quadric(uint i) {
   uint k = i * RC_TEXELS_PER_QUADRIC;
@@ -211,6 +216,7 @@ packed_material load_material(uint i) { return scene_materials[i]; }
 packed_light load_light(uint i) { return scene_lights[i]; }
 packed_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }
 uint load_bvh_prim(uint i) { return scene_bvh_prims[i]; }
+uvec2 load_bvh_prim_pair(uint i) { return uvec2(scene_bvh_prims[i], scene_bvh_prims[i + 1u]); }
 packed_transform load_transform(uint i) { return scene_transforms[i]; }
 packed_vertex_normals load_vertex_normals(uint i) { return scene_normals[i]; }
 packed_quadric load_quadric(uint i) { return scene_quadrics[i]; }

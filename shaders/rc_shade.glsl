@@ -440,7 +440,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real n_dot_l = dot(sf.n, l);
     if (n_dot_l <= 0.0) continue;
     if (scene_shadows()) shadow_rays++;
-    if (scene_shadows() && occluded(t_min_start(origin, to_light), to_light, t_min_end(shadow_t_max))) {
+    if (scene_shadows() && occluded(t_min_start(origin, to_light), to_light, t_min_end(shadow_t_max), i)) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
       continue;
     }

@@ -193,7 +193,9 @@ struct packed_frame {
   uint plane_count;       /* the last plane_count of the quadric_count standalone quadrics are
                              infinite planes: outside the BVH, every ray tests them */
   uint patch_count;       /* of the standalone quadrics, how many are patch pieces (RC_QUADRIC_PATCH) */
-  uint pad1; uint pad2;
+  uint light_buffers;     /* where the light buffers' table starts in the BVH's reference array
+                             (RC_LIGHT_BUFFER_*); 0: the scene has none */
+  uint pad2;
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -455,6 +457,18 @@ struct packed_bvh_node {
 #define RC_BVH_LEAF_SHIFT 4u
 #define RC_BVH_LEAF_MAX 8u /* objects per leaf: fits below 1 << RC_BVH_LEAF_SHIFT */
 
+/* Light buffers (Haines & Greenberg, "The Light Buffer: A Shadow-Testing Accelerator",
+ * IEEE CG&A 6(9), 1986; host/scene/light_buffer.h): a cube of RC_LIGHT_BUFFER_RES^2 cells
+ * a face around a point light, indexed by a shadow ray's direction towards the light, each
+ * cell naming the range of BVH nodes [first, end) that holds every object that a shadow ray
+ * through it can meet: none, one leaf made for the cell (at most RC_LIGHT_BUFFER_LIST
+ * objects), or the smallest subtree of the object tree that holds them all. In the BVH's
+ * reference array, from frame.light_buffers: a pair (cells, reach) per light, where `cells`
+ * is where the light's 6 x RES^2 pairs (first, end) start (0: the light has no buffer) and
+ * `reach` (f32 bits) the longest shadow ray the buffer answers for. */
+#define RC_LIGHT_BUFFER_RES 64u
+#define RC_LIGHT_BUFFER_LIST 15u /* below 1 << RC_BVH_LEAF_SHIFT */
+
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct packed_push {
   uint tile_x; uint tile_y; uint tile_width; uint tile_height;
@@ -498,6 +512,7 @@ RC_ASSERT_LAYOUT(packed_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(packed_fr
 RC_ASSERT_LAYOUT(packed_frame, quadric_count, 176); RC_ASSERT_LAYOUT(packed_frame, csg_count, 180);
 RC_ASSERT_LAYOUT(packed_frame, shadows, 184); RC_ASSERT_LAYOUT(packed_frame, csg_max_steps, 188);
 RC_ASSERT_LAYOUT(packed_frame, plane_count, 192); RC_ASSERT_LAYOUT(packed_frame, patch_count, 196);
+RC_ASSERT_LAYOUT(packed_frame, light_buffers, 200);
 RC_ASSERT_SIZE(packed_frame, 208);
 RC_ASSERT_LAYOUT(packed_quadric, center, 0);   RC_ASSERT_LAYOUT(packed_quadric, material, 12);
 RC_ASSERT_LAYOUT(packed_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(packed_quadric, constant, 28);

@@ -12,6 +12,7 @@
 #include "cli/options.h"
 #include "gpu/gpu_render.h"
 #include "scene/bvh.h"
+#include "scene/light_buffer.h"
 #include "cli/output.h"
 #include "cli/part.h"
 #include "scene/precision_budget.h"
@@ -36,7 +37,7 @@ typedef struct {
   bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
   int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
-      scene_buffers, pipeline;
+      scene_buffers, pipeline, light_buffers;
   double offset_epsilon; /* 0: the scene's */
   double gamma;          /* 0: the scene's (or 2.2) */
   double exposure;       /* NAN: the scene's */
@@ -76,6 +77,10 @@ static const rc_option render_options[] = {
              "and the device has shaderFloat64 (docs/accuracy.md)"},
     {"--accel", NULL, RC_OPT_CHOICE, ARG(accel), "A", .choices = accels,
      .help = "bvh (default) or none: brute force over every object, for comparison"},
+    {"--light-buffers", NULL, RC_OPT_CHOICE, ARG(light_buffers), "B", .choices = off_on,
+     .help = "on (default) or off: a cube of cells around each of the first 8 point lights\n"
+             "naming what its shadow rays can meet (Haines & Greenberg 1986); the image\n"
+             "does not depend on it"},
     {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
      .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
     {"--flush-subnormals", NULL, RC_OPT_FLAG, ARG(flush_subnormals),
@@ -260,7 +265,8 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->repeat = 1;
   a->exposure = NAN;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
-      a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline = -1;
+      a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline =
+          a->light_buffers = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -728,6 +734,9 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
     a->gpu.region = a->part.region;
     rs.part_ms = rc_now_ms() - t1;
   }
+  /* After the part's scene hash (resolve_part): the buffers, like the tree, only speed the
+   * renderers up, and parts rendered with and without them merge. */
+  if (st == RC_OK && a->light_buffers != 0) st = rc_light_buffers_build(&packed, &rs.light_buffers);
   rs.region = a->part.region;
   rs.shard_index = a->part.shard_index, rs.shard_count = a->part.shard_count;
   rc_stats_describe_scene(&rs, scene);

@@ -55,6 +55,11 @@ void rc_stats_print(const rc_render_stats *s) {
     fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms; %u exact "
             "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
             s->bvh.build_ms, s->bvh.repeats);
+  if (s->light_buffers.lights)
+    fprintf(stderr, "vkraycast: light buffers for %u lights: %llu cells, %llu empty, %llu with a list, %llu with a "
+            "subtree; %.1f KiB, built in %.1f ms\n", s->light_buffers.lights, (unsigned long long)s->light_buffers.cells,
+            (unsigned long long)s->light_buffers.empty, (unsigned long long)s->light_buffers.lists,
+            (unsigned long long)s->light_buffers.subtrees, s->light_buffers.bytes / 1024.0, s->light_buffers.build_ms);
   if (strcmp(s->backend, "gpu") == 0)
     fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
             "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
@@ -122,6 +127,13 @@ static const stats_field bvh_fields[] = {
     FIELD("bvh_nodes", F_U32, bvh.nodes),
     FIELD("bvh_depth", F_U32, bvh.depth),
     FIELD("bvh_repeats_left_out", F_U32, bvh.repeats),
+    FIELD("light_buffers", F_U32, light_buffers.lights),
+    FIELD("light_buffer_cells", F_U64, light_buffers.cells),
+    FIELD("light_buffer_empty_cells", F_U64, light_buffers.empty),
+    FIELD("light_buffer_list_cells", F_U64, light_buffers.lists),
+    FIELD("light_buffer_subtree_cells", F_U64, light_buffers.subtrees),
+    FIELD("light_buffer_bytes", F_U64, light_buffers.bytes),
+    FIELD("light_buffer_ms", F_DOUBLE, light_buffers.build_ms),
     FIELD("parse_ms", F_DOUBLE, parse_ms),
     FIELD("first_frame_ms", F_DOUBLE, first_frame_ms),
     FIELD("render_ms", F_DOUBLE, render_ms),

@@ -3,6 +3,7 @@
 #define RC_STATS_H
 
 #include "scene/bvh.h"
+#include "scene/light_buffer.h"
 #include "gpu/gpu_render.h"
 #include "scene/scene.h"
 
@@ -39,6 +40,7 @@ typedef struct rc_render_stats {
   uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
   rc_gpu_stats gpu;
   rc_bvh_stats bvh; /* zero with --accel none */
+  rc_light_buffer_stats light_buffers; /* zero without them (--light-buffers off, no point light, ...) */
 } rc_render_stats;
 
 /* What the statistics say about the scene itself: the frame, the counts of each kind, the

@@ -65,10 +65,12 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_intersect_box_##S(V lo, V hi, V o, V inv_d, R t_max);                                   \
   bool ref_test_leaf_##S(const ref_scene *sc, uint32_t first, uint32_t count, V o, V d, const ref_shear_##S *sh,       \
                           bool any, R t_max, ref_hit_##S *h);                                   \
-  bool ref_traverse_bvh_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);  \
+  bool ref_traverse_bvh_##S(const ref_scene *sc, V o, V d, bool any, R t_max, uint32_t first, uint32_t end, \
+                            ref_hit_##S *h);                                                    \
   bool ref_test_planes_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);   \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);                      \
-  bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max);
+  void ref_shadow_nodes_##S(const ref_scene *sc, uint32_t light, V d, R t_max, uint32_t *first, uint32_t *end); \
+  bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max, uint32_t light);
 
 /* ref_quadric.c, the twin of rc_quadric.glsl. */
 #define REF_DECLARE_QUADRIC(S, R, V)                                                            \

@@ -392,7 +392,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     if (n_dot_l <= 0) continue;
     if (sc->frame->shadows) ref_shadow_rays++;
     if (sc->frame->shadows &&
-        REF(occluded)(sc, REF(t_min_start)(sc, origin, to_light), to_light, REF(t_min_end)(sc, shadow_t_max))) {
+        REF(occluded)(sc, REF(t_min_start)(sc, origin, to_light), to_light, REF(t_min_end)(sc, shadow_t_max), i)) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
       continue;
     }

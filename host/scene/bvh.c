@@ -388,31 +388,43 @@ static box triangle_box(const packed_triangle *t) {
   return b;
 }
 
+/* Object i's box (bvh.h): what its tree and the light buffers (light_buffer.c) bound it by. */
+static box object_box(const rc_packed_scene *p, uint32_t i) {
+  const packed_frame *f = &p->frame;
+  box b = empty_box();
+  if (i < f->sphere_count && p->spheres[i].transform != RC_NO_TRANSFORM) {
+    b = ellipsoid_box(&p->spheres[i], &p->transforms[p->spheres[i].transform]);
+  } else if (i < f->sphere_count) {
+    const packed_sphere *s = &p->spheres[i];
+    const float c[3] = {s->center.x, s->center.y, s->center.z};
+    for (int k = 0; k < 3; k++) {
+      /* One ulp outwards each way: c +- r is rounded. */
+      b.lo[k] = nextafterf(c[k] - s->radius, -FLT_MAX);
+      b.hi[k] = nextafterf(c[k] + s->radius, FLT_MAX);
+    }
+  } else if (i < f->sphere_count + f->triangle_count) {
+    b = triangle_box(&p->triangles[i - f->sphere_count]);
+  } else if (i < f->sphere_count + f->triangle_count + f->quadric_count) {
+    b = quadric_box(&p->quadrics[i - f->sphere_count - f->triangle_count]);
+  } else {
+    const packed_csg *c = &p->csg[i - f->sphere_count - f->triangle_count - f->quadric_count];
+    b = padded_box((const double[3]){c->lo.x, c->lo.y, c->lo.z}, (const double[3]){c->hi.x, c->hi.y, c->hi.z});
+  }
+  return b;
+}
+
+void rc_bvh_object_box(const rc_packed_scene *p, uint32_t object, float lo[3], float hi[3]) {
+  box b = object_box(p, object);
+  memcpy(lo, b.lo, sizeof b.lo);
+  memcpy(hi, b.hi, sizeof b.hi);
+}
+
 /* The object tree's boxes: every object's, planes and repeats included (the tree leaves
  * them out through refs). */
 static void object_boxes(const rc_packed_scene *p, prim_info *info) {
-  const packed_frame *f = &p->frame;
-  for (uint32_t i = 0; i < f->object_count; i++) {
+  for (uint32_t i = 0; i < p->frame.object_count; i++) {
     prim_info *q = &info[i];
-    q->bounds = empty_box();
-    if (i < f->sphere_count && p->spheres[i].transform != RC_NO_TRANSFORM) {
-      q->bounds = ellipsoid_box(&p->spheres[i], &p->transforms[p->spheres[i].transform]);
-    } else if (i < f->sphere_count) {
-      const packed_sphere *s = &p->spheres[i];
-      const float c[3] = {s->center.x, s->center.y, s->center.z};
-      for (int k = 0; k < 3; k++) {
-        /* One ulp outwards each way: c +- r is rounded. */
-        q->bounds.lo[k] = nextafterf(c[k] - s->radius, -FLT_MAX);
-        q->bounds.hi[k] = nextafterf(c[k] + s->radius, FLT_MAX);
-      }
-    } else if (i < f->sphere_count + f->triangle_count) {
-      q->bounds = triangle_box(&p->triangles[i - f->sphere_count]);
-    } else if (i < f->sphere_count + f->triangle_count + f->quadric_count) {
-      q->bounds = quadric_box(&p->quadrics[i - f->sphere_count - f->triangle_count]);
-    } else {
-      const packed_csg *c = &p->csg[i - f->sphere_count - f->triangle_count - f->quadric_count];
-      q->bounds = padded_box((const double[3]){c->lo.x, c->lo.y, c->lo.z}, (const double[3]){c->hi.x, c->hi.y, c->hi.z});
-    }
+    q->bounds = object_box(p, i);
     for (int k = 0; k < 3; k++) q->centroid[k] = 0.5f * (q->bounds.lo[k] + q->bounds.hi[k]);
   }
 }

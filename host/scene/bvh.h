@@ -28,4 +28,8 @@ typedef struct rc_bvh_stats {
  * worst-case steps to frame.csg_max_steps. */
 rc_status rc_bvh_build(rc_packed_scene *packed, bool objects, rc_bvh_stats *stats);
 
+/* The box the object tree bounds object `object` by (a plane's is empty): f32, rounded
+ * outwards so that it holds every point the renderers can find on the object. */
+void rc_bvh_object_box(const rc_packed_scene *packed, uint32_t object, float lo[3], float hi[3]);
+
 #endif

@@ -588,6 +588,7 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
 
 void rc_packed_scene_free(rc_packed_scene *p) {
   if (p->borrowed) {
+    if (p->bvh_copied) free(p->bvh_nodes), free(p->bvh_prims);
     memset(p, 0, sizeof *p);
     return;
   }

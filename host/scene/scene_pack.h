@@ -46,6 +46,7 @@ typedef struct rc_packed_scene {
   dvec3 origin; /* world position of the packed space's origin (the eye) */
   double scale; /* packed units per scene unit: a power of two, 1 unless rescaled (scene_pack.c) */
   bool borrowed; /* the arrays belong to a prepared file (prepared.h): rc_packed_scene_free leaves them */
+  bool bvh_copied; /* borrowed, but bvh_nodes and bvh_prims are copies (light_buffer.c): freed */
   /* The arrays' own hashes (rc_packed_scene_array_hashes) where a prepared file recorded
    * them, else NULL: rc_packed_scene_hash then hashes only the frame. */
   const uint64_t *array_hashes;

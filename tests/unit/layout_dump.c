@@ -46,7 +46,7 @@ int main(void) {
   OFF("frame.csg_max_steps", packed_frame, csg_max_steps);
   OFF("frame.plane_count", packed_frame, plane_count);
   OFF("frame.patch_count", packed_frame, patch_count);
-  OFF("frame.pad1", packed_frame, pad1);
+  OFF("frame.light_buffers", packed_frame, light_buffers);
   OFF("frame.pad2", packed_frame, pad2);
   printf("Frame size %zu\n", sizeof(packed_frame));
 

@@ -150,9 +150,9 @@ TEST(occluded_only_within_t_max) {
   frame.sphere_count = 1;
   frame.object_count = 1;
   ref_scene sc = {.frame = &frame, .spheres = spheres};
-  CHECK(ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 10.0));
-  CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 3.9));
-  CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 1, 0), 10.0));
+  CHECK(ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 10.0, 0));
+  CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 3.9, 0));
+  CHECK(!ref_occluded_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 1, 0), 10.0, 0));
 }
 
 /* A unit cylinder along z, |z| <= 1 (normalized as the loader builds it), solid or open. */

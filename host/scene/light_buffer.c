@@ -1,0 +1,313 @@
+#include "scene/light_buffer.h"
+
+#include "scene/bvh.h"
+#include "scene/name_table.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RES RC_LIGHT_BUFFER_RES
+#define CELLS (6u * RES * RES)
+#define NONE UINT32_MAX
+
+/* The reach (rc_shared.h): this many times the farthest corner of the object tree's box
+ * from the light. A shadow ray from farther away (from a plane beyond the objects) walks
+ * the whole tree: the pad below grows with the reach. */
+#define REACH_FACTOR 4.0
+/* Every object's box grows by (reach + |light|) 2^-18 before it is projected: the shadow
+ * ray's line passes the light within a few f32 ulps of those lengths (docs/numerics.md §9). */
+#define PAD_SCALE 0x1p-18
+/* Face coordinates s = x / z widen by this, for the shader's f32 division and the choice
+ * of face where two components tie. */
+#define MARGIN 1e-5
+
+/* A cell while the objects are projected: how many fall in it, the first
+ * RC_LIGHT_BUFFER_LIST of them, and the smallest subtree of the object tree holding them all. */
+typedef struct {
+  uint32_t count, subtree;
+  uint32_t ids[RC_LIGHT_BUFFER_LIST];
+} cell_acc;
+
+/* The object tree, read once for every light. */
+typedef struct {
+  const packed_bvh_node *nodes;
+  uint32_t node_count;
+  uint32_t *parent;          /* per node; NONE for the root */
+  uint32_t count;            /* objects in the tree (repeats and planes are not) */
+  uint32_t *object, *leaf;   /* per tree object: its number and its leaf */
+  float (*lo)[3], (*hi)[3];  /* per tree object: its box (rc_bvh_object_box) */
+} tree;
+
+/* What is appended after the tree's nodes and references. */
+typedef struct {
+  packed_bvh_node *nodes;
+  uint32_t node_count, node_cap;
+  uint32_t *words;           /* the table, the cells, then the leaves' object lists */
+  uint32_t word_count, word_cap;
+  uint32_t node_base, word_base; /* absolute positions of nodes[0] and words[0] */
+  uint32_t *slots;           /* open addressing over the made leaves, keyed by their lists */
+  uint32_t slot_mask;
+} appendix;
+
+static void tree_free(tree *t) {
+  free(t->parent);
+  free(t->object);
+  free(t->leaf);
+  free(t->lo);
+  free(t->hi);
+}
+
+static rc_status tree_read(const rc_packed_scene *p, tree *t) {
+  const uint32_t n = p->frame.bvh_node_count;
+  *t = (tree){.nodes = p->bvh_nodes, .node_count = n};
+  t->parent = rc_alloc(n, sizeof *t->parent, "light buffers");
+  if (!t->parent) return RC_ERR_OUT_OF_MEMORY;
+  uint32_t objects = 0;
+  for (uint32_t i = 0; i < n; i++) {
+    t->parent[i] = NONE;
+    objects += p->bvh_nodes[i].leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+  }
+  /* Depth-first: an inner node's children are the next node and the node after its subtree. */
+  for (uint32_t i = 0; i < n; i++)
+    if (p->bvh_nodes[i].leaf == 0 && i + 1 < n) {
+      t->parent[i + 1] = i;
+      if (p->bvh_nodes[i + 1].skip < n) t->parent[p->bvh_nodes[i + 1].skip] = i;
+    }
+  t->object = rc_alloc(objects, sizeof *t->object, "light buffers");
+  t->leaf = rc_alloc(objects, sizeof *t->leaf, "light buffers");
+  t->lo = rc_alloc(objects, sizeof *t->lo, "light buffers");
+  t->hi = rc_alloc(objects, sizeof *t->hi, "light buffers");
+  if (!t->object || !t->leaf || !t->lo || !t->hi) return RC_ERR_OUT_OF_MEMORY;
+  for (uint32_t i = 0; i < n; i++) {
+    uint32_t leaf = p->bvh_nodes[i].leaf, first = leaf >> RC_BVH_LEAF_SHIFT;
+    for (uint32_t k = 0; k < (leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u)); k++) {
+      t->object[t->count] = p->bvh_prims[first + k];
+      t->leaf[t->count] = i;
+      rc_bvh_object_box(p, t->object[t->count], t->lo[t->count], t->hi[t->count]);
+      t->count++;
+    }
+  }
+  return RC_OK;
+}
+
+static void add(const tree *t, cell_acc *c, uint32_t object, uint32_t leaf) {
+  if (c->count < RC_LIGHT_BUFFER_LIST) c->ids[c->count] = object;
+  c->count++;
+  if (c->subtree == NONE) {
+    c->subtree = leaf;
+    return;
+  }
+  /* Node a holds node b exactly when a <= b < a.skip (depth-first order). */
+  while (!(c->subtree <= leaf && leaf < t->nodes[c->subtree].skip)) c->subtree = t->parent[c->subtree];
+}
+
+/* The cell column or row of face coordinate s in [-1, 1], clamped as the shader clamps. */
+static int cell_of(double s) {
+  double x = floor((s + 1) * 0.5 * RES);
+  return x < 0 ? 0 : (x > RES - 1 ? (int)RES - 1 : (int)x);
+}
+
+/* Adds tree object k to every cell through which a shadow ray towards the light at L can
+ * meet its box. A shadow ray's direction d points from the surface towards the light, so
+ * the directions that meet the box are those of B = L - box (grown by pad). Face (axis a,
+ * sign) holds the directions whose largest component is the signed a-th; its coordinates
+ * are (s, t) = (d_b, d_c) / |d_a|, and over B, where |d_a| >= the box's Chebyshev
+ * distance from the light, they lie between the extremes at B's corners. */
+static void project(const tree *t, cell_acc *cells, const double L[3], double pad, uint32_t k) {
+  double lo[3], hi[3], dist = 0;
+  for (int i = 0; i < 3; i++) {
+    lo[i] = L[i] - t->hi[k][i] - pad;
+    hi[i] = L[i] - t->lo[k][i] + pad;
+    double di = lo[i] > 0 ? lo[i] : (hi[i] < 0 ? -hi[i] : 0);
+    if (di > dist) dist = di;
+  }
+  for (uint32_t face = 0; face < 6; face++) {
+    int a = (int)face / 2, b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
+    int i0 = 0, i1 = (int)RES - 1, j0 = 0, j1 = (int)RES - 1;
+    if (dist > 0) { /* else the light is inside the box: every cell */
+      double z_lo = face & 1 ? -hi[a] : lo[a], z_hi = face & 1 ? -lo[a] : hi[a];
+      if (z_hi <= 0) continue;
+      z_lo = fmax(z_lo, dist * (1 - MARGIN));
+      double s_lo = fmin(lo[b] / z_lo, lo[b] / z_hi) - MARGIN, s_hi = fmax(hi[b] / z_lo, hi[b] / z_hi) + MARGIN;
+      double t_lo = fmin(lo[c] / z_lo, lo[c] / z_hi) - MARGIN, t_hi = fmax(hi[c] / z_lo, hi[c] / z_hi) + MARGIN;
+      if (s_hi < -1 || s_lo > 1 || t_hi < -1 || t_lo > 1) continue;
+      i0 = cell_of(s_lo), i1 = cell_of(s_hi), j0 = cell_of(t_lo), j1 = cell_of(t_hi);
+    }
+    for (int j = j0; j <= j1; j++)
+      for (int i = i0; i <= i1; i++) add(t, &cells[(face * RES + (uint32_t)j) * RES + (uint32_t)i], t->object[k], t->leaf[k]);
+  }
+}
+
+static bool grow_words(appendix *x, uint32_t more) {
+  if (x->word_count + more <= x->word_cap) return true;
+  uint32_t cap = x->word_cap ? x->word_cap : 1024;
+  while (cap < x->word_count + more) cap *= 2;
+  uint32_t *w = realloc(x->words, (size_t)cap * sizeof *w);
+  if (!w) return false;
+  x->words = w, x->word_cap = cap;
+  return true;
+}
+
+/* The node of a leaf made for cell c's objects, shared by every cell with the same list. */
+static uint32_t leaf_for(const tree *t, appendix *x, const cell_acc *c, const uint32_t *index_of) {
+  size_t bytes = c->count * sizeof *c->ids;
+  for (uint32_t at = (uint32_t)rc_hash_bytes(c->ids, bytes) & x->slot_mask;; at = (at + 1) & x->slot_mask) {
+    uint32_t node = x->slots[at];
+    if (node == NONE) break;
+    const packed_bvh_node *n = &x->nodes[node];
+    uint32_t first = (n->leaf >> RC_BVH_LEAF_SHIFT) - x->word_base;
+    if ((n->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u)) == c->count && !memcmp(&x->words[first], c->ids, bytes))
+      return x->node_base + node;
+  }
+  if (x->node_count == x->node_cap) {
+    uint32_t cap = x->node_cap ? 2 * x->node_cap : 256;
+    packed_bvh_node *n = realloc(x->nodes, cap * sizeof *n);
+    if (!n) return NONE;
+    x->nodes = n, x->node_cap = cap;
+  }
+  if (!grow_words(x, c->count)) return NONE;
+  packed_bvh_node *n = &x->nodes[x->node_count];
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t i = 0; i < c->count; i++) {
+    uint32_t k = index_of[c->ids[i]];
+    for (int a = 0; a < 3; a++) lo[a] = fminf(lo[a], t->lo[k][a]), hi[a] = fmaxf(hi[a], t->hi[k][a]);
+  }
+  n->lo = (vec3){lo[0], lo[1], lo[2]};
+  n->hi = (vec3){hi[0], hi[1], hi[2]};
+  n->skip = x->node_base + x->node_count + 1;
+  n->leaf = ((x->word_base + x->word_count) << RC_BVH_LEAF_SHIFT) | c->count;
+  memcpy(&x->words[x->word_count], c->ids, bytes);
+  x->word_count += c->count;
+  for (uint32_t at = (uint32_t)rc_hash_bytes(c->ids, bytes) & x->slot_mask;; at = (at + 1) & x->slot_mask)
+    if (x->slots[at] == NONE) {
+      x->slots[at] = x->node_count;
+      break;
+    }
+  return x->node_base + x->node_count++;
+}
+
+/* Light `light`'s buffer: its cells' node ranges from `cells` on in x->words. */
+static rc_status build_light(const tree *t, appendix *x, const packed_light *light, const uint32_t *index_of,
+                             cell_acc *acc, uint32_t cells, float *reach_out, rc_light_buffer_stats *st) {
+  const double L[3] = {light->position.x, light->position.y, light->position.z};
+  const packed_bvh_node *root = &t->nodes[0];
+  double far2 = 0;
+  for (int corner = 0; corner < 8; corner++) {
+    double q[3] = {corner & 1 ? root->hi.x : root->lo.x, corner & 2 ? root->hi.y : root->lo.y,
+                   corner & 4 ? root->hi.z : root->lo.z};
+    double d2 = (q[0] - L[0]) * (q[0] - L[0]) + (q[1] - L[1]) * (q[1] - L[1]) + (q[2] - L[2]) * (q[2] - L[2]);
+    if (d2 > far2) far2 = d2;
+  }
+  const float reach = (float)(REACH_FACTOR * sqrt(far2));
+  const double pad = ((double)reach + sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])) * PAD_SCALE;
+  for (uint32_t c = 0; c < CELLS; c++) acc[c] = (cell_acc){.count = 0, .subtree = NONE};
+  for (uint32_t k = 0; k < t->count; k++) project(t, acc, L, pad, k);
+  for (uint32_t c = 0; c < CELLS; c++) {
+    uint32_t first = 0, end = 0; /* an empty range: nothing to meet */
+    if (acc[c].count > RC_LIGHT_BUFFER_LIST) {
+      first = acc[c].subtree, end = t->nodes[first].skip;
+      st->subtrees++;
+    } else if (acc[c].count > 0) {
+      first = leaf_for(t, x, &acc[c], index_of);
+      if (first == NONE) return RC_ERR_OUT_OF_MEMORY;
+      end = first + 1;
+      st->lists++;
+    } else {
+      st->empty++;
+    }
+    x->words[cells + 2 * c] = first;
+    x->words[cells + 2 * c + 1] = end;
+  }
+  st->cells += CELLS;
+  *reach_out = reach;
+  return RC_OK;
+}
+
+/* Where borrowed (a prepared scene's file), the tree's arrays become the scene's own copies. */
+static rc_status own_tree(rc_packed_scene *p) {
+  if (!p->borrowed || p->bvh_copied) return RC_OK;
+  packed_bvh_node *n = rc_alloc(p->bvh_node_total, sizeof *n, "light buffers");
+  uint32_t words = (p->bvh_prim_total + 3) / 4 * 4;
+  uint32_t *r = rc_alloc(words, sizeof *r, "light buffers");
+  if (!n || !r) {
+    free(n);
+    free(r);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
+  memcpy(n, p->bvh_nodes, p->bvh_node_total * sizeof *n);
+  memcpy(r, p->bvh_prims, words * sizeof *r);
+  p->bvh_nodes = n, p->bvh_prims = r, p->bvh_copied = true;
+  return RC_OK;
+}
+
+/* Appends x after the tree's arrays. */
+static rc_status append(rc_packed_scene *p, const appendix *x) {
+  RC_TRY(own_tree(p));
+  uint32_t nodes = p->bvh_node_total + x->node_count, words = x->word_base + x->word_count;
+  packed_bvh_node *n = realloc(p->bvh_nodes, (size_t)nodes * sizeof *n);
+  if (n) p->bvh_nodes = n;
+  uint32_t *r = realloc(p->bvh_prims, (size_t)(words + 3) / 4 * 4 * sizeof *r);
+  if (r) p->bvh_prims = r;
+  if (!n || !r) return RC_ERR_OUT_OF_MEMORY;
+  memcpy(p->bvh_nodes + p->bvh_node_total, x->nodes, x->node_count * sizeof *n);
+  for (uint32_t i = p->bvh_prim_total; i < x->word_base; i++) p->bvh_prims[i] = 0;
+  memcpy(p->bvh_prims + x->word_base, x->words, x->word_count * sizeof *r);
+  for (uint32_t i = words; i < (words + 3) / 4 * 4; i++) p->bvh_prims[i] = 0;
+  p->bvh_node_total = nodes;
+  p->bvh_prim_total = words;
+  return RC_OK;
+}
+
+rc_status rc_light_buffers_build(rc_packed_scene *p, rc_light_buffer_stats *st) {
+  memset(st, 0, sizeof *st);
+  packed_frame *f = &p->frame;
+  f->light_buffers = 0;
+  uint32_t lights = 0;
+  for (uint32_t i = 0; i < f->light_count && lights < RC_LIGHT_BUFFERS_MAX; i++)
+    lights += p->lights[i].type == RC_LIGHT_POINT;
+  if (!p->bvh || f->bvh_node_count == 0 || !f->shadows || lights == 0) return RC_OK;
+  double t0 = rc_now_ms();
+  /* The table, then each buffered light's cells, then the made leaves' lists; the leaves'
+   * references (first << RC_BVH_LEAF_SHIFT) must stay below 2^32. */
+  appendix x = {.node_base = p->bvh_node_total, .word_base = (p->bvh_prim_total + 3) / 4 * 4};
+  const uint32_t table_words = (2 * f->light_count + 3) / 4 * 4;
+  const uint64_t reserved = table_words + (uint64_t)lights * 2 * CELLS;
+  if (x.word_base + reserved + (uint64_t)lights * CELLS * RC_LIGHT_BUFFER_LIST >= (1ull << (32 - RC_BVH_LEAF_SHIFT)))
+    return RC_OK; /* too many references already: the tree alone, as before */
+  tree t;
+  rc_status s = tree_read(p, &t);
+  uint32_t *index_of = s == RC_OK ? rc_alloc(f->object_count, sizeof *index_of, "light buffers") : NULL;
+  cell_acc *acc = s == RC_OK ? rc_alloc(CELLS, sizeof *acc, "light buffers") : NULL;
+  /* At most one leaf a cell: the table is never more than half full (CELLS is a power of two). */
+  x.slot_mask = 2 * CELLS * RC_LIGHT_BUFFERS_MAX - 1;
+  x.slots = s == RC_OK ? rc_alloc((size_t)x.slot_mask + 1, sizeof *x.slots, "light buffers") : NULL;
+  if (s == RC_OK && (!index_of || !acc || !x.slots || !grow_words(&x, (uint32_t)reserved))) s = RC_ERR_OUT_OF_MEMORY;
+  if (s == RC_OK) {
+    memset(x.slots, 0xff, (size_t)(x.slot_mask + 1) * sizeof *x.slots);
+    for (uint32_t k = 0; k < t.count; k++) index_of[t.object[k]] = k;
+    memset(x.words, 0, reserved * sizeof *x.words);
+    x.word_count = (uint32_t)reserved;
+    uint32_t cells = table_words;
+    for (uint32_t i = 0; s == RC_OK && i < f->light_count; i++) {
+      if (p->lights[i].type != RC_LIGHT_POINT || st->lights == lights) continue;
+      float reach = 0;
+      s = build_light(&t, &x, &p->lights[i], index_of, acc, cells, &reach, st);
+      x.words[2 * i] = x.word_base + cells;
+      memcpy(&x.words[2 * i + 1], &reach, sizeof reach);
+      cells += 2 * CELLS;
+      st->lights++;
+    }
+  }
+  if (s == RC_OK) s = append(p, &x);
+  if (s == RC_OK) f->light_buffers = x.word_base;
+  st->bytes = (uint64_t)x.node_count * sizeof(packed_bvh_node) + (uint64_t)x.word_count * sizeof(uint32_t);
+  free(x.nodes);
+  free(x.words);
+  free(x.slots);
+  free(acc);
+  free(index_of);
+  tree_free(&t);
+  st->build_ms = rc_now_ms() - t0;
+  return s;
+}
