@@ -10,10 +10,11 @@ fetch as an out-of-line helper, the shader as one function) and per loop (backwa
 jumps) of the largest function, with the operations that name a loop's work (vsqrtps: a
 sphere test; vdivps: triangle and box slopes; calls: texel fetches).
 
-Usage: tools/profile_jit.py [--top N] [--annotate K] -- vkraycast render SCENE -o OUT [options]
+Usage: tools/profile_jit.py [--top N] [--annotate K] [--loop +OFFSET] -- vkraycast render SCENE -o OUT [options]
 (run it with --repeat 4 or more so that the steady state outweighs start-up). --annotate K
 prints the K-th hottest innermost loop (1 = hottest) instruction by instruction with its
-samples: what finding 11 in docs/performance.md was read from.
+samples: what finding 11 in docs/performance.md was read from. --loop +OFFSET prints the
+loop the table lists at that offset from the shader function's start, inner loops included.
 Needs perf (Debian linux-perf), objdump and permission to read the process's memory
 (root, or ptrace_scope 0).
 """
@@ -92,10 +93,12 @@ def describe(insns):
 
 def main():
     argv = sys.argv[1:]
-    top, annotate = 12, 0
-    while argv[:1] in (["--top"], ["--annotate"]):
+    top, annotate, loop_at = 12, 0, None
+    while argv[:1] in (["--top"], ["--annotate"], ["--loop"]):
         if argv[0] == "--top":
             top = int(argv[1])
+        elif argv[0] == "--loop":
+            loop_at = int(argv[1], 16)
         else:
             annotate = int(argv[1])
         argv = argv[2:]
@@ -182,9 +185,17 @@ def main():
             stack.pop()
         n = sum(ips.get(a, 0) for a, _ in body[j : i + 1])
         if 100.0 * n / max(total, 1) >= 0.5:
-            print(f"| {'. ' * len(stack)}{body[j][0]:#x}..{body[i][0]:#x} | {i - j + 1} | {n} | "
+            print(f"| {'. ' * len(stack)}+{body[j][0] - body[0][0]:#x}..+{body[i][0] - body[0][0]:#x} | {i - j + 1} | {n} | "
                   f"{100.0 * n / max(total, 1):.1f} % | {describe(body[j : i + 1])} |")
         stack.append((j, i))
+    if loop_at is not None:
+        # Offsets within the JIT region do not change between runs of the same shader; the
+        # address does: a loop is named by its offset from the function's start.
+        for j, i in loops:
+            if body[j][0] - body[0][0] == loop_at:
+                print(f"\nloop at +{loop_at:#x} ({body[j][0]:#x}..{body[i][0]:#x}):")
+                for a, text in body[j : i + 1]:
+                    print(f"{ips.get(a, 0):6d}  +{a - body[0][0]:#x}  {text}")
     if annotate:
         inner = [(j, i) for j, i in loops if not any(j <= j2 and i2 <= i and (j2, i2) != (j, i) for j2, i2 in loops)]
         inner.sort(key=lambda x: -sum(ips.get(a, 0) for a, _ in body[x[0] : x[1] + 1]))
