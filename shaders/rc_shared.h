@@ -467,7 +467,7 @@ struct packed_bvh_node {
  * is where the light's 6 x RES^2 pairs (first, end) start (0: the light has no buffer) and
  * `reach` (f32 bits) the longest shadow ray the buffer answers for. */
 #define RC_LIGHT_BUFFER_RES 64u
-#define RC_LIGHT_BUFFER_LIST 15u /* below 1 << RC_BVH_LEAF_SHIFT */
+#define RC_LIGHT_BUFFER_LIST 4u /* below 1 << RC_BVH_LEAF_SHIFT */
 
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct packed_push {
