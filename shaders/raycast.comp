@@ -183,4 +183,5 @@ void main() {
   if (patch_stalls != 0u) atomicAdd(status.patch_unconverged, patch_stalls);
 #endif
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);
+  if (budget_steps != 0u) atomicMax(status.max_steps, budget_steps);
 }

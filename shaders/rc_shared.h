@@ -430,7 +430,8 @@ struct packed_status {
   uint patch_unconverged;
   uint patch_unconverged_object;
   uint patch_unconverged_pixel;
-  uint pad0;
+  uint max_steps;         /* the most loop-budget steps one invocation took in the dispatch: what
+                             the host sizes the next batch by (gpu_render.c, grow_batch) */
 };
 
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU

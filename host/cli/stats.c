@@ -155,6 +155,7 @@ static const stats_field gpu_fields[] = {
     FIELD("max_dispatch_ms", F_DOUBLE, gpu.max_dispatch_ms),
     FIELD("dispatches_over_budget", F_U32, gpu.over_budget),
     FIELD("batch_samples", F_U32, gpu.plan.batch_samples),
+    FIELD("batch_samples_end", F_U32, gpu.batch_samples_end),
     FIELD("lights_per_pass", F_U32, gpu.lights_per_pass),
     FIELD("loop_steps_per_sample", F_U64, gpu.plan.steps_per_sample),
     FIELD("budget_retries", F_U32, gpu.budget_retries),

@@ -58,6 +58,8 @@ typedef struct rc_gpu_stats {
   uint64_t patch_stalls;       /* as rc_ref_stats.patch_stalls (ref_render.h) */
   uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
   rc_gpu_plan plan;
+  uint32_t batch_samples_end; /* samples per dispatch in the end: the plan's, grown from the
+                                 shader's measured steps or halved where a batch ran out */
   uint32_t lights_per_pass; /* 0: each sample's lights in one dispatch; else the passes' size
                                in the end (plan.light_pass, halved where the shader ran out) */
   uint32_t loop_budget;    /* the shader's per-invocation budget on this device */

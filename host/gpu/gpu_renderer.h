@@ -15,6 +15,9 @@ struct rc_gpu_renderer {
   uint32_t budget; /* the shader's per-invocation loop budget (spec constant) */
   bool light_passes;   /* RC_SPEC_LIGHT_PASSES: samples too long for one dispatch */
   uint32_t light_pass; /* then: lights per pass, halved where a pass ran out (for later tiles too) */
+  uint32_t batch_samples; /* samples per dispatch: the plan's, then grown from the shader's
+                             measured steps and halved where a batch ran out (for later tiles
+                             and frames too) */
   packed_frame frame;
   rc_region region; /* the pixels rendered, within the frame */
   bool mesh_operands; /* a composite has a mesh operand (RC_KIND_CSG_MESHES) */

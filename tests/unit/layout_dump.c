@@ -147,7 +147,7 @@ int main(void) {
   OFF("status.patch_unconverged", packed_status, patch_unconverged);
   OFF("status.patch_unconverged_object", packed_status, patch_unconverged_object);
   OFF("status.patch_unconverged_pixel", packed_status, patch_unconverged_pixel);
-  OFF("status.pad0", packed_status, pad0);
+  OFF("status.max_steps", packed_status, max_steps);
   printf("Status size %zu\n", sizeof(packed_status));
 
   OFF("aov.hit", packed_aov, hit);
