@@ -250,7 +250,7 @@ static rc_status append(rc_packed_scene *p, const appendix *x) {
   uint32_t *r = realloc(p->bvh_prims, (size_t)(words + 3) / 4 * 4 * sizeof *r);
   if (r) p->bvh_prims = r;
   if (!n || !r) return RC_ERR_OUT_OF_MEMORY;
-  memcpy(p->bvh_nodes + p->bvh_node_total, x->nodes, x->node_count * sizeof *n);
+  if (x->node_count) memcpy(p->bvh_nodes + p->bvh_node_total, x->nodes, x->node_count * sizeof *n); /* NULL if none */
   for (uint32_t i = p->bvh_prim_total; i < x->word_base; i++) p->bvh_prims[i] = 0;
   memcpy(p->bvh_prims + x->word_base, x->words, x->word_count * sizeof *r);
   for (uint32_t i = words; i < (words + 3) / 4 * 4; i++) p->bvh_prims[i] = 0;
