@@ -37,6 +37,7 @@ layout(constant_id = RC_SPEC_SPECULAR_MODEL) const uint spec_specular_model = RC
 layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth = RC_DEPTH_FROM_FRAME;
 layout(constant_id = RC_SPEC_SAMPLES) const uint spec_samples = RC_SAMPLES_FROM_FRAME;
 layout(constant_id = RC_SPEC_LIGHT_PASSES) const bool light_passes = false;
+layout(constant_id = RC_SPEC_CERTIFY) const bool certify = false;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { packed_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
@@ -89,6 +90,7 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
 #include "rc_triangle.glsl"
+#include "rc_certify.glsl"
 #if RC_QUADRICS
 #include "rc_quadric.glsl"
 #endif
@@ -125,6 +127,7 @@ void main() {
   uint target = 0u;     // the pixel's progress after this dispatch
   uint total = 0u;      // ... when it is complete
   bool aov_write = false;
+  uint uncertified = 0u;  // samples (or light passes) of this dispatch not certified (rc_certify.glsl)
   if (inside) {
     sum = accum[slot];
     uint done = uint(sum.a);
@@ -139,10 +142,14 @@ void main() {
         pass_first_light = done - s * lights;
         pass_end_light = min(pass_first_light + push.light_pass, lights);
         sum.rgb += vec3(trace_sample(pixel, s));
+        if (certify && !cert_ok) uncertified++;
         target = s * lights + pass_end_light;
         // The first sample's record gathers its shadow bits over the passes.
         aov_write = aov_enabled && s == 0u;
-        if (aov_write && pass_first_light > 0u) aov_record.shadow_bits += aov[slot].shadow_bits;
+        if (aov_write && pass_first_light > 0u) {
+          aov_record.shadow_bits += aov[slot].shadow_bits;
+          aov_record.uncertified = aov[slot].uncertified;
+        }
       }
     } else {
       total = scene_samples_per_pixel();
@@ -151,6 +158,7 @@ void main() {
       for (uint s = done; s < target; s++) {
         if (!budget_step()) break;
         sum.rgb += vec3(trace_sample(pixel, s));
+        if (certify && !cert_ok) uncertified++;
       }
     }
 #if RC_QUADRICS
@@ -177,6 +185,8 @@ void main() {
   }
   accum[slot] = vec4(sum.rgb, float(target));
   if (aov_write) aov[slot] = aov_record;
+  // The count gathers over the pixel's dispatches: its first wrote the record, with 0.
+  if (certify) aov[slot].uncertified += float(uncertified);
   if (target < total) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
 #if RC_PATCHES

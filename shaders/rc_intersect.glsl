@@ -11,6 +11,8 @@ struct hit_record {
   rvec3 bary;  // triangle: weights of v0, v1, v2
   real side;   // sphere: -1 entry root (ray from outside), +1 exit root
   uint part;   // quadric or composite: the csg_code of the surface hit (rc_quadric.glsl)
+  real err;    // with certify: the error bound of t (rc_certify.glsl)
+  real bary_err; // and of the barycentrics
 };
 
 // The first root of a sphere in (0, t_max]: the entry (side -1, the ray comes from
@@ -138,10 +140,28 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
   return real(RC_T_FAR);
 }
 
+// Where a closest-hit traversal may stop looking: a box entered up to the nearest hit's t plus
+// its bound, and the perturbation's reach there, may hold a root the reference finds nearer.
+real cert_limit(real t, real e) {
+  if (!certify || !(t < real(RC_T_FAR))) return t;
+  return t + 2.0 * cert_factor() * (e + cert_eo + t * cert_ed);
+}
+
+// The nearest-hit decision: the winner's interval [t - k e, t + k e] below every other root
+// found (cert_beyond, which cert_order and cert_root keep).
+void cert_order(real t, uint object, inout hit_record h) {
+  if (t < h.t || (t == h.t && object < h.object)) {
+    if (h.kind != RC_HIT_NONE) cert_beyond = select_min(cert_beyond, h.t - cert_factor() * h.err);
+    return;
+  }
+  cert_beyond = select_min(cert_beyond, t - cert_factor() * cert_t_err);
+}
+
 // The tie rule of both backends and both traversals: the nearer hit wins, and on equal
 // t the lower object number, whatever order the objects were visited in.
 void consider_hit(uint object, real t, real side, rvec3 bary, uint part, inout hit_record h) {
   if (t >= real(RC_T_FAR)) return;
+  if (certify) cert_order(t, object, h);
   if (t < h.t || (t == h.t && object < h.object)) {
     h.t = t;
     h.object = object;
@@ -149,6 +169,8 @@ void consider_hit(uint object, real t, real side, rvec3 bary, uint part, inout h
     h.side = side;
     h.bary = bary;
     h.part = part;
+    h.err = cert_t_err;
+    h.bary_err = cert_bary_err;
   }
 }
 
@@ -161,7 +183,35 @@ hit_record no_hit() {
   h.bary = rvec3(0.0);
   h.side = 0.0;
   h.part = 0u;
+  h.err = 0.0;
+  h.bary_err = 0.0;
   return h;
+}
+
+// The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
+// the kinds rc_certify.glsl bounds, none of the others.
+void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+  cert_self = spawned_ray && object == cert_spawn_object && offset_strategy == RC_OFFSET_ERROR_BOUND;
+  uint index;
+  uint kind = object_kind(object, index);
+  if (kind == RC_HIT_SPHERE) {
+    cert_sphere(o, d, load_sphere(index), t_max);
+  } else if (kind == RC_HIT_TRIANGLE) {
+    cert_triangle(o, sh, load_triangle(index), t_max);
+  } else {
+#if RC_QUADRICS
+    packed_quadric q = load_quadric(index);
+    if (kind == RC_HIT_QUADRIC && (q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
+      cert_plane(q, o, d, t_max);
+      return;
+    }
+#endif
+    cert_fail();
+  }
+}
+
+void cert_closest(hit_record h) {
+  if (h.kind != RC_HIT_NONE && !(cert_beyond > h.t + cert_factor() * h.err)) cert_ok = false;
 }
 
 // Brute force: every object, in order.
@@ -175,6 +225,7 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
     real side;
     rvec3 bary;
     uint part;
+    if (certify) cert_object(i, o, d, sh, h.t);
     real t = intersect_object(i, o, d, sh, h.t, side, bary, part);
     consider_hit(i, t, side, bary, part, h);
   }
@@ -192,6 +243,7 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint part;
+    if (certify) cert_object(i, o, d, sh, t_max);
     if (intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR)) return true;
   }
   return false;

@@ -209,6 +209,62 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   return sf;
 }
 
+// The surface's decisions and the perturbation of its point and normal (rc_shade.glsl,
+// surface_at). The exact hit point of a ray moved by (do, dd) moves by (|do| + t |dd|) / |cos|
+// along the surface (cos = n.d), on top of both points' rounding (p_error); a sphere's normal
+// turns by that over r. The side the normal is flipped to is a decision on n.d.
+void cert_surface(rvec3 d, hit_record h, surface sf) {
+  real ep_round = 2.0 * length(sf.p_error);
+  real cosine = abs(dot(sf.ng, d));
+  real e_cos = cert_ed + gamma_bound(12.0);
+  cert_require(cosine, e_cos);
+  real ep = ep_round + 2.0 * (cert_eo + h.t * cert_ed) / select_max(cosine - e_cos, RC_SMALLEST_NORMAL);
+  real en = gamma_bound(12.0);
+  if (h.kind == RC_HIT_SPHERE) en += 2.0 * ep / real(load_sphere(h.index).radius);
+  if (h.kind == RC_HIT_TRIANGLE) {
+    packed_triangle tri = load_triangle(h.index);
+    if (has_kind(RC_KIND_VERTEX_NORMALS) && tri.normals != RC_NO_NORMALS) {
+      // The interpolated normal moves with the barycentrics; its flip towards ng is a decision.
+      packed_vertex_normals vn = load_vertex_normals(tri.normals);
+      rvec3 ns = h.bary.x * rvec3(vn.n0) + h.bary.y * rvec3(vn.n1) + h.bary.z * rvec3(vn.n2);
+      real spread = length(rvec3(vn.n0)) + length(rvec3(vn.n1)) + length(rvec3(vn.n2));
+      en += 2.0 * (h.bary_err * spread + gamma_bound(6.0) * spread) / length(ns);
+      cert_require(dot(sf.n, sf.ng), en + gamma_bound(12.0));
+    }
+  }
+  cert_ep = ep;
+  cert_en = en;
+}
+
+// A shadow ray's perturbation (rc_shade.glsl, light_at and shade_phong) and its decision to be
+// cast (n.l > 0). Its origin moves with the point, and the offset the reference applies
+// differs from this one by at most this one's length; towards a point light its direction
+// turns by twice that over the distance, and t_max moves by as much.
+void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
+  real eo = cert_ep + 2.0 * length(origin - sf.p) + gamma_bound(2.0) * length(origin);
+  if (light.type == RC_LIGHT_POINT) {
+    real r = length(rvec3(light.position) - sf.p);
+    real dist = length(rvec3(light.position) - origin);
+    real el = 2.0 * (cert_ep + gamma_bound(4.0) * r) / r;
+    cert_require(n_dot_l, cert_en + el + gamma_bound(4.0));
+    cert_eo = eo;
+    cert_ed = 2.0 * (eo + gamma_bound(4.0) * dist) / dist;
+    cert_t_max_err = eo + gamma_bound(6.0) * dist;
+  } else {
+    cert_require(n_dot_l, cert_en + gamma_bound(4.0));
+    cert_eo = eo;
+    cert_ed = 0.0;
+    cert_t_max_err = 0.0;
+  }
+}
+
+// A mirror bounce's perturbation (rc_trace.glsl): the origin as a shadow ray's, the direction
+// reflect(d, n) = d - 2 (d.n) n by dd and twice the normal's turn, doubled by normalize.
+void cert_reflect(surface sf, rvec3 origin, real ed_in) {
+  cert_eo = cert_ep + 2.0 * length(origin - sf.p) + gamma_bound(2.0) * length(origin);
+  cert_ed = 2.0 * (ed_in + 2.0 * cert_en) + gamma_bound(8.0);
+}
+
 #if RC_F64
 #define RC_OFFSET_INT int64_t
 #define RC_OFFSET_BITS(x) doubleBitsToInt64(x)
@@ -438,6 +494,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real shadow_t_max;
     if (!light_at(load_light(i), sf.p, origin, l, irradiance, to_light, shadow_t_max)) continue;
     real n_dot_l = dot(sf.n, l);
+    if (certify) cert_shadow(load_light(i), sf, origin, n_dot_l);
     if (n_dot_l <= 0.0) continue;
     if (scene_shadows()) shadow_rays++;
     if (scene_shadows() && occluded(t_min_start(origin, to_light), to_light, t_min_end(shadow_t_max), i)) {

@@ -81,7 +81,8 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 /* bool: a sample's lights are shaded in passes of push.light_pass (host/gpu/gpu_plan.h),
  * and accum.a counts lights (sample x lights + lights done) instead of samples */
 #define RC_SPEC_LIGHT_PASSES 15
-#define RC_SPEC_COUNT 16 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
+#define RC_SPEC_CERTIFY 16         /* bool: certify every decision (rc_certify.glsl) */
+#define RC_SPEC_COUNT 17 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
 #define RC_KIND_SPHERES 1u
 #define RC_KIND_TRIANGLES 2u
 #define RC_KIND_QUADRICS 4u /* the quadric test: a standalone quadric that is not a plane, or planes
@@ -105,6 +106,13 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 
 /* The speed/accuracy knobs (docs/accuracy.md). The first of each is the robust default;
  * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in packed_frame. */
+/* --precision certified (rc_certify.glsl, docs/numerics.md §10): off; on, a decision
+ * certified when its margin exceeds twice its f32 error bound; halved, once (the fault
+ * injection the soundness test must catch). */
+#define RC_CERTIFY_OFF 0u
+#define RC_CERTIFY_ON 1u
+#define RC_CERTIFY_HALVED 2u
+
 #define RC_SPHERE_GEOMETRIC 0u  /* Hearn-Baker discriminant, stable roots, centre-relative normal */
 #define RC_SPHERE_ALGEBRAIC 1u  /* textbook b^2 - 4ac, (-b -/+ sqrt)/2a, normal from o + t d */
 #define RC_TRIANGLE_WATERTIGHT 0u       /* Woop-Benthin-Wald, precise edge functions */
@@ -195,7 +203,7 @@ struct packed_frame {
   uint patch_count;       /* of the standalone quadrics, how many are patch pieces (RC_QUADRIC_PATCH) */
   uint light_buffers;     /* where the light buffers' table starts in the BVH's reference array
                              (RC_LIGHT_BUFFER_*); 0: the scene has none */
-  uint pad2;
+  uint certify;           /* RC_CERTIFY_*: certify each sample's decisions (--precision certified) */
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -441,7 +449,8 @@ struct packed_status {
 #define RC_AOV_SHADOW_LIGHTS 24u
 struct packed_aov {
   float hit; float object; float t; float shadow_bits;
-  vec3 normal; float pad0;
+  vec3 normal; float uncertified; /* with frame.certify: the pixel's samples (all of them,
+                                     not only the first) whose decisions are not certified */
 };
 
 /* A BVH node: one box, in depth-first order (an interior node's first child is the next

@@ -16,7 +16,8 @@ void aov_begin(hit_record h) {
   aov_record.t = (h.kind == RC_HIT_NONE) ? 0.0 : float(h.t);
   aov_record.shadow_bits = 0.0;
   aov_record.normal = vec3(0.0);
-  aov_record.pad0 = 0.0;
+  // Counted by raycast.comp under certify; otherwise no sample is certified.
+  aov_record.uncertified = certify ? 0.0 : float(scene_samples_per_pixel());
 }
 
 rvec3 trace_sample(uvec2 pixel, uint s) {
@@ -26,6 +27,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   rvec3 o;
   rvec3 d;
   camera_ray(raster, o, d);
+  if (certify) cert_camera(raster);
   rvec3 color = rvec3(0.0);
   rvec3 weight = rvec3(1.0);
   for (uint depth = 0u; depth <= scene_reflection_depth(); depth++) {
@@ -40,6 +42,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
       break;
     }
     surface sf = surface_at(o, d, h);
+    if (certify) cert_surface(d, h, sf);
+    real ed_in = cert_ed;
+    if (certify) cert_spawn_object = h.object;
     if (aov_recording) aov_record.normal = vec3(sf.n);
     color += weight * shade_phong(sf, d);
     aov_recording = false;
@@ -49,6 +54,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));
     o = t_min_start(o, d);
+    if (certify) cert_reflect(sf, o, ed_in);
     if (light_pass_begin() == 0u) reflection_rays++;
   }
   return color;

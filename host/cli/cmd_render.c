@@ -37,7 +37,7 @@ typedef struct {
   bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
   int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
-      scene_buffers, pipeline, light_buffers;
+      scene_buffers, pipeline, light_buffers, certified_rerender, certified_bound;
   double offset_epsilon; /* 0: the scene's */
   double gamma;          /* 0: the scene's (or 2.2) */
   double exposure;       /* NAN: the scene's */
@@ -56,6 +56,8 @@ static const char *const backends[] = {"gpu", "cpu", NULL};
 static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
 static const char *const encodings[] = {"linear", "srgb", "gamma", NULL};
+static const char *const rerenders[] = {"cpu", "none", NULL};
+static const char *const cert_bounds[] = {"full", "half", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
 #define ARG(field) offsetof(render_args, field)
@@ -74,7 +76,17 @@ static const rc_option render_options[] = {
     {"--precision", NULL, RC_OPT_CHOICE, ARG(precision), "P", .choices = rc_precision_names,
      .help = "auto (default), f32 or f64 geometry and shading math. auto: f64 on cpu;\n"
              "on gpu f32 unless the precision-budget pass finds the scene needs f64\n"
-             "and the device has shaderFloat64 (docs/accuracy.md)"},
+             "and the device has shaderFloat64 (docs/accuracy.md). certified: f32 with\n"
+             "every hit, object and shadow decision checked against its error bound,\n"
+             "and the pixels of samples it cannot vouch for rendered again in f64\n"
+             "(docs/numerics.md §10)"},
+    {"--certified-rerender", NULL, RC_OPT_CHOICE, ARG(certified_rerender), "R", .choices = rerenders,
+     .help = "--precision certified: cpu (default) renders the uncertified samples'\n"
+             "pixels again on the f64 CPU reference; none leaves them as traced (to\n"
+             "measure the certificates: the AOV's `uncertified` channel marks them)"},
+    {"--certified-bound", NULL, RC_OPT_CHOICE, ARG(certified_bound), "B", .choices = cert_bounds,
+     .help = "full (default) or half: certify against half the error bound, a fault\n"
+             "the soundness tests must catch (docs/testing.md); never for images"},
     {"--accel", NULL, RC_OPT_CHOICE, ARG(accel), "A", .choices = accels,
      .help = "bvh (default) or none: brute force over every object, for comparison"},
     {"--light-buffers", NULL, RC_OPT_CHOICE, ARG(light_buffers), "B", .choices = off_on,
@@ -266,7 +278,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->exposure = NAN;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
       a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline =
-          a->light_buffers = -1;
+          a->light_buffers = a->certified_rerender = a->certified_bound = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -396,9 +408,48 @@ static rc_status open_output(const render_args *a, const rc_scene *scene, const 
   return st;
 }
 
+/* --precision certified on the GPU: before a band is written (or dropped), its pixels with an
+ * uncertified sample are rendered again on the f64 CPU reference (--certified-rerender cpu). */
+typedef struct {
+  const render_args *a;
+  const rc_packed_scene *packed;
+  rc_band_fn next;
+  void *next_user;
+  float *rgb;
+  packed_aov *aov;
+  size_t capacity; /* pixels */
+  rc_ref_stats stats;
+} certified_sink;
+
+static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user) {
+  certified_sink *c = user;
+  const rc_region r = c->a->part.region;
+  size_t n = (size_t)rc_region_width(r) * rows;
+  if (n > c->capacity) {
+    free(c->rgb);
+    free(c->aov);
+    c->rgb = rc_alloc(n * 3, sizeof(float), "one band of the image");
+    c->aov = rc_alloc(n, sizeof(packed_aov), "one band of AOVs");
+    c->capacity = c->rgb && c->aov ? n : 0;
+    if (!c->capacity) return RC_ERR_OUT_OF_MEMORY;
+  }
+  memcpy(c->rgb, rgb, n * 3 * sizeof(float));
+  memcpy(c->aov, aov, n * sizeof(packed_aov));
+  for (size_t i = 0; i < n; i++) c->stats.samples_uncertified += (uint64_t)aov[i].uncertified;
+  if (c->a->certified_rerender != 1) {
+    rc_ref_options opts = {.f64 = true, .threads = c->a->threads};
+    rc_region band = {r.x0, r.y0 + y0, r.x1, r.y0 + y0 + rows};
+    rc_status st = rc_ref_rerender(c->packed, &opts, band, c->rgb, c->aov, &c->stats);
+    if (st != RC_OK) return st;
+  }
+  return c->next(y0, rows, c->rgb, c->a->aov ? c->aov : NULL, c->next_user);
+}
+
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
                                const rc_packed_scene *packed, rc_render_stats *rs, rc_output **out) {
   rc_gpu_renderer *r = NULL;
+  const bool certified = packed->frame.certify != RC_CERTIFY_OFF;
+  certified_sink sink = {.a = a, .packed = packed};
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
   rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
@@ -407,7 +458,14 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
     bool last = i + 1 == a->repeat;
     if (last) st = open_output(a, scene, packed, out);
-    if (st == RC_OK) st = rc_gpu_renderer_render(r, last ? rc_output_band : rc_output_discard, last ? *out : NULL, &rs->gpu);
+    rc_band_fn band = last ? rc_output_band : rc_output_discard;
+    void *user = last ? *out : NULL;
+    if (certified) {
+      sink.next = band, sink.next_user = user;
+      memset(&sink.stats, 0, sizeof sink.stats);
+      band = certified_band, user = &sink;
+    }
+    if (st == RC_OK) st = rc_gpu_renderer_render(r, band, user, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
     wall_ms[i] = rs->gpu.render_ms;
   }
@@ -420,7 +478,12 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
     rs->patch_unconverged = rs->gpu.patch_stalls;
     rs->patch_stall_object = rs->gpu.patch_stall_object;
     rs->patch_stall_x = rs->gpu.patch_stall_x, rs->patch_stall_y = rs->gpu.patch_stall_y;
+    rs->samples_uncertified = sink.stats.samples_uncertified;
+    rs->pixels_rerendered = sink.stats.pixels_rerendered;
+    rs->rerender_ms = sink.stats.rerender_ms;
   }
+  free(sink.rgb);
+  free(sink.aov);
   free(gpu_ms);
   free(wall_ms);
   rc_gpu_renderer_destroy(r);
@@ -434,14 +497,18 @@ static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uin
 
 static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
                                    bool f64, rc_render_stats *rs, rc_output **out) {
-  rc_ref_options opts = {.f64 = f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals};
+  const bool certified = packed->frame.certify != RC_CERTIFY_OFF;
+  rc_ref_options opts = {.f64 = f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals,
+                         .rerender = certified && a->certified_rerender != 1};
   const rc_region region = a->part.region;
   uint32_t w = rc_region_width(region), h = rc_region_height(region);
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
   double *ms = calloc(a->repeat, sizeof *ms);
   float *rgb = rc_alloc((size_t)w * band * 3, sizeof(float), "one band of the image");
-  packed_aov *aov = a->aov ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
-  rc_status st = ms && rgb && (!a->aov || aov) ? RC_OK : RC_ERR_OUT_OF_MEMORY;
+  /* Certified renders count each pixel's uncertified samples in its record. */
+  const bool records = a->aov || certified;
+  packed_aov *aov = records ? rc_alloc((size_t)w * band, sizeof *aov, "one band of AOVs") : NULL;
+  rc_status st = ms && rgb && (!records || aov) ? RC_OK : RC_ERR_OUT_OF_MEMORY;
   rc_ref_stats last_stats = {0};
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
     bool last = i + 1 == a->repeat;
@@ -452,7 +519,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
       rc_region part = {region.x0, region.y0 + y0, region.x1, region.y0 + y0 + rows};
       st = rc_ref_render(packed, &opts, part, rgb, aov, &fs);
       if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
-      if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, aov, *out);
+      if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, a->aov ? aov : NULL, *out);
     }
     ms[i] = fs.render_ms;
     last_stats = fs;
@@ -466,6 +533,9 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     rs->patch_stall_object = last_stats.patch_stall_object;
     rs->patch_stall_x = last_stats.patch_stall_x, rs->patch_stall_y = last_stats.patch_stall_y;
     rs->threads = last_stats.threads;
+    rs->samples_uncertified = last_stats.samples_uncertified;
+    rs->pixels_rerendered = last_stats.pixels_rerendered;
+    rs->rerender_ms = last_stats.rerender_ms;
   }
   free(ms);
   free(rgb);
@@ -754,6 +824,10 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   /* --precision wins over the scene's `quality`; the decision is rc_precision_choose's. */
   const uint32_t requested = a->precision >= 0 ? (uint32_t)a->precision : scene->quality.precision;
   rs.precision_requested = rc_precision_names[requested];
+  const bool certified = requested == RC_PRECISION_CERTIFIED;
+  packed.frame.certify = !certified ? RC_CERTIFY_OFF : a->certified_bound == 1 ? RC_CERTIFY_HALVED : RC_CERTIFY_ON;
+  rs.rerender = !certified ? "off" : a->certified_rerender == 1 ? "none" : "cpu";
+  a->gpu.aov = a->aov != NULL || certified;
   char driver[600] = "";
   if (st == RC_OK && a->cpu) {
     rs.backend = "cpu";
@@ -761,7 +835,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
     const rc_precision_choice precision = rc_precision_choose(requested, &budget, true, true);
-    rs.precision = precision.f64 ? "f64" : "f32";
+    rs.precision = certified ? "certified" : precision.f64 ? "f64" : "f32";
     part_settings(a, scene, rs.backend, rs.precision);
     snprintf(a->part.device, sizeof a->part.device, "%s", rs.device);
     st = render_frames_cpu(a, scene, &packed, precision.f64, &rs, &out);
@@ -777,7 +851,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
       const rc_precision_choice precision = rc_precision_choose(requested, &budget, false, ctx->float64);
       report_precision(scene, precision.why, ctx->props.deviceName);
       a->gpu.f64 = precision.f64;
-      rs.precision = precision.f64 ? "f64" : "f32";
+      rs.precision = certified ? "certified" : precision.f64 ? "f64" : "f32";
       part_settings(a, scene, rs.backend, rs.precision);
       snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
       st = render_frames(a, ctx, scene, &packed, &rs, &out);

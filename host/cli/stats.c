@@ -55,6 +55,10 @@ void rc_stats_print(const rc_render_stats *s) {
     fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms; %u exact "
             "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
             s->bvh.build_ms, s->bvh.repeats);
+  if (s->rerender && strcmp(s->rerender, "off") != 0)
+    fprintf(stderr, "vkraycast: certified: %llu samples uncertified; %llu pixels rendered again in f64 (%s), %.1f ms\n",
+            (unsigned long long)s->samples_uncertified, (unsigned long long)s->pixels_rerendered, s->rerender,
+            s->rerender_ms);
   if (s->light_buffers.lights)
     fprintf(stderr, "vkraycast: light buffers for %u lights: %llu cells, %llu empty, %llu with a list, %llu with a "
             "subtree; %.1f KiB, built in %.1f ms\n", s->light_buffers.lights, (unsigned long long)s->light_buffers.cells,
@@ -127,6 +131,10 @@ static const stats_field bvh_fields[] = {
     FIELD("bvh_nodes", F_U32, bvh.nodes),
     FIELD("bvh_depth", F_U32, bvh.depth),
     FIELD("bvh_repeats_left_out", F_U32, bvh.repeats),
+    FIELD("samples_uncertified", F_U64, samples_uncertified),
+    FIELD("pixels_rerendered", F_U64, pixels_rerendered),
+    FIELD("rerender", F_STRING, rerender),
+    FIELD("rerender_ms", F_DOUBLE, rerender_ms),
     FIELD("light_buffers", F_U32, light_buffers.lights),
     FIELD("light_buffer_cells", F_U64, light_buffers.cells),
     FIELD("light_buffer_empty_cells", F_U64, light_buffers.empty),

@@ -41,6 +41,12 @@ typedef struct rc_render_stats {
   rc_gpu_stats gpu;
   rc_bvh_stats bvh; /* zero with --accel none */
   rc_light_buffer_stats light_buffers; /* zero without them (--light-buffers off, no point light, ...) */
+  /* --precision certified (rc_certify.glsl): samples whose decisions were not all certified,
+   * the pixels rendered again in f64 for them ("cpu": the CPU reference; "none": left as
+   * traced), and the wall time of those re-renders, summed over threads. */
+  uint64_t samples_uncertified, pixels_rerendered;
+  const char *rerender;
+  double rerender_ms;
 } rc_render_stats;
 
 /* What the statistics say about the scene itself: the frame, the counts of each kind, the

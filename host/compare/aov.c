@@ -5,13 +5,14 @@
 #include <string.h>
 
 const char *const rc_aov_channel_names[RC_AOV_CHANNELS] = {"R", "G", "B", "hit", "object", "t",
-                                                           "N.X", "N.Y", "N.Z", "shadow"};
+                                                           "N.X", "N.Y", "N.Z", "shadow", "uncertified"};
 
 void rc_aov_pack(const float *rgb, const packed_aov *aov, size_t count, double length_unit, float *out) {
   for (size_t i = 0; i < count; i++) {
     const packed_aov *a = &aov[i];
     const float v[RC_AOV_CHANNELS] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], a->hit,      a->object,
-                                      (float)(a->t * length_unit), a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits};
+                                      (float)(a->t * length_unit), a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits,
+                                      a->uncertified};
     memcpy(out + i * RC_AOV_CHANNELS, v, sizeof v);
   }
 }
@@ -23,10 +24,10 @@ static int find(char names[][32], int count, const char *name) {
 }
 
 bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout) {
-  for (int i = 0; i < RC_AOV_CHANNELS; i++)
+  for (int i = 0; i < RC_AOV_CHANNELS - 1; i++)
     if (find(names, count, rc_aov_channel_names[i]) < 0) return false;
-  int *slots[RC_AOV_CHANNELS] = {&layout->r,  &layout->g,  &layout->b,  &layout->hit, &layout->object,
-                                 &layout->t,  &layout->nx, &layout->ny, &layout->nz,  &layout->shadow};
+  int *slots[RC_AOV_CHANNELS] = {&layout->r,  &layout->g,  &layout->b,  &layout->hit,    &layout->object,     &layout->t,
+                                 &layout->nx, &layout->ny, &layout->nz, &layout->shadow, &layout->uncertified};
   for (int i = 0; i < RC_AOV_CHANNELS; i++) *slots[i] = find(names, count, rc_aov_channel_names[i]);
   return true;
 }
@@ -52,9 +53,15 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
     }
     bool same_hit = x[la->hit] == y[lb->hit];
     bool same_object = same_hit && x[la->object] == y[lb->object];
+    bool same_shadow = same_object && x[la->shadow] == y[lb->shadow];
     r->hit_mismatch += !same_hit;
     r->object_mismatch += same_hit && !same_object;
-    r->shadow_mismatch += same_object && x[la->shadow] != y[lb->shadow];
+    r->shadow_mismatch += same_object && !same_shadow;
+    /* A's certified pixels (--precision certified): their decisions are claimed to be the
+     * f64 reference's, so against it any difference is a broken certificate. */
+    bool certified = la->uncertified >= 0 && x[la->uncertified] == 0;
+    r->uncertified_pixels += la->uncertified >= 0 && x[la->uncertified] != 0;
+    r->certified_mismatch += certified && !same_shadow;
     if (!same_object || y[lb->hit] == 0) continue;
     /* Depth relative to the reference's; the normal as the angle between the two. */
     double tb = y[lb->t], dt = fabs((double)x[la->t] - tb) / (tb != 0 ? fabs(tb) : 1);

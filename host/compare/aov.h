@@ -6,17 +6,19 @@
 #include "compare/compare.h"
 #include "rc_shared.h"
 
-#define RC_AOV_CHANNELS 10
+#define RC_AOV_CHANNELS 11
 #define RC_AOV_MAX_CHANNELS 64
-extern const char *const rc_aov_channel_names[RC_AOV_CHANNELS]; /* R G B hit object t N.X N.Y N.Z shadow */
+extern const char *const rc_aov_channel_names[RC_AOV_CHANNELS]; /* R G B hit object t N.X N.Y N.Z shadow
+                                                                                   uncertified */
 
 /* Interleaves count pixels of colour and records into the AOV channel layout; the depth t
  * times length_unit (scene units per packed unit, scene_pack.h). */
 void rc_aov_pack(const float *rgb, const packed_aov *aov, size_t count, double length_unit, float *out);
 /* Where the decision channels of a file are (files may reorder channels: OpenEXR stores
  * them sorted by name). */
-typedef struct rc_aov_layout { int r, g, b, hit, object, t, nx, ny, nz, shadow; } rc_aov_layout;
-/* True when the file has every AOV channel; fills the layout. */
+/* uncertified: -1 in a file written before the channel existed. */
+typedef struct rc_aov_layout { int r, g, b, hit, object, t, nx, ny, nz, shadow, uncertified; } rc_aov_layout;
+/* True when the file has every AOV channel (`uncertified` may be missing); fills the layout. */
 bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout);
 /* Counts pixels whose hit flag, object index or shadow bits differ (sets r->decisions),
  * leaving out the pixels where band[i] is set (the conditioning band, docs/accuracy.md;

@@ -28,6 +28,9 @@ typedef struct rc_compare_result {
   bool decisions;        /* both files are AOV files: the counts below are meaningful */
   uint64_t hit_mismatch, object_mismatch, shadow_mismatch; /* outside the band */
   uint64_t band_pixels;           /* left out: the conditioning band */
+  /* A's pixels with uncertified samples (its `uncertified` channel, --precision certified),
+   * and A's certified pixels whose decisions differ from B's (outside the band). */
+  uint64_t uncertified_pixels, certified_mismatch;
   uint64_t a_hits, b_hits, a_shadowed, b_shadowed; /* pixels that hit; with any shadow bit */
   double max_depth_rel;           /* |t_a - t_b| / |t_b| where both hit the same object */
   double max_normal_angle;        /* radians, likewise */

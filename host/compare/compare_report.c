@@ -142,6 +142,9 @@ void rc_compare_print_text(const rc_compare_report *rep, FILE *f) {
     fprintf(f, "  where both hit the same object: depth error %.3g (relative), normal error %.3g rad\n",
             r->max_depth_rel, r->max_normal_angle);
     if (rep->banded) fprintf(f, "  conditioning band: %llu pixels\n", (unsigned long long)r->band_pixels);
+    if (rep->a->layout.uncertified >= 0)
+      fprintf(f, "  certified (A): %llu pixels with uncertified samples; certified pixels whose decisions differ: %llu\n",
+              (unsigned long long)r->uncertified_pixels, (unsigned long long)r->certified_mismatch);
   }
   print_checks(rep, f);
   print_notes(rep, f);
@@ -250,6 +253,8 @@ void rc_compare_print_json(const rc_compare_report *rep, FILE *f) {
     cJSON_AddNumberToObject(o, "object_mismatch", (double)r->object_mismatch);
     cJSON_AddNumberToObject(o, "shadow_mismatch", (double)r->shadow_mismatch);
     cJSON_AddNumberToObject(o, "band_pixels", (double)r->band_pixels);
+    cJSON_AddNumberToObject(o, "uncertified_pixels", (double)r->uncertified_pixels);
+    cJSON_AddNumberToObject(o, "certified_mismatch", (double)r->certified_mismatch);
     cJSON_AddNumberToObject(o, "a_hits", (double)r->a_hits);
     cJSON_AddNumberToObject(o, "b_hits", (double)r->b_hits);
     cJSON_AddNumberToObject(o, "a_shadowed", (double)r->a_shadowed);

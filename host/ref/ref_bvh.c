@@ -29,6 +29,7 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     real side;
     rvec3 bary;
     uint32_t part;
+    if (sc->frame->certify) REF(cert_object)(sc, object, o, d, sh, any ? t_max : h->t);
     real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, object, t, side, bary, part, h);
@@ -49,7 +50,7 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
     while (node < end) {
       n = &sc->bvh_nodes[node];
       ref_work++;
-      real limit = any ? t_max : h->t;
+      real limit = any ? REF(cert_limit)(sc, t_max, ref_cert_t_max_err) : REF(cert_limit)(sc, h->t, h->err);
       if (REF(intersect_box)(rvec3_from(n->lo), rvec3_from(n->hi), o, inv_d, limit) >= (real)RC_T_FAR) {
         node = n->skip;
       } else if (n->leaf == 0) {
@@ -72,6 +73,10 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   if (f->plane_count == 0) return false;
   uint32_t first = f->quadric_count - f->plane_count, first_quadric_object = f->sphere_count + f->triangle_count;
   for (uint32_t k = first; k < f->quadric_count; k++) {
+    if (f->certify) {
+      ref_shear sh = REF(ray_shear_for)(d);
+      REF(cert_object)(sc, first_quadric_object + k, o, d, &sh, any ? t_max : h->t);
+    }
     real t = REF(intersect_plane)(&sc->quadrics[k], o, d, any ? t_max : h->t);
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, first_quadric_object + k, t, 0, RV(make)(0, 0, 0), REF(csg_code)(k, 0, false, false), h);
@@ -81,12 +86,15 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
 
 bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
   *h = REF(no_hit)();
+  ref_cert_any = false;
+  ref_cert_beyond = (real)RC_T_FAR;
   if (sc->use_bvh) {
     REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, 0, sc->frame->bvh_node_count, h);
     REF(test_planes)(sc, o, d, false, (real)RC_T_FAR, h);
   } else {
     REF(closest_hit_linear)(sc, o, d, h);
   }
+  if (sc->frame->certify) REF(cert_closest)(sc, h);
   return h->kind != RC_HIT_NONE;
 }
 
@@ -117,6 +125,7 @@ void REF(shadow_nodes)(const ref_scene *sc, uint32_t light, rvec3 d, real t_max,
 }
 
 bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t light) {
+  ref_cert_any = true;
   if (!sc->use_bvh) return REF(occluded_linear)(sc, o, d, t_max);
   ref_hit h = REF(no_hit)();
   uint32_t first, end;

@@ -115,8 +115,22 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
   return (real)RC_T_FAR;
 }
 
+real REF(cert_limit)(const ref_scene *sc, real t, real e) {
+  if (!sc->frame->certify || !(t < (real)RC_T_FAR)) return t;
+  return t + 2 * REF(cert_factor)(sc) * (e + ref_cert_eo + t * ref_cert_ed);
+}
+
+void REF(cert_order)(const ref_scene *sc, real t, uint32_t object, const ref_hit *h) {
+  if (t < h->t || (t == h->t && object < h->object)) {
+    if (h->kind != RC_HIT_NONE) ref_cert_beyond = rmin(ref_cert_beyond, h->t - REF(cert_factor)(sc) * h->err);
+    return;
+  }
+  ref_cert_beyond = rmin(ref_cert_beyond, t - REF(cert_factor)(sc) * ref_cert_t_err);
+}
+
 void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, uint32_t part, ref_hit *h) {
   if (t >= (real)RC_T_FAR) return;
+  if (sc->frame->certify) REF(cert_order)(sc, t, object, h);
   if (t < h->t || (t == h->t && object < h->object)) {
     h->t = t;
     h->object = object;
@@ -124,6 +138,8 @@ void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, 
     h->side = side;
     h->bary = bary;
     h->part = part;
+    h->err = ref_cert_t_err;
+    h->bary_err = ref_cert_bary_err;
   }
 }
 
@@ -136,7 +152,31 @@ ref_hit REF(no_hit)(void) {
   h.bary = RV(make)(0, 0, 0);
   h.side = 0;
   h.part = 0u;
+  h.err = 0;
+  h.bary_err = 0;
   return h;
+}
+
+void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
+  ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
+  uint32_t index;
+  uint32_t kind = REF(object_kind)(sc, object, &index);
+  if (kind == RC_HIT_SPHERE) {
+    REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
+  } else if (kind == RC_HIT_TRIANGLE) {
+    REF(cert_triangle)(sc, o, sh, sc->triangles[index], t_max);
+  } else {
+    const packed_quadric *q = &sc->quadrics[index];
+    if (kind == RC_HIT_QUADRIC && (q->flags & RC_QUADRIC_UNBOUNDED) != 0) {
+      REF(cert_plane)(sc, q, o, d, t_max);
+      return;
+    }
+    REF(cert_fail)();
+  }
+}
+
+void REF(cert_closest)(const ref_scene *sc, const ref_hit *h) {
+  if (h->kind != RC_HIT_NONE && !(ref_cert_beyond > h->t + REF(cert_factor)(sc) * h->err)) ref_cert_ok = false;
 }
 
 void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
@@ -145,6 +185,7 @@ void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) 
     real side;
     rvec3 bary;
     uint32_t part;
+    if (sc->frame->certify) REF(cert_object)(sc, i, o, d, &sh, h->t);
     real t = REF(intersect_object)(sc, i, o, d, &sh, h->t, &side, &bary, &part);
     REF(consider_hit)(sc, i, t, side, bary, part, h);
   }
@@ -156,6 +197,7 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint32_t part;
+    if (sc->frame->certify) REF(cert_object)(sc, i, o, d, &sh, t_max);
     if (REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR) return true;
   }
   return false;

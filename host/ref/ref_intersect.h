@@ -30,7 +30,7 @@ extern _Thread_local bool ref_spawned_ray;
 extern _Thread_local uint32_t ref_crossing_blame;
 
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
-  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; uint32_t part; } ref_hit_##S; \
+  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; uint32_t part; R err, bary_err; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_gamma_bound_##S(R n);                                                                   \
   R ref_first_root_##S(R t_near, R t_exit, R t_max, R *side);                                   \
@@ -59,6 +59,22 @@ extern _Thread_local uint32_t ref_crossing_blame;
                              R *side, V *bary, uint32_t *part);                                 \
   void ref_consider_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, uint32_t part, ref_hit_##S *h); \
   ref_hit_##S ref_no_hit_##S(void);                                                             \
+  R ref_cert_limit_##S(const ref_scene *sc, R t, R e);                                          \
+  void ref_cert_order_##S(const ref_scene *sc, R t, uint32_t object, const ref_hit_##S *h);       \
+  void ref_cert_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
+  void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
+  /* ref_certify.c, the twin of rc_certify.glsl, and its per-thread state. */                    \
+  extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S;               \
+  extern _Thread_local uint32_t ref_cert_spawn_object_##S;                                      \
+  extern _Thread_local R ref_cert_eo_##S, ref_cert_ed_##S, ref_cert_t_err_##S, ref_cert_bary_err_##S, \
+      ref_cert_beyond_##S, ref_cert_t_max_err_##S, ref_cert_ep_##S, ref_cert_en_##S;            \
+  R ref_cert_factor_##S(const ref_scene *sc);                                                   \
+  void ref_cert_require_##S(const ref_scene *sc, R margin, R bound);                            \
+  void ref_cert_fail_##S(void);                                                                 \
+  bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
+  void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \
+  void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max); \
+  void ref_cert_plane_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);     \
   void ref_closest_hit_linear_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);               \
   bool ref_occluded_linear_##S(const ref_scene *sc, V o, V d, R t_max);                         \
   V ref_safe_inverse_##S(V d);                                                                  \

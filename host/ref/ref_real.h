@@ -37,6 +37,20 @@ static inline rvec3 rvec3_from(vec3 a) { return a; }
 static inline vec3 vec3_from(rvec3 a) { return a; }
 #endif
 
+/* rc_certify.glsl's globals, this precision's (ref_intersect.h). */
+#define ref_cert_ok REF(cert_ok)
+#define ref_cert_any REF(cert_any)
+#define ref_cert_self REF(cert_self)
+#define ref_cert_spawn_object REF(cert_spawn_object)
+#define ref_cert_eo REF(cert_eo)
+#define ref_cert_ed REF(cert_ed)
+#define ref_cert_t_err REF(cert_t_err)
+#define ref_cert_bary_err REF(cert_bary_err)
+#define ref_cert_beyond REF(cert_beyond)
+#define ref_cert_t_max_err REF(cert_t_max_err)
+#define ref_cert_ep REF(cert_ep)
+#define ref_cert_en REF(cert_en)
+
 /* GLSL's rvec4 (rc_patch.glsl's rows of four control points), a plain struct here. */
 typedef struct { real x, y, z, w; } rvec4;
 

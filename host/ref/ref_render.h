@@ -14,6 +14,10 @@ typedef struct rc_ref_options {
   /* Flush subnormal inputs and results to zero (x86 FTZ + DAZ, arm64 FZ), as a GPU may in
    * f32 (docs/numerics.md §1): f64 flushes too, at 2^-1022, where no scene reaches. */
   bool flush_subnormals;
+  /* With frame.certify (the f32 pass of --precision certified, rc_certify.glsl): render each
+   * pixel with an uncertified sample again in f64. False leaves them as traced, to measure
+   * the certificates themselves. */
+  bool rerender;
 } rc_ref_options;
 
 /* Whether this CPU has the mode rc_ref_options.flush_subnormals sets. */
@@ -32,6 +36,10 @@ typedef struct rc_ref_stats {
    * hit. With patch_stalls > 0, the first one's object number and pixel. */
   uint64_t patch_stalls;
   uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
+  /* --precision certified: samples whose decisions were not all certified, the pixels
+   * rendered again in f64 for them, and the threads' wall time doing so (summed). */
+  uint64_t samples_uncertified, pixels_rerendered;
+  double rerender_ms;
 } rc_ref_stats;
 
 /* Renders the pixels of `region` (of the full frame) into rgb (its pixels * 3 floats,
@@ -39,6 +47,12 @@ typedef struct rc_ref_stats {
  * sample. The stats add up over calls. */
 rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
                         packed_aov *aov, rc_ref_stats *stats);
+
+/* The second half of --precision certified on another backend: renders again, in f64, the
+ * pixels of `region` whose aov record counts uncertified samples (aov[i].uncertified > 0),
+ * replacing their rgb and record (the count stays). */
+rc_status rc_ref_rerender(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
+                          packed_aov *aov, rc_ref_stats *stats);
 
 /* The frame's cost estimate for cutting shards (region.h): the loop steps (BVH nodes
  * visited, objects tested) of the first sample of the middle pixel of each cell of a grid

@@ -166,6 +166,52 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
   return sf;
 }
 
+void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref_surface *sf) {
+  real ep_round = 2 * RV(length)(sf->p_error);
+  real cosine = R_ABS(RV(dot)(sf->ng, d));
+  real e_cos = ref_cert_ed + REF(gamma_bound)(12);
+  REF(cert_require)(sc, cosine, e_cos);
+  real ep = ep_round + 2 * (ref_cert_eo + h->t * ref_cert_ed) / rmax(cosine - e_cos, RC_SMALLEST_NORMAL);
+  real en = REF(gamma_bound)(12);
+  if (h->kind == RC_HIT_SPHERE) en += 2 * ep / (real)sc->spheres[h->index].radius;
+  if (h->kind == RC_HIT_TRIANGLE) {
+    packed_triangle tri = sc->triangles[h->index];
+    if (tri.normals != RC_NO_NORMALS) {
+      const packed_vertex_normals *vn = &sc->normals[tri.normals];
+      rvec3 ns = RV(add)(RV(add)(RV(scale)(rvec3_from(vn->n0), h->bary.x), RV(scale)(rvec3_from(vn->n1), h->bary.y)),
+                         RV(scale)(rvec3_from(vn->n2), h->bary.z));
+      real spread = RV(length)(rvec3_from(vn->n0)) + RV(length)(rvec3_from(vn->n1)) + RV(length)(rvec3_from(vn->n2));
+      en += 2 * (h->bary_err * spread + REF(gamma_bound)(6) * spread) / RV(length)(ns);
+      REF(cert_require)(sc, RV(dot)(sf->n, sf->ng), en + REF(gamma_bound)(12));
+    }
+  }
+  ref_cert_ep = ep;
+  ref_cert_en = en;
+}
+
+void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface *sf, rvec3 origin, real n_dot_l) {
+  real eo = ref_cert_ep + 2 * RV(length)(RV(sub)(origin, sf->p)) + REF(gamma_bound)(2) * RV(length)(origin);
+  if (light.type == RC_LIGHT_POINT) {
+    real r = RV(length)(RV(sub)(rvec3_from(light.position), sf->p));
+    real dist = RV(length)(RV(sub)(rvec3_from(light.position), origin));
+    real el = 2 * (ref_cert_ep + REF(gamma_bound)(4) * r) / r;
+    REF(cert_require)(sc, n_dot_l, ref_cert_en + el + REF(gamma_bound)(4));
+    ref_cert_eo = eo;
+    ref_cert_ed = 2 * (eo + REF(gamma_bound)(4) * dist) / dist;
+    ref_cert_t_max_err = eo + REF(gamma_bound)(6) * dist;
+  } else {
+    REF(cert_require)(sc, n_dot_l, ref_cert_en + REF(gamma_bound)(4));
+    ref_cert_eo = eo;
+    ref_cert_ed = 0;
+    ref_cert_t_max_err = 0;
+  }
+}
+
+void REF(cert_reflect)(const ref_surface *sf, rvec3 origin, real ed_in) {
+  ref_cert_eo = ref_cert_ep + 2 * RV(length)(RV(sub)(origin, sf->p)) + REF(gamma_bound)(2) * RV(length)(origin);
+  ref_cert_ed = 2 * (ed_in + 2 * ref_cert_en) + REF(gamma_bound)(8);
+}
+
 /* The integer of a real's width, for the Wächter-Binder ulp offset. */
 #if REF_F64
 typedef int64_t offset_int;
@@ -389,6 +435,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     real shadow_t_max;
     if (!REF(light_at)(sc->lights[i], sf->p, origin, &l, &irradiance, &to_light, &shadow_t_max)) continue;
     real n_dot_l = RV(dot)(sf->n, l);
+    if (sc->frame->certify) REF(cert_shadow)(sc, sc->lights[i], sf, origin, n_dot_l);
     if (n_dot_l <= 0) continue;
     if (sc->frame->shadows) ref_shadow_rays++;
     if (sc->frame->shadows &&

@@ -47,7 +47,11 @@ extern _Thread_local packed_aov ref_aov_record;
   V ref_light_contribution_##S(const ref_scene *sc, packed_material m, V kd, V n, V l, V v, R n_dot_l, V irradiance); \
   V ref_shade_phong_##S(const ref_scene *sc, const ref_surface_##S *sf, V d);                   \
   void ref_aov_begin_##S(const ref_scene *sc, const ref_hit_##S *h);                            \
-  V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);
+  V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);              \
+  void ref_cert_camera_##S(const ref_scene *sc, ref_vec2 raster);                               \
+  void ref_cert_surface_##S(const ref_scene *sc, V d, const ref_hit_##S *h, const ref_surface_##S *sf); \
+  void ref_cert_shadow_##S(const ref_scene *sc, packed_light light, const ref_surface_##S *sf, V origin, R n_dot_l); \
+  void ref_cert_reflect_##S(const ref_surface_##S *sf, V origin, R ed_in);
 
 REF_DECLARE_SHADER(d, double, dvec3)
 REF_DECLARE_SHADER(f, float, vec3)

@@ -14,7 +14,7 @@ void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
   ref_aov_record.t = (h->kind == RC_HIT_NONE) ? 0.0f : (float)h->t;
   ref_aov_record.shadow_bits = 0.0f;
   ref_aov_record.normal = rcm_make_f(0, 0, 0);
-  ref_aov_record.pad0 = 0.0f;
+  ref_aov_record.uncertified = sc->frame->certify ? 0.0f : (float)sc->frame->samples_per_pixel;
 }
 
 rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s) {
@@ -22,6 +22,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
   ref_vec2 raster = {(float)px + offset.x, (float)(sc->frame->camera.height - 1u - py) + offset.y};
   rvec3 o, d;
   REF(camera_ray)(sc, raster, &o, &d);
+  if (sc->frame->certify) REF(cert_camera)(sc, raster);
   rvec3 color = RV(make)(0, 0, 0);
   rvec3 weight = RV(make)(1, 1, 1);
   for (uint32_t depth = 0; depth <= sc->frame->reflection_depth; depth++) {
@@ -35,6 +36,9 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
       break;
     }
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
+    if (sc->frame->certify) REF(cert_surface)(sc, d, &h, &sf);
+    real ed_in = ref_cert_ed;
+    if (sc->frame->certify) ref_cert_spawn_object = h.object;
     if (ref_aov_recording) ref_aov_record.normal = vec3_from(sf.n);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
     ref_aov_recording = false;
@@ -44,6 +48,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     o = REF(spawn_origin)(sc, &sf);
     d = RV(normalize)(RV(reflect)(d, sf.n));
     o = REF(t_min_start)(sc, o, d);
+    if (sc->frame->certify) REF(cert_reflect)(&sf, o, ed_in);
     ref_reflection_rays++;
   }
   return color;

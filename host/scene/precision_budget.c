@@ -181,6 +181,8 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
 
 rc_precision_choice rc_precision_choose(uint32_t requested, const rc_precision_report *budget, bool reference,
                                         bool device_f64) {
+  /* certified: f32 with every decision checked, and the samples it cannot vouch for in f64. */
+  if (requested == RC_PRECISION_CERTIFIED) return (rc_precision_choice){false, RC_PRECISION_QUIET};
   if (reference) return (rc_precision_choice){requested != RC_PRECISION_F32, RC_PRECISION_QUIET};
   if (requested == RC_PRECISION_F64) return (rc_precision_choice){true, RC_PRECISION_QUIET};
   if (requested == RC_PRECISION_F32)

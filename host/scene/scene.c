@@ -111,7 +111,7 @@ const char *rc_scene_camera_problem(const rc_camera_def *c, const char **field) 
   return NULL;
 }
 
-const char *const rc_precision_names[] = {"auto", "f32", "f64", NULL};
+const char *const rc_precision_names[] = {"auto", "f32", "f64", "certified", NULL};
 const char *const rc_sphere_formula_names[] = {"geometric", "algebraic", NULL};
 const char *const rc_triangle_formula_names[] = {"watertight", "moller-trumbore", "cramer", NULL};
 const char *const rc_offset_names[] = {"error-bound", "ulp", "epsilon", "t-min", NULL};

@@ -124,6 +124,7 @@ typedef struct rc_camera_def {
 #define RC_PRECISION_AUTO 0u /* f32 unless the precision-budget pass finds the scene needs f64 */
 #define RC_PRECISION_F32 1u
 #define RC_PRECISION_F64 2u
+#define RC_PRECISION_CERTIFIED 3u /* f32 with each decision certified, the rest again in f64 (rc_certify.glsl) */
 typedef struct rc_quality {
   uint32_t precision;     /* RC_PRECISION_* */
   uint32_t sphere;        /* RC_SPHERE_* (rc_shared.h) */
@@ -135,7 +136,7 @@ typedef struct rc_quality {
   bool shadows;           /* trace shadow rays (off: every light reaches every surface facing it) */
 } rc_quality;
 /* Names as written in scenes and on the command line, indexed by the constants. */
-extern const char *const rc_precision_names[];      /* auto, f32, f64 */
+extern const char *const rc_precision_names[];      /* auto, f32, f64, certified */
 extern const char *const rc_sphere_formula_names[];  /* geometric, algebraic */
 extern const char *const rc_triangle_formula_names[]; /* watertight, moller-trumbore, cramer */
 extern const char *const rc_offset_names[];         /* error-bound, ulp, epsilon, t-min */

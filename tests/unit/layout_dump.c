@@ -47,7 +47,7 @@ int main(void) {
   OFF("frame.plane_count", packed_frame, plane_count);
   OFF("frame.patch_count", packed_frame, patch_count);
   OFF("frame.light_buffers", packed_frame, light_buffers);
-  OFF("frame.pad2", packed_frame, pad2);
+  OFF("frame.certify", packed_frame, certify);
   printf("Frame size %zu\n", sizeof(packed_frame));
 
   OFF("scene_bvh_nodes.lo", packed_bvh_node, lo);
@@ -155,7 +155,7 @@ int main(void) {
   OFF("aov.t", packed_aov, t);
   OFF("aov.shadow_bits", packed_aov, shadow_bits);
   OFF("aov.normal", packed_aov, normal);
-  OFF("aov.pad0", packed_aov, pad0);
+  OFF("aov.uncertified", packed_aov, uncertified);
   printf("aov stride %zu\n", sizeof(packed_aov));
 
   printf("Frame binding %d\n", RC_BINDING_FRAME);

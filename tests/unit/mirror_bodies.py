@@ -83,7 +83,7 @@ NEUTRAL = set("""real rvec3 rvec4 vec3 dvec3 vec2 ivec3 uvec3 uvec4 uvec2 bvec3 
 uint64_t int64_t bool const precise ray_shear sheared_triangle surface hit_record in out inout void static return
 if else for while break continue do struct sc rvec3_from vec3_from rv_get true false v3 rcm_xyz rcm_make_f rcm_to_f
 RC_OFFSET_INT offset_int xyz""".split())
-SPEC_CONSTANTS = ["sphere_formula", "triangle_formula", "offset_strategy", "offset_epsilon", "use_bvh"]
+SPEC_CONSTANTS = ["sphere_formula", "triangle_formula", "offset_strategy", "offset_epsilon", "use_bvh", "certify"]
 OPS = {"+", "-", "*", "/", "<", ">", "<=", ">=", "==", "!=", "&&", "||", "!", "?", "%", "<<", ">>", "&", "|", "^",
        "+=", "-=", "*=", "/=", "++", "--", "~"}
 TOKEN = re.compile(r"\s*(0[xX][0-9a-fA-F]+[uU]?|\d+\.\d*(?:[eE][-+]?\d+)?[fFlL]*|\.\d+(?:[eE][-+]?\d+)?[fF]?|"
