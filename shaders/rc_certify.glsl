@@ -3,8 +3,7 @@
 // is nearer, a shadow ray blocked or not, the side a normal faces) is checked against a bound
 // on how far the f32 arithmetic can be from the f64 reference's: the decision is certified
 // when its quantity (a discriminant, an edge function, a root against 0 or against t_max...)
-// is farther from its threshold than twice the bound, once for this arithmetic and once for
-// the reference's own, which is smaller. A sample whose every decision is certified makes the
+// is farther from its threshold than the bound (cert_factor). A sample whose every decision is certified makes the
 // reference's decisions; the host re-renders the others in f64.
 //
 // The f32 ray is not the reference's ray: the camera, each hit point and each spawned origin
@@ -29,8 +28,12 @@ bool cert_self = false;       // the object being tested is that one
 real cert_ep = 0.0;           // |p - p_ref| of the last surface point
 real cert_en = 0.0;           // |n - n_ref| of its shading normal
 
-// Twice the bound, once where frame.certify halves it (the fault the soundness tests inject).
-real cert_factor() { return (frame.certify == RC_CERTIFY_HALVED) ? 1.0 : 2.0; }
+// The bound, widened by 2^-20 for the reference's own error, which is the same arithmetic's
+// 2^-29 times smaller; half of it or none where frame.certify injects those faults.
+real cert_factor() {
+  if (frame.certify == RC_CERTIFY_HALVED) return 0.5;
+  return (frame.certify == RC_CERTIFY_ZERO) ? 0.0 : 1.00000095367431640625;
+}
 
 // The decision `margin > 0` (or `<= 0`) is certified when |margin| exceeds the factor times
 // bound; NaN never is.
@@ -43,8 +46,8 @@ void cert_fail() { cert_ok = false; }
 
 // The primary ray's perturbation (rc_camera.glsl): the window coordinates us, vs carry
 // gamma(4) of |left| + |right| + |us|; the perspective direction -f w + us u + vs v carries
-// gamma(3) of its terms' magnitudes plus those errors, and normalize doubles a vector's
-// relative error (2, over sqrt 3, for a vector's norm); the parallel origin eye + us u + vs v likewise. The basis is the
+// gamma(3) of its terms' magnitudes (|u| = |v| = |w| = 1) plus those errors, and turns by
+// at most that over its length, plus normalize's own rounding; the parallel origin eye + us u + vs v likewise. The basis is the
 // reference's too (the same f32 values).
 void cert_camera(vec2 raster) {
   packed_camera c = frame.camera;
@@ -53,13 +56,13 @@ void cert_camera(vec2 raster) {
   real eus = gamma_bound(4.0) * (abs(real(c.left)) + abs(real(c.right)) + abs(us));
   real evs = gamma_bound(4.0) * (abs(real(c.bottom)) + abs(real(c.top)) + abs(vs));
   real mag = abs(real(c.focal)) + abs(us) + abs(vs);
-  real err = 2.0 * (gamma_bound(3.0) * mag + eus + evs);
+  real err = gamma_bound(3.0) * mag + eus + evs;
   cert_ok = true;
   cert_spawn_object = 0xffffffffu;
   if (c.projection == RC_PROJECTION_PERSPECTIVE) {
     real len = length(-real(c.focal) * rvec3(c.w) + us * rvec3(c.u) + vs * rvec3(c.v));
     cert_eo = 0.0;
-    cert_ed = 2.0 * err / len + gamma_bound(4.0);
+    cert_ed = err / (len - err) + gamma_bound(4.0);
   } else {
     cert_eo = 2.0 * (gamma_bound(3.0) * (length(rvec3(c.eye)) + abs(us) + abs(vs)) + eus + evs);
     cert_ed = 0.0;

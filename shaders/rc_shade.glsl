@@ -227,8 +227,10 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
       // The interpolated normal moves with the barycentrics; its flip towards ng is a decision.
       packed_vertex_normals vn = load_vertex_normals(tri.normals);
       rvec3 ns = h.bary.x * rvec3(vn.n0) + h.bary.y * rvec3(vn.n1) + h.bary.z * rvec3(vn.n2);
-      real spread = length(rvec3(vn.n0)) + length(rvec3(vn.n1)) + length(rvec3(vn.n2));
-      en += 2.0 * (h.bary_err * spread + gamma_bound(6.0) * spread) / length(ns);
+      // The barycentrics sum to 1, so their errors move ns by the normals' differences.
+      real spread = length(rvec3(vn.n1) - rvec3(vn.n0)) + length(rvec3(vn.n2) - rvec3(vn.n0));
+      real size = length(rvec3(vn.n0)) + length(rvec3(vn.n1)) + length(rvec3(vn.n2));
+      en += 2.0 * (h.bary_err * spread + gamma_bound(6.0) * size) / length(ns);
       cert_require(dot(sf.n, sf.ng), en + gamma_bound(12.0));
     }
   }

@@ -107,11 +107,12 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 /* The speed/accuracy knobs (docs/accuracy.md). The first of each is the robust default;
  * the GPU specializes on them (RC_SPEC_*), the CPU reference reads the copies in packed_frame. */
 /* --precision certified (rc_certify.glsl, docs/numerics.md §10): off; on, a decision
- * certified when its margin exceeds twice its f32 error bound; halved, once (the fault
- * injection the soundness test must catch). */
+ * certified when its margin exceeds its f32 error bound; halved and zero, the faults
+ * injected to test the soundness tests (--certified-bound half, zero). */
 #define RC_CERTIFY_OFF 0u
 #define RC_CERTIFY_ON 1u
 #define RC_CERTIFY_HALVED 2u
+#define RC_CERTIFY_ZERO 3u
 
 #define RC_SPHERE_GEOMETRIC 0u  /* Hearn-Baker discriminant, stable roots, centre-relative normal */
 #define RC_SPHERE_ALGEBRAIC 1u  /* textbook b^2 - 4ac, (-b -/+ sqrt)/2a, normal from o + t d */

@@ -57,7 +57,7 @@ static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
 static const char *const encodings[] = {"linear", "srgb", "gamma", NULL};
 static const char *const rerenders[] = {"cpu", "none", NULL};
-static const char *const cert_bounds[] = {"full", "half", NULL};
+static const char *const cert_bounds[] = {"full", "half", "zero", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
 #define ARG(field) offsetof(render_args, field)
@@ -85,8 +85,8 @@ static const rc_option render_options[] = {
              "pixels again on the f64 CPU reference; none leaves them as traced (to\n"
              "measure the certificates: the AOV's `uncertified` channel marks them)"},
     {"--certified-bound", NULL, RC_OPT_CHOICE, ARG(certified_bound), "B", .choices = cert_bounds,
-     .help = "full (default) or half: certify against half the error bound, a fault\n"
-             "the soundness tests must catch (docs/testing.md); never for images"},
+     .help = "full (default); half or zero certify against half the error bound or\n"
+             "none, faults to test the soundness tests with (docs/testing.md)"},
     {"--accel", NULL, RC_OPT_CHOICE, ARG(accel), "A", .choices = accels,
      .help = "bvh (default) or none: brute force over every object, for comparison"},
     {"--light-buffers", NULL, RC_OPT_CHOICE, ARG(light_buffers), "B", .choices = off_on,
@@ -825,7 +825,10 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   const uint32_t requested = a->precision >= 0 ? (uint32_t)a->precision : scene->quality.precision;
   rs.precision_requested = rc_precision_names[requested];
   const bool certified = requested == RC_PRECISION_CERTIFIED;
-  packed.frame.certify = !certified ? RC_CERTIFY_OFF : a->certified_bound == 1 ? RC_CERTIFY_HALVED : RC_CERTIFY_ON;
+  packed.frame.certify = !certified                   ? RC_CERTIFY_OFF
+                         : a->certified_bound == 1 ? RC_CERTIFY_HALVED
+                         : a->certified_bound == 2 ? RC_CERTIFY_ZERO
+                                                   : RC_CERTIFY_ON;
   rs.rerender = !certified ? "off" : a->certified_rerender == 1 ? "none" : "cpu";
   a->gpu.aov = a->aov != NULL || certified;
   char driver[600] = "";

@@ -10,7 +10,10 @@ _Thread_local uint32_t ref_cert_spawn_object = 0xffffffffu;
 _Thread_local real ref_cert_eo, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_beyond = (real)RC_T_FAR,
     ref_cert_t_max_err, ref_cert_ep, ref_cert_en;
 
-real REF(cert_factor)(const ref_scene *sc) { return (sc->frame->certify == RC_CERTIFY_HALVED) ? 1 : 2; }
+real REF(cert_factor)(const ref_scene *sc) {
+  if (sc->frame->certify == RC_CERTIFY_HALVED) return RL(0.5);
+  return (sc->frame->certify == RC_CERTIFY_ZERO) ? 0 : RL(1.00000095367431640625);
+}
 
 void REF(cert_require)(const ref_scene *sc, real margin, real bound) {
   if (!(R_ABS(margin) > REF(cert_factor)(sc) * bound)) ref_cert_ok = false;
@@ -25,14 +28,14 @@ void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {
   real eus = REF(gamma_bound)(4) * (R_ABS((real)c->left) + R_ABS((real)c->right) + R_ABS(us));
   real evs = REF(gamma_bound)(4) * (R_ABS((real)c->bottom) + R_ABS((real)c->top) + R_ABS(vs));
   real mag = R_ABS((real)c->focal) + R_ABS(us) + R_ABS(vs);
-  real err = 2 * (REF(gamma_bound)(3) * mag + eus + evs);
+  real err = REF(gamma_bound)(3) * mag + eus + evs;
   ref_cert_ok = true;
   ref_cert_spawn_object = 0xffffffffu;
   if (c->projection == RC_PROJECTION_PERSPECTIVE) {
     real len = RV(length)(RV(add)(RV(add)(RV(scale)(rvec3_from(c->w), -(real)c->focal), RV(scale)(rvec3_from(c->u), us)),
                                   RV(scale)(rvec3_from(c->v), vs)));
     ref_cert_eo = 0;
-    ref_cert_ed = 2 * err / len + REF(gamma_bound)(4);
+    ref_cert_ed = err / (len - err) + REF(gamma_bound)(4);
   } else {
     ref_cert_eo = 2 * (REF(gamma_bound)(3) * (RV(length)(rvec3_from(c->eye)) + R_ABS(us) + R_ABS(vs)) + eus + evs);
     ref_cert_ed = 0;

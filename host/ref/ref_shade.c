@@ -180,8 +180,10 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
       const packed_vertex_normals *vn = &sc->normals[tri.normals];
       rvec3 ns = RV(add)(RV(add)(RV(scale)(rvec3_from(vn->n0), h->bary.x), RV(scale)(rvec3_from(vn->n1), h->bary.y)),
                          RV(scale)(rvec3_from(vn->n2), h->bary.z));
-      real spread = RV(length)(rvec3_from(vn->n0)) + RV(length)(rvec3_from(vn->n1)) + RV(length)(rvec3_from(vn->n2));
-      en += 2 * (h->bary_err * spread + REF(gamma_bound)(6) * spread) / RV(length)(ns);
+      real spread = RV(length)(RV(sub)(rvec3_from(vn->n1), rvec3_from(vn->n0))) +
+                    RV(length)(RV(sub)(rvec3_from(vn->n2), rvec3_from(vn->n0)));
+      real size = RV(length)(rvec3_from(vn->n0)) + RV(length)(rvec3_from(vn->n1)) + RV(length)(rvec3_from(vn->n2));
+      en += 2 * (h->bary_err * spread + REF(gamma_bound)(6) * size) / RV(length)(ns);
       REF(cert_require)(sc, RV(dot)(sf->n, sf->ng), en + REF(gamma_bound)(12));
     }
   }
