@@ -13,7 +13,8 @@
 #include "rc_cli_test.h"
 
 enum { W = 4, H = 2, C = RC_AOV_CHANNELS };
-/* Channel order as rc_aov_channel_names: R G B hit object t N.X N.Y N.Z shadow. */
+/* Channel order as rc_aov_channel_names: R G B hit object t N.X N.Y N.Z shadow uncertified
+ * (left 0 here). */
 static float A[W * H][C], B[W * H][C];
 
 static const double NORMAL_ANGLE = 0.1; /* radians, pixel 4 */

@@ -195,7 +195,7 @@ TEST(composite_transform_moves_its_operands_as_one) {
 }
 
 /* Renders TMP/name.json on each backend and precision to name.BACKEND.PRECISION.aov.exr
- * (channels as read back: R, G, B, hit, object, shadow, t, N.X, N.Y, N.Z) and hands each
+ * (channels as read back: R, G, B, hit, object, shadow, t, uncertified, N.X, N.Y, N.Z) and hands each
  * image to check(). */
 static void for_each_variant(const char *name, void (*check)(const image *im, const char *variant)) {
   static const char *const variants[3][2] = {{"gpu", "f32"}, {"cpu", "f64"}, {"cpu", "f32"}};
@@ -207,7 +207,7 @@ static void for_each_variant(const char *name, void (*check)(const image *im, co
                      tmp, out, variants[v][0], variants[v][1]),
                  0);
     image im = load(out);
-    if (!im.px || im.c != 10) {
+    if (!im.px || im.c != 11) {
       CHECK(false);
     } else {
       check(&im, variant);
@@ -231,7 +231,7 @@ static void check_floor(const image *im, const char *variant) {
       double dx = x - 1, dy = 4, dz = z + 1, r = sqrt(dx * dx + dy * dy + dz * dz);
       double want = 0.5 * 10 * dy / (r * r * r);
       bad_t += !(px[3] == 1 && fabs(px[6] - 10) <= 4e-6 * 10);
-      bad_n += !(fabs(px[7]) <= 1e-6 && fabs(px[8] - 1) <= 1e-6 && fabs(px[9]) <= 1e-6);
+      bad_n += !(fabs(px[8]) <= 1e-6 && fabs(px[9] - 1) <= 1e-6 && fabs(px[10]) <= 1e-6);
       double e = fabs(px[0] - want) / want;
       worst = fmax(worst, e);
       bad_c += e > 1e-5;
@@ -290,10 +290,10 @@ static void count_wall_and_shadow(const image *im, const char *variant) {
   wall_pixels = shadowed_floor = 0;
   for (size_t i = 0; i < (size_t)im->w * im->h; i++) {
     const float *px = im->px + i * im->c;
-    /* The channels as OpenEXR stores them: R G B hit object shadow t N.X N.Y N.Z. */
+    /* The channels as OpenEXR stores them: R G B hit object shadow t uncertified N.X N.Y N.Z. */
     if (px[3] != 1) continue;
-    wall_pixels += fabsf(px[9]) > 0.9f;
-    shadowed_floor += fabsf(px[8]) > 0.9f && px[5] != 0;
+    wall_pixels += fabsf(px[10]) > 0.9f;
+    shadowed_floor += fabsf(px[9]) > 0.9f && px[5] != 0;
   }
 }
 
