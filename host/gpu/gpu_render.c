@@ -354,7 +354,7 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
  * for the plan's (render_tile). Fewer dispatches do the same work: each pixel's samples
  * are summed in the same order, so the image is bit for bit the same. */
 static void grow_batch(rc_gpu_renderer *r, packed_push *push, uint32_t traced, const packed_status *status, double ms) {
-  if (r->light_passes || status->max_steps == 0 || traced == 0) return;
+  if (status->max_steps == 0 || traced == 0) return;
   uint64_t fit = (uint64_t)traced * r->budget * 3 / 4 / status->max_steps;
   if (r->tile_budget_ms > 0 && ms > 0) {
     double by_time = traced * 0.8 * r->tile_budget_ms / ms;
@@ -371,7 +371,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
                    .row_stride = rc_tiles_row_stride(group_count(th, r->local_y)),
                    .light_pass = r->light_pass};
   bool first = true;
-  uint32_t progress = 0; /* samples every pixel of the tile has (light passes: unused) */
+  uint32_t progress = 0; /* samples every pixel of the tile has (not counted in light passes) */
   for (;;) {
     packed_status status;
     double ms = 0;
@@ -417,7 +417,8 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
         return RC_ERR_TOO_LARGE;
       }
       stats->budget_retries++;
-    } else {
+    } else if (!r->light_passes) {
+      /* (Not after a light pass: it traces part of one sample, its size counted in lights.) */
       uint32_t spp = r->frame.samples_per_pixel, traced = spp - progress < push.batch_samples ? spp - progress : push.batch_samples;
       progress += traced;
       grow_batch(r, &push, traced, &status, ms);

@@ -152,7 +152,9 @@ static bool grow_words(appendix *x, uint32_t more) {
 /* The node of a leaf made for cell c's objects, shared by every cell with the same list. */
 static uint32_t leaf_for(const tree *t, appendix *x, const cell_acc *c, const uint32_t *index_of) {
   size_t bytes = c->count * sizeof *c->ids;
-  for (uint32_t at = (uint32_t)rc_hash_bytes(c->ids, bytes) & x->slot_mask;; at = (at + 1) & x->slot_mask) {
+  /* The probe ends at the list's leaf, or at the free slot where its new leaf goes. */
+  uint32_t at = (uint32_t)rc_hash_bytes(c->ids, bytes) & x->slot_mask;
+  for (;; at = (at + 1) & x->slot_mask) {
     uint32_t node = x->slots[at];
     if (node == NONE) break;
     const packed_bvh_node *n = &x->nodes[node];
@@ -179,11 +181,7 @@ static uint32_t leaf_for(const tree *t, appendix *x, const cell_acc *c, const ui
   n->leaf = ((x->word_base + x->word_count) << RC_BVH_LEAF_SHIFT) | c->count;
   memcpy(&x->words[x->word_count], c->ids, bytes);
   x->word_count += c->count;
-  for (uint32_t at = (uint32_t)rc_hash_bytes(c->ids, bytes) & x->slot_mask;; at = (at + 1) & x->slot_mask)
-    if (x->slots[at] == NONE) {
-      x->slots[at] = x->node_count;
-      break;
-    }
+  x->slots[at] = x->node_count;
   return x->node_base + x->node_count++;
 }
 
