@@ -103,8 +103,9 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   // another copy of the whole object dispatch (composites included) here cost the
   // quadric and CSG scenes 25-40 % of their frame time; even this loop, never entered,
   // cost 6 % until RC_KIND_PLANES compiled it out.
+  ray_shear sh = ray_shear_for(d);  // for the certificates only: a plane has no shear
   for (uint k = first; k < frame.quadric_count; k++) {
-    if (certify) cert_object(first_quadric_object + k, o, d, ray_shear_for(d), any ? t_max : h.t);
+    if (certify) cert_object(first_quadric_object + k, o, d, sh, any ? t_max : h.t);
     real t = intersect_plane(load_quadric(k), o, d, any ? t_max : h.t);
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(first_quadric_object + k, t, 0.0, rvec3(0.0), csg_code(k, 0u, false, false), h);

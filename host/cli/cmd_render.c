@@ -292,7 +292,6 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->gpu.generic_pipeline = a->pipeline == 1;
   const char *force = getenv("VKRAYCAST_FORCE_STAGING");
   a->gpu.force_staging = a->staging || (force && force[0] && strcmp(force, "0") != 0);
-  a->gpu.aov = a->aov != NULL;
   a->load.allow_outside_paths = a->allow_outside_paths;
   const char *why = NULL;
   char msg[300];
@@ -498,8 +497,7 @@ static void report_crossings(const rc_scene *s, uint32_t object, uint32_t x, uin
 static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, const rc_packed_scene *packed,
                                    bool f64, rc_render_stats *rs, rc_output **out) {
   const bool certified = packed->frame.certify != RC_CERTIFY_OFF;
-  rc_ref_options opts = {.f64 = f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals,
-                         .rerender = certified && a->certified_rerender != 1};
+  rc_ref_options opts = {.f64 = f64, .threads = a->threads, .flush_subnormals = a->flush_subnormals};
   const rc_region region = a->part.region;
   uint32_t w = rc_region_width(region), h = rc_region_height(region);
   uint32_t band = h < CPU_BAND_ROWS ? h : CPU_BAND_ROWS;
@@ -518,6 +516,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
       uint32_t rows = h - y0 < band ? h - y0 : band;
       rc_region part = {region.x0, region.y0 + y0, region.x1, region.y0 + y0 + rows};
       st = rc_ref_render(packed, &opts, part, rgb, aov, &fs);
+      if (st == RC_OK && certified && a->certified_rerender != 1) st = rc_ref_rerender(packed, &opts, part, rgb, aov, &fs);
       if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
       if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, a->aov ? aov : NULL, *out);
     }

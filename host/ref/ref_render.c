@@ -22,11 +22,8 @@ _Thread_local packed_aov ref_aov_record;
 
 typedef struct {
   ref_scene scene;
-  ref_scene plain;      /* the scene under a frame without certify: the f64 re-render */
-  packed_frame plain_frame;
   bool only_uncertified; /* rc_ref_rerender: the pixels whose aov counts uncertified samples */
-  bool rerender;
-  atomic_uint_fast64_t samples_uncertified, pixels_rerendered, rerender_us;
+  atomic_uint_fast64_t samples_uncertified;
   const packed_frame *frame;
   bool f64;
   float *rgb;
@@ -42,35 +39,17 @@ typedef struct {
   uint32_t patch_stall_x, patch_stall_y;
 } job;
 
-static void render_f64(const ref_scene *sc, uint32_t x, uint32_t y, float *o) {
-  const uint32_t spp = sc->frame->samples_per_pixel;
-  dvec3 sum = {0, 0, 0};
-  for (uint32_t s = 0; s < spp; s++) sum = rcm_add_d(sum, ref_trace_sample_d(sc, x, y, s));
-  sum = rcm_scale_d(sum, 1.0 / spp);
-  o[0] = (float)sum.x, o[1] = (float)sum.y, o[2] = (float)sum.z;
-}
-
-/* A pixel again in f64 (--precision certified), its record the f64 one with the count kept. */
-static void rerender_pixel(job *j, uint32_t x, uint32_t y, float *o, packed_aov *rec, float uncertified) {
-  double t0 = rc_now_ms();
-  render_f64(&j->plain, x, y, o);
-  *rec = ref_aov_record;
-  rec->uncertified = uncertified;
-  atomic_fetch_add(&j->pixels_rerendered, 1);
-  atomic_fetch_add(&j->rerender_us, (uint64_t)((rc_now_ms() - t0) * 1000.0));
-}
-
 static void render_pixel(job *j, uint32_t x, uint32_t y) {
   const uint32_t spp = j->frame->samples_per_pixel;
   size_t index = (size_t)(y - j->region.y0) * rc_region_width(j->region) + (x - j->region.x0);
   float *o = j->rgb + 3 * index;
-  if (j->only_uncertified) {
-    if (j->aov[index].uncertified > 0) rerender_pixel(j, x, y, o, &j->aov[index], j->aov[index].uncertified);
-    return;
-  }
+  if (j->only_uncertified && !(j->aov[index].uncertified > 0)) return;
   uint32_t uncertified = 0;
   if (j->f64) {
-    render_f64(&j->scene, x, y, o);
+    dvec3 sum = {0, 0, 0};
+    for (uint32_t s = 0; s < spp; s++) sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
+    sum = rcm_scale_d(sum, 1.0 / spp);
+    o[0] = (float)sum.x, o[1] = (float)sum.y, o[2] = (float)sum.z;
   } else {
     /* The shader's arithmetic: an f32 running sum, divided by the f32 sample count. */
     vec3 sum = {0, 0, 0};
@@ -84,8 +63,8 @@ static void render_pixel(job *j, uint32_t x, uint32_t y) {
   if (j->frame->certify) {
     rec.uncertified = (float)uncertified;
     atomic_fetch_add(&j->samples_uncertified, uncertified);
-    if (uncertified && j->rerender) rerender_pixel(j, x, y, o, &rec, (float)uncertified);
   }
+  if (j->only_uncertified) rec.uncertified = j->aov[index].uncertified; /* the f32 pass's count stays */
   if (j->aov) j->aov[index] = rec;
   if (ref_crossing_blame) {
     unsigned none = 0;
@@ -162,37 +141,15 @@ static ref_scene scene_of(const rc_packed_scene *p) {
                      .use_bvh = p->bvh && p->frame.bvh_node_count > 0};
 }
 
-static rc_status run(job *jp, const rc_ref_options *opts, rc_ref_stats *stats);
-
-rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
-                        packed_aov *aov, rc_ref_stats *stats) {
-  job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = opts->f64, .rgb = rgb, .aov = aov, .region = region,
-           .flush_subnormals = opts->flush_subnormals, .rerender = opts->rerender};
-  return run(&j, opts, stats);
-}
-
-rc_status rc_ref_rerender(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
-                          packed_aov *aov, rc_ref_stats *stats) {
-  job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = true, .rgb = rgb, .aov = aov, .region = region,
-           .flush_subnormals = opts->flush_subnormals, .only_uncertified = true};
-  return run(&j, opts, stats);
-}
-
-static rc_status run(job *jp, const rc_ref_options *opts, rc_ref_stats *stats) {
-  job j = *jp;
-  j.plain_frame = *j.frame;
-  j.plain_frame.certify = RC_CERTIFY_OFF;
-  j.plain = j.scene;
-  j.plain.frame = &j.plain_frame;
-  atomic_init(&j.samples_uncertified, 0);
-  atomic_init(&j.pixels_rerendered, 0);
-  atomic_init(&j.rerender_us, 0);
-  atomic_init(&j.next_row, 0);
-  atomic_init(&j.shadow_rays, 0);
-  atomic_init(&j.reflection_rays, 0);
-  atomic_init(&j.crossing_object, 0);
-  atomic_init(&j.patch_stalls, 0);
-  atomic_init(&j.patch_stall_object, 0);
+/* The job's pixels on opts->threads threads; its counters start at 0 here. */
+static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
+  atomic_init(&j->samples_uncertified, 0);
+  atomic_init(&j->next_row, 0);
+  atomic_init(&j->shadow_rays, 0);
+  atomic_init(&j->reflection_rays, 0);
+  atomic_init(&j->crossing_object, 0);
+  atomic_init(&j->patch_stalls, 0);
+  atomic_init(&j->patch_stall_object, 0);
   long cores = sysconf(_SC_NPROCESSORS_ONLN);
   uint32_t n = opts->threads ? opts->threads : (uint32_t)(cores > 0 ? cores : 1);
   pthread_t *threads = calloc(n, sizeof *threads);
@@ -200,31 +157,53 @@ static rc_status run(job *jp, const rc_ref_options *opts, rc_ref_stats *stats) {
   double t0 = rc_now_ms(), c0 = rc_cpu_ms();
   uint32_t started = 0;
   for (; started < n; started++)
-    if (pthread_create(&threads[started], NULL, worker, &j) != 0) break;
-  if (started == 0) worker(&j); /* no threads could start: render on this one */
+    if (pthread_create(&threads[started], NULL, worker, j) != 0) break;
+  if (started == 0) worker(j); /* no threads could start: render on this one */
   for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
   free(threads);
   stats->render_ms += rc_now_ms() - t0;
   stats->cpu_ms += rc_cpu_ms() - c0;
   stats->threads = started ? started : 1;
-  stats->shadow_rays += atomic_load(&j.shadow_rays);
-  stats->reflection_rays += atomic_load(&j.reflection_rays);
-  stats->samples_uncertified += atomic_load(&j.samples_uncertified);
-  stats->pixels_rerendered += atomic_load(&j.pixels_rerendered);
-  stats->rerender_ms += (double)atomic_load(&j.rerender_us) / 1000.0;
-  uint64_t stalls = atomic_load(&j.patch_stalls);
+  stats->shadow_rays += atomic_load(&j->shadow_rays);
+  stats->reflection_rays += atomic_load(&j->reflection_rays);
+  stats->samples_uncertified += atomic_load(&j->samples_uncertified);
+  uint64_t stalls = atomic_load(&j->patch_stalls);
   if (stalls && stats->patch_stalls == 0) {
-    stats->patch_stall_object = atomic_load(&j.patch_stall_object) - 1;
-    stats->patch_stall_x = j.patch_stall_x, stats->patch_stall_y = j.patch_stall_y;
+    stats->patch_stall_object = atomic_load(&j->patch_stall_object) - 1;
+    stats->patch_stall_x = j->patch_stall_x, stats->patch_stall_y = j->patch_stall_y;
   }
   stats->patch_stalls += stalls;
-  uint32_t crossing = atomic_load(&j.crossing_object);
+  uint32_t crossing = atomic_load(&j->crossing_object);
   if (crossing) {
     stats->crossing_object = crossing - 1;
-    stats->crossing_x = j.crossing_x, stats->crossing_y = j.crossing_y;
+    stats->crossing_x = j->crossing_x, stats->crossing_y = j->crossing_y;
     return RC_ERR_TOO_LARGE;
   }
   return RC_OK;
+}
+
+rc_status rc_ref_render(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
+                        packed_aov *aov, rc_ref_stats *stats) {
+  job j = {.scene = scene_of(p), .frame = &p->frame, .f64 = opts->f64, .rgb = rgb, .aov = aov, .region = region,
+           .flush_subnormals = opts->flush_subnormals};
+  return run(&j, opts, stats);
+}
+
+rc_status rc_ref_rerender(const rc_packed_scene *p, const rc_ref_options *opts, rc_region region, float *rgb,
+                          packed_aov *aov, rc_ref_stats *stats) {
+  /* The reference proper: f64, and its frame without certify (which changes no decision). */
+  packed_frame plain = p->frame;
+  plain.certify = RC_CERTIFY_OFF;
+  job j = {.scene = scene_of(p), .frame = &plain, .f64 = true, .rgb = rgb, .aov = aov, .region = region,
+           .flush_subnormals = opts->flush_subnormals, .only_uncertified = true};
+  j.scene.frame = &plain;
+  uint64_t pixels = 0;
+  for (size_t i = 0; i < rc_region_pixels(region); i++) pixels += aov[i].uncertified > 0;
+  double t0 = rc_now_ms();
+  rc_status st = run(&j, opts, stats);
+  stats->rerender_ms += rc_now_ms() - t0;
+  stats->pixels_rerendered += pixels;
+  return st;
 }
 
 /* The cost model of a pixel: a fixed part (ray generation, shading, the write) worth this

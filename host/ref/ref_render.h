@@ -14,10 +14,6 @@ typedef struct rc_ref_options {
   /* Flush subnormal inputs and results to zero (x86 FTZ + DAZ, arm64 FZ), as a GPU may in
    * f32 (docs/numerics.md §1): f64 flushes too, at 2^-1022, where no scene reaches. */
   bool flush_subnormals;
-  /* With frame.certify (the f32 pass of --precision certified, rc_certify.glsl): render each
-   * pixel with an uncertified sample again in f64. False leaves them as traced, to measure
-   * the certificates themselves. */
-  bool rerender;
 } rc_ref_options;
 
 /* Whether this CPU has the mode rc_ref_options.flush_subnormals sets. */
@@ -36,8 +32,8 @@ typedef struct rc_ref_stats {
    * hit. With patch_stalls > 0, the first one's object number and pixel. */
   uint64_t patch_stalls;
   uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
-  /* --precision certified: samples whose decisions were not all certified, the pixels
-   * rendered again in f64 for them, and the threads' wall time doing so (summed). */
+  /* --precision certified (frame.certify, rc_certify.glsl): the f32 pass's samples whose
+   * decisions were not all certified; rc_ref_rerender's pixels and wall time. */
   uint64_t samples_uncertified, pixels_rerendered;
   double rerender_ms;
 } rc_ref_stats;
@@ -48,9 +44,9 @@ typedef struct rc_ref_stats {
 rc_status rc_ref_render(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
                         packed_aov *aov, rc_ref_stats *stats);
 
-/* The second half of --precision certified on another backend: renders again, in f64, the
- * pixels of `region` whose aov record counts uncertified samples (aov[i].uncertified > 0),
- * replacing their rgb and record (the count stays). */
+/* The second half of --precision certified, after either backend's f32 pass: renders again,
+ * in f64, the pixels of `region` whose aov record counts uncertified samples
+ * (aov[i].uncertified > 0), replacing their rgb and record (the count stays). */
 rc_status rc_ref_rerender(const rc_packed_scene *scene, const rc_ref_options *opts, rc_region region, float *rgb,
                           packed_aov *aov, rc_ref_stats *stats);
 

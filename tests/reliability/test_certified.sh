@@ -7,8 +7,9 @@
 # certified_mismatch), and the CPU twin's pass too. The test is shown able to fail: with the
 # bound injected as zero (--certified-bound zero) the same comparisons count broken
 # certificates on at least 5 of these scenes. (Halved, it breaks none: the bounds are
-# conservative by more than 2 on all of them; docs/numerics.md §10.) With the default re-render every decision is the
-# reference's, and the pixels re-rendered are the uncertified ones.
+# conservative by more than 2 wherever f32 differs; docs/numerics.md §10.) With the default
+# re-render, on either backend, every decision is the reference's, and the pixels
+# re-rendered are the uncertified ones.
 # Usage: test_certified.sh VKRAYCAST SCENES_DIR EXTREMES_DIR WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 extremes=$3 work=$4
@@ -41,6 +42,8 @@ for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" \
     --aov "$work/$n.cc.aov.exr" || because "the CPU certified render failed"
   render "$s" -o "$work/$n.cr.exr" --precision certified --aov "$work/$n.cr.aov.exr" --stats-json "$work/$n.cr.json" \
     || because "the certified render with re-render failed"
+  render "$s" -o "$work/$n.ccr.exr" --backend cpu --precision certified --aov "$work/$n.ccr.aov.exr" \
+    --stats-json "$work/$n.ccr.json" || because "the CPU certified render with re-render failed"
   read -r _ _ plain < <(counts "$work/$n.f32.aov.exr" "$work/$n.ref.aov.exr")
   read -r unc bad _ < <(counts "$work/$n.c.aov.exr" "$work/$n.ref.aov.exr")
   read -r _ zbad _ < <(counts "$work/$n.z.aov.exr" "$work/$n.ref.aov.exr")
@@ -58,6 +61,10 @@ for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" \
   [[ $zbad == 0 ]] || faulted=$((faulted + 1))
   rer=$(json_num pixels_rerendered "$work/$n.cr.json")
   [[ $rer == "$runc" ]] || because "re-rendered $rer pixels, $runc have uncertified samples"
+  read -r crunc _ crdec < <(counts "$work/$n.ccr.aov.exr" "$work/$n.ref.aov.exr")
+  [[ $crdec == 0 ]] || because "CPU re-rendered: $crdec pixels decide otherwise than f64"
+  crer=$(json_num pixels_rerendered "$work/$n.ccr.json")
+  [[ $crer == "$crunc" ]] || because "CPU: re-rendered $crer pixels, $crunc have uncertified samples"
   echo "$n: f32 differs on $plain pixels; uncertified pixels GPU $unc, CPU $cunc; zero bound: $zbad broken"
   check "$n" "$why"
 done
