@@ -37,7 +37,14 @@ layout(constant_id = RC_SPEC_SPECULAR_MODEL) const uint spec_specular_model = RC
 layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth = RC_DEPTH_FROM_FRAME;
 layout(constant_id = RC_SPEC_SAMPLES) const uint spec_samples = RC_SAMPLES_FROM_FRAME;
 layout(constant_id = RC_SPEC_LIGHT_PASSES) const bool light_passes = false;
-layout(constant_id = RC_SPEC_CERTIFY) const bool certify = false;
+// RC_CERTIFY=1 builds the module of --precision certified (rc_certify.glsl); the others have
+// none of its code, which is under `#if RC_CERTIFY` where it is called: lavapipe translates a
+// whole module before specialization drops dead code, and the certificates cost every
+// pipeline about 100 ms of creation there.
+#ifndef RC_CERTIFY
+#define RC_CERTIFY 0
+#endif
+const bool certify = RC_CERTIFY != 0;
 
 layout(std140, binding = RC_BINDING_FRAME) uniform Frame { packed_frame frame; };
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
@@ -90,7 +97,9 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
 #include "rc_triangle.glsl"
+#if RC_CERTIFY
 #include "rc_certify.glsl"
+#endif
 #if RC_QUADRICS
 #include "rc_quadric.glsl"
 #endif
@@ -142,7 +151,9 @@ void main() {
         pass_first_light = done - s * lights;
         pass_end_light = min(pass_first_light + push.light_pass, lights);
         sum.rgb += vec3(trace_sample(pixel, s));
-        if (certify && !cert_ok) uncertified++;
+#if RC_CERTIFY
+        if (!cert_ok) uncertified++;
+#endif
         target = s * lights + pass_end_light;
         // The first sample's record gathers its shadow bits over the passes.
         aov_write = aov_enabled && s == 0u;
@@ -158,7 +169,9 @@ void main() {
       for (uint s = done; s < target; s++) {
         if (!budget_step()) break;
         sum.rgb += vec3(trace_sample(pixel, s));
-        if (certify && !cert_ok) uncertified++;
+#if RC_CERTIFY
+        if (!cert_ok) uncertified++;
+#endif
       }
     }
 #if RC_QUADRICS

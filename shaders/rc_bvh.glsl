@@ -33,7 +33,9 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
     real side;
     rvec3 bary;
     uint part;
+#if RC_CERTIFY
     if (certify) cert_object(object, o, d, sh, any ? t_max : h.t);
+#endif
     real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary, part);
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(object, t, side, bary, part, h);
@@ -67,7 +69,10 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, uint first, uint end, 
     while (node < node_count && leaf == 0u && budget_steps < loop_budget) {
       budget_steps++;
       packed_bvh_node n = load_bvh_node(node);
-      real limit = any ? cert_limit(t_max, cert_t_max_err) : cert_limit(h.t, h.err);
+      real limit = any ? t_max : h.t;
+#if RC_CERTIFY
+      if (certify) limit = any ? cert_limit(t_max, cert_t_max_err) : cert_limit(h.t, h.err);
+#endif
       bool enters = intersect_box(rvec3(n.lo), rvec3(n.hi), o, inv_d, limit) < real(RC_T_FAR);
       // An entered inner node continues at its first child, the next node; a missed box
       // continues past its subtree, and so does an entered leaf once it is tested.
@@ -103,9 +108,13 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   // another copy of the whole object dispatch (composites included) here cost the
   // quadric and CSG scenes 25-40 % of their frame time; even this loop, never entered,
   // cost 6 % until RC_KIND_PLANES compiled it out.
+#if RC_CERTIFY
   ray_shear sh = ray_shear_for(d);  // for the certificates only: a plane has no shear
+#endif
   for (uint k = first; k < frame.quadric_count; k++) {
+#if RC_CERTIFY
     if (certify) cert_object(first_quadric_object + k, o, d, sh, any ? t_max : h.t);
+#endif
     real t = intersect_plane(load_quadric(k), o, d, any ? t_max : h.t);
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(first_quadric_object + k, t, 0.0, rvec3(0.0), csg_code(k, 0u, false, false), h);
@@ -117,15 +126,21 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
 // The queries shading uses: the BVH or brute force, as the pipeline was specialized.
 bool closest_hit(rvec3 o, rvec3 d, out hit_record h) {
   h = no_hit();
-  cert_any = false;
-  cert_beyond = real(RC_T_FAR);
+#if RC_CERTIFY
+  if (certify) {
+    cert_any = false;
+    cert_beyond = real(RC_T_FAR);
+  }
+#endif
   if (use_bvh) {
     traverse_bvh(o, d, false, real(RC_T_FAR), 0u, frame.bvh_node_count, h);
     test_planes(o, d, false, real(RC_T_FAR), h);
   } else {
     closest_hit_linear(o, d, h);
   }
+#if RC_CERTIFY
   if (certify) cert_closest(h);
+#endif
   return h.kind != RC_HIT_NONE;
 }
 
@@ -156,7 +171,9 @@ uvec2 shadow_nodes(uint light, rvec3 d, real t_max) {
 }
 
 bool occluded(rvec3 o, rvec3 d, real t_max, uint light) {
-  cert_any = true;
+#if RC_CERTIFY
+  if (certify) cert_any = true;
+#endif
   if (!use_bvh) return occluded_linear(o, d, t_max);
   hit_record h = no_hit();
   uvec2 nodes = shadow_nodes(light, d, t_max);

@@ -140,10 +140,11 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
   return real(RC_T_FAR);
 }
 
+#if RC_CERTIFY
 // Where a closest-hit traversal may stop looking: a box entered up to the nearest hit's t plus
 // its bound, and the perturbation's reach there, may hold a root the reference finds nearer.
 real cert_limit(real t, real e) {
-  if (!certify || !(t < real(RC_T_FAR))) return t;
+  if (!(t < real(RC_T_FAR))) return t;
   return t + 2.0 * cert_factor() * (e + cert_eo + t * cert_ed);
 }
 
@@ -156,12 +157,15 @@ void cert_order(real t, uint object, inout hit_record h) {
   }
   cert_beyond = select_min(cert_beyond, t - cert_factor() * cert_t_err);
 }
+#endif
 
 // The tie rule of both backends and both traversals: the nearer hit wins, and on equal
 // t the lower object number, whatever order the objects were visited in.
 void consider_hit(uint object, real t, real side, rvec3 bary, uint part, inout hit_record h) {
   if (t >= real(RC_T_FAR)) return;
+#if RC_CERTIFY
   if (certify) cert_order(t, object, h);
+#endif
   if (t < h.t || (t == h.t && object < h.object)) {
     h.t = t;
     h.object = object;
@@ -169,8 +173,12 @@ void consider_hit(uint object, real t, real side, rvec3 bary, uint part, inout h
     h.side = side;
     h.bary = bary;
     h.part = part;
-    h.err = cert_t_err;
-    h.bary_err = cert_bary_err;
+#if RC_CERTIFY
+    if (certify) {
+      h.err = cert_t_err;
+      h.bary_err = cert_bary_err;
+    }
+#endif
   }
 }
 
@@ -188,6 +196,7 @@ hit_record no_hit() {
   return h;
 }
 
+#if RC_CERTIFY
 // The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
 // the kinds rc_certify.glsl bounds, none of the others.
 void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
@@ -213,6 +222,7 @@ void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
 void cert_closest(hit_record h) {
   if (h.kind != RC_HIT_NONE && !(cert_beyond > h.t + cert_factor() * h.err)) cert_ok = false;
 }
+#endif
 
 // Brute force: every object, in order.
 void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
@@ -225,7 +235,9 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
     real side;
     rvec3 bary;
     uint part;
+#if RC_CERTIFY
     if (certify) cert_object(i, o, d, sh, h.t);
+#endif
     real t = intersect_object(i, o, d, sh, h.t, side, bary, part);
     consider_hit(i, t, side, bary, part, h);
   }
@@ -243,7 +255,9 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint part;
+#if RC_CERTIFY
     if (certify) cert_object(i, o, d, sh, t_max);
+#endif
     if (intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR)) return true;
   }
   return false;

@@ -209,6 +209,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   return sf;
 }
 
+#if RC_CERTIFY
 // The surface's decisions and the perturbation of its point and normal (rc_shade.glsl,
 // surface_at). The exact hit point of a ray moved by (do, dd) moves by (|do| + t |dd|) / |cos|
 // along the surface (cos = n.d), on top of both points' rounding (p_error); a sphere's normal
@@ -238,12 +239,17 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
   cert_en = en;
 }
 
+// The perturbation of a spawned ray's origin: the point's, and the offset, which the
+// reference's differs from by at most this one's length, and the offset's rounding.
+real cert_origin(surface sf, rvec3 origin) {
+  return cert_ep + 2.0 * length(origin - sf.p) + gamma_bound(2.0) * length(origin);
+}
+
 // A shadow ray's perturbation (rc_shade.glsl, light_at and shade_phong) and its decision to be
-// cast (n.l > 0). Its origin moves with the point, and the offset the reference applies
-// differs from this one by at most this one's length; towards a point light its direction
-// turns by twice that over the distance, and t_max moves by as much.
+// cast (n.l > 0): towards a point light its direction turns by twice its origin's move over
+// the distance, and t_max moves by as much.
 void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
-  real eo = cert_ep + 2.0 * length(origin - sf.p) + gamma_bound(2.0) * length(origin);
+  real eo = cert_origin(sf, origin);
   if (light.type == RC_LIGHT_POINT) {
     real r = length(rvec3(light.position) - sf.p);
     real dist = length(rvec3(light.position) - origin);
@@ -263,9 +269,10 @@ void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
 // A mirror bounce's perturbation (rc_trace.glsl): the origin as a shadow ray's, the direction
 // reflect(d, n) = d - 2 (d.n) n by dd and twice the normal's turn, doubled by normalize.
 void cert_reflect(surface sf, rvec3 origin, real ed_in) {
-  cert_eo = cert_ep + 2.0 * length(origin - sf.p) + gamma_bound(2.0) * length(origin);
+  cert_eo = cert_origin(sf, origin);
   cert_ed = 2.0 * (ed_in + 2.0 * cert_en) + gamma_bound(8.0);
 }
+#endif
 
 #if RC_F64
 #define RC_OFFSET_INT int64_t
@@ -496,7 +503,9 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     real shadow_t_max;
     if (!light_at(load_light(i), sf.p, origin, l, irradiance, to_light, shadow_t_max)) continue;
     real n_dot_l = dot(sf.n, l);
+#if RC_CERTIFY
     if (certify) cert_shadow(load_light(i), sf, origin, n_dot_l);
+#endif
     if (n_dot_l <= 0.0) continue;
     if (scene_shadows()) shadow_rays++;
     if (scene_shadows() && occluded(t_min_start(origin, to_light), to_light, t_min_end(shadow_t_max), i)) {

@@ -81,8 +81,7 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 /* bool: a sample's lights are shaded in passes of push.light_pass (host/gpu/gpu_plan.h),
  * and accum.a counts lights (sample x lights + lights done) instead of samples */
 #define RC_SPEC_LIGHT_PASSES 15
-#define RC_SPEC_CERTIFY 16         /* bool: certify every decision (rc_certify.glsl) */
-#define RC_SPEC_COUNT 17 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
+#define RC_SPEC_COUNT 16 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
 #define RC_KIND_SPHERES 1u
 #define RC_KIND_TRIANGLES 2u
 #define RC_KIND_QUADRICS 4u /* the quadric test: a standalone quadric that is not a plane, or planes

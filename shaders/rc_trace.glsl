@@ -27,7 +27,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   rvec3 o;
   rvec3 d;
   camera_ray(raster, o, d);
+#if RC_CERTIFY
   if (certify) cert_camera(raster);
+#endif
   rvec3 color = rvec3(0.0);
   rvec3 weight = rvec3(1.0);
   for (uint depth = 0u; depth <= scene_reflection_depth(); depth++) {
@@ -42,9 +44,11 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
       break;
     }
     surface sf = surface_at(o, d, h);
+#if RC_CERTIFY
     if (certify) cert_surface(d, h, sf);
     real ed_in = cert_ed;
     if (certify) cert_spawn_object = h.object;
+#endif
     if (aov_recording) aov_record.normal = vec3(sf.n);
     color += weight * shade_phong(sf, d);
     aov_recording = false;
@@ -54,7 +58,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));
     o = t_min_start(o, d);
+#if RC_CERTIFY
     if (certify) cert_reflect(sf, o, ed_in);
+#endif
     if (light_pass_begin() == 0u) reflection_rays++;
   }
   return color;

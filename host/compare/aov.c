@@ -53,15 +53,15 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
     }
     bool same_hit = x[la->hit] == y[lb->hit];
     bool same_object = same_hit && x[la->object] == y[lb->object];
-    bool same_shadow = same_object && x[la->shadow] == y[lb->shadow];
+    bool same_decisions = same_object && x[la->shadow] == y[lb->shadow];
     r->hit_mismatch += !same_hit;
     r->object_mismatch += same_hit && !same_object;
-    r->shadow_mismatch += same_object && !same_shadow;
+    r->shadow_mismatch += same_object && !same_decisions;
     /* A's certified pixels (--precision certified): their decisions are claimed to be the
      * f64 reference's, so against it any difference is a broken certificate. */
     bool certified = la->uncertified >= 0 && x[la->uncertified] == 0;
     r->uncertified_pixels += la->uncertified >= 0 && x[la->uncertified] != 0;
-    r->certified_mismatch += certified && !same_shadow;
+    r->certified_mismatch += certified && !same_decisions;
     if (!same_object || y[lb->hit] == 0) continue;
     /* Depth relative to the reference's; the normal as the angle between the two. */
     double tb = y[lb->t], dt = fabs((double)x[la->t] - tb) / (tb != 0 ? fabs(tb) : 1);

@@ -72,7 +72,6 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
   v[RC_SPEC_REFLECTION_DEPTH] = generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth;
   v[RC_SPEC_SAMPLES] = generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel;
   v[RC_SPEC_LIGHT_PASSES] = r->light_passes ? VK_TRUE : VK_FALSE;
-  v[RC_SPEC_CERTIFY] = f->certify != RC_CERTIFY_OFF ? VK_TRUE : VK_FALSE;
 }
 
 rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
@@ -85,7 +84,10 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
   rc_shader_kinds kinds = r->opts.generic_pipeline || r->frame.patch_count ? RC_SHADER_PATCHES
                           : r->frame.quadric_count || r->frame.csg_count  ? RC_SHADER_QUADRICS
                                                                            : RC_SHADER_PLAIN;
-  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, r->opts.f64, kinds);
+  rc_shader_precision precision = r->frame.certify != RC_CERTIFY_OFF ? RC_SHADER_CERTIFIED
+                                  : r->opts.f64                     ? RC_SHADER_F64
+                                                                    : RC_SHADER_F32;
+  rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, precision, kinds);
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                   .codeSize = code.size,
                                   .pCode = code.words};

@@ -7,29 +7,39 @@
 #include "raycast_image_f64.spv.h"
 #include "raycast_image_f64_plain.spv.h"
 #include "raycast_image_f64_quadric.spv.h"
+#include "raycast_image_cert.spv.h"
+#include "raycast_image_cert_plain.spv.h"
+#include "raycast_image_cert_quadric.spv.h"
 #include "raycast_storage.spv.h"
 #include "raycast_storage_plain.spv.h"
 #include "raycast_storage_quadric.spv.h"
 #include "raycast_storage_f64.spv.h"
 #include "raycast_storage_f64_plain.spv.h"
 #include "raycast_storage_f64_quadric.spv.h"
+#include "raycast_storage_cert.spv.h"
+#include "raycast_storage_cert_plain.spv.h"
+#include "raycast_storage_cert_quadric.spv.h"
 #include "raycast_texel.spv.h"
 #include "raycast_texel_plain.spv.h"
 #include "raycast_texel_quadric.spv.h"
 #include "raycast_texel_f64.spv.h"
 #include "raycast_texel_f64_plain.spv.h"
 #include "raycast_texel_f64_quadric.spv.h"
+#include "raycast_texel_cert.spv.h"
+#include "raycast_texel_cert_plain.spv.h"
+#include "raycast_texel_cert_quadric.spv.h"
 
 #define SPIRV(array) ((rc_spirv){array, sizeof array})
 
 const char *const rc_scene_buffer_names[] = {"image", "texel", "storage", NULL};
 
-rc_spirv rc_shader_raycast(rc_scene_buffers buffers, bool f64, rc_shader_kinds kinds) {
-  /* [buffers][f64][kinds], as CMakeLists.txt names the variants. */
+rc_spirv rc_shader_raycast(rc_scene_buffers buffers, rc_shader_precision precision, rc_shader_kinds kinds) {
+  /* [buffers][precision][kinds], as CMakeLists.txt names the variants. */
 #define KINDS(stem) {SPIRV(rc_spv_##stem##_plain), SPIRV(rc_spv_##stem##_quadric), SPIRV(rc_spv_##stem)}
-  static const rc_spirv modules[3][2][3] = {{KINDS(raycast_image), KINDS(raycast_image_f64)},
-                                            {KINDS(raycast_texel), KINDS(raycast_texel_f64)},
-                                            {KINDS(raycast_storage), KINDS(raycast_storage_f64)}};
+  static const rc_spirv modules[3][3][3] = {
+      {KINDS(raycast_image), KINDS(raycast_image_f64), KINDS(raycast_image_cert)},
+      {KINDS(raycast_texel), KINDS(raycast_texel_f64), KINDS(raycast_texel_cert)},
+      {KINDS(raycast_storage), KINDS(raycast_storage_f64), KINDS(raycast_storage_cert)}};
 #undef KINDS
-  return modules[buffers][f64][kinds];
+  return modules[buffers][precision][kinds];
 }

@@ -26,8 +26,11 @@ extern const char *const rc_scene_buffer_names[];
  * and composites' (RC_PATCHES=0), or that and the Bezier patches' too. */
 typedef enum { RC_SHADER_PLAIN, RC_SHADER_QUADRICS, RC_SHADER_PATCHES } rc_shader_kinds;
 
-/* raycast.comp reading the scene arrays as `buffers`, with f32 or f64 (RC_F64: needs
- * shaderFloat64 and shaderInt64) geometry and shading math, with `kinds`' code. */
-rc_spirv rc_shader_raycast(rc_scene_buffers buffers, bool f64, rc_shader_kinds kinds);
+/* The arithmetic: f32, f64 (RC_F64: needs shaderFloat64 and shaderInt64), or f32 with
+ * every decision certified (RC_CERTIFY, rc_certify.glsl; only that module has its code). */
+typedef enum { RC_SHADER_F32, RC_SHADER_F64, RC_SHADER_CERTIFIED } rc_shader_precision;
+
+/* raycast.comp reading the scene arrays as `buffers`, in `precision`, with `kinds`' code. */
+rc_spirv rc_shader_raycast(rc_scene_buffers buffers, rc_shader_precision precision, rc_shader_kinds kinds);
 
 #endif

@@ -50,7 +50,8 @@ bool REF(traverse_bvh)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_m
     while (node < end) {
       n = &sc->bvh_nodes[node];
       ref_work++;
-      real limit = any ? REF(cert_limit)(sc, t_max, ref_cert_t_max_err) : REF(cert_limit)(sc, h->t, h->err);
+      real limit = any ? t_max : h->t;
+      if (sc->frame->certify) limit = any ? REF(cert_limit)(sc, t_max, ref_cert_t_max_err) : REF(cert_limit)(sc, h->t, h->err);
       if (REF(intersect_box)(rvec3_from(n->lo), rvec3_from(n->hi), o, inv_d, limit) >= (real)RC_T_FAR) {
         node = n->skip;
       } else if (n->leaf == 0) {
@@ -85,8 +86,10 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
 
 bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
   *h = REF(no_hit)();
-  ref_cert_any = false;
-  ref_cert_beyond = (real)RC_T_FAR;
+  if (sc->frame->certify) {
+    ref_cert_any = false;
+    ref_cert_beyond = (real)RC_T_FAR;
+  }
   if (sc->use_bvh) {
     REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, 0, sc->frame->bvh_node_count, h);
     REF(test_planes)(sc, o, d, false, (real)RC_T_FAR, h);
@@ -124,7 +127,7 @@ void REF(shadow_nodes)(const ref_scene *sc, uint32_t light, rvec3 d, real t_max,
 }
 
 bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t light) {
-  ref_cert_any = true;
+  if (sc->frame->certify) ref_cert_any = true;
   if (!sc->use_bvh) return REF(occluded_linear)(sc, o, d, t_max);
   ref_hit h = REF(no_hit)();
   uint32_t first, end;

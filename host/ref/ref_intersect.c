@@ -116,7 +116,7 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
 }
 
 real REF(cert_limit)(const ref_scene *sc, real t, real e) {
-  if (!sc->frame->certify || !(t < (real)RC_T_FAR)) return t;
+  if (!(t < (real)RC_T_FAR)) return t;
   return t + 2 * REF(cert_factor)(sc) * (e + ref_cert_eo + t * ref_cert_ed);
 }
 
@@ -138,8 +138,10 @@ void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, 
     h->side = side;
     h->bary = bary;
     h->part = part;
-    h->err = ref_cert_t_err;
-    h->bary_err = ref_cert_bary_err;
+    if (sc->frame->certify) {
+      h->err = ref_cert_t_err;
+      h->bary_err = ref_cert_bary_err;
+    }
   }
 }
 

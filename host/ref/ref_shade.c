@@ -191,8 +191,12 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
   ref_cert_en = en;
 }
 
+real REF(cert_origin)(const ref_surface *sf, rvec3 origin) {
+  return ref_cert_ep + 2 * RV(length)(RV(sub)(origin, sf->p)) + REF(gamma_bound)(2) * RV(length)(origin);
+}
+
 void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface *sf, rvec3 origin, real n_dot_l) {
-  real eo = ref_cert_ep + 2 * RV(length)(RV(sub)(origin, sf->p)) + REF(gamma_bound)(2) * RV(length)(origin);
+  real eo = REF(cert_origin)(sf, origin);
   if (light.type == RC_LIGHT_POINT) {
     real r = RV(length)(RV(sub)(rvec3_from(light.position), sf->p));
     real dist = RV(length)(RV(sub)(rvec3_from(light.position), origin));
@@ -210,7 +214,7 @@ void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface
 }
 
 void REF(cert_reflect)(const ref_surface *sf, rvec3 origin, real ed_in) {
-  ref_cert_eo = ref_cert_ep + 2 * RV(length)(RV(sub)(origin, sf->p)) + REF(gamma_bound)(2) * RV(length)(origin);
+  ref_cert_eo = REF(cert_origin)(sf, origin);
   ref_cert_ed = 2 * (ed_in + 2 * ref_cert_en) + REF(gamma_bound)(8);
 }
 

@@ -50,6 +50,7 @@ extern _Thread_local packed_aov ref_aov_record;
   V ref_trace_sample_##S(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s);              \
   void ref_cert_camera_##S(const ref_scene *sc, ref_vec2 raster);                               \
   void ref_cert_surface_##S(const ref_scene *sc, V d, const ref_hit_##S *h, const ref_surface_##S *sf); \
+  R ref_cert_origin_##S(const ref_surface_##S *sf, V origin);                                   \
   void ref_cert_shadow_##S(const ref_scene *sc, packed_light light, const ref_surface_##S *sf, V origin, R n_dot_l); \
   void ref_cert_reflect_##S(const ref_surface_##S *sf, V origin, R ed_in);
 
