@@ -12,7 +12,7 @@
 // that perturbation can change (first order, as pbrt's running error bounds: Pharr, Jakob &
 // Humphreys, PBR 4th ed. §6.8; Higham, Accuracy and Stability of Numerical Algorithms §3.1,
 // gamma(n) = n u / (1 - n u)). Tests this file has no bound for (bounded quadrics, composites,
-// patches, transformed spheres, the fast formulas, one-sided triangles) leave their sample
+// patches, the fast formulas, one-sided triangles) leave their sample
 // uncertified whenever a ray tests them: the host re-renders it, so the image stays exact.
 
 bool cert_ok = true;          // every decision of this sample so far is certified
@@ -89,15 +89,13 @@ bool cert_root(real t, real e, real t_max, bool ahead) {
 }
 
 // The geometric sphere test's decisions (rc_intersect.glsl, intersect_sphere_geometric),
-// recomputed. l, the centre's offset from the ray's line, moves by |do| + 2 |f| |dd| under the
-// perturbation and by gamma(8) 2 |f| under rounding; the discriminant r^2 - |l|^2 by 2 |l| dl +
-// dl^2 and gamma(4) of its terms. The root q = -(b + sign(b) sqrt D) carries b's and sqrt's
-// errors, c / q adds c's (which cancels for an origin on the sphere).
-void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
-  if (sphere_formula != RC_SPHERE_GEOMETRIC || s.transform != RC_NO_TRANSFORM) {
-    cert_fail();
-    return;
-  }
+// recomputed, for the ray (o, d) in the sphere's own space. l, the centre's offset from the
+// ray's line, moves by |do| + 2 |f| |dd| under the perturbation and by gamma(8) 2 |f| under
+// rounding; the discriminant r^2 - |l|^2 by 2 |l| dl + dl^2 and gamma(4) of its terms. The
+// root q = -(b + sign(b) sqrt D) carries b's and sqrt's errors, c / q adds c's (which cancels
+// for an origin on the sphere). The roots are judged in packed space: times `scale`, their
+// bounds too, plus `rel` of them (a transformed sphere's 1 / len and its error).
+void cert_sphere_roots(rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale, real rel) {
   real r = real(s.radius);
   precise rvec3 f = o - rvec3(s.center);
   precise real b = dot(f, d);
@@ -124,10 +122,16 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
   real e_c = 2.0 * fm * cert_eo + cert_eo * cert_eo + gamma_bound(4.0) * (ff + r * r);
   real e_t0 = (abs(q) > e_q) ? (e_c + abs(t0) * e_q) / (abs(q) - e_q) + gamma_bound(1.0) * abs(t0) : real(RC_T_FAR);
   real e = select_max(e_q, e_t0);
-  real t_near = select_min(t0, q);
-  real t_exit = select_max(t0, q);
-  if (cert_root(t_near, e, t_max, t_near > 0.0)) return;
-  cert_root(t_exit, e, t_max, t_exit > 0.0);
+  real t_near = select_min(t0, q) * scale;
+  real t_exit = select_max(t0, q) * scale;
+  if (cert_root(t_near, e * scale + abs(t_near) * rel, t_max, t_near > 0.0)) return;
+  cert_root(t_exit, e * scale + abs(t_exit) * rel, t_max, t_exit > 0.0);
+}
+
+// Frobenius norm of a transform's linear part: it bounds how far A stretches a vector.
+real cert_norm(packed_transform m) {
+  return sqrt(dot(rvec3(m.row0.xyz), rvec3(m.row0.xyz)) + dot(rvec3(m.row1.xyz), rvec3(m.row1.xyz)) +
+              dot(rvec3(m.row2.xyz), rvec3(m.row2.xyz)));
 }
 
 // The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed. A

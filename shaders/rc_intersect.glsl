@@ -197,6 +197,34 @@ hit_record no_hit() {
 }
 
 #if RC_CERTIFY
+// A sphere's decisions (intersect_any_sphere) A transformed one is
+// tested in object space, along d_obj = A d normalized, and t = t_obj / |d_obj|: the ray's
+// perturbation goes there as |A| do and |A| dd over |d_obj|, with gamma(4) of the terms of
+// A o + b and A d; the roots come back scaled by 1 / |d_obj|, whose error is that of |d_obj|
+// relative to it, plus the rounding of the scaling and of t_max |d_obj|.
+void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
+  if (sphere_formula != RC_SPHERE_GEOMETRIC) {
+    cert_fail();
+    return;
+  }
+  if (s.transform == RC_NO_TRANSFORM) {
+    cert_sphere_roots(o, d, s, t_max, 1.0, 0.0);
+    return;
+  }
+  packed_transform m = load_transform(s.transform);
+  rvec3 d_obj = transform_vector(m, d);
+  real len = length(d_obj);
+  real na = cert_norm(m);
+  real eo = cert_eo;
+  real ed = cert_ed;
+  real err = na * ed + gamma_bound(4.0) * na;
+  cert_eo = na * eo + gamma_bound(4.0) * (na * length(o) + length(rvec3(m.row0.w, m.row1.w, m.row2.w)));
+  cert_ed = err / (len - err) + gamma_bound(4.0);
+  cert_sphere_roots(transform_point(m, o), d_obj / len, s, t_max, 1.0 / len, err / (len - err) + gamma_bound(3.0));
+  cert_eo = eo;
+  cert_ed = ed;
+}
+
 // The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
 // the kinds rc_certify.glsl bounds, none of the others.
 void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {

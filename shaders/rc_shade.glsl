@@ -212,16 +212,30 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
 #if RC_CERTIFY
 // The surface's decisions and the perturbation of its point and normal (rc_shade.glsl,
 // surface_at). The exact hit point of a ray moved by (do, dd) moves by (|do| + t |dd|) / |cos|
-// along the surface (cos = n.d), on top of both points' rounding (p_error); a sphere's normal
-// turns by that over r. The side the normal is flipped to is a decision on n.d.
+// along the surface (cos = n.d), on top of both points' rounding (p_error, and where the point
+// is o + t d, t's own error, which p_error leaves out); a sphere's normal turns by that over r
+// (through a transform A, by |A| times that, and normalize(A^T n) by |A| / sigma_min(A) of it,
+// sigma_min(A) >= 2 |det A| / |A|_F^2). The side the normal is flipped to is a decision on n.d.
 void cert_surface(rvec3 d, hit_record h, surface sf) {
-  real ep_round = 2.0 * length(sf.p_error);
+  uint transform = (h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform : RC_NO_TRANSFORM;
+  bool along_ray = h.kind == RC_HIT_QUADRIC || transform != RC_NO_TRANSFORM;
+  real ep_round = 2.0 * length(sf.p_error) + (along_ray ? h.err : 0.0);
   real cosine = abs(dot(sf.ng, d));
   real e_cos = cert_ed + gamma_bound(12.0);
   cert_require(cosine, e_cos);
   real ep = ep_round + 2.0 * (cert_eo + h.t * cert_ed) / select_max(cosine - e_cos, RC_SMALLEST_NORMAL);
   real en = gamma_bound(12.0);
-  if (h.kind == RC_HIT_SPHERE) en += 2.0 * ep / real(load_sphere(h.index).radius);
+  if (h.kind == RC_HIT_SPHERE) {
+    real dn = 2.0 * ep / real(load_sphere(h.index).radius);
+    if (transform == RC_NO_TRANSFORM) {
+      en += dn;
+    } else {
+      packed_transform m = load_transform(transform);
+      real na = cert_norm(m);
+      real det = abs(dot(rvec3(m.row0.xyz), cross(rvec3(m.row1.xyz), rvec3(m.row2.xyz))));
+      en += (na * na * dn + gamma_bound(4.0) * na) * na * na / det + gamma_bound(4.0);
+    }
+  }
   if (h.kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = load_triangle(h.index);
     if (has_kind(RC_KIND_VERTEX_NORMALS) && tri.normals != RC_NO_NORMALS) {

@@ -55,11 +55,7 @@ bool REF(cert_root)(const ref_scene *sc, real t, real e, real t_max, bool ahead)
   return true;
 }
 
-void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max) {
-  if (sc->frame->sphere_formula != RC_SPHERE_GEOMETRIC || s.transform != RC_NO_TRANSFORM) {
-    REF(cert_fail)();
-    return;
-  }
+void REF(cert_sphere_roots)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale, real rel) {
   real r = (real)s.radius;
   rvec3 f = RV(sub)(o, rvec3_from(s.center));
   real b = RV(dot)(f, d);
@@ -87,10 +83,16 @@ void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, re
   real e_t0 = (R_ABS(q) > e_q) ? (e_c + R_ABS(t0) * e_q) / (R_ABS(q) - e_q) + REF(gamma_bound)(1) * R_ABS(t0)
                                : (real)RC_T_FAR;
   real e = rmax(e_q, e_t0);
-  real t_near = rmin(t0, q);
-  real t_exit = rmax(t0, q);
-  if (REF(cert_root)(sc, t_near, e, t_max, t_near > 0)) return;
-  REF(cert_root)(sc, t_exit, e, t_max, t_exit > 0);
+  real t_near = rmin(t0, q) * scale;
+  real t_exit = rmax(t0, q) * scale;
+  if (REF(cert_root)(sc, t_near, e * scale + R_ABS(t_near) * rel, t_max, t_near > 0)) return;
+  REF(cert_root)(sc, t_exit, e * scale + R_ABS(t_exit) * rel, t_max, t_exit > 0);
+}
+
+real REF(cert_norm)(const packed_transform *m) {
+  return R_SQRT(RV(dot)(rvec3_from(rcm_xyz(m->row0)), rvec3_from(rcm_xyz(m->row0))) +
+                RV(dot)(rvec3_from(rcm_xyz(m->row1)), rvec3_from(rcm_xyz(m->row1))) +
+                RV(dot)(rvec3_from(rcm_xyz(m->row2)), rvec3_from(rcm_xyz(m->row2))));
 }
 
 void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max) {

@@ -159,6 +159,30 @@ ref_hit REF(no_hit)(void) {
   return h;
 }
 
+void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max) {
+  if (sc->frame->sphere_formula != RC_SPHERE_GEOMETRIC) {
+    REF(cert_fail)();
+    return;
+  }
+  if (s.transform == RC_NO_TRANSFORM) {
+    REF(cert_sphere_roots)(sc, o, d, s, t_max, 1, 0);
+    return;
+  }
+  const packed_transform *m = &sc->transforms[s.transform];
+  rvec3 d_obj = REF(transform_vector)(m, d);
+  real len = RV(length)(d_obj);
+  real na = REF(cert_norm)(m);
+  real eo = ref_cert_eo;
+  real ed = ref_cert_ed;
+  real err = na * ed + REF(gamma_bound)(4) * na;
+  ref_cert_eo = na * eo + REF(gamma_bound)(4) * (na * RV(length)(o) + RV(length)(RV(make)(m->row0.w, m->row1.w, m->row2.w)));
+  ref_cert_ed = err / (len - err) + REF(gamma_bound)(4);
+  REF(cert_sphere_roots)(sc, REF(transform_point)(m, o), RV(scale)(d_obj, 1 / len), s, t_max, 1 / len,
+                         err / (len - err) + REF(gamma_bound)(3));
+  ref_cert_eo = eo;
+  ref_cert_ed = ed;
+}
+
 void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
   ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
   uint32_t index;

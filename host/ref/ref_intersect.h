@@ -72,6 +72,8 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_require_##S(const ref_scene *sc, R margin, R bound);                            \
   void ref_cert_fail_##S(void);                                                                 \
   bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
+  void ref_cert_sphere_roots_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R scale, R rel); \
+  R ref_cert_norm_##S(const packed_transform *m);                                               \
   void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \
   void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max); \
   void ref_cert_plane_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);     \

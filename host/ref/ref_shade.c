@@ -167,13 +167,25 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
 }
 
 void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref_surface *sf) {
-  real ep_round = 2 * RV(length)(sf->p_error);
+  uint32_t transform = (h->kind == RC_HIT_SPHERE) ? sc->spheres[h->index].transform : RC_NO_TRANSFORM;
+  bool along_ray = h->kind == RC_HIT_QUADRIC || transform != RC_NO_TRANSFORM;
+  real ep_round = 2 * RV(length)(sf->p_error) + (along_ray ? h->err : 0);
   real cosine = R_ABS(RV(dot)(sf->ng, d));
   real e_cos = ref_cert_ed + REF(gamma_bound)(12);
   REF(cert_require)(sc, cosine, e_cos);
   real ep = ep_round + 2 * (ref_cert_eo + h->t * ref_cert_ed) / rmax(cosine - e_cos, RC_SMALLEST_NORMAL);
   real en = REF(gamma_bound)(12);
-  if (h->kind == RC_HIT_SPHERE) en += 2 * ep / (real)sc->spheres[h->index].radius;
+  if (h->kind == RC_HIT_SPHERE) {
+    real dn = 2 * ep / (real)sc->spheres[h->index].radius;
+    if (transform == RC_NO_TRANSFORM) {
+      en += dn;
+    } else {
+      const packed_transform *m = &sc->transforms[transform];
+      real na = REF(cert_norm)(m);
+      real det = R_ABS(RV(dot)(rvec3_from(rcm_xyz(m->row0)), RV(cross)(rvec3_from(rcm_xyz(m->row1)), rvec3_from(rcm_xyz(m->row2)))));
+      en += (na * na * dn + REF(gamma_bound)(4) * na) * na * na / det + REF(gamma_bound)(4);
+    }
+  }
   if (h->kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = sc->triangles[h->index];
     if (tri.normals != RC_NO_NORMALS) {
