@@ -207,7 +207,7 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
     cert_fail();
     return;
   }
-  if (s.transform == RC_NO_TRANSFORM) {
+  if (!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) {
     cert_sphere_roots(o, d, s, t_max, 1.0, 0.0);
     return;
   }

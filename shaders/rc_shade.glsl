@@ -217,7 +217,8 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
 // (through a transform A, by |A| times that, and normalize(A^T n) by |A| / sigma_min(A) of it,
 // sigma_min(A) >= 2 |det A| / |A|_F^2). The side the normal is flipped to is a decision on n.d.
 void cert_surface(rvec3 d, hit_record h, surface sf) {
-  uint transform = (h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform : RC_NO_TRANSFORM;
+  uint transform = (has_kind(RC_KIND_SPHERE_TRANSFORMS) && h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform
+                                                                                    : RC_NO_TRANSFORM;
   bool along_ray = h.kind == RC_HIT_QUADRIC || transform != RC_NO_TRANSFORM;
   real ep_round = 2.0 * length(sf.p_error) + (along_ray ? h.err : 0.0);
   real cosine = abs(dot(sf.ng, d));
