@@ -37,6 +37,9 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
     if (certify) cert_object(object, o, d, sh, any ? t_max : h.t);
 #endif
     real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary, part);
+#if RC_CERTIFY
+    if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends(true)) continue;
+#endif
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(object, t, side, bary, part, h);
   }
@@ -80,10 +83,17 @@ bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, uint first, uint end, 
       leaf = enters ? n.leaf : 0u;
     }
     if (leaf == 0u) {
-      if (node < node_count) budget_exhausted = true;  // stopped by the budget
+      bool stopped = node < node_count;  // by the budget
+#if RC_CERTIFY
+      stopped = stopped && !(certify && cert_blocked_later);  // not where the answer is known
+#endif
+      if (stopped) budget_exhausted = true;
       break;
     }
     uint count = leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+#if RC_CERTIFY
+    if (certify && cert_blocked_later && budget_steps + count > loop_budget) break;
+#endif
     if (!budget_take(count)) {
       budget_blame = 1u + load_bvh_prim(leaf >> RC_BVH_LEAF_SHIFT);
       return false;
@@ -100,6 +110,9 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
 #if RC_QUADRICS
   if (!has_kind(RC_KIND_PLANES)) return false;  // compiled out where the scene has none
   uint first = frame.quadric_count - frame.plane_count;  // in the quadric array
+#if RC_CERTIFY
+  if (certify && cert_blocked_later && budget_steps + frame.plane_count > loop_budget) return false;
+#endif
   if (!budget_take(frame.plane_count)) {
     budget_blame = 1u + first_quadric_object + first;
     return false;
@@ -116,6 +129,9 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
     if (certify) cert_object(first_quadric_object + k, o, d, sh, any ? t_max : h.t);
 #endif
     real t = intersect_plane(load_quadric(k), o, d, any ? t_max : h.t);
+#if RC_CERTIFY
+    if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends(true)) continue;
+#endif
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(first_quadric_object + k, t, 0.0, rvec3(0.0), csg_code(k, 0u, false, false), h);
   }
@@ -172,10 +188,26 @@ uvec2 shadow_nodes(uint light, rvec3 d, real t_max) {
 
 bool occluded(rvec3 o, rvec3 d, real t_max, uint light) {
 #if RC_CERTIFY
-  if (certify) cert_any = true;
+  bool ok = cert_ok;
+  if (certify) {
+    cert_any = true;
+    cert_blocked_later = false;
+    cert_blocker_certain = false;
+  }
 #endif
-  if (!use_bvh) return occluded_linear(o, d, t_max);
-  hit_record h = no_hit();
-  uvec2 nodes = shadow_nodes(light, d, t_max);
-  return traverse_bvh(o, d, true, t_max, nodes.x, nodes.y, h) || test_planes(o, d, true, t_max, h);
+  bool blocked;
+  if (!use_bvh) {
+    blocked = occluded_linear(o, d, t_max);
+  } else {
+    hit_record h = no_hit();
+    uvec2 nodes = shadow_nodes(light, d, t_max);
+    blocked = traverse_bvh(o, d, true, t_max, nodes.x, nodes.y, h) || test_planes(o, d, true, t_max, h);
+  }
+#if RC_CERTIFY
+  if (certify) {
+    blocked = blocked || cert_blocked_later;
+    cert_blocked(blocked, ok);
+  }
+#endif
+  return blocked;
 }

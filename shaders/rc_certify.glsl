@@ -27,6 +27,9 @@ uint cert_spawn_object = 0xffffffffu; // the object the ray leaves (spawned rays
 bool cert_self = false;       // the object being tested is that one
 real cert_ep = 0.0;           // |p - p_ref| of the last surface point
 real cert_en = 0.0;           // |n - n_ref| of its shading normal
+bool cert_hit_ok = false;     // a shadow ray's last object test was certified
+bool cert_blocked_later = false; // a shadow ray found an uncertain blocker and looks on
+bool cert_blocker_certain = false; // and then found one whose test is certified
 
 // The bound, widened by 2^-20 for the reference's own error, which is the same arithmetic's
 // 2^-29 times smaller; half of it or none where frame.certify injects those faults.
@@ -39,6 +42,15 @@ real cert_factor() {
 // bound; NaN never is.
 void cert_require(real margin, real bound) {
   if (!(abs(margin) > cert_factor() * bound)) cert_ok = false;
+}
+
+// How far normalize(b) can be from a / |a| when |b - a| <= x |a|, x < 1: the angle between
+// them has a sine of at most x, so the chord is at most x / sqrt(1 - x^2) (not the 2 x of
+// |b / |b| - a / |a|| <= 2 |b - a| / |a|), plus normalize's own rounding, whose length is
+// 1 +/- gamma(8) (a dot product, an inversesqrt of 2 ulp, a product); 2, the most two unit
+// vectors can differ by, where x is not small.
+real cert_turn(real x) {
+  return (x < 0.5) ? x / sqrt(1.0 - x * x) + gamma_bound(8.0) : 2.0;
 }
 
 // A decision this file cannot bound.
@@ -69,6 +81,24 @@ void cert_camera(vec2 raster) {
   }
 }
 
+// A test whose hit or miss is uncertain, but whose root, if the reference finds one, lies in
+// [lo, hi] (bounds already widened by cert_factor): that decision cannot change the query's
+// answer where the interval is behind the origin, past a shadow ray's t_max, or past the
+// nearest hit (cert_beyond, which cert_closest checks). Where this precision took the root
+// (`taken`), it can.
+void cert_maybe(real lo, real hi, real t_max, bool taken) {
+  if (taken) {
+    cert_fail();
+    return;
+  }
+  if (hi < 0.0) return;
+  if (cert_any) {
+    if (!(lo - t_max > cert_factor() * cert_t_max_err)) cert_fail();
+    return;
+  }
+  cert_beyond = select_min(cert_beyond, lo);
+}
+
 // Takes the decisions of a root t with bound e: t > 0 (`ahead`, the test's own verdict, which
 // for a spawned ray also drops roots within t's rounding of the origin), and t against t_max.
 // A root the test dropped on the object the ray leaves is certified: with the error-bound
@@ -88,6 +118,36 @@ bool cert_root(real t, real e, real t_max, bool ahead) {
   return true;
 }
 
+// A sphere the ray grazes: the discriminant's sign is uncertain, so the reference may find
+// roots where this precision finds none, or none where it finds two. Its roots, if any, are
+// -b_ref -/+ sqrt(D_ref) with |b_ref - b| <= e_b and 0 <= D_ref <= D + e_D: near -b. They
+// cannot be hit where the ray certainly leaves a sphere it starts outside of (b = f.d > 0
+// and c = |f|^2 - r^2 > 0, or the sphere is the one a spawned ray leaves, which both
+// precisions' offsets start outside of: both roots behind it), nor where cert_maybe finds
+// that interval outside the query. This precision's own roots are those of
+// intersect_sphere_geometric.
+void cert_sphere_grazing(real disc, real b, real c, real e_disc, real e_b, real e_c, real t_max, real scale,
+                         real rel) {
+  real k = cert_factor();
+  bool taken = false;
+  if (disc >= 0.0) {
+    precise real sq = sqrt(disc);
+    precise real q = (b >= 0.0) ? -(b + sq) : -(b - sq);
+    precise real t0 = c / q;
+    // Compared with t_max in packed space, with room for a transformed sphere's rounding
+    // of the comparison in object space (intersect_any_sphere).
+    real reach = t_max + abs(t_max) * 9.5367431640625e-07;
+    real t_near = select_min(t0, q) * scale;
+    real t_exit = select_max(t0, q) * scale;
+    taken = q != 0.0 && ((t_near > 0.0 && t_near <= reach) || (t_exit > 0.0 && t_exit <= reach));
+  }
+  if (!taken && b > k * e_b && (cert_self || c > k * e_c)) return;
+  real spread = sqrt(select_max(disc, 0.0) + k * e_disc) + k * e_b;
+  real lo = (-b - spread) * scale;
+  real hi = (-b + spread) * scale;
+  cert_maybe(lo - abs(lo) * rel, hi + abs(hi) * rel, t_max, taken);
+}
+
 // The geometric sphere test's decisions (rc_intersect.glsl, intersect_sphere_geometric),
 // recomputed, for the ray (o, d) in the sphere's own space. l, the centre's offset from the
 // ray's line, moves by |do| + 2 |f| |dd| under the perturbation and by gamma(8) 2 |f| under
@@ -103,11 +163,17 @@ void cert_sphere_roots(rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale
   precise real ll = dot(l, l);
   precise real disc = r * r - ll;
   precise real ff = dot(f, f);
+  precise real c = ff - r * r;
   real fm = sqrt(ff);
   real lm = sqrt(ll);
   real el = cert_eo + 2.0 * fm * cert_ed + gamma_bound(8.0) * 2.0 * fm;
   real e_disc = 2.0 * lm * el + el * el + gamma_bound(4.0) * (r * r + ll);
-  cert_require(disc, e_disc);
+  real e_b = cert_eo + fm * cert_ed + cert_eo * cert_ed + gamma_bound(4.0) * fm;
+  real e_c = 2.0 * fm * cert_eo + cert_eo * cert_eo + gamma_bound(4.0) * (ff + r * r);
+  if (!(abs(disc) > cert_factor() * e_disc)) {
+    cert_sphere_grazing(disc, b, c, e_disc, e_b, e_c, t_max, scale, rel);
+    return;
+  }
   if (disc < 0.0) return;
   precise real sq = sqrt(disc);
   precise real q = (b >= 0.0) ? -(b + sq) : -(b - sq);
@@ -115,11 +181,9 @@ void cert_sphere_roots(rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale
     cert_fail();
     return;
   }
-  precise real c = ff - r * r;
   precise real t0 = c / q;
   real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
-  real e_q = cert_eo + fm * cert_ed + gamma_bound(4.0) * fm + e_sq + gamma_bound(2.0) * abs(q);
-  real e_c = 2.0 * fm * cert_eo + cert_eo * cert_eo + gamma_bound(4.0) * (ff + r * r);
+  real e_q = e_b + e_sq + gamma_bound(2.0) * abs(q);
   real e_t0 = (abs(q) > e_q) ? (e_c + abs(t0) * e_q) / (abs(q) - e_q) + gamma_bound(1.0) * abs(t0) : real(RC_T_FAR);
   real e = select_max(e_q, e_t0);
   real t_near = select_min(t0, q) * scale;
@@ -134,12 +198,51 @@ real cert_norm(packed_transform m) {
               dot(rvec3(m.row2.xyz), rvec3(m.row2.xyz)));
 }
 
+// The error bound of a triangle's t = sum(e z) / det (rc_triangle.glsl, triangle_t), where
+// each edge function is off from the reference's by at most ee (the ray's move and rounding),
+// each depth by dz (and its own rounding, gamma(3)), and det by e_det. With the reference's
+// e + delta and z + zeta, exactly (t' - t)(det + sum delta) = sum delta (z - t) + sum (e +
+// delta) zeta: the edge functions' errors weigh the depths' spread about t, not the depths
+// themselves, as a bound on the numerator alone (pbrt's) has it. For a small triangle seen
+// from afar that is hundreds of times less. Then the numerator's rounding, gamma(3) of its
+// terms, and the quotient's and det's, over det.
+real cert_triangle_t_error(sheared_triangle st, real t, real det, real e_det, real ee, real dz, real se) {
+  if (!(abs(det) > e_det)) return real(RC_T_FAR);
+  real sz = abs(st.z.x) + abs(st.z.y) + abs(st.z.z);
+  real zt = abs(st.z.x - t) + abs(st.z.y - t) + abs(st.z.z - t) + gamma_bound(8.0) * (sz + 3.0 * abs(t));
+  real ez = abs(st.e.x * st.z.x) + abs(st.e.y * st.z.y) + abs(st.e.z * st.z.z);
+  real zeta = dz + gamma_bound(3.0) * max3_abs(st.z);
+  return (ee * zt + (se + 3.0 * ee) * zeta) / (abs(det) - e_det) + gamma_bound(3.0) * (ez + abs(t) * se) / abs(det);
+}
+
+// A triangle whose edge functions' signs are uncertain: the ray passes near an edge, and
+// the reference may take the hit where this precision does not, or not where it does. A
+// hit, either's, is at the plane's t = sum(e z) / sum(e), any signs; the sum moves by 3 ee
+// and rounds by gamma(2) of its terms. cert_maybe judges the
+// interval; a spawned ray's root on the triangle it leaves is dropped by both, as cert_root
+// says.
+void cert_triangle_grazing(sheared_triangle st, real t_max, real ee, real dz, real se) {
+  precise real sum = st.e.x + st.e.y + st.e.z;
+  real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
+  if (!(abs(sum) > cert_factor() * e_sum)) {
+    cert_fail();  // the ray runs along the plane, or the triangle is a sliver
+    return;
+  }
+  real t = triangle_t(st, sum);
+  real det = enclosing_det(st.e);
+  bool ahead = t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, sum));
+  if (!ahead && cert_self) return;
+  bool taken = det != 0.0 && ahead && t <= t_max;
+  real e_t = cert_triangle_t_error(st, t, sum, e_sum, ee, dz, se);
+  cert_maybe(t - cert_factor() * e_t, t + cert_factor() * e_t, t_max, taken);
+}
+
 // The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed. A
 // sheared coordinate a.x - s.x a.z moves by |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <=
 // |dd| (1 + |s.x|) / |d.z|, and rounds by gamma(5) of its terms (pbrt's delta_x); an edge
 // function x y' - y x' by the products of those and gamma(2) of its terms. A miss is certified
-// by two edge functions of certain opposite signs, a hit by three of certain sign. t = sum(e
-// z) / det moves with the edge functions and depths, on top of pbrt's rounding bound.
+// by two edge functions of certain opposite signs, a hit by three of certain sign; t's bound
+// is cert_triangle_t_error's.
 void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
   if (triangle_formula != RC_TRIANGLE_WATERTIGHT || (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) {
     cert_fail();
@@ -159,17 +262,19 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
   bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
   bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
   if (pos && neg) return;
-  cert_require(select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)), ee);
+  real dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
+  real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
+  if (!(select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k)) {
+    cert_triangle_grazing(st, t_max, ee, dz, se);
+    return;
+  }
   real det = enclosing_det(st.e);
   if (det == 0.0) {
     cert_fail();
     return;
   }
   real t = triangle_t(st, det);
-  real dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
-  real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
-  real sz = abs(st.z.x) + abs(st.z.y) + abs(st.z.z);
-  real e_t = (se * dz + ee * sz + abs(t) * 3.0 * ee) / abs(det) + triangle_t_error(st, det);
+  real e_t = cert_triangle_t_error(st, t, det, 3.0 * ee + gamma_bound(2.0) * se, ee, dz, se);
   cert_bary_err = 4.0 * ee / abs(det);
   cert_root(t, e_t, t_max, t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, det)));
 }

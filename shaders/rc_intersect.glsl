@@ -225,9 +225,7 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
   cert_ed = ed;
 }
 
-// The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
-// the kinds rc_certify.glsl bounds, none of the others.
-void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   cert_self = spawned_ray && object == cert_spawn_object && offset_strategy == RC_OFFSET_ERROR_BOUND;
   uint index;
   uint kind = object_kind(object, index);
@@ -247,8 +245,44 @@ void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   }
 }
 
+// The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
+// the kinds rc_certify.glsl bounds, none of the others. A shadow ray's are also kept apart
+// (cert_hit_ok), for cert_blocked.
+void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+  bool ok = cert_ok;
+  cert_ok = true;
+  cert_object_tests(object, o, d, sh, t_max);
+  cert_hit_ok = cert_ok;
+  cert_ok = ok && cert_ok;
+}
+
+// The nearest-hit decision, and with no hit, that no uncertain test may have one
+// (cert_maybe).
 void cert_closest(hit_record h) {
-  if (h.kind != RC_HIT_NONE && !(cert_beyond > h.t + cert_factor() * h.err)) cert_ok = false;
+  bool certain = (h.kind == RC_HIT_NONE) ? !(cert_beyond < real(RC_T_FAR)) : cert_beyond > h.t + cert_factor() * h.err;
+  if (!certain) cert_ok = false;
+}
+
+// A shadow ray's blocker (t < RC_T_FAR) ends the query, unless certified mode must look on:
+// past a blocker whose own test is uncertain, for one whose test is certain. The answer is
+// blocked either way; only the certificate depends on the search, which therefore stops
+// short of the loop budget (cert_blocked_later) rather than exhaust it. True when it ends
+// here.
+bool cert_blocker_ends(bool blocks) {
+  if (!blocks) return false;
+  if (cert_hit_ok) {
+    cert_blocker_certain = true;
+    return true;
+  }
+  cert_blocked_later = true;
+  return false;
+}
+
+// A shadow ray's answer. Blocked by an object whose own test is certified, the reference is
+// blocked too (by that object, if by no other), whatever the tests before it decided: the
+// query is as certain as the path was before it (`ok`).
+void cert_blocked(bool blocked, bool ok) {
+  if (blocked && cert_blocker_certain) cert_ok = ok;
 }
 #endif
 
@@ -276,6 +310,9 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
 bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
   ray_shear sh = ray_shear_for(d);
   for (uint i = 0u; i < frame.object_count; i++) {
+#if RC_CERTIFY
+    if (certify && cert_blocked_later && budget_steps + 1u > loop_budget) break;
+#endif
     if (!budget_step()) {
       budget_blame = 1u + i;
       return false;
@@ -286,7 +323,11 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
 #if RC_CERTIFY
     if (certify) cert_object(i, o, d, sh, t_max);
 #endif
-    if (intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR)) return true;
+    bool blocks = intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
+#if RC_CERTIFY
+    if (certify && blocks && !cert_blocker_ends(blocks)) continue;
+#endif
+    if (blocks) return true;
   }
   return false;
 }

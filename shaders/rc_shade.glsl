@@ -213,9 +213,11 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
 // The surface's decisions and the perturbation of its point and normal (rc_shade.glsl,
 // surface_at). The exact hit point of a ray moved by (do, dd) moves by (|do| + t |dd|) / |cos|
 // along the surface (cos = n.d), on top of both points' rounding (p_error, and where the point
-// is o + t d, t's own error, which p_error leaves out); a sphere's normal turns by that over r
-// (through a transform A, by |A| times that, and normalize(A^T n) by |A| / sigma_min(A) of it,
-// sigma_min(A) >= 2 |det A| / |A|_F^2). The side the normal is flipped to is a decision on n.d.
+// is o + t d, t's own error, which p_error leaves out). A sphere's normal n, with p = C + r n
+// rounded by p_error, moves by p's move plus that rounding, over r; through a transform A
+// (where p is o + t d instead) by |A| times twice p's move over r, and normalize(A^T n) by
+// |A| / sigma_min(A) of it, sigma_min(A) >= 2 |det A| / |A|_F^2. The side the normal is
+// flipped to is a decision on n.d.
 void cert_surface(rvec3 d, hit_record h, surface sf) {
   uint transform = (has_kind(RC_KIND_SPHERE_TRANSFORMS) && h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform
                                                                                     : RC_NO_TRANSFORM;
@@ -227,10 +229,11 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
   real ep = ep_round + 2.0 * (cert_eo + h.t * cert_ed) / select_max(cosine - e_cos, RC_SMALLEST_NORMAL);
   real en = gamma_bound(12.0);
   if (h.kind == RC_HIT_SPHERE) {
-    real dn = 2.0 * ep / real(load_sphere(h.index).radius);
+    real r = real(load_sphere(h.index).radius);
     if (transform == RC_NO_TRANSFORM) {
-      en += dn;
+      en += (ep + length(sf.p_error)) / r;
     } else {
+      real dn = 2.0 * ep / r;
       packed_transform m = load_transform(transform);
       real na = cert_norm(m);
       real det = abs(dot(rvec3(m.row0.xyz), cross(rvec3(m.row1.xyz), rvec3(m.row2.xyz))));
@@ -261,17 +264,18 @@ real cert_origin(surface sf, rvec3 origin) {
 }
 
 // A shadow ray's perturbation (rc_shade.glsl, light_at and shade_phong) and its decision to be
-// cast (n.l > 0): towards a point light its direction turns by twice its origin's move over
-// the distance, and t_max moves by as much.
+// cast (n.l > 0): towards a point light its direction turns as its origin's move (and the
+// subtraction's rounding) over the distance allows (cert_turn), and t_max moves by as much.
 void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
   real eo = cert_origin(sf, origin);
   if (light.type == RC_LIGHT_POINT) {
     real r = length(rvec3(light.position) - sf.p);
     real dist = length(rvec3(light.position) - origin);
-    real el = 2.0 * (cert_ep + gamma_bound(4.0) * r) / r;
-    cert_require(n_dot_l, cert_en + el + gamma_bound(4.0));
+    real xl = cert_ep + gamma_bound(4.0) * r;
+    cert_require(n_dot_l, cert_en + ((r > xl) ? cert_turn(xl / (r - xl)) : 2.0) + gamma_bound(4.0));
+    real xd = eo + gamma_bound(4.0) * dist;
     cert_eo = eo;
-    cert_ed = 2.0 * (eo + gamma_bound(4.0) * dist) / dist;
+    cert_ed = (dist > xd) ? cert_turn(xd / (dist - xd)) : 2.0;
     cert_t_max_err = eo + gamma_bound(6.0) * dist;
   } else {
     cert_require(n_dot_l, cert_en + gamma_bound(4.0));
@@ -281,11 +285,18 @@ void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
   }
 }
 
-// A mirror bounce's perturbation (rc_trace.glsl): the origin as a shadow ray's, the direction
-// reflect(d, n) = d - 2 (d.n) n by dd and twice the normal's turn, doubled by normalize.
+// A mirror bounce's perturbation (rc_trace.glsl): the origin as a shadow ray's; the direction
+// r = d - 2 (d.n) n = (I - 2 n n^T) d. Against the reference's unit d_ref, n_ref:
+// r - r_ref = (I - 2 n n^T)(d - d_ref) - 2 (n n^T - n_ref n_ref^T) d_ref. The first term is at
+// most dd times the reflection's norm, 1 + 4 eta for |n| = 1 + eta (eta <= gamma(8) after
+// normalize, cert_turn); for unit vectors |n n^T - m m^T| is the sine of their angle, at most
+// |n - m|, and n / |n| is eta farther from n_ref than n, while |n|^2 - 1 adds 4 eta |d.n|: the
+// second term is at most 2 dn + 6 eta. The reflection rounds by about gamma(9) (a dot
+// product, two products, a difference). normalize turns r by cert_turn of the sum, r_ref
+// being a unit vector.
 void cert_reflect(surface sf, rvec3 origin, real ed_in) {
   cert_eo = cert_origin(sf, origin);
-  cert_ed = 2.0 * (ed_in + 2.0 * cert_en) + gamma_bound(8.0);
+  cert_ed = cert_turn(ed_in * (1.0 + gamma_bound(32.0)) + 2.0 * cert_en + gamma_bound(58.0));
 }
 #endif
 

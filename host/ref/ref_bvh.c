@@ -31,6 +31,7 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     uint32_t part;
     if (sc->frame->certify) REF(cert_object)(sc, object, o, d, sh, any ? t_max : h->t);
     real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
+    if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)(true)) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, object, t, side, bary, part, h);
   }
@@ -78,6 +79,7 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   for (uint32_t k = first; k < f->quadric_count; k++) {
     if (f->certify) REF(cert_object)(sc, first_quadric_object + k, o, d, &sh, any ? t_max : h->t);
     real t = REF(intersect_plane)(&sc->quadrics[k], o, d, any ? t_max : h->t);
+    if (f->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)(true)) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, first_quadric_object + k, t, 0, RV(make)(0, 0, 0), REF(csg_code)(k, 0, false, false), h);
   }
@@ -127,10 +129,24 @@ void REF(shadow_nodes)(const ref_scene *sc, uint32_t light, rvec3 d, real t_max,
 }
 
 bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t light) {
-  if (sc->frame->certify) ref_cert_any = true;
-  if (!sc->use_bvh) return REF(occluded_linear)(sc, o, d, t_max);
-  ref_hit h = REF(no_hit)();
-  uint32_t first, end;
-  REF(shadow_nodes)(sc, light, d, t_max, &first, &end);
-  return REF(traverse_bvh)(sc, o, d, true, t_max, first, end, &h) || REF(test_planes)(sc, o, d, true, t_max, &h);
+  bool ok = ref_cert_ok;
+  if (sc->frame->certify) {
+    ref_cert_any = true;
+    ref_cert_blocked_later = false;
+    ref_cert_blocker_certain = false;
+  }
+  bool blocked;
+  if (!sc->use_bvh) {
+    blocked = REF(occluded_linear)(sc, o, d, t_max);
+  } else {
+    ref_hit h = REF(no_hit)();
+    uint32_t first, end;
+    REF(shadow_nodes)(sc, light, d, t_max, &first, &end);
+    blocked = REF(traverse_bvh)(sc, o, d, true, t_max, first, end, &h) || REF(test_planes)(sc, o, d, true, t_max, &h);
+  }
+  if (sc->frame->certify) {
+    blocked = blocked || ref_cert_blocked_later;
+    REF(cert_blocked)(blocked, ok);
+  }
+  return blocked;
 }

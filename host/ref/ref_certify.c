@@ -5,7 +5,8 @@
 
 #include "ref/ref_real.h"
 
-_Thread_local bool ref_cert_ok = true, ref_cert_any, ref_cert_self;
+_Thread_local bool ref_cert_ok = true, ref_cert_any, ref_cert_self, ref_cert_hit_ok, ref_cert_blocked_later,
+    ref_cert_blocker_certain;
 _Thread_local uint32_t ref_cert_spawn_object = 0xffffffffu;
 _Thread_local real ref_cert_eo, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_beyond = (real)RC_T_FAR,
     ref_cert_t_max_err, ref_cert_ep, ref_cert_en;
@@ -18,6 +19,8 @@ real REF(cert_factor)(const ref_scene *sc) {
 void REF(cert_require)(const ref_scene *sc, real margin, real bound) {
   if (!(R_ABS(margin) > REF(cert_factor)(sc) * bound)) ref_cert_ok = false;
 }
+
+real REF(cert_turn)(real x) { return (x < (real)0.5) ? x / R_SQRT(1 - x * x) + REF(gamma_bound)(8) : 2; }
 
 void REF(cert_fail)(void) { ref_cert_ok = false; }
 
@@ -42,6 +45,19 @@ void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {
   }
 }
 
+void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool taken) {
+  if (taken) {
+    REF(cert_fail)();
+    return;
+  }
+  if (hi < 0) return;
+  if (ref_cert_any) {
+    if (!(lo - t_max > REF(cert_factor)(sc) * ref_cert_t_max_err)) REF(cert_fail)();
+    return;
+  }
+  ref_cert_beyond = rmin(ref_cert_beyond, lo);
+}
+
 bool REF(cert_root)(const ref_scene *sc, real t, real e, real t_max, bool ahead) {
   if (!ahead && ref_cert_self) return false;
   REF(cert_require)(sc, t, e);
@@ -55,6 +71,26 @@ bool REF(cert_root)(const ref_scene *sc, real t, real e, real t_max, bool ahead)
   return true;
 }
 
+void REF(cert_sphere_grazing)(const ref_scene *sc, real disc, real b, real c, real e_disc, real e_b, real e_c,
+                              real t_max, real scale, real rel) {
+  real k = REF(cert_factor)(sc);
+  bool taken = false;
+  if (disc >= 0) {
+    real sq = R_SQRT(disc);
+    real q = (b >= 0) ? -(b + sq) : -(b - sq);
+    real t0 = c / q;
+    real reach = t_max + R_ABS(t_max) * (real)9.5367431640625e-07;
+    real t_near = rmin(t0, q) * scale;
+    real t_exit = rmax(t0, q) * scale;
+    taken = q != 0 && ((t_near > 0 && t_near <= reach) || (t_exit > 0 && t_exit <= reach));
+  }
+  if (!taken && b > k * e_b && (ref_cert_self || c > k * e_c)) return;
+  real spread = R_SQRT(rmax(disc, 0) + k * e_disc) + k * e_b;
+  real lo = (-b - spread) * scale;
+  real hi = (-b + spread) * scale;
+  REF(cert_maybe)(sc, lo - R_ABS(lo) * rel, hi + R_ABS(hi) * rel, t_max, taken);
+}
+
 void REF(cert_sphere_roots)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale, real rel) {
   real r = (real)s.radius;
   rvec3 f = RV(sub)(o, rvec3_from(s.center));
@@ -63,11 +99,17 @@ void REF(cert_sphere_roots)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere
   real ll = RV(dot)(l, l);
   real disc = r * r - ll;
   real ff = RV(dot)(f, f);
+  real c = ff - r * r;
   real fm = R_SQRT(ff);
   real lm = R_SQRT(ll);
   real el = ref_cert_eo + 2 * fm * ref_cert_ed + REF(gamma_bound)(8) * 2 * fm;
   real e_disc = 2 * lm * el + el * el + REF(gamma_bound)(4) * (r * r + ll);
-  REF(cert_require)(sc, disc, e_disc);
+  real e_b = ref_cert_eo + fm * ref_cert_ed + (ref_cert_eo) * ref_cert_ed + REF(gamma_bound)(4) * fm;
+  real e_c = 2 * fm * ref_cert_eo + (ref_cert_eo) * ref_cert_eo + REF(gamma_bound)(4) * (ff + r * r);
+  if (!(R_ABS(disc) > REF(cert_factor)(sc) * e_disc)) {
+    REF(cert_sphere_grazing)(sc, disc, b, c, e_disc, e_b, e_c, t_max, scale, rel);
+    return;
+  }
   if (disc < 0) return;
   real sq = R_SQRT(disc);
   real q = (b >= 0) ? -(b + sq) : -(b - sq);
@@ -75,11 +117,9 @@ void REF(cert_sphere_roots)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere
     REF(cert_fail)();
     return;
   }
-  real c = ff - r * r;
   real t0 = c / q;
   real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
-  real e_q = ref_cert_eo + fm * ref_cert_ed + REF(gamma_bound)(4) * fm + e_sq + REF(gamma_bound)(2) * R_ABS(q);
-  real e_c = 2 * fm * ref_cert_eo + (ref_cert_eo) * ref_cert_eo + REF(gamma_bound)(4) * (ff + r * r);
+  real e_q = e_b + e_sq + REF(gamma_bound)(2) * R_ABS(q);
   real e_t0 = (R_ABS(q) > e_q) ? (e_c + R_ABS(t0) * e_q) / (R_ABS(q) - e_q) + REF(gamma_bound)(1) * R_ABS(t0)
                                : (real)RC_T_FAR;
   real e = rmax(e_q, e_t0);
@@ -93,6 +133,31 @@ real REF(cert_norm)(const packed_transform *m) {
   return R_SQRT(RV(dot)(rvec3_from(rcm_xyz(m->row0)), rvec3_from(rcm_xyz(m->row0))) +
                 RV(dot)(rvec3_from(rcm_xyz(m->row1)), rvec3_from(rcm_xyz(m->row1))) +
                 RV(dot)(rvec3_from(rcm_xyz(m->row2)), rvec3_from(rcm_xyz(m->row2))));
+}
+
+real REF(cert_triangle_t_error)(const ref_sheared *st, real t, real det, real e_det, real ee, real dz, real se) {
+  if (!(R_ABS(det) > e_det)) return (real)RC_T_FAR;
+  real sz = R_ABS(st->z.x) + R_ABS(st->z.y) + R_ABS(st->z.z);
+  real zt = R_ABS(st->z.x - t) + R_ABS(st->z.y - t) + R_ABS(st->z.z - t) + REF(gamma_bound)(8) * (sz + 3 * R_ABS(t));
+  real ez = R_ABS(st->e.x * st->z.x) + R_ABS(st->e.y * st->z.y) + R_ABS(st->e.z * st->z.z);
+  real zeta = dz + REF(gamma_bound)(3) * REF(max3_abs)(st->z);
+  return (ee * zt + (se + 3 * ee) * zeta) / (R_ABS(det) - e_det) + REF(gamma_bound)(3) * (ez + R_ABS(t) * se) / R_ABS(det);
+}
+
+void REF(cert_triangle_grazing)(const ref_scene *sc, const ref_sheared *st, real t_max, real ee, real dz, real se) {
+  real sum = st->e.x + st->e.y + st->e.z;
+  real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
+  if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) {
+    REF(cert_fail)();
+    return;
+  }
+  real t = REF(triangle_t)(st, sum);
+  real det = REF(enclosing_det)(st->e);
+  bool ahead = t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(st, sum));
+  if (!ahead && ref_cert_self) return;
+  bool taken = det != 0 && ahead && t <= t_max;
+  real e_t = REF(cert_triangle_t_error)(st, t, sum, e_sum, ee, dz, se);
+  REF(cert_maybe)(sc, t - REF(cert_factor)(sc) * e_t, t + REF(cert_factor)(sc) * e_t, t_max, taken);
 }
 
 void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max) {
@@ -114,17 +179,19 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
   bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
   if (pos && neg) return;
-  REF(cert_require)(sc, rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)), ee);
+  real dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
+  real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
+  if (!(rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k)) {
+    REF(cert_triangle_grazing)(sc, &st, t_max, ee, dz, se);
+    return;
+  }
   real det = REF(enclosing_det)(st.e);
   if (det == 0) {
     REF(cert_fail)();
     return;
   }
   real t = REF(triangle_t)(&st, det);
-  real dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
-  real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
-  real sz = R_ABS(st.z.x) + R_ABS(st.z.y) + R_ABS(st.z.z);
-  real e_t = (se * dz + ee * sz + R_ABS(t) * 3 * ee) / R_ABS(det) + REF(triangle_t_error)(&st, det);
+  real e_t = REF(cert_triangle_t_error)(&st, t, det, 3 * ee + REF(gamma_bound)(2) * se, ee, dz, se);
   ref_cert_bary_err = 4 * ee / R_ABS(det);
   REF(cert_root)(sc, t, e_t, t_max, t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(&st, det)));
 }

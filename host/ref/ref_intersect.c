@@ -183,7 +183,7 @@ void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, re
   ref_cert_ed = ed;
 }
 
-void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
+void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
   ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
   uint32_t index;
   uint32_t kind = REF(object_kind)(sc, object, &index);
@@ -201,8 +201,33 @@ void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, co
   }
 }
 
+void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
+  bool ok = ref_cert_ok;
+  ref_cert_ok = true;
+  REF(cert_object_tests)(sc, object, o, d, sh, t_max);
+  ref_cert_hit_ok = ref_cert_ok;
+  ref_cert_ok = ok && ref_cert_ok;
+}
+
 void REF(cert_closest)(const ref_scene *sc, const ref_hit *h) {
-  if (h->kind != RC_HIT_NONE && !(ref_cert_beyond > h->t + REF(cert_factor)(sc) * h->err)) ref_cert_ok = false;
+  bool certain = (h->kind == RC_HIT_NONE) ? !(ref_cert_beyond < (real)RC_T_FAR)
+                                          : ref_cert_beyond > h->t + REF(cert_factor)(sc) * h->err;
+  if (!certain) ref_cert_ok = false;
+}
+
+/* No loop budget here (cert_may_look_on): the CPU has no dispatch to time out. */
+bool REF(cert_blocker_ends)(bool blocks) {
+  if (!blocks) return false;
+  if (ref_cert_hit_ok) {
+    ref_cert_blocker_certain = true;
+    return true;
+  }
+  ref_cert_blocked_later = true;
+  return false;
+}
+
+void REF(cert_blocked)(bool blocked, bool ok) {
+  if (blocked && ref_cert_blocker_certain) ref_cert_ok = ok;
 }
 
 void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
@@ -224,7 +249,9 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
     rvec3 bary;
     uint32_t part;
     if (sc->frame->certify) REF(cert_object)(sc, i, o, d, &sh, t_max);
-    if (REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR) return true;
+    bool blocks = REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
+    if (sc->frame->certify && blocks && !REF(cert_blocker_ends)(blocks)) continue;
+    if (blocks) return true;
   }
   return false;
 }

@@ -63,15 +63,25 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_order_##S(const ref_scene *sc, R t, uint32_t object, const ref_hit_##S *h);       \
   void ref_cert_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
+  void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
+  bool ref_cert_blocker_ends_##S(bool blocks);                                                  \
+  void ref_cert_object_tests_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
   /* ref_certify.c, the twin of rc_certify.glsl, and its per-thread state. */                    \
-  extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S;               \
+  extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S, ref_cert_hit_ok_##S, \
+      ref_cert_blocked_later_##S, ref_cert_blocker_certain_##S;                                 \
   extern _Thread_local uint32_t ref_cert_spawn_object_##S;                                      \
   extern _Thread_local R ref_cert_eo_##S, ref_cert_ed_##S, ref_cert_t_err_##S, ref_cert_bary_err_##S, \
       ref_cert_beyond_##S, ref_cert_t_max_err_##S, ref_cert_ep_##S, ref_cert_en_##S;            \
   R ref_cert_factor_##S(const ref_scene *sc);                                                   \
   void ref_cert_require_##S(const ref_scene *sc, R margin, R bound);                            \
   void ref_cert_fail_##S(void);                                                                 \
+  R ref_cert_turn_##S(R x);                                                                     \
   bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
+  void ref_cert_maybe_##S(const ref_scene *sc, R lo, R hi, R t_max, bool taken);                \
+  void ref_cert_sphere_grazing_##S(const ref_scene *sc, R disc, R b, R c, R e_disc, R e_b, R e_c, R t_max, R scale, \
+                                   R rel);                                                      \
+  void ref_cert_triangle_grazing_##S(const ref_scene *sc, const ref_sheared_##S *st, R t_max, R ee, R dz, R se); \
+  R ref_cert_triangle_t_error_##S(const ref_sheared_##S *st, R t, R det, R e_det, R ee, R dz, R se); \
   void ref_cert_sphere_roots_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R scale, R rel); \
   R ref_cert_norm_##S(const packed_transform *m);                                               \
   void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \

@@ -50,6 +50,9 @@ static inline vec3 vec3_from(rvec3 a) { return a; }
 #define ref_cert_t_max_err REF(cert_t_max_err)
 #define ref_cert_ep REF(cert_ep)
 #define ref_cert_en REF(cert_en)
+#define ref_cert_hit_ok REF(cert_hit_ok)
+#define ref_cert_blocked_later REF(cert_blocked_later)
+#define ref_cert_blocker_certain REF(cert_blocker_certain)
 
 /* GLSL's rvec4 (rc_patch.glsl's rows of four control points), a plain struct here. */
 typedef struct { real x, y, z, w; } rvec4;

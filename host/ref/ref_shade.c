@@ -176,10 +176,11 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
   real ep = ep_round + 2 * (ref_cert_eo + h->t * ref_cert_ed) / rmax(cosine - e_cos, RC_SMALLEST_NORMAL);
   real en = REF(gamma_bound)(12);
   if (h->kind == RC_HIT_SPHERE) {
-    real dn = 2 * ep / (real)sc->spheres[h->index].radius;
+    real r = (real)sc->spheres[h->index].radius;
     if (transform == RC_NO_TRANSFORM) {
-      en += dn;
+      en += (ep + RV(length)(sf->p_error)) / r;
     } else {
+      real dn = 2 * ep / r;
       const packed_transform *m = &sc->transforms[transform];
       real na = REF(cert_norm)(m);
       real det = R_ABS(RV(dot)(rvec3_from(rcm_xyz(m->row0)), RV(cross)(rvec3_from(rcm_xyz(m->row1)), rvec3_from(rcm_xyz(m->row2)))));
@@ -212,10 +213,11 @@ void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface
   if (light.type == RC_LIGHT_POINT) {
     real r = RV(length)(RV(sub)(rvec3_from(light.position), sf->p));
     real dist = RV(length)(RV(sub)(rvec3_from(light.position), origin));
-    real el = 2 * (ref_cert_ep + REF(gamma_bound)(4) * r) / r;
-    REF(cert_require)(sc, n_dot_l, ref_cert_en + el + REF(gamma_bound)(4));
+    real xl = ref_cert_ep + REF(gamma_bound)(4) * r;
+    REF(cert_require)(sc, n_dot_l, ref_cert_en + ((r > xl) ? REF(cert_turn)(xl / (r - xl)) : 2) + REF(gamma_bound)(4));
+    real xd = eo + REF(gamma_bound)(4) * dist;
     ref_cert_eo = eo;
-    ref_cert_ed = 2 * (eo + REF(gamma_bound)(4) * dist) / dist;
+    ref_cert_ed = (dist > xd) ? REF(cert_turn)(xd / (dist - xd)) : 2;
     ref_cert_t_max_err = eo + REF(gamma_bound)(6) * dist;
   } else {
     REF(cert_require)(sc, n_dot_l, ref_cert_en + REF(gamma_bound)(4));
@@ -227,7 +229,7 @@ void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface
 
 void REF(cert_reflect)(const ref_surface *sf, rvec3 origin, real ed_in) {
   ref_cert_eo = REF(cert_origin)(sf, origin);
-  ref_cert_ed = 2 * (ed_in + 2 * ref_cert_en) + REF(gamma_bound)(8);
+  ref_cert_ed = REF(cert_turn)(ed_in * (1 + REF(gamma_bound)(32)) + 2 * ref_cert_en + REF(gamma_bound)(58));
 }
 
 /* The integer of a real's width, for the Wächter-Binder ulp offset. */
