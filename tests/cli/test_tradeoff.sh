@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # `vkraycast tradeoff` on a user's scene, as a user runs it: from a folder of their own
 # with a relative scene path, writing only into --out. Checks the rows (one per scene x
-# variant x spp, every one measured), real values (f64 against the f64 reference makes
-# the same decisions; colour error shrinks as spp grows), the summary, the plot's legend
+# variant x spp, every one measured), real values (f64 and certified mode against the f64
+# reference make the same decisions; colour error shrinks as spp grows), the summary, the plot's legend
 # and spp labels, a variant of the user's own, a job array's --point/--gather, and bad
 # usage. Usage: test_tradeoff.sh VKRAYCAST SCENES_DIR
 set -uo pipefail
@@ -18,7 +18,7 @@ cd "$work/user" || exit 2
 small=(--width 40 --height 30 --spp-list 1,4 --reference-spp 16 --repeat 2)
 
 why=ok
-"$bin" tradeoff my/scene.json --out results --variants fast,default,f64 "${small[@]}" >table.md 2>progress.txt ||
+"$bin" tradeoff my/scene.json --out results --variants fast,default,certified,f64 "${small[@]}" >table.md 2>progress.txt ||
   because "exit status $?: $(tail -3 progress.txt)"
 [[ -s results/tradeoff.csv && -s results/tradeoff-summary.csv && -s results/tradeoff.svg ]] || because "outputs missing"
 # Nothing outside --out: the caller's folder holds what it held plus results/ and the
@@ -29,7 +29,7 @@ check "runs from the user's folder, writes only into --out" "$why"
 
 why=ok
 rows=$(tail -n +2 results/tradeoff.csv | wc -l)
-[[ $rows == 6 ]] || because "$rows rows, expected 6 (1 scene x 3 variants x 2 spp)"
+[[ $rows == 8 ]] || because "$rows rows, expected 8 (1 scene x 4 variants x 2 spp)"
 bad=$(tail -n +2 results/tradeoff.csv | awk -F, '$16 != "ok"' | head -3)
 [[ -z $bad ]] || because "points not measured: $bad"
 # The columns: precision as the variant asked, times positive.
@@ -38,24 +38,27 @@ awk -F, 'NR > 1 && (($2 == "f64") != ($4 == "f64") || !($5 > 0) || !($7 > 0) || 
 check "one measured row per point" "$why"
 
 why=ok
-# f64 renders the reference's arithmetic: no decision differs.
-f64=$(awk -F, '$2 == "f64" { s += $9 } END { print s + 0 }' results/tradeoff.csv)
-[[ $f64 == 0 ]] || because "f64 decisions differ on $f64 % of pixels"
+# f64 renders the reference's arithmetic, and certified mode re-renders in it whatever it
+# cannot certify: no decision differs.
+for v in f64 certified; do
+  d=$(awk -F, -v v=$v '$2 == v { s += $9 } END { print s + 0 }' results/tradeoff.csv)
+  [[ $d == 0 ]] || because "$v decisions differ on $d % of pixels"
+done
 # More samples, nearer the many-sample reference: PSNR grows from 1 to 4 spp.
 awk -F, '$2 == "default" { p[$3] = $13 } END { exit !(p[4] > p[1] + 3) }' results/tradeoff.csv ||
   because "PSNR does not grow with spp: $(grep default results/tradeoff.csv)"
-check "values: f64 exact in decisions, colour converges with spp" "$why"
+check "values: f64 and certified exact in decisions, colour converges with spp" "$why"
 
 why=ok
 grep -q '^| fast | 1 |' table.md || because "no table row for fast at 1 spp"
 [[ $(grep -c ',yes,' results/tradeoff-summary.csv) -ge 1 ]] || because "no Pareto point"
-for v in fast default f64; do
+for v in fast default certified f64; do
   grep -q ">$v</text>" results/tradeoff.svg || because "legend lacks $v"
 done
 grep -q 'Moller-Trumbore' results/tradeoff.svg || because "legend does not say what fast is"
-[[ $(grep -c '<polyline' results/tradeoff.svg) == 3 ]] || because "not one line per variant"
+[[ $(grep -c '<polyline' results/tradeoff.svg) == 4 ]] || because "not one line per variant"
 grep -q ">4</text>" results/tradeoff.svg || because "spp not marked on the points"
-grep -q '\[6/6\]' progress.txt || because "no progress: $(head -2 progress.txt)"
+grep -q '\[8/8\]' progress.txt || because "no progress: $(head -2 progress.txt)"
 check "table, summary and a plot that says what each line is" "$why"
 
 why=ok
@@ -77,7 +80,7 @@ for ((i = n - 1; i >= 0; i--)); do
 done
 "$bin" tradeoff my/scene.json --out farm --variants default,f64 --gather "${small[@]}" -q >/dev/null 2>>err.txt ||
   because "--gather: exit $?: $(cat err.txt)"
-[[ $(cut -d, -f1-4,9-12 farm/tradeoff.csv) == $(grep -v ',fast,' results/tradeoff.csv | cut -d, -f1-4,9-12) ]] ||
+[[ $(cut -d, -f1-4,9-12 farm/tradeoff.csv) == $(grep -vE ',(fast|certified),' results/tradeoff.csv | cut -d, -f1-4,9-12) ]] ||
   because "points gathered differ from one run's: $(cat farm/tradeoff.csv)"
 rm farm/points/2.csv
 "$bin" tradeoff my/scene.json --out farm --variants default,f64 --gather "${small[@]}" -q >/dev/null 2>err.txt
