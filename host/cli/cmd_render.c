@@ -75,8 +75,9 @@ static const rc_option render_options[] = {
      .help = "gpu (default: the Vulkan compute shader) or cpu (the reference renderer)"},
     {"--precision", NULL, RC_OPT_CHOICE, ARG(precision), "P", .choices = rc_precision_names,
      .help = "auto (default), f32 or f64 geometry and shading math. auto: f64 on cpu;\n"
-             "on gpu f32 unless the precision-budget pass finds the scene needs f64\n"
-             "and the device has shaderFloat64 (docs/accuracy.md). certified: f32 with\n"
+             "on gpu f32 unless the precision-budget pass finds the scene needs f64:\n"
+             "then f64 where the device has shaderFloat64, else certified\n"
+             "(docs/accuracy.md). certified: f32 with\n"
              "every hit, object and shadow decision checked against its error bound,\n"
              "and the pixels of samples it cannot vouch for rendered again in f64\n"
              "(docs/numerics.md §10)"},
@@ -567,15 +568,27 @@ static void report_budget(const rc_scene *s, const rc_precision_report *b) {
             s->quality.camera_relative ? "" : " or leave --camera-relative on");
 }
 
+/* Certified mode (--precision certified, or auto on a device without f64): the frame's
+ * certify word (--certified-bound injects faults), the re-render of the uncertified
+ * samples' pixels, and the AOV records that count them. */
+static void use_certified(render_args *a, rc_packed_scene *packed, rc_render_stats *rs) {
+  packed->frame.certify = a->certified_bound == 1 ? RC_CERTIFY_HALVED
+                          : a->certified_bound == 2 ? RC_CERTIFY_ZERO
+                                                    : RC_CERTIFY_ON;
+  rs->rerender = a->certified_rerender == 1 ? "none" : "cpu";
+  a->gpu.aov = true;
+}
+
 /* What the precision decision says to the user (rc_precision_choose). */
 static void report_precision(const rc_scene *s, rc_precision_why why, const char *device) {
   if (why == RC_PRECISION_F32_DEGRADED)
     fprintf(stderr, "%s: warning: precision: rendering in f32 as asked; the output is degraded\n", s->path);
   else if (why == RC_PRECISION_AUTO_F64)
     fprintf(stderr, "%s: note: precision auto: rendering in f64\n", s->path);
-  else if (why == RC_PRECISION_NO_DEVICE_F64)
-    fprintf(stderr, "%s: warning: precision auto: device %s has no shaderFloat64; rendering in f32, the output is "
-            "degraded (--backend cpu renders in f64)\n", s->path, device);
+  else if (why == RC_PRECISION_AUTO_CERTIFIED)
+    fprintf(stderr, "%s: note: precision auto: device %s has no shaderFloat64; rendering in f32 with certified "
+            "decisions, and the samples it cannot certify again in f64 on the CPU (docs/numerics.md section 10)\n",
+            s->path, device);
 }
 
 /* An error about the shader's object number `o` (spheres, triangles, quadrics, planes,
@@ -823,13 +836,8 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   /* --precision wins over the scene's `quality`; the decision is rc_precision_choose's. */
   const uint32_t requested = a->precision >= 0 ? (uint32_t)a->precision : scene->quality.precision;
   rs.precision_requested = rc_precision_names[requested];
-  const bool certified = requested == RC_PRECISION_CERTIFIED;
-  packed.frame.certify = !certified                   ? RC_CERTIFY_OFF
-                         : a->certified_bound == 1 ? RC_CERTIFY_HALVED
-                         : a->certified_bound == 2 ? RC_CERTIFY_ZERO
-                                                   : RC_CERTIFY_ON;
-  rs.rerender = !certified ? "off" : a->certified_rerender == 1 ? "none" : "cpu";
-  a->gpu.aov = a->aov != NULL || certified;
+  rs.rerender = "off";
+  a->gpu.aov = a->aov != NULL;
   char driver[600] = "";
   if (st == RC_OK && a->cpu) {
     rs.backend = "cpu";
@@ -837,7 +845,8 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
     const rc_precision_choice precision = rc_precision_choose(requested, &budget, true, true);
-    rs.precision = certified ? "certified" : precision.f64 ? "f64" : "f32";
+    if (precision.certified) use_certified(a, &packed, &rs);
+    rs.precision = precision.certified ? "certified" : precision.f64 ? "f64" : "f32";
     part_settings(a, scene, rs.backend, rs.precision);
     snprintf(a->part.device, sizeof a->part.device, "%s", rs.device);
     st = render_frames_cpu(a, scene, &packed, precision.f64, &rs, &out);
@@ -853,7 +862,8 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
       const rc_precision_choice precision = rc_precision_choose(requested, &budget, false, ctx->float64);
       report_precision(scene, precision.why, ctx->props.deviceName);
       a->gpu.f64 = precision.f64;
-      rs.precision = certified ? "certified" : precision.f64 ? "f64" : "f32";
+      if (precision.certified) use_certified(a, &packed, &rs);
+      rs.precision = precision.certified ? "certified" : precision.f64 ? "f64" : "f32";
       part_settings(a, scene, rs.backend, rs.precision);
       snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
       st = render_frames(a, ctx, scene, &packed, &rs, &out);

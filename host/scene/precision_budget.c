@@ -182,12 +182,14 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic, rc_precision_
 rc_precision_choice rc_precision_choose(uint32_t requested, const rc_precision_report *budget, bool reference,
                                         bool device_f64) {
   /* certified: f32 with every decision checked, and the samples it cannot vouch for in f64. */
-  if (requested == RC_PRECISION_CERTIFIED) return (rc_precision_choice){false, RC_PRECISION_QUIET};
-  if (reference) return (rc_precision_choice){requested != RC_PRECISION_F32, RC_PRECISION_QUIET};
-  if (requested == RC_PRECISION_F64) return (rc_precision_choice){true, RC_PRECISION_QUIET};
+  if (requested == RC_PRECISION_CERTIFIED) return (rc_precision_choice){false, true, RC_PRECISION_QUIET};
+  if (reference) return (rc_precision_choice){requested != RC_PRECISION_F32, false, RC_PRECISION_QUIET};
+  if (requested == RC_PRECISION_F64) return (rc_precision_choice){true, false, RC_PRECISION_QUIET};
   if (requested == RC_PRECISION_F32)
-    return (rc_precision_choice){false, budget->needs_f64 ? RC_PRECISION_F32_DEGRADED : RC_PRECISION_QUIET};
-  if (!budget->needs_f64) return (rc_precision_choice){false, RC_PRECISION_QUIET};
-  if (device_f64) return (rc_precision_choice){true, RC_PRECISION_AUTO_F64};
-  return (rc_precision_choice){false, RC_PRECISION_NO_DEVICE_F64};
+    return (rc_precision_choice){false, false, budget->needs_f64 ? RC_PRECISION_F32_DEGRADED : RC_PRECISION_QUIET};
+  if (!budget->needs_f64) return (rc_precision_choice){false, false, RC_PRECISION_QUIET};
+  if (device_f64) return (rc_precision_choice){true, false, RC_PRECISION_AUTO_F64};
+  /* No f64 on the device (most consumer GPUs, Apple): certified f32, which makes every
+   * decision the reference's with the CPU's help, rather than a degraded f32 image. */
+  return (rc_precision_choice){false, true, RC_PRECISION_AUTO_CERTIFIED};
 }

@@ -41,16 +41,19 @@ void rc_precision_budget(const rc_packed_scene *p, bool algebraic_spheres, rc_pr
 /* The precision a render runs in: the one decision both backends take, from what was asked
  * (RC_PRECISION_*: the command line's, else the scene's), the budget's finding, and what
  * the renderer has. The CPU reference is the accuracy yardstick: f64 unless f32 is asked
- * for. The GPU: f32 unless f64 is asked for, or auto finds the scene needs it and the
- * device has shaderFloat64. `why` says what the user should hear about it. */
+ * for. The GPU: f32 unless f64 is asked for, or auto finds the scene needs it: then f64
+ * where the device has shaderFloat64, else certified f32 (docs/numerics.md §10), whose
+ * uncertified samples the CPU renders again in f64. `why` says what the user should hear
+ * about it. */
 typedef enum {
-  RC_PRECISION_QUIET,        /* nothing to say */
-  RC_PRECISION_AUTO_F64,     /* auto chose f64 (a note) */
-  RC_PRECISION_F32_DEGRADED, /* f32 as asked, but the scene needs f64 (a warning) */
-  RC_PRECISION_NO_DEVICE_F64 /* auto wanted f64, the device has none: f32 (a warning) */
+  RC_PRECISION_QUIET,         /* nothing to say */
+  RC_PRECISION_AUTO_F64,      /* auto chose f64 (a note) */
+  RC_PRECISION_F32_DEGRADED,  /* f32 as asked, but the scene needs f64 (a warning) */
+  RC_PRECISION_AUTO_CERTIFIED /* auto wanted f64, the device has none: certified f32 (a note) */
 } rc_precision_why;
 typedef struct rc_precision_choice {
   bool f64;
+  bool certified; /* f32 with certified decisions, the uncertified samples again in f64 */
   rc_precision_why why;
 } rc_precision_choice;
 rc_precision_choice rc_precision_choose(uint32_t requested, const rc_precision_report *budget, bool reference,

@@ -299,24 +299,28 @@ TEST(precision_is_decided_once_for_both_backends) {
   struct {
     uint32_t requested;
     const rc_precision_report *budget;
-    bool reference, device_f64, f64;
+    bool reference, device_f64, f64, certified;
     rc_precision_why why;
   } cases[] = {
-      {RC_PRECISION_AUTO, &fine, true, true, true, RC_PRECISION_QUIET},
-      {RC_PRECISION_AUTO, &needs, true, true, true, RC_PRECISION_QUIET},
-      {RC_PRECISION_F32, &needs, true, true, false, RC_PRECISION_QUIET},
-      {RC_PRECISION_F64, &fine, true, true, true, RC_PRECISION_QUIET},
-      {RC_PRECISION_AUTO, &fine, false, true, false, RC_PRECISION_QUIET},
-      {RC_PRECISION_AUTO, &needs, false, true, true, RC_PRECISION_AUTO_F64},
-      {RC_PRECISION_AUTO, &needs, false, false, false, RC_PRECISION_NO_DEVICE_F64},
-      {RC_PRECISION_F32, &fine, false, true, false, RC_PRECISION_QUIET},
-      {RC_PRECISION_F32, &needs, false, true, false, RC_PRECISION_F32_DEGRADED},
-      {RC_PRECISION_F64, &fine, false, false, true, RC_PRECISION_QUIET}, /* the renderer refuses it by name */
+      {RC_PRECISION_AUTO, &fine, true, true, true, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &needs, true, true, true, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_F32, &needs, true, true, false, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_F64, &fine, true, true, true, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_CERTIFIED, &needs, true, true, false, true, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &fine, false, true, false, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &needs, false, true, true, false, RC_PRECISION_AUTO_F64},
+      {RC_PRECISION_AUTO, &fine, false, false, false, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_AUTO, &needs, false, false, false, true, RC_PRECISION_AUTO_CERTIFIED},
+      {RC_PRECISION_F32, &fine, false, true, false, false, RC_PRECISION_QUIET},
+      {RC_PRECISION_F32, &needs, false, true, false, false, RC_PRECISION_F32_DEGRADED},
+      {RC_PRECISION_CERTIFIED, &fine, false, true, false, true, RC_PRECISION_QUIET},
+      {RC_PRECISION_F64, &fine, false, false, true, false, RC_PRECISION_QUIET}, /* the renderer refuses it by name */
   };
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     rc_precision_choice c = rc_precision_choose(cases[i].requested, cases[i].budget, cases[i].reference,
                                                 cases[i].device_f64);
     CHECK_EQ_INT(c.f64, cases[i].f64);
+    CHECK_EQ_INT(c.certified, cases[i].certified);
     CHECK_EQ_INT(c.why, cases[i].why);
   }
 }
