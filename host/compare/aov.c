@@ -49,6 +49,7 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
     r->b_shadowed += y[lb->shadow] != 0;
     if (band && band[i]) {
       r->band_pixels++;
+      r->certified_in_band += la->uncertified >= 0 && x[la->uncertified] == 0;
       continue;
     }
     bool same_hit = x[la->hit] == y[lb->hit];

@@ -31,6 +31,9 @@ typedef struct rc_compare_result {
   /* A's pixels with uncertified samples (its `uncertified` channel, --precision certified),
    * and A's certified pixels whose decisions differ from B's (outside the band). */
   uint64_t uncertified_pixels, certified_mismatch;
+  /* A's certified pixels inside the band (--band), where inputs moved by a few ulps flip a
+   * decision of the reference: each should be uncertified (docs/numerics.md §10). */
+  uint64_t certified_in_band;
   uint64_t a_hits, b_hits, a_shadowed, b_shadowed; /* pixels that hit; with any shadow bit */
   double max_depth_rel;           /* |t_a - t_b| / |t_b| where both hit the same object */
   double max_normal_angle;        /* radians, likewise */

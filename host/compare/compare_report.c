@@ -145,6 +145,8 @@ void rc_compare_print_text(const rc_compare_report *rep, FILE *f) {
     if (rep->a->layout.uncertified >= 0)
       fprintf(f, "  certified (A): %llu pixels with uncertified samples; certified pixels whose decisions differ: %llu\n",
               (unsigned long long)r->uncertified_pixels, (unsigned long long)r->certified_mismatch);
+    if (rep->a->layout.uncertified >= 0 && rep->banded)
+      fprintf(f, "  certified (A) pixels inside the band: %llu\n", (unsigned long long)r->certified_in_band);
   }
   print_checks(rep, f);
   print_notes(rep, f);
@@ -255,6 +257,7 @@ void rc_compare_print_json(const rc_compare_report *rep, FILE *f) {
     cJSON_AddNumberToObject(o, "band_pixels", (double)r->band_pixels);
     cJSON_AddNumberToObject(o, "uncertified_pixels", (double)r->uncertified_pixels);
     cJSON_AddNumberToObject(o, "certified_mismatch", (double)r->certified_mismatch);
+    cJSON_AddNumberToObject(o, "certified_in_band", (double)r->certified_in_band);
     cJSON_AddNumberToObject(o, "a_hits", (double)r->a_hits);
     cJSON_AddNumberToObject(o, "b_hits", (double)r->b_hits);
     cJSON_AddNumberToObject(o, "a_shadowed", (double)r->a_shadowed);
