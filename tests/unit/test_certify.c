@@ -1,0 +1,109 @@
+/* The certificates' bounds (host/ref/ref_certify.c, the twin of rc_certify.glsl;
+ * docs/numerics.md §10) against errors measured in f64: each bound holds, and where the
+ * derivation says it is attained, it is nearly attained, so that a bound halved would not
+ * hold there. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "ref/ref_intersect.h"
+#include "rc_test.h"
+
+/* A fixed sequence, so that a failure repeats. */
+static unsigned long long rng_state = 0x9e3779b97f4a7c15ull;
+static double uniform(void) {
+  rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+  return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+static double chord(dvec3 a, dvec3 b) { return rcm_length_d(rcm_sub_d(rcm_normalize_d(a), rcm_normalize_d(b))); }
+
+/* cert_turn: normalize(b) against a / |a| when |b - a| <= x |a|. Sound for b anywhere in
+ * that ball, and attained by the b whose offset is perpendicular to it (the tangent from a
+ * to the ball), where the chord is 2 sin(asin(x) / 2): within 9 % of x / sqrt(1 - x^2) for
+ * x <= 0.45, so half the bound fails there. */
+TEST(unit_vector_turn_is_sound_and_attained) {
+  const double xs[] = {1e-3, 1e-2, 0.1, 0.3, 0.45};
+  dvec3 a = rcm_make_d(1, 0, 0);
+  for (size_t i = 0; i < sizeof xs / sizeof *xs; i++) {
+    double x = xs[i], bound = ref_cert_turn_d(x);
+    double th = asin(x);
+    dvec3 worst = rcm_scale_d(rcm_make_d(cos(th), sin(th), 0), cos(th));
+    CHECK_NEAR(rcm_length_d(rcm_sub_d(worst, a)), x, 1e-12);
+    double c = chord(worst, a);
+    CHECK(c <= bound);
+    CHECK(c >= 0.91 * bound);
+    CHECK(c > 0.5 * bound);
+    for (int k = 0; k < 2000; k++) {
+      /* A random offset of length up to x. */
+      dvec3 e = rcm_make_d(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1);
+      e = rcm_scale_d(rcm_normalize_d(e), x * uniform());
+      CHECK(chord(rcm_add_d(a, e), a) <= bound);
+    }
+  }
+}
+
+/* The triangle's t bound (cert_triangle_t_error), with the ray exact (eo = ed = 0) so that
+ * only f32's rounding separates t from the f64 t of the same f32 inputs: it holds on small
+ * triangles far from the ray's origin, the case it was made for, and it is far below
+ * pbrt's bound (triangle_t_error), which weighs the edge functions' errors by the depths
+ * rather than by their spread about t. */
+TEST(triangle_t_bound_is_sound_and_tighter_than_pbrts) {
+  packed_frame frame = {0};
+  frame.triangle_formula = RC_TRIANGLE_WATERTIGHT;
+  frame.certify = RC_CERTIFY_ON;
+  ref_scene sc = {.frame = &frame};
+  int hits = 0, tighter = 0;
+  double worst = 0;
+  for (int k = 0; k < 4000; k++) {
+    double dist = pow(10, 3 * uniform()), size = dist * pow(10, -1 - 2 * uniform());
+    /* A triangle of that size around a point at dist, turned at random, and a ray from
+     * near the origin to a point inside it. */
+    dvec3 dir = rcm_normalize_d(rcm_make_d(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1));
+    dvec3 c = rcm_scale_d(dir, dist);
+    vec3 v[3];
+    for (int j = 0; j < 3; j++) {
+      dvec3 p = rcm_add_d(c, rcm_scale_d(rcm_make_d(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1), size));
+      v[j] = rcm_make_f((float)p.x, (float)p.y, (float)p.z);
+    }
+    packed_triangle tri = {v[0], 0, v[1], RC_NO_NORMALS, v[2], 0};
+    vec3 of = rcm_make_f((float)(uniform() - 0.5), (float)(uniform() - 0.5), (float)(uniform() - 0.5));
+    double w0 = uniform(), w1 = uniform() * (1 - w0);
+    dvec3 inside = rcm_add_d(rcm_add_d(rcm_scale_d(rcm_to_d(v[0]), w0), rcm_scale_d(rcm_to_d(v[1]), w1)),
+                             rcm_scale_d(rcm_to_d(v[2]), 1 - w0 - w1));
+    dvec3 aim = rcm_normalize_d(rcm_sub_d(inside, rcm_to_d(of)));
+    vec3 df = rcm_normalize_f(rcm_make_f((float)aim.x, (float)aim.y, (float)aim.z));
+    ref_shear_f sh = ref_ray_shear_for_f(df);
+    ref_cert_eo_f = ref_cert_ed_f = 0;
+    ref_cert_ok_f = true;
+    ref_cert_any_f = ref_cert_self_f = false;
+    ref_cert_beyond_f = (float)RC_T_FAR;
+    ref_spawned_ray = false;
+    ref_cert_triangle_f(&sc, of, &sh, tri, (float)RC_T_FAR);
+    vec3 bary_f;
+    float tf = ref_intersect_triangle_f(of, &sh, tri, (float)RC_T_FAR, &bary_f);
+    if (!ref_cert_ok_f || !(tf < (float)RC_T_FAR)) continue; /* uncertain, or missed */
+    dvec3 od = rcm_make_d(of.x, of.y, of.z), dd = rcm_make_d(df.x, df.y, df.z);
+    ref_shear_d shd = ref_ray_shear_for_d(dd);
+    dvec3 bary_d;
+    double td = ref_intersect_triangle_d(od, &shd, tri, RC_T_FAR, &bary_d);
+    CHECK(td < RC_T_FAR);
+    if (!(td < RC_T_FAR)) continue;
+    hits++;
+    double err = fabs((double)tf - td), bound = ref_cert_t_err_f;
+    CHECK(err <= bound);
+    if (bound > 0 && err / bound > worst) worst = err / bound;
+    ref_sheared_f st = ref_shear_triangle_f(of, &sh, tri);
+    tighter += bound * 10 < ref_triangle_t_error_f(&st, ref_enclosing_det_f(st.e));
+  }
+  /* Enough hits to mean something, and the new bound ten times tighter on most. */
+  CHECK(hits > 1000);
+  CHECK(tighter * 10 > hits * 9);
+  CHECK(worst <= 1);
+}
+
+int main(void) {
+  TEST_MAIN_BEGIN
+  RUN(unit_vector_turn_is_sound_and_attained);
+  RUN(triangle_t_bound_is_sound_and_tighter_than_pbrts);
+  TEST_MAIN_END
+}
