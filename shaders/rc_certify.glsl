@@ -126,21 +126,13 @@ bool cert_root(real t, real e, real t_max, bool ahead) {
 // precisions' offsets start outside of: both roots behind it), nor where cert_maybe finds
 // that interval outside the query. This precision's own roots are those of
 // intersect_sphere_geometric.
-void cert_sphere_grazing(real disc, real b, real c, real e_disc, real e_b, real e_c, real t_max, real scale,
-                         real rel) {
+void cert_sphere_grazing(real disc, real b, real c, real e_disc, real e_b, real e_c, real t_max, real t_near,
+                         real t_exit, bool roots, real scale, real rel) {
   real k = cert_factor();
-  bool taken = false;
-  if (disc >= 0.0) {
-    precise real sq = sqrt(disc);
-    precise real q = (b >= 0.0) ? -(b + sq) : -(b - sq);
-    precise real t0 = c / q;
-    // Compared with t_max in packed space, with room for a transformed sphere's rounding
-    // of the comparison in object space (intersect_any_sphere).
-    real reach = t_max + abs(t_max) * 9.5367431640625e-07;
-    real t_near = select_min(t0, q) * scale;
-    real t_exit = select_max(t0, q) * scale;
-    taken = q != 0.0 && ((t_near > 0.0 && t_near <= reach) || (t_exit > 0.0 && t_exit <= reach));
-  }
+  // This precision's roots, compared with t_max in packed space, with room for a
+  // transformed sphere's rounding of the comparison in object space (intersect_any_sphere).
+  real reach = t_max + abs(t_max) * 9.5367431640625e-07;
+  bool taken = disc >= 0.0 && roots && ((t_near > 0.0 && t_near <= reach) || (t_exit > 0.0 && t_exit <= reach));
   if (!taken && b > k * e_b && (cert_self || c > k * e_c)) return;
   real spread = sqrt(select_max(disc, 0.0) + k * e_disc) + k * e_b;
   real lo = (-b - spread) * scale;
@@ -170,24 +162,27 @@ void cert_sphere_roots(rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale
   real e_disc = 2.0 * lm * el + el * el + gamma_bound(4.0) * (r * r + ll);
   real e_b = cert_eo + fm * cert_ed + cert_eo * cert_ed + gamma_bound(4.0) * fm;
   real e_c = 2.0 * fm * cert_eo + cert_eo * cert_eo + gamma_bound(4.0) * (ff + r * r);
-  if (!(abs(disc) > cert_factor() * e_disc)) {
-    cert_sphere_grazing(disc, b, c, e_disc, e_b, e_c, t_max, scale, rel);
+  bool certain = abs(disc) > cert_factor() * e_disc;
+  if (certain && disc < 0.0) return;
+  // The test's roots (where disc >= 0), computed once for both cases below: llvmpipe runs
+  // every branch a SIMD vector's lanes take, so shared work is work saved.
+  precise real sq = sqrt(select_max(disc, 0.0));
+  precise real q = (b >= 0.0) ? -(b + sq) : -(b - sq);
+  precise real t0 = c / q;
+  real t_near = select_min(t0, q) * scale;
+  real t_exit = select_max(t0, q) * scale;
+  if (!certain) {
+    cert_sphere_grazing(disc, b, c, e_disc, e_b, e_c, t_max, t_near, t_exit, q != 0.0, scale, rel);
     return;
   }
-  if (disc < 0.0) return;
-  precise real sq = sqrt(disc);
-  precise real q = (b >= 0.0) ? -(b + sq) : -(b - sq);
   if (q == 0.0) {
     cert_fail();
     return;
   }
-  precise real t0 = c / q;
   real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
   real e_q = e_b + e_sq + gamma_bound(2.0) * abs(q);
   real e_t0 = (abs(q) > e_q) ? (e_c + abs(t0) * e_q) / (abs(q) - e_q) + gamma_bound(1.0) * abs(t0) : real(RC_T_FAR);
   real e = select_max(e_q, e_t0);
-  real t_near = select_min(t0, q) * scale;
-  real t_exit = select_max(t0, q) * scale;
   if (cert_root(t_near, e * scale + abs(t_near) * rel, t_max, t_near > 0.0)) return;
   cert_root(t_exit, e * scale + abs(t_exit) * rel, t_max, t_exit > 0.0);
 }
@@ -215,34 +210,17 @@ real cert_triangle_t_error(sheared_triangle st, real t, real det, real e_det, re
   return (ee * zt + (se + 3.0 * ee) * zeta) / (abs(det) - e_det) + gamma_bound(3.0) * (ez + abs(t) * se) / abs(det);
 }
 
-// A triangle whose edge functions' signs are uncertain: the ray passes near an edge, and
-// the reference may take the hit where this precision does not, or not where it does. A
-// hit, either's, is at the plane's t = sum(e z) / sum(e), any signs; the sum moves by 3 ee
-// and rounds by gamma(2) of its terms. cert_maybe judges the
-// interval; a spawned ray's root on the triangle it leaves is dropped by both, as cert_root
-// says.
-void cert_triangle_grazing(sheared_triangle st, real t_max, real ee, real dz, real se) {
-  precise real sum = st.e.x + st.e.y + st.e.z;
-  real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
-  if (!(abs(sum) > cert_factor() * e_sum)) {
-    cert_fail();  // the ray runs along the plane, or the triangle is a sliver
-    return;
-  }
-  real t = triangle_t(st, sum);
-  real det = enclosing_det(st.e);
-  bool ahead = t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, sum));
-  if (!ahead && cert_self) return;
-  bool taken = det != 0.0 && ahead && t <= t_max;
-  real e_t = cert_triangle_t_error(st, t, sum, e_sum, ee, dz, se);
-  cert_maybe(t - cert_factor() * e_t, t + cert_factor() * e_t, t_max, taken);
-}
-
 // The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed. A
 // sheared coordinate a.x - s.x a.z moves by |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <=
 // |dd| (1 + |s.x|) / |d.z|, and rounds by gamma(5) of its terms (pbrt's delta_x); an edge
 // function x y' - y x' by the products of those and gamma(2) of its terms. A miss is certified
 // by two edge functions of certain opposite signs, a hit by three of certain sign; t's bound
-// is cert_triangle_t_error's.
+// is cert_triangle_t_error's. Otherwise the ray passes near an edge, and the reference may
+// take the hit where this precision does not, or not where it does; either's hit is at the
+// plane's t = sum(e z) / sum(e) (det, where the signs agree), whose sum moves by 3 ee and
+// rounds by gamma(2) of its terms, and cert_maybe judges that interval. A spawned ray's root
+// on the triangle it leaves is dropped by both, as cert_root says. t and its bound are
+// computed once for both cases: llvmpipe runs every branch a SIMD vector's lanes take.
 void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
   if (triangle_formula != RC_TRIANGLE_WATERTIGHT || (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) {
     cert_fail();
@@ -264,19 +242,24 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
   if (pos && neg) return;
   real dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
   real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
-  if (!(select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k)) {
-    cert_triangle_grazing(st, t_max, ee, dz, se);
+  precise real sum = st.e.x + st.e.y + st.e.z;
+  real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
+  if (!(abs(sum) > cert_factor() * e_sum)) {
+    cert_fail();  // the ray runs along the plane, or the triangle is a sliver
     return;
   }
+  real t = triangle_t(st, sum);
+  real e_t = cert_triangle_t_error(st, t, sum, e_sum, ee, dz, se);
+  bool ahead = t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, sum));
+  if (select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k) {
+    cert_bary_err = 4.0 * ee / abs(sum);
+    cert_root(t, e_t, t_max, ahead);
+    return;
+  }
+  if (!ahead && cert_self) return;
   real det = enclosing_det(st.e);
-  if (det == 0.0) {
-    cert_fail();
-    return;
-  }
-  real t = triangle_t(st, det);
-  real e_t = cert_triangle_t_error(st, t, det, 3.0 * ee + gamma_bound(2.0) * se, ee, dz, se);
-  cert_bary_err = 4.0 * ee / abs(det);
-  cert_root(t, e_t, t_max, t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, det)));
+  bool taken = det != 0.0 && ahead && t <= t_max;
+  cert_maybe(t - cert_factor() * e_t, t + cert_factor() * e_t, t_max, taken);
 }
 
 #if RC_QUADRICS

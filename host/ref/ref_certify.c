@@ -72,18 +72,10 @@ bool REF(cert_root)(const ref_scene *sc, real t, real e, real t_max, bool ahead)
 }
 
 void REF(cert_sphere_grazing)(const ref_scene *sc, real disc, real b, real c, real e_disc, real e_b, real e_c,
-                              real t_max, real scale, real rel) {
+                              real t_max, real t_near, real t_exit, bool roots, real scale, real rel) {
   real k = REF(cert_factor)(sc);
-  bool taken = false;
-  if (disc >= 0) {
-    real sq = R_SQRT(disc);
-    real q = (b >= 0) ? -(b + sq) : -(b - sq);
-    real t0 = c / q;
-    real reach = t_max + R_ABS(t_max) * (real)9.5367431640625e-07;
-    real t_near = rmin(t0, q) * scale;
-    real t_exit = rmax(t0, q) * scale;
-    taken = q != 0 && ((t_near > 0 && t_near <= reach) || (t_exit > 0 && t_exit <= reach));
-  }
+  real reach = t_max + R_ABS(t_max) * (real)9.5367431640625e-07;
+  bool taken = disc >= 0 && roots && ((t_near > 0 && t_near <= reach) || (t_exit > 0 && t_exit <= reach));
   if (!taken && b > k * e_b && (ref_cert_self || c > k * e_c)) return;
   real spread = R_SQRT(rmax(disc, 0) + k * e_disc) + k * e_b;
   real lo = (-b - spread) * scale;
@@ -106,25 +98,26 @@ void REF(cert_sphere_roots)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere
   real e_disc = 2 * lm * el + el * el + REF(gamma_bound)(4) * (r * r + ll);
   real e_b = ref_cert_eo + fm * ref_cert_ed + (ref_cert_eo) * ref_cert_ed + REF(gamma_bound)(4) * fm;
   real e_c = 2 * fm * ref_cert_eo + (ref_cert_eo) * ref_cert_eo + REF(gamma_bound)(4) * (ff + r * r);
-  if (!(R_ABS(disc) > REF(cert_factor)(sc) * e_disc)) {
-    REF(cert_sphere_grazing)(sc, disc, b, c, e_disc, e_b, e_c, t_max, scale, rel);
+  bool certain = R_ABS(disc) > REF(cert_factor)(sc) * e_disc;
+  if (certain && disc < 0) return;
+  real sq = R_SQRT(rmax(disc, 0));
+  real q = (b >= 0) ? -(b + sq) : -(b - sq);
+  real t0 = c / q;
+  real t_near = rmin(t0, q) * scale;
+  real t_exit = rmax(t0, q) * scale;
+  if (!certain) {
+    REF(cert_sphere_grazing)(sc, disc, b, c, e_disc, e_b, e_c, t_max, t_near, t_exit, q != 0, scale, rel);
     return;
   }
-  if (disc < 0) return;
-  real sq = R_SQRT(disc);
-  real q = (b >= 0) ? -(b + sq) : -(b - sq);
   if (q == 0) {
     REF(cert_fail)();
     return;
   }
-  real t0 = c / q;
   real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
   real e_q = e_b + e_sq + REF(gamma_bound)(2) * R_ABS(q);
   real e_t0 = (R_ABS(q) > e_q) ? (e_c + R_ABS(t0) * e_q) / (R_ABS(q) - e_q) + REF(gamma_bound)(1) * R_ABS(t0)
                                : (real)RC_T_FAR;
   real e = rmax(e_q, e_t0);
-  real t_near = rmin(t0, q) * scale;
-  real t_exit = rmax(t0, q) * scale;
   if (REF(cert_root)(sc, t_near, e * scale + R_ABS(t_near) * rel, t_max, t_near > 0)) return;
   REF(cert_root)(sc, t_exit, e * scale + R_ABS(t_exit) * rel, t_max, t_exit > 0);
 }
@@ -144,21 +137,6 @@ real REF(cert_triangle_t_error)(const ref_sheared *st, real t, real det, real e_
   return (ee * zt + (se + 3 * ee) * zeta) / (R_ABS(det) - e_det) + REF(gamma_bound)(3) * (ez + R_ABS(t) * se) / R_ABS(det);
 }
 
-void REF(cert_triangle_grazing)(const ref_scene *sc, const ref_sheared *st, real t_max, real ee, real dz, real se) {
-  real sum = st->e.x + st->e.y + st->e.z;
-  real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
-  if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) {
-    REF(cert_fail)();
-    return;
-  }
-  real t = REF(triangle_t)(st, sum);
-  real det = REF(enclosing_det)(st->e);
-  bool ahead = t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(st, sum));
-  if (!ahead && ref_cert_self) return;
-  bool taken = det != 0 && ahead && t <= t_max;
-  real e_t = REF(cert_triangle_t_error)(st, t, sum, e_sum, ee, dz, se);
-  REF(cert_maybe)(sc, t - REF(cert_factor)(sc) * e_t, t + REF(cert_factor)(sc) * e_t, t_max, taken);
-}
 
 void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max) {
   if (sc->frame->triangle_formula != RC_TRIANGLE_WATERTIGHT || (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0) {
@@ -181,19 +159,24 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   if (pos && neg) return;
   real dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
   real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
-  if (!(rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k)) {
-    REF(cert_triangle_grazing)(sc, &st, t_max, ee, dz, se);
-    return;
-  }
-  real det = REF(enclosing_det)(st.e);
-  if (det == 0) {
+  real sum = st.e.x + st.e.y + st.e.z;
+  real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
+  if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) {
     REF(cert_fail)();
     return;
   }
-  real t = REF(triangle_t)(&st, det);
-  real e_t = REF(cert_triangle_t_error)(&st, t, det, 3 * ee + REF(gamma_bound)(2) * se, ee, dz, se);
-  ref_cert_bary_err = 4 * ee / R_ABS(det);
-  REF(cert_root)(sc, t, e_t, t_max, t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(&st, det)));
+  real t = REF(triangle_t)(&st, sum);
+  real e_t = REF(cert_triangle_t_error)(&st, t, sum, e_sum, ee, dz, se);
+  bool ahead = t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(&st, sum));
+  if (rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k) {
+    ref_cert_bary_err = 4 * ee / R_ABS(sum);
+    REF(cert_root)(sc, t, e_t, t_max, ahead);
+    return;
+  }
+  if (!ahead && ref_cert_self) return;
+  real det = REF(enclosing_det)(st.e);
+  bool taken = det != 0 && ahead && t <= t_max;
+  REF(cert_maybe)(sc, t - REF(cert_factor)(sc) * e_t, t + REF(cert_factor)(sc) * e_t, t_max, taken);
 }
 
 void REF(cert_plane)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {

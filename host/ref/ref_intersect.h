@@ -78,9 +78,8 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_cert_turn_##S(R x);                                                                     \
   bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
   void ref_cert_maybe_##S(const ref_scene *sc, R lo, R hi, R t_max, bool taken);                \
-  void ref_cert_sphere_grazing_##S(const ref_scene *sc, R disc, R b, R c, R e_disc, R e_b, R e_c, R t_max, R scale, \
-                                   R rel);                                                      \
-  void ref_cert_triangle_grazing_##S(const ref_scene *sc, const ref_sheared_##S *st, R t_max, R ee, R dz, R se); \
+  void ref_cert_sphere_grazing_##S(const ref_scene *sc, R disc, R b, R c, R e_disc, R e_b, R e_c, R t_max, R t_near, \
+                                   R t_exit, bool roots, R scale, R rel);                       \
   R ref_cert_triangle_t_error_##S(const ref_sheared_##S *st, R t, R det, R e_det, R ee, R dz, R se); \
   void ref_cert_sphere_roots_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R scale, R rel); \
   R ref_cert_norm_##S(const packed_transform *m);                                               \
