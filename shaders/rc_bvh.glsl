@@ -38,7 +38,7 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
 #endif
     real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary, part);
 #if RC_CERTIFY
-    if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends(true)) continue;
+    if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) continue;
 #endif
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(object, t, side, bary, part, h);
@@ -130,7 +130,7 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
 #endif
     real t = intersect_plane(load_quadric(k), o, d, any ? t_max : h.t);
 #if RC_CERTIFY
-    if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends(true)) continue;
+    if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) continue;
 #endif
     if (any && t < real(RC_T_FAR)) return true;
     consider_hit(first_quadric_object + k, t, 0.0, rvec3(0.0), csg_code(k, 0u, false, false), h);

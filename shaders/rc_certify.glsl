@@ -53,6 +53,11 @@ real cert_turn(real x) {
   return (x < 0.5) ? x / sqrt(1.0 - x * x) + gamma_bound(8.0) : 2.0;
 }
 
+// The same for a vector b of length len at most e from the reference's a, whose length is
+// then at least len - e: x = e / (len - e), and 2 where len does not exceed e (no division
+// by 0, which a shader may not rely on to give Inf).
+real cert_turn_of(real e, real len) { return (len > e) ? cert_turn(e / (len - e)) : 2.0; }
+
 // A decision this file cannot bound.
 void cert_fail() { cert_ok = false; }
 
@@ -146,7 +151,8 @@ void cert_sphere_grazing(real disc, real b, real c, real e_disc, real e_b, real 
 // rounding; the discriminant r^2 - |l|^2 by 2 |l| dl + dl^2 and gamma(4) of its terms. The
 // root q = -(b + sign(b) sqrt D) carries b's and sqrt's errors, c / q adds c's (which cancels
 // for an origin on the sphere). The roots are judged in packed space: times `scale`, their
-// bounds too, plus `rel` of them (a transformed sphere's 1 / len and its error).
+// bounds too, plus `rel` of them (a transformed sphere's 1 / len and its error). A
+// discriminant of uncertain sign is cert_sphere_grazing's to judge.
 void cert_sphere_roots(rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale, real rel) {
   real r = real(s.radius);
   precise rvec3 f = o - rvec3(s.center);

@@ -197,8 +197,7 @@ hit_record no_hit() {
 }
 
 #if RC_CERTIFY
-// A sphere's decisions (intersect_any_sphere) A transformed one is
-// tested in object space, along d_obj = A d normalized, and t = t_obj / |d_obj|: the ray's
+// A sphere's decisions (intersect_any_sphere). A transformed one is tested in object space, along d_obj = A d normalized, and t = t_obj / |d_obj|: the ray's
 // perturbation goes there as |A| do and |A| dd over |d_obj|, with gamma(4) of the terms of
 // A o + b and A d; the roots come back scaled by 1 / |d_obj|, whose error is that of |d_obj|
 // relative to it, plus the rounding of the scaling and of t_max |d_obj|.
@@ -263,13 +262,12 @@ void cert_closest(hit_record h) {
   if (!certain) cert_ok = false;
 }
 
-// A shadow ray's blocker (t < RC_T_FAR) ends the query, unless certified mode must look on:
-// past a blocker whose own test is uncertain, for one whose test is certain. The answer is
-// blocked either way; only the certificate depends on the search, which therefore stops
-// short of the loop budget (cert_blocked_later) rather than exhaust it. True when it ends
-// here.
-bool cert_blocker_ends(bool blocks) {
-  if (!blocks) return false;
+// A shadow ray's blocker (the object just tested hit within t_max) ends the query, unless
+// certified mode must look on: past a blocker whose own test is uncertain, for one whose
+// test is certain. The answer is blocked either way; only the certificate depends on the
+// search, which therefore stops short of the loop budget (cert_blocked_later) rather than
+// exhaust it. True when it ends here.
+bool cert_blocker_ends() {
   if (cert_hit_ok) {
     cert_blocker_certain = true;
     return true;
@@ -325,7 +323,7 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
 #endif
     bool blocks = intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
 #if RC_CERTIFY
-    if (certify && blocks && !cert_blocker_ends(blocks)) continue;
+    if (certify && blocks && !cert_blocker_ends()) continue;
 #endif
     if (blocks) return true;
   }

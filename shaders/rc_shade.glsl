@@ -272,10 +272,10 @@ void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
     real r = length(rvec3(light.position) - sf.p);
     real dist = length(rvec3(light.position) - origin);
     real xl = cert_ep + gamma_bound(4.0) * r;
-    cert_require(n_dot_l, cert_en + ((r > xl) ? cert_turn(xl / (r - xl)) : 2.0) + gamma_bound(4.0));
+    cert_require(n_dot_l, cert_en + cert_turn_of(xl, r) + gamma_bound(4.0));
     real xd = eo + gamma_bound(4.0) * dist;
     cert_eo = eo;
-    cert_ed = (dist > xd) ? cert_turn(xd / (dist - xd)) : 2.0;
+    cert_ed = cert_turn_of(xd, dist);
     cert_t_max_err = eo + gamma_bound(6.0) * dist;
   } else {
     cert_require(n_dot_l, cert_en + gamma_bound(4.0));

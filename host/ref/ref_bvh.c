@@ -31,7 +31,7 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     uint32_t part;
     if (sc->frame->certify) REF(cert_object)(sc, object, o, d, sh, any ? t_max : h->t);
     real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
-    if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)(true)) continue;
+    if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, object, t, side, bary, part, h);
   }
@@ -79,7 +79,7 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   for (uint32_t k = first; k < f->quadric_count; k++) {
     if (f->certify) REF(cert_object)(sc, first_quadric_object + k, o, d, &sh, any ? t_max : h->t);
     real t = REF(intersect_plane)(&sc->quadrics[k], o, d, any ? t_max : h->t);
-    if (f->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)(true)) continue;
+    if (f->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, first_quadric_object + k, t, 0, RV(make)(0, 0, 0), REF(csg_code)(k, 0, false, false), h);
   }

@@ -22,6 +22,8 @@ void REF(cert_require)(const ref_scene *sc, real margin, real bound) {
 
 real REF(cert_turn)(real x) { return (x < (real)0.5) ? x / R_SQRT(1 - x * x) + REF(gamma_bound)(8) : 2; }
 
+real REF(cert_turn_of)(real e, real len) { return (len > e) ? REF(cert_turn)(e / (len - e)) : 2; }
+
 void REF(cert_fail)(void) { ref_cert_ok = false; }
 
 void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {

@@ -215,9 +215,9 @@ void REF(cert_closest)(const ref_scene *sc, const ref_hit *h) {
   if (!certain) ref_cert_ok = false;
 }
 
-/* No loop budget here (cert_may_look_on): the CPU has no dispatch to time out. */
-bool REF(cert_blocker_ends)(bool blocks) {
-  if (!blocks) return false;
+/* No loop budget here to stop the search short of (the shader's): the CPU has no dispatch
+ * to time out. */
+bool REF(cert_blocker_ends)(void) {
   if (ref_cert_hit_ok) {
     ref_cert_blocker_certain = true;
     return true;
@@ -250,7 +250,7 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
     uint32_t part;
     if (sc->frame->certify) REF(cert_object)(sc, i, o, d, &sh, t_max);
     bool blocks = REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
-    if (sc->frame->certify && blocks && !REF(cert_blocker_ends)(blocks)) continue;
+    if (sc->frame->certify && blocks && !REF(cert_blocker_ends)()) continue;
     if (blocks) return true;
   }
   return false;

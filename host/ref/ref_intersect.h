@@ -64,7 +64,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
-  bool ref_cert_blocker_ends_##S(bool blocks);                                                  \
+  bool ref_cert_blocker_ends_##S(void);                                                         \
   void ref_cert_object_tests_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
   /* ref_certify.c, the twin of rc_certify.glsl, and its per-thread state. */                    \
   extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S, ref_cert_hit_ok_##S, \
@@ -76,6 +76,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_require_##S(const ref_scene *sc, R margin, R bound);                            \
   void ref_cert_fail_##S(void);                                                                 \
   R ref_cert_turn_##S(R x);                                                                     \
+  R ref_cert_turn_of_##S(R e, R len);                                                           \
   bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
   void ref_cert_maybe_##S(const ref_scene *sc, R lo, R hi, R t_max, bool taken);                \
   void ref_cert_sphere_grazing_##S(const ref_scene *sc, R disc, R b, R c, R e_disc, R e_b, R e_c, R t_max, R t_near, \

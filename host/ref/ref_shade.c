@@ -214,10 +214,10 @@ void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface
     real r = RV(length)(RV(sub)(rvec3_from(light.position), sf->p));
     real dist = RV(length)(RV(sub)(rvec3_from(light.position), origin));
     real xl = ref_cert_ep + REF(gamma_bound)(4) * r;
-    REF(cert_require)(sc, n_dot_l, ref_cert_en + ((r > xl) ? REF(cert_turn)(xl / (r - xl)) : 2) + REF(gamma_bound)(4));
+    REF(cert_require)(sc, n_dot_l, ref_cert_en + REF(cert_turn_of)(xl, r) + REF(gamma_bound)(4));
     real xd = eo + REF(gamma_bound)(4) * dist;
     ref_cert_eo = eo;
-    ref_cert_ed = (dist > xd) ? REF(cert_turn)(xd / (dist - xd)) : 2;
+    ref_cert_ed = REF(cert_turn_of)(xd, dist);
     ref_cert_t_max_err = eo + REF(gamma_bound)(6) * dist;
   } else {
     REF(cert_require)(sc, n_dot_l, ref_cert_en + REF(gamma_bound)(4));
