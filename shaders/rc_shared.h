@@ -475,9 +475,15 @@ struct packed_bvh_node {
  * objects), or the smallest subtree of the object tree that holds them all. In the BVH's
  * reference array, from frame.light_buffers: a pair (cells, reach) per light, where `cells`
  * is where the light's 6 x RES^2 pairs (first, end) start (0: the light has no buffer) and
- * `reach` (f32 bits) the longest shadow ray the buffer answers for. */
+ * `reach` (f32 bits) the longest shadow ray the buffer answers for.
+ * The eye buffer is the same for primary rays, projected onto the image instead of a cube:
+ * tiles of 2^shift pixels square, each naming what a primary ray through one of its
+ * pixels can meet. Its pair follows the lights' (entry light_count): (cells, shift |
+ * columns << RC_EYE_BUFFER_COLUMNS_SHIFT), cells 0 where there is none; tile (i, j), in
+ * pixels counted from the image's top left corner, is pair j * columns + i from `cells` on. */
 #define RC_LIGHT_BUFFER_RES 64u
 #define RC_LIGHT_BUFFER_LIST 4u /* below 1 << RC_BVH_LEAF_SHIFT */
+#define RC_EYE_BUFFER_COLUMNS_SHIFT 5u
 
 /* Per-dispatch parameters: the tile and the sample batch. */
 struct packed_push {

@@ -32,11 +32,12 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
 #endif
   rvec3 color = rvec3(0.0);
   rvec3 weight = rvec3(1.0);
+  uvec2 nodes = eye_nodes(pixel);
   for (uint depth = 0u; depth <= scene_reflection_depth(); depth++) {
     if (!budget_step()) break;
     hit_record h;
     spawned_ray = depth > 0u;
-    bool hit = closest_hit(o, d, h);
+    bool hit = closest_hit(o, d, nodes, h);
     aov_recording = aov_enabled && s == 0u && depth == 0u;
     if (aov_recording) aov_begin(h);
     if (!hit) {
@@ -58,6 +59,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     o = spawn_origin(sf);
     d = normalize(reflect(d, sf.n));
     o = t_min_start(o, d);
+    nodes = uvec2(0u, frame.bvh_node_count);  // the eye buffer is for primary rays
 #if RC_CERTIFY
     if (certify) cert_reflect(sf, o, ed_in);
 #endif

@@ -37,7 +37,7 @@ typedef struct {
   bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
   int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
-      scene_buffers, pipeline, light_buffers, certified_rerender, certified_bound;
+      scene_buffers, pipeline, light_buffers, eye_buffer, certified_rerender, certified_bound;
   double offset_epsilon; /* 0: the scene's */
   double gamma;          /* 0: the scene's (or 2.2) */
   double exposure;       /* NAN: the scene's */
@@ -94,6 +94,9 @@ static const rc_option render_options[] = {
      .help = "on (default) or off: a cube of cells around each of the first 8 point lights\n"
              "naming what its shadow rays can meet (Haines & Greenberg 1986); the image\n"
              "does not depend on it"},
+    {"--eye-buffer", NULL, RC_OPT_CHOICE, ARG(eye_buffer), "B", .choices = off_on,
+     .help = "on (default) or off: the objects projected onto the image's tiles, naming\n"
+             "what each pixel's primary rays can meet; the image does not depend on it"},
     {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
      .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
     {"--flush-subnormals", NULL, RC_OPT_FLAG, ARG(flush_subnormals),
@@ -279,7 +282,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->exposure = NAN;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
       a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline =
-          a->light_buffers = a->certified_rerender = a->certified_bound = -1;
+          a->light_buffers = a->eye_buffer = a->certified_rerender = a->certified_bound = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -818,7 +821,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
   }
   /* After the part's scene hash (resolve_part): the buffers, like the tree, only speed the
    * renderers up, and parts rendered with and without them merge. */
-  if (st == RC_OK && a->light_buffers != 0) st = rc_light_buffers_build(&packed, &rs.light_buffers);
+  if (st == RC_OK) st = rc_light_buffers_build(&packed, a->light_buffers != 0, a->eye_buffer != 0, &rs.light_buffers);
   rs.region = a->part.region;
   rs.shard_index = a->part.shard_index, rs.shard_count = a->part.shard_count;
   rc_stats_describe_scene(&rs, scene);

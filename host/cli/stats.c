@@ -64,6 +64,11 @@ void rc_stats_print(const rc_render_stats *s) {
             "subtree; %.1f KiB, built in %.1f ms\n", s->light_buffers.lights, (unsigned long long)s->light_buffers.cells,
             (unsigned long long)s->light_buffers.empty, (unsigned long long)s->light_buffers.lists,
             (unsigned long long)s->light_buffers.subtrees, s->light_buffers.bytes / 1024.0, s->light_buffers.build_ms);
+  if (s->light_buffers.eye_tile)
+    fprintf(stderr, "vkraycast: eye buffer of %u-pixel tiles: %llu tiles, %llu empty, %llu with a list, %llu with a "
+            "subtree\n", s->light_buffers.eye_tile, (unsigned long long)s->light_buffers.eye_cells,
+            (unsigned long long)s->light_buffers.eye_empty, (unsigned long long)s->light_buffers.eye_lists,
+            (unsigned long long)s->light_buffers.eye_subtrees);
   if (strcmp(s->backend, "gpu") == 0)
     fprintf(stderr, "vkraycast: parse %.1f ms, upload %.1f ms, pipeline %.1f ms, first frame %.1f ms, render %.1f ms "
             "(GPU), %.1f ms (wall), readback %.1f ms, write %.1f ms\n",
@@ -142,6 +147,11 @@ static const stats_field bvh_fields[] = {
     FIELD("light_buffer_subtree_cells", F_U64, light_buffers.subtrees),
     FIELD("light_buffer_bytes", F_U64, light_buffers.bytes),
     FIELD("light_buffer_ms", F_DOUBLE, light_buffers.build_ms),
+    FIELD("eye_buffer_tile", F_U32, light_buffers.eye_tile),
+    FIELD("eye_buffer_cells", F_U64, light_buffers.eye_cells),
+    FIELD("eye_buffer_empty_cells", F_U64, light_buffers.eye_empty),
+    FIELD("eye_buffer_list_cells", F_U64, light_buffers.eye_lists),
+    FIELD("eye_buffer_subtree_cells", F_U64, light_buffers.eye_subtrees),
     FIELD("parse_ms", F_DOUBLE, parse_ms),
     FIELD("first_frame_ms", F_DOUBLE, first_frame_ms),
     FIELD("render_ms", F_DOUBLE, render_ms),

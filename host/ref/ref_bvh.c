@@ -86,31 +86,15 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   return false;
 }
 
-bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
-  *h = REF(no_hit)();
-  if (sc->frame->certify) {
-    ref_cert_any = false;
-    ref_cert_beyond = (real)RC_T_FAR;
-  }
-  if (sc->use_bvh) {
-    REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, 0, sc->frame->bvh_node_count, h);
-    REF(test_planes)(sc, o, d, false, (real)RC_T_FAR, h);
-  } else {
-    REF(closest_hit_linear)(sc, o, d, h);
-  }
-  if (sc->frame->certify) REF(cert_closest)(sc, h);
-  return h->kind != RC_HIT_NONE;
-}
-
-/* The node range [first, end) of a shadow ray towards light `light` (rc_bvh.glsl says how
- * the cell is found; the same f32 arithmetic here). */
-void REF(shadow_nodes)(const ref_scene *sc, uint32_t light, rvec3 d, real t_max, uint32_t *first, uint32_t *end) {
+/* The node range [first, end) of a ray along d towards the centre of cube `cube`, starting
+ * `from` away (rc_bvh.glsl says how the cell is found; the same f32 arithmetic here). */
+void REF(cube_nodes)(const ref_scene *sc, uint32_t cube, rvec3 d, real from, uint32_t *first, uint32_t *end) {
   *first = 0, *end = sc->frame->bvh_node_count;
   if (sc->frame->light_buffers == 0) return;
-  const uint32_t *entry = &sc->bvh_prims[sc->frame->light_buffers + 2 * light];
+  const uint32_t *entry = &sc->bvh_prims[sc->frame->light_buffers + 2 * cube];
   float reach;
   memcpy(&reach, &entry[1], sizeof reach);
-  if (entry[0] == 0 || !(t_max <= (real)reach)) return;
+  if (entry[0] == 0 || !(from <= (real)reach)) return;
   vec3 v = {(float)d.x, (float)d.y, (float)d.z};
   vec3 a = {fabsf(v.x), fabsf(v.y), fabsf(v.z)};
   uint32_t axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
@@ -128,6 +112,33 @@ void REF(shadow_nodes)(const ref_scene *sc, uint32_t light, rvec3 d, real t_max,
   *first = cell[0], *end = cell[1];
 }
 
+/* The node range [first, end) of a primary ray through pixel (x, y) (rc_bvh.glsl). */
+void REF(eye_nodes)(const ref_scene *sc, uint32_t x, uint32_t y, uint32_t *first, uint32_t *end) {
+  *first = 0, *end = sc->frame->bvh_node_count;
+  if (sc->frame->light_buffers == 0) return;
+  const uint32_t *entry = &sc->bvh_prims[sc->frame->light_buffers + 2 * sc->frame->light_count];
+  if (entry[0] == 0) return;
+  uint32_t shift = entry[1] & ((1u << RC_EYE_BUFFER_COLUMNS_SHIFT) - 1), columns = entry[1] >> RC_EYE_BUFFER_COLUMNS_SHIFT;
+  const uint32_t *cell = &sc->bvh_prims[entry[0] + 2 * ((y >> shift) * columns + (x >> shift))];
+  *first = cell[0], *end = cell[1];
+}
+
+bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, uint32_t first, uint32_t end, ref_hit *h) {
+  *h = REF(no_hit)();
+  if (sc->frame->certify) {
+    ref_cert_any = false;
+    ref_cert_beyond = (real)RC_T_FAR;
+  }
+  if (sc->use_bvh) {
+    REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, first, end, h);
+    REF(test_planes)(sc, o, d, false, (real)RC_T_FAR, h);
+  } else {
+    REF(closest_hit_linear)(sc, o, d, h);
+  }
+  if (sc->frame->certify) REF(cert_closest)(sc, h);
+  return h->kind != RC_HIT_NONE;
+}
+
 bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t light) {
   bool ok = ref_cert_ok;
   if (sc->frame->certify) {
@@ -141,7 +152,7 @@ bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t l
   } else {
     ref_hit h = REF(no_hit)();
     uint32_t first, end;
-    REF(shadow_nodes)(sc, light, d, t_max, &first, &end);
+    REF(cube_nodes)(sc, light, d, t_max, &first, &end);
     blocked = REF(traverse_bvh)(sc, o, d, true, t_max, first, end, &h) || REF(test_planes)(sc, o, d, true, t_max, &h);
   }
   if (sc->frame->certify) {

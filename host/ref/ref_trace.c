@@ -25,10 +25,12 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
   if (sc->frame->certify) REF(cert_camera)(sc, raster);
   rvec3 color = RV(make)(0, 0, 0);
   rvec3 weight = RV(make)(1, 1, 1);
+  uint32_t first, end;
+  REF(eye_nodes)(sc, px, py, &first, &end);
   for (uint32_t depth = 0; depth <= sc->frame->reflection_depth; depth++) {
     ref_hit h;
     ref_spawned_ray = depth > 0;
-    bool hit = REF(closest_hit)(sc, o, d, &h);
+    bool hit = REF(closest_hit)(sc, o, d, first, end, &h);
     ref_aov_recording = ref_aov_enabled && s == 0 && depth == 0;
     if (ref_aov_recording) REF(aov_begin)(sc, &h);
     if (!hit) {
@@ -48,6 +50,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     o = REF(spawn_origin)(sc, &sf);
     d = RV(normalize)(RV(reflect)(d, sf.n));
     o = REF(t_min_start)(sc, o, d);
+    first = 0, end = sc->frame->bvh_node_count; /* the eye buffer is for primary rays */
     if (sc->frame->certify) REF(cert_reflect)(&sf, o, ed_in);
     ref_reflection_rays++;
   }

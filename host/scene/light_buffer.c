@@ -10,6 +10,13 @@
 #define RES RC_LIGHT_BUFFER_RES
 #define CELLS (6u * RES * RES)
 #define NONE UINT32_MAX
+/* The eye buffer's tiles: 8 x 8 pixels (one workgroup), larger where the image would have
+ * more than EYE_CELLS_MAX of them. */
+#define EYE_TILE_SHIFT 3u
+#define EYE_CELLS_MAX (1u << 18)
+/* A box's projection onto the image widens by this many pixels: the f32 ray through a
+ * raster point leaves the exact one by ~1e-6 radians, 1e-3 pixels on a 1,000-pixel image. */
+#define EYE_MARGIN_PX 0.5
 
 /* The reach (rc_shared.h): this many times the farthest corner of the object tree's box
  * from the light. A shadow ray from farther away (from a plane beyond the objects) walks
@@ -185,10 +192,31 @@ static uint32_t leaf_for(const tree *t, appendix *x, const cell_acc *c, const ui
   return x->node_base + x->node_count++;
 }
 
-/* Light `light`'s buffer: its cells' node ranges from `cells` on in x->words. */
-static rc_status build_light(const tree *t, appendix *x, const packed_light *light, const uint32_t *index_of,
-                             cell_acc *acc, uint32_t cells, float *reach_out, rc_light_buffer_stats *st) {
-  const double L[3] = {light->position.x, light->position.y, light->position.z};
+/* Writes the node range of each of the n cells in acc at x->words[cells...] and counts
+ * what they name. */
+static rc_status emit_cells(const tree *t, appendix *x, const cell_acc *acc, uint32_t n, uint32_t cells,
+                            const uint32_t *index_of, uint64_t *empty, uint64_t *lists, uint64_t *subtrees) {
+  for (uint32_t c = 0; c < n; c++) {
+    uint32_t first = 0, end = 0; /* an empty range: nothing to meet */
+    if (acc[c].count > RC_LIGHT_BUFFER_LIST) {
+      first = acc[c].subtree, end = t->nodes[first].skip;
+      ++*subtrees;
+    } else if (acc[c].count > 0) {
+      first = leaf_for(t, x, &acc[c], index_of);
+      if (first == NONE) return RC_ERR_OUT_OF_MEMORY;
+      end = first + 1;
+      ++*lists;
+    } else {
+      ++*empty;
+    }
+    x->words[cells + 2 * c] = first;
+    x->words[cells + 2 * c + 1] = end;
+  }
+  return RC_OK;
+}
+
+/* The reach of a buffer around L, and the pad of every box projected from L (above). */
+static float reach_from(const tree *t, const double L[3], double *pad) {
   const packed_bvh_node *root = &t->nodes[0];
   double far2 = 0;
   for (int corner = 0; corner < 8; corner++) {
@@ -198,28 +226,84 @@ static rc_status build_light(const tree *t, appendix *x, const packed_light *lig
     if (d2 > far2) far2 = d2;
   }
   const float reach = (float)(REACH_FACTOR * sqrt(far2));
-  const double pad = ((double)reach + sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])) * PAD_SCALE;
+  *pad = ((double)reach + sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])) * PAD_SCALE;
+  return reach;
+}
+
+/* Light `light`'s buffer: its cells' node ranges from `cells` on in x->words. */
+static rc_status build_light(const tree *t, appendix *x, const packed_light *light, const uint32_t *index_of,
+                             cell_acc *acc, uint32_t cells, float *reach_out, rc_light_buffer_stats *st) {
+  const double L[3] = {light->position.x, light->position.y, light->position.z};
+  double pad;
+  *reach_out = reach_from(t, L, &pad);
   for (uint32_t c = 0; c < CELLS; c++) acc[c] = (cell_acc){.count = 0, .subtree = NONE};
   for (uint32_t k = 0; k < t->count; k++) project(t, acc, L, pad, k);
-  for (uint32_t c = 0; c < CELLS; c++) {
-    uint32_t first = 0, end = 0; /* an empty range: nothing to meet */
-    if (acc[c].count > RC_LIGHT_BUFFER_LIST) {
-      first = acc[c].subtree, end = t->nodes[first].skip;
-      st->subtrees++;
-    } else if (acc[c].count > 0) {
-      first = leaf_for(t, x, &acc[c], index_of);
-      if (first == NONE) return RC_ERR_OUT_OF_MEMORY;
-      end = first + 1;
-      st->lists++;
-    } else {
-      st->empty++;
-    }
-    x->words[cells + 2 * c] = first;
-    x->words[cells + 2 * c + 1] = end;
-  }
   st->cells += CELLS;
-  *reach_out = reach;
-  return RC_OK;
+  return emit_cells(t, x, acc, CELLS, cells, index_of, &st->empty, &st->lists, &st->subtrees);
+}
+
+/* The eye buffer's layout for camera c: tiles of 2^shift pixels, columns x rows of them. */
+static uint32_t eye_layout(const packed_camera *c, uint32_t *columns, uint32_t *rows) {
+  uint32_t shift = EYE_TILE_SHIFT;
+  for (;; shift++) {
+    *columns = (uint32_t)(((uint64_t)c->width + (1u << shift) - 1) >> shift);
+    *rows = (uint32_t)(((uint64_t)c->height + (1u << shift) - 1) >> shift);
+    if ((uint64_t)*columns * *rows <= EYE_CELLS_MAX) return shift;
+  }
+}
+
+/* Adds tree object k to every tile of the image whose pixels' primary rays can meet its
+ * box. A point q (relative to the eye, in the camera's basis u, v, w) lies on the ray
+ * through window point (us, vs) when (us, vs) = focal (q.u, q.v) / (-q.w) for a perspective
+ * camera, (q.u, q.v) for a parallel one (rc_camera.glsl); the window maps onto raster
+ * coordinates linearly, and a box in front of the eye projects inside its corners' hull. A
+ * box that reaches the eye's plane covers the whole image. */
+static void project_eye(const tree *t, cell_acc *cells, const packed_camera *c, uint32_t shift, uint32_t columns,
+                        double pad, uint32_t k) {
+  const double E[3] = {c->eye.x, c->eye.y, c->eye.z};
+  const double U[3] = {c->u.x, c->u.y, c->u.z}, V[3] = {c->v.x, c->v.y, c->v.z}, W[3] = {c->w.x, c->w.y, c->w.z};
+  const bool perspective = c->projection == RC_PROJECTION_PERSPECTIVE;
+  const double width = c->width, height = c->height;
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  bool whole = false;
+  for (int corner = 0; corner < 8 && !whole; corner++) {
+    double q[3];
+    for (int i = 0; i < 3; i++) q[i] = ((corner >> i) & 1 ? t->hi[k][i] + pad : t->lo[k][i] - pad) - E[i];
+    double a = q[0] * U[0] + q[1] * U[1] + q[2] * U[2], b = q[0] * V[0] + q[1] * V[1] + q[2] * V[2];
+    double depth = -(q[0] * W[0] + q[1] * W[1] + q[2] * W[2]);
+    if (perspective) {
+      whole = !(depth > 0);
+      a = c->focal * a / depth, b = c->focal * b / depth;
+    }
+    double x = (a - c->left) / ((double)c->right - c->left) * width;
+    double y = (b - c->bottom) / ((double)c->top - c->bottom) * height;
+    x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+  }
+  /* Raster x of pixel column i is in [i, i + 1); raster y of pixel row j (from the top) is
+   * in [height - 1 - j, height - j) (rc_trace.glsl: trace_sample). */
+  double i0 = 0, i1 = width - 1, j0 = 0, j1 = height - 1;
+  if (!whole) {
+    i0 = fmax(floor(x0 - EYE_MARGIN_PX), 0), i1 = fmin(floor(x1 + EYE_MARGIN_PX), width - 1);
+    j0 = fmax(height - 1 - floor(y1 + EYE_MARGIN_PX), 0), j1 = fmin(height - 1 - floor(y0 - EYE_MARGIN_PX), height - 1);
+    if (!(i0 <= i1 && j0 <= j1)) return; /* off the image (or NaN) */
+  }
+  for (uint32_t j = (uint32_t)j0 >> shift; j <= (uint32_t)j1 >> shift; j++)
+    for (uint32_t i = (uint32_t)i0 >> shift; i <= (uint32_t)i1 >> shift; i++)
+      add(t, &cells[j * columns + i], t->object[k], t->leaf[k]);
+}
+
+/* The eye buffer: its tiles' node ranges from `cells` on in x->words. */
+static rc_status build_eye(const tree *t, appendix *x, const packed_camera *c, const uint32_t *index_of,
+                           cell_acc *acc, uint32_t cells, rc_light_buffer_stats *st) {
+  uint32_t columns, rows, shift = eye_layout(c, &columns, &rows);
+  const double E[3] = {c->eye.x, c->eye.y, c->eye.z};
+  double pad;
+  reach_from(t, E, &pad);
+  for (uint32_t i = 0; i < columns * rows; i++) acc[i] = (cell_acc){.count = 0, .subtree = NONE};
+  for (uint32_t k = 0; k < t->count; k++) project_eye(t, acc, c, shift, columns, pad, k);
+  st->eye_tile = 1u << shift;
+  st->eye_cells = (uint64_t)columns * rows;
+  return emit_cells(t, x, acc, columns * rows, cells, index_of, &st->eye_empty, &st->eye_lists, &st->eye_subtrees);
 }
 
 /* Where borrowed (a prepared scene's file), the tree's arrays become the scene's own copies. */
@@ -257,32 +341,39 @@ static rc_status append(rc_packed_scene *p, const appendix *x) {
   return RC_OK;
 }
 
-rc_status rc_light_buffers_build(rc_packed_scene *p, rc_light_buffer_stats *st) {
+rc_status rc_light_buffers_build(rc_packed_scene *p, bool lights_on, bool eye_on, rc_light_buffer_stats *st) {
   memset(st, 0, sizeof *st);
   packed_frame *f = &p->frame;
   f->light_buffers = 0;
   uint32_t lights = 0;
-  for (uint32_t i = 0; i < f->light_count && lights < RC_LIGHT_BUFFERS_MAX; i++)
+  for (uint32_t i = 0; lights_on && f->shadows && i < f->light_count && lights < RC_LIGHT_BUFFERS_MAX; i++)
     lights += p->lights[i].type == RC_LIGHT_POINT;
-  if (!p->bvh || f->bvh_node_count == 0 || !f->shadows || lights == 0) return RC_OK;
+  uint32_t columns = 0, rows = 0;
+  if (eye_on) eye_layout(&f->camera, &columns, &rows);
+  if (!p->bvh || f->bvh_node_count == 0 || lights + columns == 0) return RC_OK;
   double t0 = rc_now_ms();
-  /* The table, then each buffered light's cells, then the made leaves' lists; the leaves'
-   * references (first << RC_BVH_LEAF_SHIFT) must stay below 2^32. */
+  /* The table (a pair per light, then the eye's), then each buffered light's cells, the
+   * eye's tiles, then the made leaves' lists; the leaves' references (first <<
+   * RC_BVH_LEAF_SHIFT) must stay below 2^32. */
   appendix x = {.node_base = p->bvh_node_total, .word_base = (p->bvh_prim_total + 3) / 4 * 4};
-  const uint32_t table_words = (2 * f->light_count + 3) / 4 * 4;
-  const uint64_t reserved = table_words + (uint64_t)lights * 2 * CELLS;
-  if (x.word_base + reserved + (uint64_t)lights * CELLS * RC_LIGHT_BUFFER_LIST >= (1ull << (32 - RC_BVH_LEAF_SHIFT)))
+  const uint32_t table_words = (2 * (f->light_count + 1) + 3) / 4 * 4;
+  const uint64_t all_cells = (uint64_t)lights * CELLS + (uint64_t)columns * rows;
+  const uint64_t reserved = table_words + 2 * all_cells;
+  if (x.word_base + reserved + all_cells * RC_LIGHT_BUFFER_LIST >= (1ull << (32 - RC_BVH_LEAF_SHIFT)))
     return RC_OK; /* too many references already: the tree alone, as before */
   tree t;
   rc_status s = tree_read(p, &t);
   uint32_t *index_of = s == RC_OK ? rc_alloc(f->object_count, sizeof *index_of, "light buffers") : NULL;
-  cell_acc *acc = s == RC_OK ? rc_alloc(CELLS, sizeof *acc, "light buffers") : NULL;
-  /* At most one leaf a cell: the table is never more than half full (CELLS is a power of two). */
-  x.slot_mask = 2 * CELLS * RC_LIGHT_BUFFERS_MAX - 1;
-  x.slots = s == RC_OK ? rc_alloc((size_t)x.slot_mask + 1, sizeof *x.slots, "light buffers") : NULL;
+  const uint32_t most = CELLS > columns * rows ? CELLS : columns * rows;
+  cell_acc *acc = s == RC_OK ? rc_alloc(most, sizeof *acc, "light buffers") : NULL;
+  /* At most one leaf a cell: the table is never more than half full. */
+  uint32_t slots = 1;
+  while (slots < 2 * all_cells) slots *= 2;
+  x.slot_mask = slots - 1;
+  x.slots = s == RC_OK ? rc_alloc(slots, sizeof *x.slots, "light buffers") : NULL;
   if (s == RC_OK && (!index_of || !acc || !x.slots || !grow_words(&x, (uint32_t)reserved))) s = RC_ERR_OUT_OF_MEMORY;
   if (s == RC_OK) {
-    memset(x.slots, 0xff, (size_t)(x.slot_mask + 1) * sizeof *x.slots);
+    memset(x.slots, 0xff, (size_t)slots * sizeof *x.slots);
     for (uint32_t k = 0; k < t.count; k++) index_of[t.object[k]] = k;
     memset(x.words, 0, reserved * sizeof *x.words);
     x.word_count = (uint32_t)reserved;
@@ -295,6 +386,11 @@ rc_status rc_light_buffers_build(rc_packed_scene *p, rc_light_buffer_stats *st) 
       memcpy(&x.words[2 * i + 1], &reach, sizeof reach);
       cells += 2 * CELLS;
       st->lights++;
+    }
+    if (s == RC_OK && columns) {
+      s = build_eye(&t, &x, &f->camera, index_of, acc, cells, st);
+      x.words[2 * f->light_count] = x.word_base + cells;
+      x.words[2 * f->light_count + 1] = (uint32_t)__builtin_ctz(st->eye_tile) | columns << RC_EYE_BUFFER_COLUMNS_SHIFT;
     }
   }
   if (s == RC_OK) s = append(p, &x);

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Light buffers change no decision (docs/numerics.md §9): every example scene, and scenes
-# made to stress the cells (a light inside an object's box, a light on a surface, objects
-# across the cube's face edges and corners, slivers seen edge-on from the light, a crowd of
-# small occluders around the light, shadow rays from a plane beyond the buffer's reach),
-# render the same image and the same AOV decisions with --light-buffers on and off, on the
-# GPU in f32 and on the CPU reference in f64. The statistics must show the buffers were
-# built and used cells of every kind where the scene has them.
+# Light buffers and the eye buffer change no decision (docs/numerics.md §9): every example
+# scene, and scenes made to stress the cells (a light inside an object's box, a light on a
+# surface, objects across the cube's face edges and corners, slivers seen edge-on from the
+# light, a crowd of small occluders around the light, shadow rays from a plane beyond the
+# buffer's reach; for the eye: a triangle through the eye's plane, slivers and sub-pixel
+# objects on tile edges, objects past the image's edges, a parallel camera), render the
+# same image and the same AOV decisions with both buffers on and both off, on the GPU in
+# f32 and on the CPU reference in f64. The statistics must show the buffers were built and
+# used cells of every kind where the scene has them.
 # Usage: test_light_buffers.sh VKRAYCAST SCENES_DIR WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
@@ -59,6 +61,13 @@ stress() {
       else printf "    { \"type\": \"triangle\", \"vertices\": [[%.6f, %.6f, %.6f], [%.6f, %.6f, %.6f], [%.6f, %.6f, %.6f]], \"material\": \"m\" },\n",
         x, y, z, x + 0.08, y, z + 0.01, x, y + 0.06, z + 0.05
     }
+    # For the eye buffer: a triangle from behind the eye to in front of it (its box reaches
+    # the eye'"'"'s plane: every tile), a sphere past the image'"'"'s left edge that pokes into
+    # it, and a row of tiny spheres, each under a pixel, along a horizontal tile edge.
+    print "    { \"type\": \"triangle\", \"vertices\": [[2.5, 2.5, 7], [2.8, 2.4, 7.2], [2.4, 1.2, 2]], \"material\": \"m\" },"
+    print "    { \"type\": \"sphere\", \"center\": [-5.2, 1.2, 0], \"radius\": 0.9, \"material\": \"m\" },"
+    for (i = 0; i < 40; i++)
+      printf "    { \"type\": \"sphere\", \"center\": [%.6f, 1.62, 1.5], \"radius\": %.5f, \"material\": \"m\" },\n", -2 + 0.1 * i, 0.004 + 0.002 * (i % 5)
     print "    { \"type\": \"sphere\", \"center\": [-1.5, 0.4, 0.8], \"radius\": 0.4, \"material\": \"m\" } ] }"
   }'
 }
@@ -76,8 +85,8 @@ same() {
     local why=ok
     for lb in on off; do
       "$bin" render "$scene" -o "$work/$lb.exr" --aov "$work/$lb.aov.exr" --backend $backend --precision $p \
-        --light-buffers $lb --stats-json "$work/$lb.json" --quiet "$@" 2>"$work/err" ||
-        because "--light-buffers $lb: exit status $?: $(head -c 300 "$work/err")"
+        --light-buffers $lb --eye-buffer $lb --stats-json "$work/$lb.json" --quiet "$@" 2>"$work/err" ||
+        because "--light-buffers $lb --eye-buffer $lb: exit status $?: $(head -c 300 "$work/err")"
     done
     if [[ $why == ok ]]; then
       local c=$work/cmp.json
@@ -87,9 +96,10 @@ $(json_num hit_mismatch "$c"), shadows in $(json_num shadow_mismatch "$c")"
       "$bin" compare "$work/on.exr" "$work/off.exr" --fail 0 --json >"$c" ||
         because "the images differ by up to $(json_num max_error "$c")"
       [[ $(json_num light_buffers "$work/off.json") == 0 ]] || because "--light-buffers off built buffers"
+      [[ $(json_num eye_buffer_tile "$work/off.json") == 0 ]] || because "--eye-buffer off built one"
       lights=$(json_num light_buffers "$work/on.json")
     fi
-    check "$name, $backend $p: light buffers on = off" "$why"
+    check "$name, $backend $p: light and eye buffers on = off" "$why"
   done
 }
 
@@ -109,6 +119,20 @@ for seed in 1 2; do
     n=$(json_num light_buffer_${kind}_cells "$work/on.json")
     [[ $n -gt 0 ]] || because "no $kind cells"
   done
-  check "stress $seed: two buffers, with cells of every kind" "$why"
+  # 96 x 72 pixels: 12 x 9 tiles of 8 pixels. The triangle through the eye's plane is in
+  # every tile, so none is empty.
+  [[ $(json_num eye_buffer_tile "$work/on.json") == 8 && $(json_num eye_buffer_cells "$work/on.json") == 108 ]] ||
+    because "eye buffer of $(json_num eye_buffer_cells "$work/on.json") tiles of $(json_num eye_buffer_tile "$work/on.json") pixels, expected 108 of 8"
+  [[ $(json_num eye_buffer_empty_cells "$work/on.json") == 0 && $(json_num eye_buffer_subtree_cells "$work/on.json") -gt 0 ]] ||
+    because "eye buffer tiles: $(json_num eye_buffer_empty_cells "$work/on.json") empty (expected 0), $(json_num eye_buffer_subtree_cells "$work/on.json") with a subtree"
+  check "stress $seed: two light buffers with cells of every kind, and the eye buffer" "$why"
+  # The same scene seen by a parallel camera, at 4 samples a pixel: the eye buffer's other
+  # projection, and samples spread over each pixel.
+  sed 's/"camera": {/"camera": { "projection": "parallel", "view_height": 5,/; s/, "fov_y_deg": 50//' "$work/stress$seed.json" >"$work/parallel$seed.json"
+  same "gpu f32,cpu f64" "stress $seed, parallel" "$work/parallel$seed.json" --spp 4
+  why=ok
+  [[ $(json_num eye_buffer_empty_cells "$work/on.json") -gt 0 && $(json_num eye_buffer_list_cells "$work/on.json") -gt 0 ]] ||
+    because "parallel eye buffer: $(json_num eye_buffer_empty_cells "$work/on.json") empty tiles, $(json_num eye_buffer_list_cells "$work/on.json") with a list"
+  check "stress $seed, parallel: the eye buffer has empty tiles and lists" "$why"
 done
 finish

@@ -133,13 +133,13 @@ TEST(closest_hit_takes_the_nearest_and_lowest_index_on_ties) {
   frame.object_count = 3;
   ref_scene sc = {.frame = &frame, .spheres = spheres, .triangles = tris};
   ref_hit_d h;
-  CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), &h));
+  CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 0, 0, &h));
   CHECK_EQ_INT(h.kind, RC_HIT_SPHERE);
   CHECK_EQ_INT(h.index, 1);
   CHECK_NEAR(h.t, 4.0, 1e-12);
   frame.triangle_count = 1;
   frame.object_count = 4;
-  CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), &h));
+  CHECK(ref_closest_hit_d(&sc, rcm_make_d(0, 0, 0), rcm_make_d(0, 0, -1), 0, 0, &h));
   CHECK_EQ_INT(h.kind, RC_HIT_TRIANGLE);
   CHECK_NEAR(h.t, 3.5, 1e-12);
 }
