@@ -264,20 +264,35 @@ static void project_eye(const tree *t, cell_acc *cells, const packed_camera *c, 
   const double U[3] = {c->u.x, c->u.y, c->u.z}, V[3] = {c->v.x, c->v.y, c->v.z}, W[3] = {c->w.x, c->w.y, c->w.z};
   const bool perspective = c->projection == RC_PROJECTION_PERSPECTIVE;
   const double width = c->width, height = c->height;
+  const double sx = width / ((double)c->right - c->left), sy = height / ((double)c->top - c->bottom);
+  /* (q.u, q.v, -q.w) at the box's low corner, and what each axis's extent adds: the
+   * corners' values are sums (a million-triangle mesh projects in tens of ms). */
+  double a0 = 0, b0 = 0, z0 = 0, da[3], db[3], dz[3];
+  for (int i = 0; i < 3; i++) {
+    double lo = t->lo[k][i] - pad - E[i], extent = (double)t->hi[k][i] - t->lo[k][i] + 2 * pad;
+    a0 += lo * U[i], b0 += lo * V[i], z0 -= lo * W[i];
+    da[i] = extent * U[i], db[i] = extent * V[i], dz[i] = -extent * W[i];
+  }
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   bool whole = false;
-  for (int corner = 0; corner < 8 && !whole; corner++) {
-    double q[3];
-    for (int i = 0; i < 3; i++) q[i] = ((corner >> i) & 1 ? t->hi[k][i] + pad : t->lo[k][i] - pad) - E[i];
-    double a = q[0] * U[0] + q[1] * U[1] + q[2] * U[2], b = q[0] * V[0] + q[1] * V[1] + q[2] * V[2];
-    double depth = -(q[0] * W[0] + q[1] * W[1] + q[2] * W[2]);
+  for (int corner = 0; corner < 8; corner++) {
+    double a = a0, b = b0, depth = z0;
+    for (int i = 0; i < 3; i++)
+      if ((corner >> i) & 1) a += da[i], b += db[i], depth += dz[i];
     if (perspective) {
-      whole = !(depth > 0);
-      a = c->focal * a / depth, b = c->focal * b / depth;
+      if (!(depth > 0)) {
+        whole = true;
+        break;
+      }
+      const double scale = c->focal / depth;
+      a *= scale, b *= scale;
     }
-    double x = (a - c->left) / ((double)c->right - c->left) * width;
-    double y = (b - c->bottom) / ((double)c->top - c->bottom) * height;
-    x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+    const double x = (a - c->left) * sx, y = (b - c->bottom) * sy;
+    if (isnan(x) || isnan(y)) {
+      whole = true;
+      break;
+    }
+    x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1, y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
   }
   /* Raster x of pixel column i is in [i, i + 1); raster y of pixel row j (from the top) is
    * in [height - 1 - j, height - j) (rc_trace.glsl: trace_sample). */
