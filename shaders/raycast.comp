@@ -139,6 +139,10 @@ void main() {
   uint uncertified = 0u;  // samples (or light passes) of this dispatch not certified (rc_certify.glsl)
   if (inside) {
     sum = accum[slot];
+    // Certified mode's f64 re-render (push.masked): a pixel the f32 pass certified is
+    // complete before it starts; the host keeps the f32 pass's colour for it.
+    if (push.masked != 0u && !(aov[slot].uncertified > 0.0))
+      sum = vec4(0.0, 0.0, 0.0, float(scene_samples_per_pixel() * (light_passes ? scene_light_count() : 1u)));
     uint done = uint(sum.a);
     if (light_passes) {
       // Progress counts lights: the next pass of sample s starts at light done - s x lights,

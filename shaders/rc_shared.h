@@ -491,7 +491,9 @@ struct packed_push {
   uint batch_samples;
   uint row_stride; /* workgroup row i renders block row (i * row_stride) mod rows (gpu_tiles.h) */
   uint light_pass; /* with RC_SPEC_LIGHT_PASSES: the lights one dispatch shades per sample */
-  uint pad0;
+  uint masked;     /* 1: trace only the pixels whose AOV record the host set uncertified > 0
+                      (certified mode's re-render in f64 on the GPU); the others complete
+                      untraced, black */
 };
 
 #define RC_TEXELS_PER_SPHERE 2

@@ -56,7 +56,9 @@ static const char *const backends[] = {"gpu", "cpu", NULL};
 static const char *const accels[] = {"bvh", "none", NULL};
 static const char *const quantizers[] = {"round", "truncate", NULL};
 static const char *const encodings[] = {"linear", "srgb", "gamma", NULL};
-static const char *const rerenders[] = {"cpu", "none", NULL};
+static const char *const rerenders[] = {"cpu", "none", "gpu", NULL};
+/* --certified-rerender, in rerenders' order. */
+enum { RERENDER_CPU, RERENDER_NONE, RERENDER_GPU };
 static const char *const cert_bounds[] = {"full", "half", "zero", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
 
@@ -82,9 +84,11 @@ static const rc_option render_options[] = {
              "and the pixels of samples it cannot vouch for rendered again in f64\n"
              "(docs/numerics.md §10)"},
     {"--certified-rerender", NULL, RC_OPT_CHOICE, ARG(certified_rerender), "R", .choices = rerenders,
-     .help = "--precision certified: cpu (default) renders the uncertified samples'\n"
-             "pixels again on the f64 CPU reference; none leaves them as traced (to\n"
-             "measure the certificates: the AOV's `uncertified` channel marks them)"},
+     .help = "--precision certified: the uncertified samples' pixels rendered again in f64:\n"
+             "gpu (the default on a GPU with shaderFloat64) traces just those pixels\n"
+             "with the f64 shader; cpu (the default elsewhere: lavapipe, the cpu\n"
+             "backend) on the CPU reference; none leaves them as traced (to measure\n"
+             "the certificates: the AOV's `uncertified` channel marks them)"},
     {"--certified-bound", NULL, RC_OPT_CHOICE, ARG(certified_bound), "B", .choices = cert_bounds,
      .help = "full (default); half or zero certify against half the error bound or\n"
              "none, faults to test the soundness tests with (docs/testing.md)"},
@@ -422,7 +426,26 @@ typedef struct {
   packed_aov *aov;
   size_t capacity; /* pixels */
   rc_ref_stats stats;
+  rc_gpu_renderer *f64;   /* --certified-rerender gpu: the f64 renderer */
+  rc_gpu_stats f64_stats;
 } certified_sink;
+
+/* A band of the GPU's f64 re-render (rc_gpu_renderer_rerender): its traced pixels, those
+ * the f32 pass left uncertified, replace the f32 pass's; y0 counts from the re-rendered
+ * band's first row, which is the sink's. */
+static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user) {
+  certified_sink *c = user;
+  const size_t width = rc_region_width(c->a->part.region), first = (size_t)y0 * width;
+  for (size_t i = 0; i < (size_t)rows * width; i++) {
+    if (!(c->aov[first + i].uncertified > 0)) continue;
+    memcpy(&c->rgb[3 * (first + i)], &rgb[3 * i], 3 * sizeof *rgb);
+    float uncertified = c->aov[first + i].uncertified; /* the f32 pass's count stays */
+    c->aov[first + i] = aov[i];
+    c->aov[first + i].uncertified = uncertified;
+    c->stats.pixels_rerendered++;
+  }
+  return RC_OK;
+}
 
 static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user) {
   certified_sink *c = user;
@@ -439,10 +462,15 @@ static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, co
   memcpy(c->rgb, rgb, n * 3 * sizeof(float));
   memcpy(c->aov, aov, n * sizeof(packed_aov));
   for (size_t i = 0; i < n; i++) c->stats.samples_uncertified += (uint64_t)aov[i].uncertified;
-  if (c->a->certified_rerender != 1) {
+  rc_region band = {r.x0, r.y0 + y0, r.x1, r.y0 + y0 + rows};
+  if (c->a->certified_rerender == RERENDER_CPU) {
     rc_ref_options opts = {.f64 = true, .threads = c->a->threads};
-    rc_region band = {r.x0, r.y0 + y0, r.x1, r.y0 + y0 + rows};
     rc_status st = rc_ref_rerender(c->packed, &opts, band, c->rgb, c->aov, &c->stats);
+    if (st != RC_OK) return st;
+  } else if (c->a->certified_rerender == RERENDER_GPU) {
+    double t0 = rc_now_ms();
+    rc_status st = rc_gpu_renderer_rerender(c->f64, band, aov, rerendered_band, c, &c->f64_stats);
+    c->stats.rerender_ms += rc_now_ms() - t0;
     if (st != RC_OK) return st;
   }
   return c->next(y0, rows, c->rgb, c->a->aov ? c->aov : NULL, c->next_user);
@@ -456,6 +484,15 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
   rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
+  if (st == RC_OK && certified && a->certified_rerender == RERENDER_GPU) {
+    /* The re-render's renderer: the f64 module, no certificates, records on (they carry the
+     * marks), over the same region. */
+    rc_packed_scene plain = *packed;
+    plain.frame.certify = RC_CERTIFY_OFF;
+    rc_gpu_options o64 = opts;
+    o64.f64 = true, o64.aov = true, o64.progress = false;
+    st = rc_gpu_renderer_create(ctx, &plain, &o64, &sink.f64, &sink.f64_stats);
+  }
   double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
   if (!gpu_ms || !wall_ms) st = RC_ERR_OUT_OF_MEMORY;
   for (uint32_t i = 0; st == RC_OK && i < a->repeat; i++) {
@@ -487,6 +524,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   }
   free(sink.rgb);
   free(sink.aov);
+  rc_gpu_renderer_destroy(sink.f64);
   free(gpu_ms);
   free(wall_ms);
   rc_gpu_renderer_destroy(r);
@@ -520,7 +558,8 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
       uint32_t rows = h - y0 < band ? h - y0 : band;
       rc_region part = {region.x0, region.y0 + y0, region.x1, region.y0 + y0 + rows};
       st = rc_ref_render(packed, &opts, part, rgb, aov, &fs);
-      if (st == RC_OK && certified && a->certified_rerender != 1) st = rc_ref_rerender(packed, &opts, part, rgb, aov, &fs);
+      if (st == RC_OK && certified && a->certified_rerender == RERENDER_CPU)
+        st = rc_ref_rerender(packed, &opts, part, rgb, aov, &fs);
       if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
       if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, a->aov ? aov : NULL, *out);
     }
@@ -574,12 +613,23 @@ static void report_budget(const rc_scene *s, const rc_precision_report *b) {
 /* Certified mode (--precision certified, or auto on a device without f64): the frame's
  * certify word (--certified-bound injects faults), the re-render of the uncertified
  * samples' pixels, and the AOV records that count them. */
-static void use_certified(render_args *a, rc_packed_scene *packed, rc_render_stats *rs) {
+/* The re-render's default is the GPU where its f64 module can run, but not on a CPU device:
+ * there the f64 shader's SIMD lanes trace a scattered few pixels in vectors of 8 and took
+ * twice the CPU reference's time (docs/performance.md, "What certified decisions cost"). */
+static rc_status use_certified(render_args *a, rc_packed_scene *packed, rc_render_stats *rs, bool gpu_f64,
+                               bool cpu_device) {
   packed->frame.certify = a->certified_bound == 1 ? RC_CERTIFY_HALVED
                           : a->certified_bound == 2 ? RC_CERTIFY_ZERO
                                                     : RC_CERTIFY_ON;
-  rs->rerender = a->certified_rerender == 1 ? "none" : "cpu";
+  if (a->certified_rerender < 0) a->certified_rerender = gpu_f64 && !cpu_device ? RERENDER_GPU : RERENDER_CPU;
+  if (a->certified_rerender == RERENDER_GPU && !gpu_f64) {
+    rc_error("--certified-rerender gpu: %s; use cpu", a->cpu ? "the cpu backend has no GPU"
+                                                              : "the device does not support shaderFloat64");
+    return a->cpu ? RC_ERR_USAGE : RC_ERR_DEVICE; /* as --precision f64 is refused */
+  }
+  rs->rerender = rerenders[a->certified_rerender];
   a->gpu.aov = true;
+  return RC_OK;
 }
 
 /* What the precision decision says to the user (rc_precision_choose). */
@@ -848,11 +898,11 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
     rs.device_type = "cpu";
     rs.driver = "vkraycast ref";
     const rc_precision_choice precision = rc_precision_choose(requested, &budget, true, true);
-    if (precision.certified) use_certified(a, &packed, &rs);
+    if (precision.certified) st = use_certified(a, &packed, &rs, false, true);
     rs.precision = precision.certified ? "certified" : precision.f64 ? "f64" : "f32";
     part_settings(a, scene, rs.backend, rs.precision);
     snprintf(a->part.device, sizeof a->part.device, "%s", rs.device);
-    st = render_frames_cpu(a, scene, &packed, precision.f64, &rs, &out);
+    if (st == RC_OK) st = render_frames_cpu(a, scene, &packed, precision.f64, &rs, &out);
   } else if (st == RC_OK) {
     rc_vk_options vo = {.device_index = a->device};
     if (!ctx->instance) st = rc_vk_create(&vo, ctx);
@@ -865,11 +915,12 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
       const rc_precision_choice precision = rc_precision_choose(requested, &budget, false, ctx->float64);
       report_precision(scene, precision.why, ctx->props.deviceName);
       a->gpu.f64 = precision.f64;
-      if (precision.certified) use_certified(a, &packed, &rs);
+      if (precision.certified)
+        st = use_certified(a, &packed, &rs, ctx->float64, ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
       rs.precision = precision.certified ? "certified" : precision.f64 ? "f64" : "f32";
       part_settings(a, scene, rs.backend, rs.precision);
       snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
-      st = render_frames(a, ctx, scene, &packed, &rs, &out);
+      if (st == RC_OK) st = render_frames(a, ctx, scene, &packed, &rs, &out);
       if (rs.gpu.budget_refused) report_loop_budget(scene, &rs.gpu, ctx->props.deviceName);
       if (rs.gpu.crossing_object != UINT32_MAX)
         report_crossings(scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);

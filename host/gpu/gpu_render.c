@@ -178,6 +178,7 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   rc_buffer_destroy(ctx, &r->status_readback);
   rc_buffer_destroy(ctx, &r->aov);
   rc_buffer_destroy(ctx, &r->aov_readback);
+  rc_buffer_destroy(ctx, &r->mask_upload);
   free(r->band_rgb);
   free(r->band_aov);
   free(r);
@@ -244,6 +245,11 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
           VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
           VK_ACCESS_TRANSFER_WRITE_BIT);
+  /* The re-render's marks, where the AOV buffer is not mapped (put_mask). */
+  if (first && r->mask && r->mask_upload.buffer) {
+    VkBufferCopy copy = {.size = (VkDeviceSize)push->tile_width * push->tile_height * sizeof(packed_aov)};
+    vkCmdCopyBuffer(cmd, r->mask_upload.buffer, r->aov.buffer, 1, &copy);
+  }
   /* Only the tile's pixels: the buffer holds the largest tile, and clearing all of it cost
    * small frames milliseconds on lavapipe. */
   if (first) vkCmdFillBuffer(cmd, r->accum.buffer, 0, (VkDeviceSize)push->tile_width * push->tile_height * 16, 0);
@@ -364,12 +370,36 @@ static void grow_batch(rc_gpu_renderer *r, packed_push *push, uint32_t traced, c
   if (fit > push->batch_samples) push->batch_samples = r->batch_samples = (uint32_t)fit;
 }
 
+/* The re-render's marks of tile (x0, y0) into the AOV buffer, which the shader reads
+ * (push.masked) and then overwrites for the pixels it traces: straight into the buffer
+ * where it is mapped, else into mask_upload, which dispatch() copies over. */
+static rc_status put_mask(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th) {
+  const bool direct = rc_buffer_is_direct(&r->aov, r->opts.force_staging);
+  if (!direct && !r->mask_upload.buffer) {
+    rc_status st = rc_buffer_create(r->ctx, r->aov.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, RC_MEM_UPLOAD,
+                                    &r->mask_upload);
+    if (st != RC_OK) return st;
+  }
+  const rc_buffer *dst = direct ? &r->aov : &r->mask_upload;
+  packed_aov *out = dst->memory.mapped;
+  const uint32_t width = rc_region_width(r->region);
+  for (uint32_t y = 0; y < th; y++)
+    memcpy(out + (size_t)y * tw, r->mask + (size_t)(y0 - r->region.y0 + y) * width + (x0 - r->region.x0),
+           tw * sizeof *out);
+  return rc_buffer_flush(r->ctx, dst);
+}
+
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   packed_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
                    .batch_samples = r->batch_samples,
                    .row_stride = rc_tiles_row_stride(group_count(th, r->local_y)),
-                   .light_pass = r->light_pass};
+                   .light_pass = r->light_pass,
+                   .masked = r->mask != NULL};
+  if (r->mask) {
+    rc_status st = put_mask(r, x0, y0, tw, th);
+    if (st != RC_OK) return st;
+  }
   bool first = true;
   uint32_t progress = 0; /* samples every pixel of the tile has (not counted in light passes) */
   for (;;) {
@@ -467,4 +497,17 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->batch_samples_end = r->batch_samples;
   stats->render_ms = rc_now_ms() - t0;
   return RC_OK;
+}
+
+rc_status rc_gpu_renderer_rerender(rc_gpu_renderer *r, rc_region region, const packed_aov *mask, rc_band_fn band,
+                                   void *user, rc_gpu_stats *stats) {
+  RC_ASSERT(r->opts.aov && region.x0 == r->region.x0 && region.x1 == r->region.x1 && region.y0 >= r->region.y0 &&
+            region.y1 <= r->region.y1);
+  const rc_region whole = r->region;
+  r->region = region;
+  r->mask = mask;
+  rc_status st = rc_gpu_renderer_render(r, band, user, stats);
+  r->region = whole;
+  r->mask = NULL;
+  return st;
 }

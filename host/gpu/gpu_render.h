@@ -82,6 +82,13 @@ typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, co
 
 /* Renders one frame, band by band: host memory is one band, whatever the image size. */
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats);
+
+/* Certified mode's re-render in f64 on the GPU (r made with opts.f64 and opts.aov): renders
+ * `region` (rows of the renderer's region, its full width) tracing only the pixels whose
+ * record in `mask` (one per pixel of `region`, row by row) counts uncertified samples;
+ * `band` gets the others black. */
+rc_status rc_gpu_renderer_rerender(rc_gpu_renderer *r, rc_region region, const packed_aov *mask, rc_band_fn band,
+                                   void *user, rc_gpu_stats *stats);
 void rc_gpu_renderer_destroy(rc_gpu_renderer *r);
 
 #endif

@@ -36,6 +36,11 @@ struct rc_gpu_renderer {
   rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
   float *band_rgb;             /* one band of rows on the host */
   packed_aov *band_aov;
+  /* rc_gpu_renderer_rerender: the records that mark the pixels to trace, a row of the
+   * region's width each from the region's top; NULL otherwise. The tile's records reach
+   * the AOV buffer directly where it is mapped, else through mask_upload. */
+  const packed_aov *mask;
+  rc_buffer mask_upload;
   VkDescriptorSetLayout set_layout;
   VkPipelineLayout pipeline_layout;
   VkPipeline pipeline;

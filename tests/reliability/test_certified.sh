@@ -12,7 +12,10 @@
 # this was written). (Halved, it breaks none: the bounds are
 # conservative by more than 2 wherever f32 differs; docs/numerics.md §10.) With the default
 # re-render, on either backend, every decision is the reference's, and the pixels
-# re-rendered are the uncertified ones.
+# re-rendered are the uncertified ones. With the f64 shader re-rendering them on the GPU
+# (--certified-rerender gpu; on the mesh through staging buffers and small tiles, the path
+# of a discrete GPU) the decisions differ from the reference's on no more pixels than the
+# GPU's own f64 render's do (none on the example scenes; 1 of the crowd of ellipsoids).
 # Usage: test_certified.sh VKRAYCAST SCENES_DIR EXTREMES_DIR WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 extremes=$3 work=$4
@@ -59,6 +62,10 @@ for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$sc
     || because "the certified render with re-render failed"
   render "$s" -o "$work/$n.ccr.exr" --backend cpu --precision certified --aov "$work/$n.ccr.aov.exr" \
     --stats-json "$work/$n.ccr.json" || because "the CPU certified render with re-render failed"
+  staging=()
+  [[ $n == mesh ]] && staging=(--staging --tile 64)
+  render "$s" -o "$work/$n.gr.exr" --precision certified --certified-rerender gpu --aov "$work/$n.gr.aov.exr" \
+    --stats-json "$work/$n.gr.json" "${staging[@]}" || because "the certified render with the GPU's re-render failed"
   read -r _ _ plain < <(counts "$work/$n.f32.aov.exr" "$work/$n.ref.aov.exr")
   read -r unc bad _ < <(counts "$work/$n.c.aov.exr" "$work/$n.ref.aov.exr")
   read -r _ zbad _ < <(counts "$work/$n.z.aov.exr" "$work/$n.ref.aov.exr")
@@ -87,9 +94,24 @@ for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$sc
   [[ $crdec == 0 ]] || because "CPU re-rendered: $crdec pixels decide otherwise than f64"
   crer=$(json_num pixels_rerendered "$work/$n.ccr.json")
   [[ $crer == "$crunc" ]] || because "CPU: re-rendered $crer pixels, $crunc have uncertified samples"
+  read -r grunc _ grdec < <(counts "$work/$n.gr.aov.exr" "$work/$n.ref.aov.exr")
+  if [[ $grdec != 0 ]]; then
+    # The GPU's f64 is another f64: where its own decisions differ from the reference's, the
+    # pixels it re-renders may too, but nowhere else.
+    render "$s" -o "$work/$n.g64.exr" --precision f64 --aov "$work/$n.g64.aov.exr" || because "the GPU f64 render failed"
+    read -r _ _ g64dec < <(counts "$work/$n.g64.aov.exr" "$work/$n.ref.aov.exr")
+    [[ $grdec -le $g64dec ]] ||
+      because "GPU f64 re-rendered: $grdec pixels decide otherwise than f64, the GPU's own f64 render $g64dec"
+  fi
+  grer=$(json_num pixels_rerendered "$work/$n.gr.json")
+  [[ $grer == "$grunc" ]] || because "GPU f64: re-rendered $grer pixels, $grunc have uncertified samples"
+  [[ $(json_str rerender "$work/$n.gr.json") == gpu && $(json_str rerender "$work/$n.cr.json") == cpu ]] ||
+    because "re-rendered by $(json_str rerender "$work/$n.gr.json") (asked: gpu) and $(json_str rerender "$work/$n.cr.json") (lavapipe's default: cpu)"
   echo "$n: f32 differs on $plain pixels; uncertified pixels GPU $unc, CPU $cunc; band $(json_num band_pixels "$work/band.json"); zero bound: $zbad broken, $zband in the band"
   check "$n" "$why"
 done
+expect_refusal "the cpu backend refuses the GPU's re-render" "$scenes/shadows.json" \
+  "--certified-rerender gpu: the cpu backend has no GPU" --backend cpu --precision certified --certified-rerender gpu
 why=ok
 [[ $faulted -ge 7 ]] || because "the zeroed bound broke certificates on $faulted scenes only, expected 7 or more"
 check "zero bound caught" "$why"

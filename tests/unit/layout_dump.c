@@ -134,7 +134,7 @@ int main(void) {
   OFF("push.batch_samples", packed_push, batch_samples);
   OFF("push.row_stride", packed_push, row_stride);
   OFF("push.light_pass", packed_push, light_pass);
-  OFF("push.pad0", packed_push, pad0);
+  OFF("push.masked", packed_push, masked);
   printf("Push size %zu\n", sizeof(packed_push));
   OFF("status.exhausted_pixels", packed_status, exhausted_pixels);
   OFF("status.incomplete_pixels", packed_status, incomplete_pixels);
