@@ -575,6 +575,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     rs->patch_stall_object = last_stats.patch_stall_object;
     rs->patch_stall_x = last_stats.patch_stall_x, rs->patch_stall_y = last_stats.patch_stall_y;
     rs->threads = last_stats.threads;
+    rs->simd8_efficiency = last_stats.vector_steps ? (double)last_stats.lane_steps / last_stats.vector_steps : 1;
     rs->samples_uncertified = last_stats.samples_uncertified;
     rs->pixels_rerendered = last_stats.pixels_rerendered;
     rs->rerender_ms = last_stats.rerender_ms;

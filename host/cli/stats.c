@@ -50,7 +50,8 @@ void rc_stats_print(const rc_render_stats *s) {
             rc_scene_buffer_names[s->gpu.scene_buffers], s->gpu.staging ? ", staging" : "",
             s->gpu.tiles, s->gpu.dispatches, s->gpu.plan.batch_samples, light_passes_text(s));
   else
-    fprintf(stderr, "vkraycast: %u threads\n", s->threads);
+    fprintf(stderr, "vkraycast: %u threads; vectors of 8 pixels would keep %.0f %% of their lanes busy\n", s->threads,
+            100 * s->simd8_efficiency);
   if (s->bvh.nodes)
     fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms; %u exact "
             "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
@@ -204,6 +205,7 @@ char *rc_stats_json(const rc_render_stats *s) {
   ADD_FIELDS(o, s, head_fields);
   if (s->prepared) cJSON_AddStringToObject(o, "prepared", s->prepared);
   if (s->threads) cJSON_AddNumberToObject(o, "threads", s->threads);
+  if (s->threads) cJSON_AddNumberToObject(o, "simd8_efficiency", s->simd8_efficiency);
   ADD_FIELDS(o, s, frame_fields);
   const double region[4] = {s->region.x0, s->region.y0, s->region.x1, s->region.y1};
   cJSON_AddItemToObject(o, "region", cJSON_CreateDoubleArray(region, 4));

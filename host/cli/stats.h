@@ -20,6 +20,7 @@ typedef struct rc_render_stats {
   uint32_t budget_needs_f64, budget_quantized; /* precision-budget findings (precision_budget.h) */
   double budget_ms;
   uint32_t threads;      /* cpu backend */
+  double simd8_efficiency; /* cpu backend: lane_steps / vector_steps (rc_ref_stats) */
   uint32_t width, height, samples_per_pixel; /* the frame's */
   rc_region region;                          /* the pixels rendered (--region, --shard) */
   uint32_t shard_index, shard_count;         /* count 0: no --shard */

@@ -6,6 +6,7 @@
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
@@ -37,24 +38,35 @@ typedef struct {
   atomic_uint_fast64_t patch_stalls;
   atomic_uint patch_stall_object; /* 1 + the object of the first stall, 0: none */
   uint32_t patch_stall_x, patch_stall_y;
+  atomic_uint_fast64_t lane_steps, vector_steps; /* rc_ref_stats: the SIMD model */
+  uint32_t *model;          /* per thread, 2 x samples_per_pixel steps: worker() */
+  atomic_uint next_thread;
 } job;
 
-static void render_pixel(job *j, uint32_t x, uint32_t y) {
+/* sample_steps[s]: the loop steps sample s took (ref_work: boxes, object tests, Newton). */
+static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps) {
   const uint32_t spp = j->frame->samples_per_pixel;
   size_t index = (size_t)(y - j->region.y0) * rc_region_width(j->region) + (x - j->region.x0);
   float *o = j->rgb + 3 * index;
+  memset(sample_steps, 0, spp * sizeof *sample_steps);
   if (j->only_uncertified && !(j->aov[index].uncertified > 0)) return;
   uint32_t uncertified = 0;
   if (j->f64) {
     dvec3 sum = {0, 0, 0};
-    for (uint32_t s = 0; s < spp; s++) sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
+    for (uint32_t s = 0; s < spp; s++) {
+      uint64_t w = ref_work;
+      sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
+      sample_steps[s] = (uint32_t)(ref_work - w);
+    }
     sum = rcm_scale_d(sum, 1.0 / spp);
     o[0] = (float)sum.x, o[1] = (float)sum.y, o[2] = (float)sum.z;
   } else {
     /* The shader's arithmetic: an f32 running sum, divided by the f32 sample count. */
     vec3 sum = {0, 0, 0};
     for (uint32_t s = 0; s < spp; s++) {
+      uint64_t w = ref_work;
       sum = rcm_add_f(sum, ref_trace_sample_f(&j->scene, x, y, s));
+      sample_steps[s] = (uint32_t)(ref_work - w);
       if (j->frame->certify && !ref_cert_ok_f) uncertified++;
     }
     o[0] = sum.x / (float)spp, o[1] = sum.y / (float)spp, o[2] = sum.z / (float)spp;
@@ -105,6 +117,11 @@ static uint64_t set_flush(bool on) { (void)on; return 0; }
 static void restore_flush(uint64_t word) { (void)word; }
 #endif
 
+/* The SIMD model (rc_ref_stats: lane_steps, vector_steps): the shader runs 8 neighbouring
+ * pixels of a row (x / 8 the same) as the lanes of one vector on lavapipe, and a vector
+ * takes each sample's loops until its slowest lane is done. */
+#define MODEL_LANES 8u
+
 static void *worker(void *arg) {
   job *j = arg;
   /* Restored on the way out: with no thread started this is the caller's thread. */
@@ -112,12 +129,28 @@ static void *worker(void *arg) {
   ref_shadow_rays = ref_reflection_rays = 0;
   ref_aov_enabled = j->aov != NULL || j->frame->certify;
   const rc_region r = j->region;
+  const uint32_t spp = j->frame->samples_per_pixel;
+  uint32_t *steps = j->model + 2 * (size_t)spp * atomic_fetch_add(&j->next_thread, 1), *slowest = steps + spp;
+  uint64_t lane = 0, vector = 0;
   for (;;) {
     uint32_t y0 = r.y0 + atomic_fetch_add(&j->next_row, ROWS_PER_JOB);
     if (y0 >= r.y1) break;
-    for (uint32_t y = y0; y < y0 + ROWS_PER_JOB && y < r.y1; y++)
-      for (uint32_t x = r.x0; x < r.x1; x++) render_pixel(j, x, y);
+    for (uint32_t y = y0; y < y0 + ROWS_PER_JOB && y < r.y1; y++) {
+      for (uint32_t x = r.x0; x < r.x1; x++) {
+        render_pixel(j, x, y, steps);
+        for (uint32_t s = 0; s < spp; s++) {
+          lane += steps[s];
+          if (steps[s] > slowest[s]) slowest[s] = steps[s];
+        }
+        if (x % MODEL_LANES == MODEL_LANES - 1 || x + 1 == r.x1) {
+          for (uint32_t s = 0; s < spp; s++) vector += (uint64_t)MODEL_LANES * slowest[s];
+          memset(slowest, 0, spp * sizeof *slowest);
+        }
+      }
+    }
   }
+  atomic_fetch_add(&j->lane_steps, lane);
+  atomic_fetch_add(&j->vector_steps, vector);
   atomic_fetch_add(&j->shadow_rays, ref_shadow_rays);
   atomic_fetch_add(&j->reflection_rays, ref_reflection_rays);
   restore_flush(control);
@@ -150,10 +183,18 @@ static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
   atomic_init(&j->crossing_object, 0);
   atomic_init(&j->patch_stalls, 0);
   atomic_init(&j->patch_stall_object, 0);
+  atomic_init(&j->lane_steps, 0);
+  atomic_init(&j->vector_steps, 0);
+  atomic_init(&j->next_thread, 0);
   long cores = sysconf(_SC_NPROCESSORS_ONLN);
   uint32_t n = opts->threads ? opts->threads : (uint32_t)(cores > 0 ? cores : 1);
   pthread_t *threads = calloc(n, sizeof *threads);
-  if (!threads) return RC_ERR_OUT_OF_MEMORY;
+  j->model = calloc((size_t)n * 2 * j->frame->samples_per_pixel, sizeof *j->model);
+  if (!threads || !j->model) {
+    free(threads);
+    free(j->model);
+    return RC_ERR_OUT_OF_MEMORY;
+  }
   double t0 = rc_now_ms(), c0 = rc_cpu_ms();
   uint32_t started = 0;
   for (; started < n; started++)
@@ -161,6 +202,9 @@ static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
   if (started == 0) worker(j); /* no threads could start: render on this one */
   for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
   free(threads);
+  free(j->model);
+  stats->lane_steps += atomic_load(&j->lane_steps);
+  stats->vector_steps += atomic_load(&j->vector_steps);
   stats->render_ms += rc_now_ms() - t0;
   stats->cpu_ms += rc_cpu_ms() - c0;
   stats->threads = started ? started : 1;

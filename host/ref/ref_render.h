@@ -36,6 +36,12 @@ typedef struct rc_ref_stats {
    * decisions were not all certified; rc_ref_rerender's pixels and wall time. */
   uint64_t samples_uncertified, pixels_rerendered;
   double rerender_ms;
+  /* A model of what SIMD lanes lose (issue 48): the loop steps of every sample (lane_steps),
+   * and the steps of vectors of 8 neighbouring pixels of a row that run each sample until
+   * the slowest lane is done: 8 x the most a lane took, summed over samples and vectors
+   * (vector_steps). Their ratio is the share of a vector's steps that do some pixel's work,
+   * at best: lanes that diverge inside a sample lose more. */
+  uint64_t lane_steps, vector_steps;
 } rc_ref_stats;
 
 /* Renders the pixels of `region` (of the full frame) into rgb (its pixels * 3 floats,

@@ -207,6 +207,25 @@ expect_exit2 "a band image naming the AOV file" "$work/clash.exr" "name the same
 
 # --version: the program, and what it was built and runs with.
 "$bin" --version >"$work/version.txt"
+# The CPU backend's SIMD model (simd8_efficiency, docs/cli.md): exactly 1 where every pixel
+# takes the same steps (one sphere behind the eye: each primary ray tests the root's box
+# and misses); below 1 where neighbours diverge (a cloud of small spheres), and the same for
+# any number of threads (vectors are 8 pixels of a row, whichever thread rendered it).
+cat >"$work/behind.json" <<'JSON'
+{ "image": { "width": 24, "height": 16 }, "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0] },
+  "materials": { "m": { "diffuse": [0.5, 0.5, 0.5] } },
+  "lights": [ { "type": "point", "position": [0, 4, 4], "intensity": [9, 9, 9] } ],
+  "objects": [ { "type": "sphere", "center": [0, 0, 9], "radius": 1, "material": "m" } ] }
+JSON
+"$(dirname "$0")/../../tools/gen_sphere_cloud.sh" 300 >"$work/cloud.json"
+model() { "$bin" render "$1" -o "$work/model.png" --backend cpu --eye-buffer off --quiet --stats-json "$work/model.json" \
+  --allow-outside-paths "${@:2}" && json_num simd8_efficiency "$work/model.json"; }
+e=$(model "$work/behind.json")
+check "SIMD model: lanes of equal work keep every lane busy" "$([[ $e == 1 ]] && echo ok || echo "simd8_efficiency $e")"
+e1=$(model "$work/cloud.json" --width 64 --height 48 --threads 1)
+e2=$(model "$work/cloud.json" --width 64 --height 48 --threads 2)
+check "SIMD model: a cloud of spheres diverges, the same on 1 and 2 threads" \
+  "$(awk -v a="$e1" -v b="$e2" 'BEGIN { print (a > 0.3 && a < 0.95 && a == b) ? "ok" : "simd8_efficiency " a " and " b }')"
 check "--version names the loader and the shader compiler" \
   "$(grep -q '^vkraycast [0-9]' "$work/version.txt" && grep -q 'Vulkan headers' "$work/version.txt" &&
      grep -q 'glslangValidator' "$work/version.txt" && grep -q 'running with: Vulkan loader' "$work/version.txt" &&
