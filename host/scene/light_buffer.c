@@ -275,6 +275,7 @@ static void project_eye(const tree *t, cell_acc *cells, const packed_camera *c, 
   }
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   bool whole = false;
+  int behind = 0; /* corners at or behind the eye's plane */
   for (int corner = 0; corner < 8; corner++) {
     double a = a0, b = b0, depth = z0;
     for (int i = 0; i < 3; i++)
@@ -282,7 +283,8 @@ static void project_eye(const tree *t, cell_acc *cells, const packed_camera *c, 
     if (perspective) {
       if (!(depth > 0)) {
         whole = true;
-        break;
+        behind += depth <= 0;
+        continue;
       }
       const double scale = c->focal / depth;
       a *= scale, b *= scale;
@@ -294,6 +296,9 @@ static void project_eye(const tree *t, cell_acc *cells, const packed_camera *c, 
     }
     x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1, y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
   }
+  /* A box wholly behind the eye's plane meets no primary ray: every point of a primary ray
+   * at t > 0 is in front of it (its direction's depth is focal over its length). */
+  if (behind == 8) return;
   /* Raster x of pixel column i is in [i, i + 1); raster y of pixel row j (from the top) is
    * in [height - 1 - j, height - j) (rc_trace.glsl: trace_sample). */
   double i0 = 0, i1 = width - 1, j0 = 0, j1 = height - 1;

@@ -3,9 +3,9 @@
 # scene, and scenes made to stress the cells (a light inside an object's box, a light on a
 # surface, objects across the cube's face edges and corners, slivers seen edge-on from the
 # light, a crowd of small occluders around the light, shadow rays from a plane beyond the
-# buffer's reach; for the eye: a triangle through the eye's plane, slivers and sub-pixel
-# objects on tile edges, objects past the image's edges, a parallel camera), render the
-# same image and the same AOV decisions with both buffers on and both off, on the GPU in
+# buffer's reach; for the eye: a triangle through the eye's plane, a sphere behind it,
+# sub-pixel objects on tile edges, objects past the image's edges, a parallel camera),
+# render the same image and the same AOV decisions with both buffers on and both off, on the GPU in
 # f32 and on the CPU reference in f64. The statistics must show the buffers were built and
 # used cells of every kind where the scene has them.
 # Usage: test_light_buffers.sh VKRAYCAST SCENES_DIR WORKDIR
@@ -66,6 +66,8 @@ stress() {
     # it, and a row of tiny spheres, each under a pixel, along a horizontal tile edge.
     print "    { \"type\": \"triangle\", \"vertices\": [[2.5, 2.5, 7], [2.8, 2.4, 7.2], [2.4, 1.2, 2]], \"material\": \"m\" },"
     print "    { \"type\": \"sphere\", \"center\": [-5.2, 1.2, 0], \"radius\": 0.9, \"material\": \"m\" },"
+    # A sphere wholly behind the eye: in no tile.
+    print "    { \"type\": \"sphere\", \"center\": [0.5, 2.5, 8], \"radius\": 0.5, \"material\": \"m\" },"
     for (i = 0; i < 40; i++)
       printf "    { \"type\": \"sphere\", \"center\": [%.6f, 1.62, 1.5], \"radius\": %.5f, \"material\": \"m\" },\n", -2 + 0.1 * i, 0.004 + 0.002 * (i % 5)
     print "    { \"type\": \"sphere\", \"center\": [-1.5, 0.4, 0.8], \"radius\": 0.4, \"material\": \"m\" } ] }"
