@@ -397,6 +397,14 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
                    .light_pass = r->light_pass,
                    .masked = r->mask != NULL};
   if (r->mask) {
+    /* A tile without a marked pixel has nothing to re-render: no dispatch, and the band's
+     * pixels there are not read (the caller takes the marked ones). */
+    const uint32_t width = rc_region_width(r->region);
+    bool marked = false;
+    for (uint32_t y = 0; y < th && !marked; y++)
+      for (uint32_t x = 0; x < tw && !marked; x++)
+        marked = r->mask[(size_t)(y0 - r->region.y0 + y) * width + (x0 - r->region.x0 + x)].uncertified > 0;
+    if (!marked) return RC_OK;
     rc_status st = put_mask(r, x0, y0, tw, th);
     if (st != RC_OK) return st;
   }

@@ -86,7 +86,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
 /* Certified mode's re-render in f64 on the GPU (r made with opts.f64 and opts.aov): renders
  * `region` (rows of the renderer's region, its full width) tracing only the pixels whose
  * record in `mask` (one per pixel of `region`, row by row) counts uncertified samples;
- * `band` gets the others black. */
+ * `band` gets the others black, or, in a tile with no such pixel (not dispatched), unset. */
 rc_status rc_gpu_renderer_rerender(rc_gpu_renderer *r, rc_region region, const packed_aov *mask, rc_band_fn band,
                                    void *user, rc_gpu_stats *stats);
 void rc_gpu_renderer_destroy(rc_gpu_renderer *r);
