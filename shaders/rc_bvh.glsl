@@ -55,7 +55,7 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
 // ordered near-to-far from the eye at build time (host/scene/bvh.c), which is what a primary
 // ray needs; the tie rule (consider_hit) makes the result independent of the order.
 // The walk covers the nodes [first, end): the whole object tree, or the range a light
-// buffer's cell names (cube_nodes), which is a subtree or a leaf made for the cell.
+// buffer's cell names (shadow_nodes), which is a subtree or a leaf made for the cell.
 bool traverse_bvh(rvec3 o, rvec3 d, bool any, real t_max, uint first, uint end, inout hit_record h) {
   ray_shear sh = ray_shear_for(d);
   rvec3 inv_d = safe_inverse(d);
@@ -139,33 +139,6 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   return false;
 }
 
-// The nodes a ray must walk that starts `from` away from the centre of cube `cube` and
-// runs along d towards it (a shadow ray towards light `cube`): its cell of the cube (RC_LIGHT_BUFFER_RES,
-// host/scene/light_buffer.h), or the whole tree where there is no cube or the ray starts
-// beyond its reach. The cell is the face of d's largest component and d's other two over
-// it, in f32 on both backends (the buffer is conservative by more than that rounding:
-// docs/numerics.md §9).
-uvec2 cube_nodes(uint cube, rvec3 d, real from) {
-  uvec2 whole = uvec2(0u, frame.bvh_node_count);
-  if (frame.light_buffers == 0u) return whole;
-  uvec2 entry = load_bvh_prim_pair(frame.light_buffers + 2u * cube);
-  if (entry.x == 0u || !(from <= real(uintBitsToFloat(entry.y)))) return whole;
-  vec3 v = vec3(d);
-  vec3 a = abs(v);
-  uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
-  float major = axis == 0u ? a.x : (axis == 1u ? a.y : a.z);
-  if (!(major > 0.0)) return whole;
-  float sign_of = axis == 0u ? v.x : (axis == 1u ? v.y : v.z);
-  uint face = 2u * axis + (sign_of < 0.0 ? 1u : 0u);
-  float s = (axis == 0u ? v.y : v.x) / major;
-  float t = (axis == 2u ? v.y : v.z) / major;
-  if (!(abs(s) <= 1.5 && abs(t) <= 1.5)) return whole;  // NaN
-  float res = float(RC_LIGHT_BUFFER_RES);
-  uint i = uint(clamp(floor((s + 1.0) * 0.5 * res), 0.0, res - 1.0));
-  uint j = uint(clamp(floor((t + 1.0) * 0.5 * res), 0.0, res - 1.0));
-  return load_bvh_prim_pair(entry.x + 2u * ((face * RC_LIGHT_BUFFER_RES + j) * RC_LIGHT_BUFFER_RES + i));
-}
-
 // The nodes a primary ray through `pixel` must walk: its tile of the eye buffer
 // (rc_shared.h, RC_EYE_BUFFER_*; host/scene/light_buffer.h), or the whole tree.
 uvec2 eye_nodes(uvec2 pixel) {
@@ -200,6 +173,32 @@ bool closest_hit(rvec3 o, rvec3 d, uvec2 nodes, out hit_record h) {
   return h.kind != RC_HIT_NONE;
 }
 
+// The nodes a shadow ray along d towards light `light` must walk, at most t_max long: its
+// light buffer's cell (RC_LIGHT_BUFFER_RES, host/scene/light_buffer.h), or the whole tree
+// where the light has no buffer or the ray starts beyond the buffer's reach. The cell is
+// the face of d's largest component and d's other two over it, in f32 on both backends (the
+// buffer is conservative by more than that rounding: docs/numerics.md §9).
+uvec2 shadow_nodes(uint light, rvec3 d, real t_max) {
+  uvec2 whole = uvec2(0u, frame.bvh_node_count);
+  if (frame.light_buffers == 0u) return whole;
+  uvec2 entry = load_bvh_prim_pair(frame.light_buffers + 2u * light);
+  if (entry.x == 0u || !(t_max <= real(uintBitsToFloat(entry.y)))) return whole;
+  vec3 v = vec3(d);
+  vec3 a = abs(v);
+  uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+  float major = axis == 0u ? a.x : (axis == 1u ? a.y : a.z);
+  if (!(major > 0.0)) return whole;
+  float sign_of = axis == 0u ? v.x : (axis == 1u ? v.y : v.z);
+  uint face = 2u * axis + (sign_of < 0.0 ? 1u : 0u);
+  float s = (axis == 0u ? v.y : v.x) / major;
+  float t = (axis == 2u ? v.y : v.z) / major;
+  if (!(abs(s) <= 1.5 && abs(t) <= 1.5)) return whole;  // NaN
+  float res = float(RC_LIGHT_BUFFER_RES);
+  uint i = uint(clamp(floor((s + 1.0) * 0.5 * res), 0.0, res - 1.0));
+  uint j = uint(clamp(floor((t + 1.0) * 0.5 * res), 0.0, res - 1.0));
+  return load_bvh_prim_pair(entry.x + 2u * ((face * RC_LIGHT_BUFFER_RES + j) * RC_LIGHT_BUFFER_RES + i));
+}
+
 bool occluded(rvec3 o, rvec3 d, real t_max, uint light) {
 #if RC_CERTIFY
   bool ok = cert_ok;
@@ -214,7 +213,7 @@ bool occluded(rvec3 o, rvec3 d, real t_max, uint light) {
     blocked = occluded_linear(o, d, t_max);
   } else {
     hit_record h = no_hit();
-    uvec2 nodes = cube_nodes(light, d, t_max);
+    uvec2 nodes = shadow_nodes(light, d, t_max);
     blocked = traverse_bvh(o, d, true, t_max, nodes.x, nodes.y, h) || test_planes(o, d, true, t_max, h);
   }
 #if RC_CERTIFY

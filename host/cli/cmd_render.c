@@ -613,10 +613,10 @@ static void report_budget(const rc_scene *s, const rc_precision_report *b) {
 
 /* Certified mode (--precision certified, or auto on a device without f64): the frame's
  * certify word (--certified-bound injects faults), the re-render of the uncertified
- * samples' pixels, and the AOV records that count them. */
-/* The re-render's default is the GPU where its f64 module can run, but not on a CPU device:
- * there the f64 shader's SIMD lanes trace a scattered few pixels in vectors of 8 and took
- * twice the CPU reference's time (docs/performance.md, "What certified decisions cost"). */
+ * samples' pixels, and the AOV records that count them. The re-render's default is the GPU
+ * where its f64 module can run, but not on a CPU device: there the f64 shader's SIMD lanes
+ * trace a scattered few pixels in vectors of 8 and took 1.4-13x the CPU reference's time
+ * (docs/performance.md, "What certified decisions cost"). */
 static rc_status use_certified(render_args *a, rc_packed_scene *packed, rc_render_stats *rs, bool gpu_f64,
                                bool cpu_device) {
   packed->frame.certify = a->certified_bound == 1 ? RC_CERTIFY_HALVED

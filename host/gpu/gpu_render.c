@@ -370,6 +370,11 @@ static void grow_batch(rc_gpu_renderer *r, packed_push *push, uint32_t traced, c
   if (fit > push->batch_samples) push->batch_samples = r->batch_samples = (uint32_t)fit;
 }
 
+/* The re-render's marks of frame row y from column x0 on (r->mask covers the region). */
+static const packed_aov *mask_row(const rc_gpu_renderer *r, uint32_t x0, uint32_t y) {
+  return r->mask + (size_t)(y - r->region.y0) * rc_region_width(r->region) + (x0 - r->region.x0);
+}
+
 /* The re-render's marks of tile (x0, y0) into the AOV buffer, which the shader reads
  * (push.masked) and then overwrites for the pixels it traces: straight into the buffer
  * where it is mapped, else into mask_upload, which dispatch() copies over. */
@@ -382,10 +387,7 @@ static rc_status put_mask(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t
   }
   const rc_buffer *dst = direct ? &r->aov : &r->mask_upload;
   packed_aov *out = dst->memory.mapped;
-  const uint32_t width = rc_region_width(r->region);
-  for (uint32_t y = 0; y < th; y++)
-    memcpy(out + (size_t)y * tw, r->mask + (size_t)(y0 - r->region.y0 + y) * width + (x0 - r->region.x0),
-           tw * sizeof *out);
+  for (uint32_t y = 0; y < th; y++) memcpy(out + (size_t)y * tw, mask_row(r, x0, y0 + y), tw * sizeof *out);
   return rc_buffer_flush(r->ctx, dst);
 }
 
@@ -399,11 +401,9 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   if (r->mask) {
     /* A tile without a marked pixel has nothing to re-render: no dispatch, and the band's
      * pixels there are not read (the caller takes the marked ones). */
-    const uint32_t width = rc_region_width(r->region);
     bool marked = false;
     for (uint32_t y = 0; y < th && !marked; y++)
-      for (uint32_t x = 0; x < tw && !marked; x++)
-        marked = r->mask[(size_t)(y0 - r->region.y0 + y) * width + (x0 - r->region.x0 + x)].uncertified > 0;
+      for (uint32_t x = 0; x < tw && !marked; x++) marked = mask_row(r, x0, y0 + y)[x].uncertified > 0;
     if (!marked) return RC_OK;
     rc_status st = put_mask(r, x0, y0, tw, th);
     if (st != RC_OK) return st;

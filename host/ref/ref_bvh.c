@@ -86,32 +86,6 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   return false;
 }
 
-/* The node range [first, end) of a ray along d towards the centre of cube `cube`, starting
- * `from` away (rc_bvh.glsl says how the cell is found; the same f32 arithmetic here). */
-void REF(cube_nodes)(const ref_scene *sc, uint32_t cube, rvec3 d, real from, uint32_t *first, uint32_t *end) {
-  *first = 0, *end = sc->frame->bvh_node_count;
-  if (sc->frame->light_buffers == 0) return;
-  const uint32_t *entry = &sc->bvh_prims[sc->frame->light_buffers + 2 * cube];
-  float reach;
-  memcpy(&reach, &entry[1], sizeof reach);
-  if (entry[0] == 0 || !(from <= (real)reach)) return;
-  vec3 v = {(float)d.x, (float)d.y, (float)d.z};
-  vec3 a = {fabsf(v.x), fabsf(v.y), fabsf(v.z)};
-  uint32_t axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
-  float major = axis == 0 ? a.x : (axis == 1 ? a.y : a.z);
-  if (!(major > 0)) return;
-  float sign_of = axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
-  uint32_t face = 2 * axis + (sign_of < 0 ? 1 : 0);
-  float s = (axis == 0 ? v.y : v.x) / major;
-  float t = (axis == 2 ? v.y : v.z) / major;
-  if (!(fabsf(s) <= 1.5f && fabsf(t) <= 1.5f)) return; /* NaN */
-  float res = (float)RC_LIGHT_BUFFER_RES;
-  uint32_t i = (uint32_t)fminf(fmaxf(floorf((s + 1) * 0.5f * res), 0), res - 1);
-  uint32_t j = (uint32_t)fminf(fmaxf(floorf((t + 1) * 0.5f * res), 0), res - 1);
-  const uint32_t *cell = &sc->bvh_prims[entry[0] + 2 * ((face * RC_LIGHT_BUFFER_RES + j) * RC_LIGHT_BUFFER_RES + i)];
-  *first = cell[0], *end = cell[1];
-}
-
 /* The node range [first, end) of a primary ray through pixel (x, y) (rc_bvh.glsl). */
 void REF(eye_nodes)(const ref_scene *sc, uint32_t x, uint32_t y, uint32_t *first, uint32_t *end) {
   *first = 0, *end = sc->frame->bvh_node_count;
@@ -139,6 +113,32 @@ bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, uint32_t first, uin
   return h->kind != RC_HIT_NONE;
 }
 
+/* The node range [first, end) of a shadow ray towards light `light` (rc_bvh.glsl says how
+ * the cell is found; the same f32 arithmetic here). */
+void REF(shadow_nodes)(const ref_scene *sc, uint32_t light, rvec3 d, real t_max, uint32_t *first, uint32_t *end) {
+  *first = 0, *end = sc->frame->bvh_node_count;
+  if (sc->frame->light_buffers == 0) return;
+  const uint32_t *entry = &sc->bvh_prims[sc->frame->light_buffers + 2 * light];
+  float reach;
+  memcpy(&reach, &entry[1], sizeof reach);
+  if (entry[0] == 0 || !(t_max <= (real)reach)) return;
+  vec3 v = {(float)d.x, (float)d.y, (float)d.z};
+  vec3 a = {fabsf(v.x), fabsf(v.y), fabsf(v.z)};
+  uint32_t axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+  float major = axis == 0 ? a.x : (axis == 1 ? a.y : a.z);
+  if (!(major > 0)) return;
+  float sign_of = axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+  uint32_t face = 2 * axis + (sign_of < 0 ? 1 : 0);
+  float s = (axis == 0 ? v.y : v.x) / major;
+  float t = (axis == 2 ? v.y : v.z) / major;
+  if (!(fabsf(s) <= 1.5f && fabsf(t) <= 1.5f)) return; /* NaN */
+  float res = (float)RC_LIGHT_BUFFER_RES;
+  uint32_t i = (uint32_t)fminf(fmaxf(floorf((s + 1) * 0.5f * res), 0), res - 1);
+  uint32_t j = (uint32_t)fminf(fmaxf(floorf((t + 1) * 0.5f * res), 0), res - 1);
+  const uint32_t *cell = &sc->bvh_prims[entry[0] + 2 * ((face * RC_LIGHT_BUFFER_RES + j) * RC_LIGHT_BUFFER_RES + i)];
+  *first = cell[0], *end = cell[1];
+}
+
 bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t light) {
   bool ok = ref_cert_ok;
   if (sc->frame->certify) {
@@ -152,7 +152,7 @@ bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t l
   } else {
     ref_hit h = REF(no_hit)();
     uint32_t first, end;
-    REF(cube_nodes)(sc, light, d, t_max, &first, &end);
+    REF(shadow_nodes)(sc, light, d, t_max, &first, &end);
     blocked = REF(traverse_bvh)(sc, o, d, true, t_max, first, end, &h) || REF(test_planes)(sc, o, d, true, t_max, &h);
   }
   if (sc->frame->certify) {

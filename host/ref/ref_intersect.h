@@ -98,7 +98,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   bool ref_test_planes_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);   \
   void ref_eye_nodes_##S(const ref_scene *sc, uint32_t x, uint32_t y, uint32_t *first, uint32_t *end); \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, uint32_t first, uint32_t end, ref_hit_##S *h); \
-  void ref_cube_nodes_##S(const ref_scene *sc, uint32_t cube, V d, R from, uint32_t *first, uint32_t *end); \
+  void ref_shadow_nodes_##S(const ref_scene *sc, uint32_t light, V d, R t_max, uint32_t *first, uint32_t *end); \
   bool ref_occluded_##S(const ref_scene *sc, V o, V d, R t_max, uint32_t light);
 
 /* ref_quadric.c, the twin of rc_quadric.glsl. */

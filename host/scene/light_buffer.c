@@ -242,13 +242,17 @@ static rc_status build_light(const tree *t, appendix *x, const packed_light *lig
   return emit_cells(t, x, acc, CELLS, cells, index_of, &st->empty, &st->lists, &st->subtrees);
 }
 
-/* The eye buffer's layout for camera c: tiles of 2^shift pixels, columns x rows of them. */
-static uint32_t eye_layout(const packed_camera *c, uint32_t *columns, uint32_t *rows) {
-  uint32_t shift = EYE_TILE_SHIFT;
-  for (;; shift++) {
-    *columns = (uint32_t)(((uint64_t)c->width + (1u << shift) - 1) >> shift);
-    *rows = (uint32_t)(((uint64_t)c->height + (1u << shift) - 1) >> shift);
-    if ((uint64_t)*columns * *rows <= EYE_CELLS_MAX) return shift;
+/* The eye buffer's layout: tiles of 2^shift pixels, columns x rows of them. */
+typedef struct {
+  uint32_t shift, columns, rows;
+} eye_layout;
+
+static eye_layout eye_layout_for(const packed_camera *c) {
+  eye_layout g = {.shift = EYE_TILE_SHIFT};
+  for (;; g.shift++) {
+    g.columns = (uint32_t)(((uint64_t)c->width + (1u << g.shift) - 1) >> g.shift);
+    g.rows = (uint32_t)(((uint64_t)c->height + (1u << g.shift) - 1) >> g.shift);
+    if ((uint64_t)g.columns * g.rows <= EYE_CELLS_MAX) return g;
   }
 }
 
@@ -313,17 +317,17 @@ static void project_eye(const tree *t, cell_acc *cells, const packed_camera *c, 
 }
 
 /* The eye buffer: its tiles' node ranges from `cells` on in x->words. */
-static rc_status build_eye(const tree *t, appendix *x, const packed_camera *c, const uint32_t *index_of,
+static rc_status build_eye(const tree *t, appendix *x, const packed_camera *c, eye_layout g, const uint32_t *index_of,
                            cell_acc *acc, uint32_t cells, rc_light_buffer_stats *st) {
-  uint32_t columns, rows, shift = eye_layout(c, &columns, &rows);
   const double E[3] = {c->eye.x, c->eye.y, c->eye.z};
   double pad;
   reach_from(t, E, &pad);
-  for (uint32_t i = 0; i < columns * rows; i++) acc[i] = (cell_acc){.count = 0, .subtree = NONE};
-  for (uint32_t k = 0; k < t->count; k++) project_eye(t, acc, c, shift, columns, pad, k);
-  st->eye_tile = 1u << shift;
-  st->eye_cells = (uint64_t)columns * rows;
-  return emit_cells(t, x, acc, columns * rows, cells, index_of, &st->eye_empty, &st->eye_lists, &st->eye_subtrees);
+  const uint32_t n = g.columns * g.rows;
+  for (uint32_t i = 0; i < n; i++) acc[i] = (cell_acc){.count = 0, .subtree = NONE};
+  for (uint32_t k = 0; k < t->count; k++) project_eye(t, acc, c, g.shift, g.columns, pad, k);
+  st->eye_tile = 1u << g.shift;
+  st->eye_cells = n;
+  return emit_cells(t, x, acc, n, cells, index_of, &st->eye_empty, &st->eye_lists, &st->eye_subtrees);
 }
 
 /* Where borrowed (a prepared scene's file), the tree's arrays become the scene's own copies. */
@@ -368,23 +372,23 @@ rc_status rc_light_buffers_build(rc_packed_scene *p, bool lights_on, bool eye_on
   uint32_t lights = 0;
   for (uint32_t i = 0; lights_on && f->shadows && i < f->light_count && lights < RC_LIGHT_BUFFERS_MAX; i++)
     lights += p->lights[i].type == RC_LIGHT_POINT;
-  uint32_t columns = 0, rows = 0;
-  if (eye_on) eye_layout(&f->camera, &columns, &rows);
-  if (!p->bvh || f->bvh_node_count == 0 || lights + columns == 0) return RC_OK;
+  const eye_layout eye = eye_on ? eye_layout_for(&f->camera) : (eye_layout){0};
+  const uint32_t eye_cells = eye.columns * eye.rows;
+  if (!p->bvh || f->bvh_node_count == 0 || lights + eye_cells == 0) return RC_OK;
   double t0 = rc_now_ms();
   /* The table (a pair per light, then the eye's), then each buffered light's cells, the
    * eye's tiles, then the made leaves' lists; the leaves' references (first <<
    * RC_BVH_LEAF_SHIFT) must stay below 2^32. */
   appendix x = {.node_base = p->bvh_node_total, .word_base = (p->bvh_prim_total + 3) / 4 * 4};
   const uint32_t table_words = (2 * (f->light_count + 1) + 3) / 4 * 4;
-  const uint64_t all_cells = (uint64_t)lights * CELLS + (uint64_t)columns * rows;
+  const uint64_t all_cells = (uint64_t)lights * CELLS + eye_cells;
   const uint64_t reserved = table_words + 2 * all_cells;
   if (x.word_base + reserved + all_cells * RC_LIGHT_BUFFER_LIST >= (1ull << (32 - RC_BVH_LEAF_SHIFT)))
     return RC_OK; /* too many references already: the tree alone, as before */
   tree t;
   rc_status s = tree_read(p, &t);
   uint32_t *index_of = s == RC_OK ? rc_alloc(f->object_count, sizeof *index_of, "light buffers") : NULL;
-  const uint32_t most = CELLS > columns * rows ? CELLS : columns * rows;
+  const uint32_t most = CELLS > eye_cells ? CELLS : eye_cells;
   cell_acc *acc = s == RC_OK ? rc_alloc(most, sizeof *acc, "light buffers") : NULL;
   /* At most one leaf a cell: the table is never more than half full. */
   uint32_t slots = 1;
@@ -407,10 +411,10 @@ rc_status rc_light_buffers_build(rc_packed_scene *p, bool lights_on, bool eye_on
       cells += 2 * CELLS;
       st->lights++;
     }
-    if (s == RC_OK && columns) {
-      s = build_eye(&t, &x, &f->camera, index_of, acc, cells, st);
+    if (s == RC_OK && eye_cells) {
+      s = build_eye(&t, &x, &f->camera, eye, index_of, acc, cells, st);
       x.words[2 * f->light_count] = x.word_base + cells;
-      x.words[2 * f->light_count + 1] = (uint32_t)__builtin_ctz(st->eye_tile) | columns << RC_EYE_BUFFER_COLUMNS_SHIFT;
+      x.words[2 * f->light_count + 1] = eye.shift | eye.columns << RC_EYE_BUFFER_COLUMNS_SHIFT;
     }
   }
   if (s == RC_OK) s = append(p, &x);

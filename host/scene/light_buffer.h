@@ -5,7 +5,7 @@
  * BVH nodes that hold every object a ray through that cell can meet (rc_shared.h,
  * RC_LIGHT_BUFFER_*, RC_EYE_BUFFER_*). A ray in an empty cell traverses nothing, one in a
  * cell of a few objects tests just those, and one elsewhere enters the tree below its top
- * levels. Both renderers read the same buffers (rc_bvh.glsl, ref_bvh.c: cube_nodes,
+ * levels. Both renderers read the same buffers (rc_bvh.glsl, ref_bvh.c: shadow_nodes,
  * eye_nodes), and every decision stays the tree's: a cell is conservative, so a ray skips
  * only objects whose boxes it cannot enter (docs/numerics.md §9 gives the bound). */
 #ifndef RC_LIGHT_BUFFER_H
