@@ -37,6 +37,9 @@ layout(constant_id = RC_SPEC_SPECULAR_MODEL) const uint spec_specular_model = RC
 layout(constant_id = RC_SPEC_REFLECTION_DEPTH) const uint spec_reflection_depth = RC_DEPTH_FROM_FRAME;
 layout(constant_id = RC_SPEC_SAMPLES) const uint spec_samples = RC_SAMPLES_FROM_FRAME;
 layout(constant_id = RC_SPEC_LIGHT_PASSES) const bool light_passes = false;
+layout(constant_id = RC_SPEC_LEVELS) const uint spec_levels = 0u;
+const bool encode_levels = spec_levels != 0u;
+const uint level_curve = spec_levels - 1u; // a constant: the other curves' code is dropped
 // RC_CERTIFY=1 builds the module of --precision certified (rc_certify.glsl); the others have
 // none of its code, which is under `#if RC_CERTIFY` where it is called: lavapipe translates a
 // whole module before specialization drops dead code, and the certificates cost every
@@ -50,6 +53,11 @@ layout(std140, binding = RC_BINDING_FRAME) uniform Frame { packed_frame frame; }
 layout(std430, binding = RC_BINDING_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = RC_BINDING_STATUS) buffer Status { packed_status status; };
 layout(std430, binding = RC_BINDING_AOV) buffer Aov { packed_aov aov[]; };
+// The AOV binding's other use (rc_shared.h, RC_BINDING_AOV): a pipeline has one or neither.
+layout(std430, binding = RC_BINDING_AOV) buffer Levels {
+  packed_levels level_table;
+  uint levels[];
+};
 layout(push_constant) uniform Push { packed_push push; };
 
 // Where each kind's object numbers begin (rc_intersect.glsl's object_kind), read from the
@@ -110,6 +118,30 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #include "rc_bvh.glsl"
 #include "rc_shade.glsl"
 #include "rc_trace.glsl"
+
+// The 8-bit level of one channel's sum of samples: how many of sum_threshold[1..255] are
+// <= it, as the writer's rc_level_of counts them (host/image/levels8.h): comparisons only,
+// so the byte is the writer's exactly. The count starts from an estimate, the level of the
+// sum's value by the curve in f32 (which a GPU's pow need not round as the host's does),
+// and walks to the exact level: one comparison each way where the estimate is right or one
+// off. A binary search from the table alone took 8 dependent loads a channel, and cost the
+// showcase's kernel 13 % on lavapipe.
+uint level_of(float sum) {
+  float x = clamp(sum * level_table.value_scale, 0.0, 1.0);
+  float e = x;
+  if (level_curve == RC_LEVEL_CURVE_SRGB)
+    e = x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+  else if (level_curve == RC_LEVEL_CURVE_GAMMA)
+    e = pow(x, level_table.inv_gamma);
+  uint k = min(uint(max(e, 0.0) * 255.0 + level_table.bias), 255u);
+  while (k < 255u && sum >= level_table.sum_threshold[k + 1u]) k++;
+  while (k > 0u && !(sum >= level_table.sum_threshold[k])) k--;
+  return k;
+}
+
+uint encode_pixel(vec3 sum) {
+  return level_of(sum.r) | level_of(sum.g) << 8 | level_of(sum.b) << 16 | 255u << 24;
+}
 
 // Set when any invocation of the workgroup ran out of budget. llvmpipe runs the
 // invocations of a workgroup as SIMD lanes and its loop cap counts the vector's
@@ -201,6 +233,7 @@ void main() {
     return;
   }
   accum[slot] = vec4(sum.rgb, float(target));
+  if (encode_levels && target == total) levels[slot] = encode_pixel(sum.rgb);
   if (aov_write) aov[slot] = aov_record;
   // The count gathers over the pixel's dispatches: its first wrote the record, with 0.
   if (certify) aov[slot].uncertified += float(uncertified);

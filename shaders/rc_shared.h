@@ -26,6 +26,7 @@ typedef struct packed_triangle packed_triangle;
 typedef struct packed_material packed_material;
 typedef struct packed_light packed_light;
 typedef struct packed_status packed_status;
+typedef struct packed_levels packed_levels;
 typedef struct packed_push packed_push;
 typedef struct packed_aov packed_aov;
 typedef struct packed_bvh_node packed_bvh_node;
@@ -48,7 +49,12 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_BINDING_LIGHTS 4    /* packed_light[] */
 #define RC_BINDING_ACCUM 5     /* vec4 per tile pixel: rgb = sum of samples, a = progress (RC_SPEC_LIGHT_PASSES) */
 #define RC_BINDING_STATUS 6    /* packed_status */
-#define RC_BINDING_AOV 7       /* packed_aov per tile pixel (written only when aov_enabled) */
+/* packed_aov per tile pixel (written only when aov_enabled). With RC_SPEC_LEVELS, which
+ * never comes with AOVs, the same binding holds packed_levels, then a uint per tile pixel:
+ * its levels (r, g, b in bytes 0-2) and 255 in byte 3 once the pixel has all its samples.
+ * (A binding of its own made the storage-buffer path's layout one descriptor too many for
+ * the minimum device and for NVIDIA's best practices.) */
+#define RC_BINDING_AOV 7
 #define RC_BINDING_BVH_NODES 8 /* packed_bvh_node[] (texel or storage, like the scene arrays) */
 #define RC_BINDING_BVH_PRIMS 9 /* uint[] object references of the leaves, 4 per texel */
 #define RC_BINDING_TRANSFORMS 10 /* packed_transform[] of transformed spheres */
@@ -58,6 +64,7 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_BINDING_CSG_PROGRAM 14 /* uint[] CSG instructions, 4 per texel */
 #define RC_BINDING_TEXELS 15     /* textures: each a packed_texture, then its texels (RGBA f32) */
 #define RC_BINDING_COUNT 16
+#define RC_LEVEL_COUNT 256
 
 /* Specialization constant ids. */
 #define RC_SPEC_LOCAL_SIZE_X 0
@@ -81,7 +88,11 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 /* bool: a sample's lights are shaded in passes of push.light_pass (host/gpu/gpu_plan.h),
  * and accum.a counts lights (sample x lights + lights done) instead of samples */
 #define RC_SPEC_LIGHT_PASSES 15
-#define RC_SPEC_COUNT 16 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
+/* 0, or 1 + the curve (RC_LEVEL_CURVE_*): the shader encodes each pixel's sum into the
+ * output file's 8-bit levels (in RC_BINDING_AOV) in the dispatch that completes it, and
+ * the host reads those back instead of the sums (render --gpu-encode) */
+#define RC_SPEC_LEVELS 16
+#define RC_SPEC_COUNT 17 /* the ids above: 0 to RC_SPEC_COUNT - 1, each 4 bytes at 4 x id */
 #define RC_KIND_SPHERES 1u
 #define RC_KIND_TRIANGLES 2u
 #define RC_KIND_QUADRICS 4u /* the quadric test: a standalone quadric that is not a plane, or planes
@@ -442,6 +453,21 @@ struct packed_status {
                              the host sizes the next batch by (gpu_render.c, grow_batch) */
 };
 
+/* How the shader encodes a complete pixel's sum of samples into the output file's 8-bit
+ * levels (RC_SPEC_LEVELS, render --gpu-encode; host/image/levels8.h). sum_threshold[k] is
+ * the least sum whose level is k or more, and decides the level exactly; the other fields
+ * only estimate where the search for it starts (raycast.comp, level_of). */
+#define RC_LEVEL_CURVE_LINEAR 0u /* rc_curve's order (host/image/image_io.h) */
+#define RC_LEVEL_CURVE_SRGB 1u
+#define RC_LEVEL_CURVE_GAMMA 2u
+struct packed_levels {
+  float value_scale; /* 2^exposure / spp: a sum to the value the curve takes */
+  float inv_gamma;   /* RC_LEVEL_CURVE_GAMMA: 1 / gamma (the curve is RC_SPEC_LEVELS') */
+  float bias;        /* 0.5: levels round to the nearest; 0: they truncate */
+  uint pad0;
+  float sum_threshold[RC_LEVEL_COUNT]; /* [0] is unused */
+};
+
 /* Decision outputs (AOVs) of a pixel's first sample, at its primary hit: what GPU/CPU
  * comparisons check before colour (docs/gpu-vs-cpu.md). object: spheres 0..S-1, then
  * triangles S..S+T-1, quadrics, composites; shadow_bits: bit i set when light i faces the surface but its shadow
@@ -585,6 +611,11 @@ RC_ASSERT_LAYOUT(packed_status, exhausted_object, 16); RC_ASSERT_LAYOUT(packed_s
 RC_ASSERT_LAYOUT(packed_status, crossing_object, 24); RC_ASSERT_LAYOUT(packed_status, crossing_pixel, 28);
 RC_ASSERT_LAYOUT(packed_status, patch_unconverged, 32); RC_ASSERT_LAYOUT(packed_status, patch_unconverged_pixel, 40);
 RC_ASSERT_SIZE(packed_status, 48);
+
+RC_ASSERT_LAYOUT(packed_levels, value_scale, 0); RC_ASSERT_LAYOUT(packed_levels, inv_gamma, 4);
+RC_ASSERT_LAYOUT(packed_levels, bias, 8);
+RC_ASSERT_LAYOUT(packed_levels, sum_threshold, 16);
+RC_ASSERT_SIZE(packed_levels, 16 + 4 * RC_LEVEL_COUNT);
 
 RC_ASSERT_LAYOUT(packed_aov, hit, 0);    RC_ASSERT_LAYOUT(packed_aov, object, 4);
 RC_ASSERT_LAYOUT(packed_aov, t, 8);      RC_ASSERT_LAYOUT(packed_aov, shadow_bits, 12);

@@ -341,7 +341,7 @@ static rc_status write_merged(part *parts, size_t n, rc_output *out) {
       }
     }
     if (st == RC_OK)
-      st = nc == 3 ? rc_output_band(y0, y1 - y0, band, NULL, out) : rc_output_aov_rows(out, y1 - y0, band);
+      st = nc == 3 ? rc_output_band(y0, y1 - y0, band, NULL, NULL, out) : rc_output_aov_rows(out, y1 - y0, band);
   }
   free(band);
   free(order);

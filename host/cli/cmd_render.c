@@ -1,5 +1,6 @@
 /* cmd_render.c: `vkraycast render`: parse the scene, apply command-line overrides,
  * pack, render on the GPU (N times with --repeat), write the image and the statistics. */
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
@@ -18,6 +19,7 @@
 #include "scene/precision_budget.h"
 #include "scene/prepared.h"
 #include "image/image_io.h"
+#include "image/levels8.h"
 #include "ref/ref_render.h"
 #include "scene/scene_pack.h"
 #include "cli/stats.h"
@@ -37,7 +39,7 @@ typedef struct {
   bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
   int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
-      scene_buffers, pipeline, light_buffers, eye_buffer, certified_rerender, certified_bound;
+      scene_buffers, pipeline, light_buffers, eye_buffer, certified_rerender, certified_bound, gpu_encode;
   double offset_epsilon; /* 0: the scene's */
   double gamma;          /* 0: the scene's (or 2.2) */
   double exposure;       /* NAN: the scene's */
@@ -61,6 +63,7 @@ static const char *const rerenders[] = {"cpu", "none", "gpu", NULL};
 enum { RERENDER_CPU, RERENDER_NONE, RERENDER_GPU };
 static const char *const cert_bounds[] = {"full", "half", "zero", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
+static const char *const auto_off[] = {"auto", "off", NULL};
 
 #define ARG(field) offsetof(render_args, field)
 static const rc_option render_options[] = {
@@ -101,6 +104,11 @@ static const rc_option render_options[] = {
     {"--eye-buffer", NULL, RC_OPT_CHOICE, ARG(eye_buffer), "B", .choices = off_on,
      .help = "on (default) or off: the objects projected onto the image's tiles, naming\n"
              "what each pixel's primary rays can meet; the image does not depend on it"},
+    {"--gpu-encode", NULL, RC_OPT_CHOICE, ARG(gpu_encode), "E", .choices = auto_off,
+     .help = "auto (default) or off: where the image is an 8-bit file and nothing else\n"
+             "needs the colours as floats (no --aov, no certified re-render), the\n"
+             "shader encodes each pixel into the file's levels and the host reads 4\n"
+             "bytes a pixel instead of 16; the same file, bit for bit"},
     {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
      .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
     {"--flush-subnormals", NULL, RC_OPT_FLAG, ARG(flush_subnormals),
@@ -286,7 +294,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->exposure = NAN;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
       a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline =
-          a->light_buffers = a->eye_buffer = a->certified_rerender = a->certified_bound = -1;
+          a->light_buffers = a->eye_buffer = a->certified_rerender = a->certified_bound = a->gpu_encode = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -433,7 +441,9 @@ typedef struct {
 /* A band of the GPU's f64 re-render (rc_gpu_renderer_rerender): its traced pixels, those
  * the f32 pass left uncertified, replace the f32 pass's; y0 counts from the re-rendered
  * band's first row, which is the sink's. */
-static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user) {
+static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                                 const packed_aov *aov, void *user) {
+  (void)levels; /* a re-render reads sums */
   certified_sink *c = user;
   const size_t width = rc_region_width(c->a->part.region), first = (size_t)y0 * width;
   for (size_t i = 0; i < (size_t)rows * width; i++) {
@@ -447,7 +457,9 @@ static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, c
   return RC_OK;
 }
 
-static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user) {
+static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                                const packed_aov *aov, void *user) {
+  (void)levels; /* certified renders read sums (render_args_levels) */
   certified_sink *c = user;
   const rc_region r = c->a->part.region;
   size_t n = (size_t)rc_region_width(r) * rows;
@@ -473,7 +485,39 @@ static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, co
     c->stats.rerender_ms += rc_now_ms() - t0;
     if (st != RC_OK) return st;
   }
-  return c->next(y0, rows, c->rgb, c->a->aov ? c->aov : NULL, c->next_user);
+  return c->next(y0, rows, c->rgb, NULL, c->a->aov ? c->aov : NULL, c->next_user);
+}
+
+_Static_assert(RC_LEVELS == RC_LEVEL_COUNT, "levels8.h's table is packed_levels.sum_threshold");
+_Static_assert(RC_LEVEL_CURVE_LINEAR == (int)RC_CURVE_LINEAR && RC_LEVEL_CURVE_SRGB == (int)RC_CURVE_SRGB &&
+                   RC_LEVEL_CURVE_GAMMA == (int)RC_CURVE_GAMMA,
+               "RC_SPEC_LEVELS names an rc_curve");
+
+/* --gpu-encode auto: whether the shader can encode the image into its file's 8-bit levels:
+ * the file stores them, and nothing but the file needs the frame's colours (the AOV file
+ * packs them as floats, a certified render replaces re-rendered pixels in them). */
+static bool encode_on_gpu(const render_args *a, const rc_packed_scene *packed) {
+  return a->gpu_encode != 1 && a->output && !a->aov && packed->frame.certify == RC_CERTIFY_OFF &&
+         rc_image_stores_levels(a->output) == 1;
+}
+
+/* What the shader encodes a pixel's sum of spp samples with: the writer's table for the
+ * output's encoding (levels8.h) moved to sums, which decides, and the curve, which only
+ * tells the shader where to look in it. */
+static void shader_levels(const render_args *a, const rc_scene *scene, uint32_t spp, packed_levels *out) {
+  const rc_encoding enc = output_encoding(a, scene);
+  const bool truncate = truncate_output(a, scene);
+  rc_levels values, sums;
+  rc_levels_make(enc, truncate, &values);
+  rc_levels_of_sums(&values, spp, &sums);
+  /* A GPU may flush subnormal operands to zero (docs/numerics.md §1), which would move a
+   * threshold to 0. The least is level 1's, 1/510 of white over 2^64 (RC_MAX_EXPOSURE)
+   * at most: far above FLT_MIN. */
+  for (int k = 1; k < RC_LEVELS; k++) RC_ASSERT(sums.threshold[k] >= FLT_MIN);
+  memcpy(out->sum_threshold, sums.threshold, sizeof out->sum_threshold);
+  out->value_scale = exp2f(enc.exposure) / (float)spp;
+  out->inv_gamma = 1.0f / enc.gamma;
+  out->bias = truncate ? 0.0f : 0.5f;
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -483,6 +527,12 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   certified_sink sink = {.a = a, .packed = packed};
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
+  packed_levels levels;
+  if (encode_on_gpu(a, packed)) {
+    shader_levels(a, scene, packed->frame.samples_per_pixel, &levels);
+    opts.levels = &levels;
+    opts.level_curve = (uint32_t)output_encoding(a, scene).curve;
+  }
   rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
   if (st == RC_OK && certified && a->certified_rerender == RERENDER_GPU) {
     /* The re-render's renderer: the f64 module, no certificates, records on (they carry the
@@ -490,7 +540,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
     rc_packed_scene plain = *packed;
     plain.frame.certify = RC_CERTIFY_OFF;
     rc_gpu_options o64 = opts;
-    o64.f64 = true, o64.aov = true, o64.progress = false;
+    o64.f64 = true, o64.aov = true, o64.progress = false, o64.levels = NULL;
     st = rc_gpu_renderer_create(ctx, &plain, &o64, &sink.f64, &sink.f64_stats);
   }
   double *gpu_ms = calloc(a->repeat, sizeof *gpu_ms), *wall_ms = calloc(a->repeat, sizeof *wall_ms);
@@ -561,7 +611,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
       if (st == RC_OK && certified && a->certified_rerender == RERENDER_CPU)
         st = rc_ref_rerender(packed, &opts, part, rgb, aov, &fs);
       if (st == RC_ERR_TOO_LARGE) report_crossings(scene, fs.crossing_object, fs.crossing_x, fs.crossing_y);
-      if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, a->aov ? aov : NULL, *out);
+      if (st == RC_OK && last) st = rc_output_band(y0, rows, rgb, NULL, a->aov ? aov : NULL, *out);
     }
     ms[i] = fs.render_ms;
     last_stats = fs;

@@ -147,19 +147,26 @@ rc_status rc_output_attach_bytes(rc_output *o, const char *path, const void *byt
   return RC_OK;
 }
 
-rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *unused) {
-  (void)y0, (void)rows, (void)rgb, (void)aov, (void)unused;
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                            const packed_aov *aov, void *unused) {
+  (void)y0, (void)rows, (void)rgb, (void)levels, (void)aov, (void)unused;
   return RC_OK;
 }
 
 void rc_output_set_length_unit(rc_output *o, double unit) { o->length_unit = unit; }
 
-rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *output) {
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                         const packed_aov *aov, void *output) {
   (void)y0; /* bands arrive in order */
   rc_output *o = output;
   double t0 = rc_now_ms();
   char err[512];
-  if (o->image && rc_image_writer_rows(o->image, (int)rows, rgb, err, sizeof err) != 0) {
+  /* Levels come from a renderer that encoded them (--gpu-encode), which records no AOVs. */
+  RC_ASSERT(!levels || !(o->aov && aov));
+  int failed = !o->image ? 0
+               : levels  ? rc_image_writer_levels(o->image, (int)rows, levels, err, sizeof err)
+                         : rc_image_writer_rows(o->image, (int)rows, rgb, err, sizeof err);
+  if (failed) {
     rc_error("%s: cannot write image: %s", o->image_path, err);
     return RC_ERR_IO;
   }

@@ -30,13 +30,16 @@ rc_status rc_output_open(const char *image_path, const char *aov_path, uint32_t 
 /* Scene units per packed unit (1 / rc_packed_scene.scale): the AOV depth is written in
  * scene units. */
 void rc_output_set_length_unit(rc_output *o, double unit);
-/* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows). */
-rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *output);
+/* An rc_band_fn (gpu_render.h): writes rows [y0, y0 + rows), given as floats or as the
+ * image's 8-bit levels. */
+rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                         const packed_aov *aov, void *output);
 /* Rows of the AOV file already in its channel layout (aov.h), RC_AOV_CHANNELS floats a
  * pixel: what `merge` copies from AOV parts. */
 rc_status rc_output_aov_rows(rc_output *o, uint32_t rows, const float *channels);
 /* A band function for frames that are not written (--repeat). */
-rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *unused);
+rc_status rc_output_discard(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                            const packed_aov *aov, void *unused);
 /* Adds the statistics file (its whole text) to the transaction: written now, renamed
  * with the image. */
 rc_status rc_output_attach(rc_output *o, const char *path, const char *text);

@@ -72,6 +72,7 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
   v[RC_SPEC_REFLECTION_DEPTH] = generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth;
   v[RC_SPEC_SAMPLES] = generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel;
   v[RC_SPEC_LIGHT_PASSES] = r->light_passes ? VK_TRUE : VK_FALSE;
+  v[RC_SPEC_LEVELS] = r->opts.levels ? 1 + r->opts.level_curve : 0;
 }
 
 rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {

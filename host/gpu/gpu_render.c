@@ -42,6 +42,10 @@ static double resolve_tile_budget(const rc_vk_ctx *ctx, double wanted_ms) {
 }
 
 
+/* Where the levels of a tile's pixels start in the AOV buffer (opts.levels): after the
+ * encoding. */
+#define LEVELS_OFFSET ((VkDeviceSize)sizeof(packed_levels))
+
 /* The per-tile accumulation buffer and the status counters, with readback copies when
  * they are not mapped directly. */
 static rc_status create_outputs(rc_gpu_renderer *r) {
@@ -50,11 +54,15 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   VkDeviceSize accum_size = tile_pixels * 16;
   VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  VkDeviceSize aov_size = r->opts.aov ? tile_pixels * sizeof(packed_aov) : sizeof(packed_aov);
+  VkDeviceSize aov_size = r->opts.levels ? LEVELS_OFFSET + tile_pixels * sizeof(uint32_t)
+                          : r->opts.aov  ? tile_pixels * sizeof(packed_aov)
+                                         : sizeof(packed_aov);
   size_t band = (size_t)rc_region_width(r->region) * max_band_rows(r);
-  r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
+  RC_ASSERT(!(r->opts.levels && r->opts.aov));
+  if (r->opts.levels) r->band_levels = rc_alloc(band * 3, 1, "one band of the image");
+  else r->band_rgb = rc_alloc(band * 3, sizeof(float), "one band of the image");
   r->band_aov = r->opts.aov ? rc_alloc(band, sizeof(packed_aov), "one band of AOVs") : NULL;
-  if (!r->band_rgb || (r->opts.aov && !r->band_aov)) return RC_ERR_OUT_OF_MEMORY;
+  if (!(r->band_rgb || r->band_levels) || (r->opts.aov && !r->band_aov)) return RC_ERR_OUT_OF_MEMORY;
   rc_status st = rc_buffer_create(ctx, accum_size, usage, RC_MEM_DEVICE, &r->accum);
   if (st == RC_OK) st = rc_buffer_create(ctx, sizeof(packed_status), usage, RC_MEM_DEVICE, &r->status);
   if (st == RC_OK) st = rc_buffer_create(ctx, aov_size, usage, RC_MEM_DEVICE, &r->aov);
@@ -69,6 +77,8 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
     if (st == RC_OK)
       st = rc_buffer_create(ctx, aov_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->aov_readback);
   }
+  if (st == RC_OK && r->opts.levels)
+    st = rc_buffer_upload(ctx, &r->aov, r->opts.levels, sizeof *r->opts.levels, r->opts.force_staging);
   return st;
 }
 
@@ -147,6 +157,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->pipeline_ms = t2 - t1;
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
+  stats->encoded = opts->levels != NULL;
   rc_mem_usage(ctx, &stats->memory_blocks, &stats->memory_bytes);
   if (st != RC_OK) {
     rc_gpu_renderer_destroy(r);
@@ -180,6 +191,7 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   rc_buffer_destroy(ctx, &r->aov_readback);
   rc_buffer_destroy(ctx, &r->mask_upload);
   free(r->band_rgb);
+  free(r->band_levels);
   free(r->band_aov);
   free(r);
 }
@@ -216,12 +228,14 @@ static rc_status begin(rc_gpu_renderer *r) {
   return RC_OK;
 }
 
-/* Copies `src` into its readback twin when staging, then makes it visible to the host. */
-static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_buffer *dst, VkDeviceSize size) {
+/* Copies `size` bytes of `src` from `offset` into its readback twin (at the same offset)
+ * when staging, then makes them visible to the host. */
+static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_buffer *dst, VkDeviceSize offset,
+                            VkDeviceSize size) {
   if (r->staging) {
     barrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
             VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferCopy region = {.size = size};
+    VkBufferCopy region = {.srcOffset = offset, .dstOffset = offset, .size = size};
     vkCmdCopyBuffer(r->cmd, src->buffer, dst->buffer, 1, &region);
     barrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
             VK_ACCESS_HOST_READ_BIT);
@@ -253,6 +267,9 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   /* Only the tile's pixels: the buffer holds the largest tile, and clearing all of it cost
    * small frames milliseconds on lavapipe. */
   if (first) vkCmdFillBuffer(cmd, r->accum.buffer, 0, (VkDeviceSize)push->tile_width * push->tile_height * 16, 0);
+  /* Byte 3 of a pixel's levels says it is complete (read_tile checks): none is, yet. */
+  if (first && r->opts.levels)
+    vkCmdFillBuffer(cmd, r->aov.buffer, LEVELS_OFFSET, (VkDeviceSize)push->tile_width * push->tile_height * 4, 0);
   vkCmdFillBuffer(cmd, r->status.buffer, 0, VK_WHOLE_SIZE, 0);
   barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT);
@@ -265,7 +282,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
   vkCmdDispatch(cmd, group_count(push->tile_width, r->local_x), group_count(push->tile_height, r->local_y), 1);
   if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
-  record_readback(r, &r->status, &r->status_readback, sizeof(packed_status));
+  record_readback(r, &r->status, &r->status_readback, 0, sizeof(packed_status));
   double t0 = rc_now_ms();
   st = submit(r);
   double wall = rc_now_ms() - t0;
@@ -301,39 +318,24 @@ static void status_pixel(const rc_gpu_renderer *r, uint32_t encoded, uint32_t *x
   *x = at % r->frame.camera.width, *y = at / r->frame.camera.width;
 }
 
-/* Renders one tile (a piece of the current band): batches until every pixel has all its
- * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
- * with half the batch; exhaustion at one sample per batch is an error, never a silently
- * wrong pixel. Every dispatch's time goes to the planner. */
-/* The tile at column x0 of the current band into the band buffers: the accumulated sums
- * over the samples, and the AOV records, read where they lie (or copied out through
- * staging first). */
-static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_t th, rc_gpu_stats *stats) {
-  double t0 = rc_now_ms();
-  rc_status st = RC_OK;
-  /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
-   * the status) already made accum and AOVs visible: no second submit, which costs a
-   * whole queue round trip on lavapipe. Staging copies them first. */
-  if (r->staging) {
-    st = begin(r);
-    if (st != RC_OK) return st;
-    record_readback(r, &r->accum, &r->accum_readback, (VkDeviceSize)tw * th * 16);
-    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, (VkDeviceSize)tw * th * sizeof(packed_aov));
-    st = submit(r);
+/* The tile's 8-bit levels (opts.levels) into the band: each pixel's word holds r, g, b
+ * and, in byte 3, 255 if the shader completed it. */
+static void read_levels(rc_gpu_renderer *r, const uint32_t *src, uint32_t bx, uint32_t tw, uint32_t th) {
+  const uint32_t width = rc_region_width(r->region);
+  for (uint32_t y = 0; y < th; y++) {
+    for (uint32_t x = 0; x < tw; x++) {
+      uint32_t word = src[(size_t)y * tw + x];
+      uint8_t *o = r->band_levels + 3 * ((size_t)y * width + (bx + x));
+      RC_ASSERT(word >> 24 == 255u);
+      o[0] = (uint8_t)word, o[1] = (uint8_t)(word >> 8), o[2] = (uint8_t)(word >> 16);
+    }
   }
-  const rc_buffer *ab = r->staging ? &r->accum_readback : &r->accum;
-  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
-  if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, ab);
-  if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
-  if (st != RC_OK) return st;
-  /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
-  uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
-  if (r->band_aov) {
-    const packed_aov *src = vb->memory.mapped;
-    for (uint32_t y = 0; y < th; y++)
-      memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
-  }
-  const float *acc = ab->memory.mapped;
+}
+
+/* The tile's sums into the band, each divided by the samples (the value whose level
+ * packed_levels.sum_threshold gives from the sum). */
+static void read_sums(rc_gpu_renderer *r, const float *acc, uint32_t bx, uint32_t tw, uint32_t th) {
+  const uint32_t width = rc_region_width(r->region);
   const uint32_t spp = r->frame.samples_per_pixel;
   const float complete = (float)spp * (float)(r->light_passes ? r->frame.light_count : 1);
   for (uint32_t y = 0; y < th; y++) {
@@ -344,8 +346,45 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
       for (int c = 0; c < 3; c++) o[c] = a[c] / (float)spp;
     }
   }
+}
+
+/* The tile at column x0 of the current band into the band buffers: the pixels (their
+ * levels, or their sums over the samples) and the AOV records, read where they lie (or
+ * copied out through staging first). */
+static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_t th, rc_gpu_stats *stats) {
+  double t0 = rc_now_ms();
+  rc_status st = RC_OK;
+  const bool levels = r->opts.levels != NULL;
+  const VkDeviceSize pixel_bytes = levels ? 4 : 16, bytes = (VkDeviceSize)tw * th * pixel_bytes;
+  const rc_buffer *pixels = levels ? &r->aov : &r->accum;
+  const VkDeviceSize offset = levels ? LEVELS_OFFSET : 0;
+  /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
+   * the status) already made the pixels and AOVs visible: no second submit, which costs a
+   * whole queue round trip on lavapipe. Staging copies them first. */
+  if (r->staging) {
+    st = begin(r);
+    if (st != RC_OK) return st;
+    record_readback(r, pixels, levels ? &r->aov_readback : &r->accum_readback, offset, bytes);
+    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, 0, (VkDeviceSize)tw * th * sizeof(packed_aov));
+    st = submit(r);
+  }
+  const rc_buffer *pb = r->staging ? (levels ? &r->aov_readback : &r->accum_readback) : pixels;
+  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
+  if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, pb);
+  if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
+  if (st != RC_OK) return st;
+  /* Tile (x0, y0) is in frame pixels; the band is the region's width. */
+  uint32_t width = rc_region_width(r->region), bx = x0 - r->region.x0;
+  if (r->band_aov) {
+    const packed_aov *src = vb->memory.mapped;
+    for (uint32_t y = 0; y < th; y++)
+      memcpy(r->band_aov + (size_t)y * width + bx, src + (size_t)y * tw, tw * sizeof *src);
+  }
+  const char *mapped = (const char *)pb->memory.mapped + offset;
+  if (levels) read_levels(r, (const uint32_t *)mapped, bx, tw, th);
+  else read_sums(r, (const float *)mapped, bx, tw, th);
   stats->readback_ms += rc_now_ms() - t0;
-  stats->readback_bytes += (uint64_t)tw * th * (16 + (r->band_aov ? sizeof(packed_aov) : 0));
+  stats->readback_bytes += bytes + (r->band_aov ? (uint64_t)tw * th * sizeof(packed_aov) : 0);
   stats->tiles++;
   return RC_OK;
 }
@@ -391,6 +430,10 @@ static rc_status put_mask(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t
   return rc_buffer_flush(r->ctx, dst);
 }
 
+/* Renders one tile (a piece of the current band): batches until every pixel has all its
+ * samples. A dispatch whose pixels ran out of loop budget (the plan was wrong) is repeated
+ * with half the batch; exhaustion at one sample per batch is an error, never a silently
+ * wrong pixel. Every dispatch's time goes to the planner. */
 static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint32_t tw, uint32_t th,
                              rc_tile_planner *planner, rc_gpu_stats *stats) {
   packed_push push = {.tile_x = x0, .tile_y = y0, .tile_width = tw, .tile_height = th,
@@ -496,7 +539,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
                 100.0 * (double)done / total, stats->tiles, el, el * (double)(total - done) / (double)done);
       }
     }
-    rc_status st = band(y0, rows, r->band_rgb, r->band_aov, user);
+    rc_status st = band(y0, rows, r->band_rgb, r->band_levels, r->band_aov, user);
     if (st != RC_OK) return st;
     y0 += rows;
   }
@@ -509,7 +552,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
 
 rc_status rc_gpu_renderer_rerender(rc_gpu_renderer *r, rc_region region, const packed_aov *mask, rc_band_fn band,
                                    void *user, rc_gpu_stats *stats) {
-  RC_ASSERT(r->opts.aov && region.x0 == r->region.x0 && region.x1 == r->region.x1 && region.y0 >= r->region.y0 &&
+  RC_ASSERT(r->opts.aov && !r->opts.levels && region.x0 == r->region.x0 && region.x1 == r->region.x1 && region.y0 >= r->region.y0 &&
             region.y1 <= r->region.y1);
   const rc_region whole = r->region;
   r->region = region;

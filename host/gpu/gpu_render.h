@@ -28,6 +28,12 @@ typedef struct rc_gpu_options {
                             shadows, specular model and bounces read from the frame), to
                             measure what specializing to the scene buys */
   rc_region region;     /* the pixels to render (region.h); all zero: the whole frame */
+  /* NULL: the host reads each pixel's sums back and divides (bands of float RGB). Else
+   * the output file's encoding (rc_shared.h): the shader encodes each pixel into its
+   * 8-bit levels as it completes, and the host reads 4 bytes a pixel instead of 16
+   * (bands of levels). Not with aov, nor for a re-render. */
+  const packed_levels *levels;
+  uint32_t level_curve; /* with levels: RC_LEVEL_CURVE_*, a specialization constant */
 } rc_gpu_options;
 
 #define RC_DEFAULT_TILE_BUDGET_MS 100.0
@@ -41,7 +47,7 @@ typedef struct rc_gpu_stats {
   double readback_ms;  /* accumulation buffer to the host image, wall */
   /* Bytes moved between host and device: the scene arrays and the frame, once per
    * renderer; per frame, what the host reads back (each dispatch's status, each tile's
-   * accumulated sums, 16 bytes a pixel, and AOV records, 32). */
+   * accumulated sums, 16 bytes a pixel, or its 8-bit levels, 4, and AOV records, 32). */
   uint64_t upload_bytes, readback_bytes;
   uint64_t shadow_rays, reflection_rays;
   uint32_t dispatches, tiles;
@@ -66,6 +72,7 @@ typedef struct rc_gpu_stats {
   uint32_t subgroup_size;
   uint32_t workgroup_x, workgroup_y; /* invocations per workgroup, chosen from the subgroup size */
   bool staging;            /* uploads and readback went through staging buffers */
+  bool encoded;            /* the shader encoded the pixels into 8-bit levels (opts.levels) */
   uint32_t memory_blocks;  /* device memory allocations (vk_memory.h) after set-up */
   uint64_t memory_bytes;   /* and their bytes */
   rc_scene_buffers scene_buffers;
@@ -76,9 +83,11 @@ typedef struct rc_gpu_renderer rc_gpu_renderer;
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats);
 /* Receives the region's pixels in bands of rows, top to bottom: rgb (rows * width * 3
- * floats, width the region's) and, when the renderer records AOVs, aov (rows * width
- * records); NULL aov otherwise. y0 counts from the region's first row. */
-typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const packed_aov *aov, void *user);
+ * floats, width the region's) or, from a renderer with opts.levels, levels (rows *
+ * width * 3 bytes) and a NULL rgb; when the renderer records AOVs, aov (rows * width
+ * records), NULL otherwise. y0 counts from the region's first row. */
+typedef rc_status (*rc_band_fn)(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
+                                const packed_aov *aov, void *user);
 
 /* Renders one frame, band by band: host memory is one band, whatever the image size. */
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats);

@@ -33,8 +33,11 @@ struct rc_gpu_renderer {
   double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
   rc_buffer accum, accum_readback;
   rc_buffer status, status_readback;
-  rc_buffer aov, aov_readback; /* a 32-byte placeholder when AOVs are off */
-  float *band_rgb;             /* one band of rows on the host */
+  /* The AOV records; with opts.levels the encoding and the tile's levels instead
+   * (RC_BINDING_AOV); else a 32-byte placeholder. */
+  rc_buffer aov, aov_readback;
+  float *band_rgb;             /* one band of rows on the host (NULL with opts.levels) */
+  uint8_t *band_levels;        /* with opts.levels: the band as 8-bit levels, 3 a pixel */
   packed_aov *band_aov;
   /* rc_gpu_renderer_rerender: the records that mark the pixels to trace, a row of the
    * region's width each from the region's top; NULL otherwise. The tile's records reach

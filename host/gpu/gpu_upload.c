@@ -139,7 +139,8 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
   if (chosen != RC_OK) return chosen;
   /* Everything the render allocates on the device, against its largest device-local heap:
    * refuse what cannot fit before allocating anything. */
-  VkDeviceSize need = sizeof(packed_frame) + tile_pixels * (16 + (r->opts.aov ? sizeof(packed_aov) : 0));
+  VkDeviceSize need = sizeof(packed_frame) + tile_pixels * (16 + (r->opts.aov ? sizeof(packed_aov) : 0)) +
+                     (r->opts.levels ? sizeof(packed_levels) + tile_pixels * 4 : 0);
   for (int i = 0; i < SCENE_ARRAYS; i++) need += sizes[i];
   VkDeviceSize heap = 0;
   for (uint32_t i = 0; i < ctx->memory.memoryHeapCount; i++)

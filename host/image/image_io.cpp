@@ -1,6 +1,7 @@
 // image_io.cpp: OpenImageIO behind the C API of image_io.h. Every exception and OIIO
 // error stops at this boundary and comes back as text.
 #include "image/image_io.h"
+#include "image/levels8.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -36,22 +37,6 @@ const int png_filter_sub = 0x10;
 
 bool is_float_format(const std::string &format) {
   return format == "openexr" || format == "hdr" || format == "tiff" || format == "fits";
-}
-
-float srgb_encode(float x) {
-  if (!(x > 0.0f)) return 0.0f;
-  if (x >= 1.0f) return 1.0f;
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
-}
-
-// What an 8-bit format stores for the linear value x (image_io.h, rc_encoding), in [0, 1].
-// scale is 2^exposure. Exposure 0 multiplies by exactly 1, so the linear and sRGB curves
-// store what they stored before exposure existed.
-float encode_8bit(const rc_encoding &e, float scale, float x) {
-  x *= scale;
-  if (e.curve == RC_CURVE_SRGB) return srgb_encode(x);
-  x = x > 1.0f ? 1.0f : (x > 0.0f ? x : 0.0f);
-  return e.curve == RC_CURVE_GAMMA ? std::pow(x, 1.0f / e.gamma) : x;
 }
 
 // The colour space OIIO records for an 8-bit file ("Gamma2.2" is OIIO's name for a power).
@@ -131,10 +116,9 @@ struct rc_image_writer {
   FILE *file = nullptr;
   std::string path, dir, tmp; // tmp: the named temporary; empty while the file has no name
   int width = 0, height = 0, channels = 0, next_row = 0;
-  bool fp = false, truncate = false;
-  rc_encoding enc = rc_encoding_linear();
-  float scale = 1.0f; // 2^enc.exposure
-  std::vector<float> encoded;
+  bool fp = false;
+  rc_levels levels;                   // 8-bit formats: the encoding's table (levels8.h)
+  std::vector<unsigned char> encoded; // one band of levels
 };
 
 namespace {
@@ -286,7 +270,7 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     w->path = path;
     w->dir = dir_of(path);
     w->width = width, w->height = height, w->channels = channels;
-    w->enc = enc, w->truncate = truncate, w->scale = std::exp2(enc.exposure);
+    if (!w->fp) rc_levels_make(enc, truncate, &w->levels);
     std::string e;
     if (!open_temp(w.get(), e)) {
       set_error(err, err_len, e);
@@ -308,32 +292,47 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
 
 extern "C" const char *rc_image_writer_temp_path(const rc_image_writer *w) { return w->tmp.c_str(); }
 
+namespace {
+
+// Rows of `format` data (FLOAT, or UINT8 levels) after the last ones written.
+int write_rows(rc_image_writer *w, int rows, TypeDesc format, const void *data, char *err, size_t err_len) {
+  if (rows <= 0) return 0;
+  if (w->next_row + rows > w->height) {
+    set_error(err, err_len, "more rows than the image has");
+    return -1;
+  }
+  if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, format, data) || w->proxy->error) {
+    set_error(err, err_len, write_error(w, w->out->geterror(), "the image writer failed"));
+    return -1;
+  }
+  w->next_row += rows;
+  return 0;
+}
+
+}  // namespace
+
 extern "C" int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len) {
   try {
-    if (rows <= 0) return 0;
-    if (w->next_row + rows > w->height) {
-      set_error(err, err_len, "more rows than the image has");
+    if (w->fp || rows <= 0) return write_rows(w, rows, TypeDesc::FLOAT, pixels, err, err_len);
+    // 8-bit: each value's level from the table, so OIIO converts nothing.
+    size_t n = static_cast<size_t>(w->width) * rows * w->channels;
+    w->encoded.resize(n);
+    for (size_t i = 0; i < n; i++) w->encoded[i] = rc_level_of(&w->levels, pixels[i]);
+    return write_rows(w, rows, TypeDesc::UINT8, w->encoded.data(), err, err_len);
+  } catch (const std::exception &e) {
+    set_error(err, err_len, e.what());
+    return -1;
+  }
+}
+
+extern "C" int rc_image_writer_levels(rc_image_writer *w, int rows, const unsigned char *levels, char *err,
+                                      size_t err_len) {
+  try {
+    if (w->fp) {
+      set_error(err, err_len, "8-bit levels given to a float format");
       return -1;
     }
-    const float *data = pixels;
-    if (!w->fp) {
-      // 8-bit: clamp (and encode) here, so OIIO's quantisation is the only rounding.
-      size_t n = static_cast<size_t>(w->width) * rows * w->channels;
-      w->encoded.resize(n);
-      for (size_t i = 0; i < n; i++) {
-        float x = pixels[i];
-        float e = encode_8bit(w->enc, w->scale, x);
-        // OIIO rounds x * 255; a value already on a level stays there.
-        w->encoded[i] = w->truncate ? std::floor(e * 255.0f) / 255.0f : e;
-      }
-      data = w->encoded.data();
-    }
-    if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, TypeDesc::FLOAT, data) || w->proxy->error) {
-      set_error(err, err_len, write_error(w, w->out->geterror(), "the image writer failed"));
-      return -1;
-    }
-    w->next_row += rows;
-    return 0;
+    return write_rows(w, rows, TypeDesc::UINT8, levels, err, err_len);
   } catch (const std::exception &e) {
     set_error(err, err_len, e.what());
     return -1;
@@ -430,6 +429,15 @@ extern "C" int rc_image_write(const char *path, int width, int height, int chann
 extern "C" int rc_image_can_write(const char *path) {
   try {
     return ImageOutput::create(path) ? 1 : 0;
+  } catch (const std::exception &) {
+    return 0;
+  }
+}
+
+extern "C" int rc_image_stores_levels(const char *path) {
+  try {
+    auto out = ImageOutput::create(path);
+    return out && !is_float_format(out->format_name()) ? 1 : 0;
   } catch (const std::exception &) {
     return 0;
   }

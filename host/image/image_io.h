@@ -57,6 +57,9 @@ rc_image_writer *rc_image_writer_open(const char *path, int width, int height, i
                                       rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count,
                                       char *err, size_t err_len);
 int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len);
+/* Rows already encoded, `channels` levels a pixel, by the table the writer's encoding
+ * makes (levels8.h: the GPU encodes in the shader); an 8-bit format only. */
+int rc_image_writer_levels(rc_image_writer *w, int rows, const unsigned char *levels, char *err, size_t err_len);
 /* Everything written and fsynced, not yet named: after this succeeds for every file of a
  * run, their closes with commit = 1 only rename (one transaction over several files). */
 int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len);
@@ -76,6 +79,9 @@ int rc_image_read_named(const char *path, int *width, int *height, int *channels
 /* 1 if OpenImageIO can write a file of this name (by its extension), else 0; in the
  * vkraycast binary, -1 when its image module cannot be loaded (the reason on stderr). */
 int rc_image_can_write(const char *path);
+/* 1 if a file of this name stores 8-bit levels (PNG, JPEG, BMP, PPM...), 0 if floats or
+ * none can be written; in the vkraycast binary, -1 when the module cannot be loaded. */
+int rc_image_stores_levels(const char *path);
 
 /* A reader that hands out rows on demand, so that `vkraycast merge` streams its parts
  * however large the frame. *float32: every channel is stored as 32-bit float (the

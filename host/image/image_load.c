@@ -65,6 +65,10 @@ int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char
   return api->writer_rows(w, rows, pixels, err, err_len);
 }
 
+int rc_image_writer_levels(rc_image_writer *w, int rows, const unsigned char *levels, char *err, size_t err_len) {
+  return api->writer_levels(w, rows, levels, err, err_len);
+}
+
 int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len) { return api->writer_finish(w, err, err_len); }
 
 int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len) {
@@ -90,6 +94,13 @@ int rc_image_can_write(const char *path) {
   const rc_image_api *m = module(err, sizeof err);
   if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);
   return m ? m->can_write(path) : -1;
+}
+
+int rc_image_stores_levels(const char *path) {
+  char err[sizeof load_error];
+  const rc_image_api *m = module(err, sizeof err);
+  if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);
+  return m ? m->stores_levels(path) : -1;
 }
 
 int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len) {

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#define RC_IMAGE_API_VERSION 4u
+#define RC_IMAGE_API_VERSION 5u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
 
 typedef struct rc_image_api {
@@ -36,6 +36,8 @@ typedef struct rc_image_api {
   int (*reader_channel)(const rc_image_reader *r, int c, char *name, size_t len);
   int (*reader_rows)(rc_image_reader *r, int y0, int y1, float *pixels, char *err, size_t err_len);
   void (*reader_close)(rc_image_reader *r);
+  int (*writer_levels)(rc_image_writer *w, int rows, const unsigned char *levels, char *err, size_t err_len);
+  int (*stores_levels)(const char *path);
 } rc_image_api;
 
 #ifdef __cplusplus

@@ -417,9 +417,21 @@ TEST(stats_json_reports_rays_and_timings) {
   CHECK(json_number(s, "rays_shadow") > 0);
   CHECK(json_number(s, "render_ms") > 0 && json_number(s, "mrays_per_s") > 0);
   CHECK_EQ_INT(json_number(s, "repeat"), 3);
-  /* One frame's readback: each dispatch's status record, and 16 bytes a pixel of sums. */
-  CHECK_EQ_INT(json_number(s, "readback_bytes"), 80 * 50 * 16 + json_number(s, "dispatches") * (int)sizeof(packed_status));
+  /* One frame's readback: each dispatch's status record, and the pixels: a PNG's 8-bit
+   * levels, encoded by the shader, 4 bytes a pixel (--gpu-encode auto). */
+  CHECK(cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(s, "gpu_encoded")));
+  CHECK_EQ_INT(json_number(s, "readback_bytes"), 80 * 50 * 4 + json_number(s, "dispatches") * (int)sizeof(packed_status));
   CHECK(json_number(s, "upload_bytes") > (int)sizeof(packed_frame));
+  cJSON_Delete(s);
+  /* An EXR needs the floats: 16 bytes a pixel of sums. */
+  CHECK_EQ_INT(run("render %s/showcase.json -o %s/s.exr --width 80 --height 50 --spp 3 --quiet "
+                   "--stats-json %s/stats.json",
+                   scenes_dir, tmp, tmp),
+               0);
+  s = load_json("stats.json");
+  if (!s) { CHECK(false); return; }
+  CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(s, "gpu_encoded")));
+  CHECK_EQ_INT(json_number(s, "readback_bytes"), 80 * 50 * 16 + json_number(s, "dispatches") * (int)sizeof(packed_status));
   cJSON_Delete(s);
 }
 

@@ -150,6 +150,13 @@ int main(void) {
   OFF("status.max_steps", packed_status, max_steps);
   printf("Status size %zu\n", sizeof(packed_status));
 
+  OFF("level_table.value_scale", packed_levels, value_scale);
+  OFF("level_table.inv_gamma", packed_levels, inv_gamma);
+  OFF("level_table.bias", packed_levels, bias);
+  OFF("level_table.pad0", packed_levels, pad0);
+  OFF("level_table.sum_threshold", packed_levels, sum_threshold);
+  printf("levels offset %zu\n", sizeof(packed_levels));
+
   OFF("aov.hit", packed_aov, hit);
   OFF("aov.object", packed_aov, object);
   OFF("aov.t", packed_aov, t);
@@ -173,6 +180,7 @@ int main(void) {
   printf("scene_texels binding %d\n", RC_BINDING_TEXELS);
   printf("Accum binding %d\n", RC_BINDING_ACCUM);
   printf("Status binding %d\n", RC_BINDING_STATUS);
+  printf("Levels binding %d\n", RC_BINDING_AOV);
   printf("Aov binding %d\n", RC_BINDING_AOV);
   return 0;
 }

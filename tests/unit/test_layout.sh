@@ -13,9 +13,10 @@ reflect() { "$glslang" -V --target-env vulkan1.1 -I"$shaders" -DRC_SCENE_TEXEL_B
 {
   # Storage variant: member offsets and array strides of the scene arrays.
   reflect 0 | grep -v '\[0\]' | sed -nE \
-    -e 's/^((frame|push|status|aov|scene_[a-z_]+)\.[a-z_.0-9]+): offset ([0-9]+),.*/\1 \3/p' \
+    -e 's/^((frame|push|status|aov|level_table|scene_[a-z_]+)\.[a-z_.0-9]+): offset ([0-9]+),.*/\1 \3/p' \
+    -e 's/^(levels): offset ([0-9]+),.*/\1 offset \2/p' \
     -e 's/^(Frame|Push|Status): offset -1, type [0-9a-f]+, size ([0-9]+),.*/\1 size \2/p'
-  reflect 0 | sed -nE 's/^(Frame|Accum|Status|Aov): .* binding ([0-9]+),.*/\1 binding \2/p'
+  reflect 0 | sed -nE 's/^(Frame|Accum|Status|Aov|Levels): .* binding ([0-9]+),.*/\1 binding \2/p'
   reflect 0 | grep -v '\[0\]' | sed -nE 's/^(scene_[a-z_]+|aov)\.[a-z_0-9]+: offset 0,.*topLevelArrayStride ([0-9]+).*/\1 stride \2/p'
   # The object-reference and CSG program arrays are plain uint[]: its stride is on its own line.
   reflect 0 | sed -nE 's/^(scene_bvh_prims|scene_csg_program): offset 0,.*arrayStride ([0-9]+),.*/\1 stride \2/p'

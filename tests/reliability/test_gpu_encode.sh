@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# The shader's 8-bit encoding (render --gpu-encode, host/image/levels8.h): where the output
+# is an 8-bit file and nothing else needs the colours as floats, the GPU encodes each pixel
+# into the file's levels and the host reads 4 bytes a pixel instead of 16. The file must be
+# the one the host's own encoding writes, byte for byte, under every curve, exposure,
+# quantizer, sample count, tiling, staging, region and light pass; the statistics must count
+# the bytes read back; and where floats are needed (float files, AOVs, certified renders)
+# the shader must not encode.
+# Usage: test_gpu_encode.sh VKRAYCAST SCENES_DIR WORKDIR
+set -uo pipefail
+bin=$1 scenes=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+source "$(dirname "$0")/../check.sh"
+
+# `same NAME SCENE EXT [render args]`: --gpu-encode auto against off, 96x64 unless the args
+# say otherwise; both statistics files are kept as $work/NAME.{auto,off}.json.
+same() {
+  local name=$1 scene=$2 ext=$3 why=ok m
+  shift 3
+  for m in auto off; do
+    "$bin" render "$scene" -o "$work/$name.$m.$ext" --width 96 --height 64 --quiet --gpu-encode $m \
+      --stats-json "$work/$name.$m.json" "$@" 2>"$work/err" || because "$m: exit $?: $(head -c 300 "$work/err")"
+  done
+  [[ $why == ok ]] && { cmp -s "$work/$name.auto.$ext" "$work/$name.off.$ext" || because "the files differ"; }
+  grep -q '"gpu_encoded":[[:space:]]*false' "$work/$name.off.json" || because "off: gpu_encoded is not false"
+  check "$name: the same file with --gpu-encode auto and off ($*)" "$why"
+}
+
+# `bytes NAME PIXELS PER_PIXEL MODE`: readback_bytes of NAME's MODE run is PIXELS x
+# PER_PIXEL plus each dispatch's status record (48 bytes).
+bytes() {
+  local why=ok f=$work/$1.$4.json
+  local got=$(json_num readback_bytes "$f") d=$(json_num dispatches "$f")
+  local want=$(($2 * $3 + 48 * d))
+  [[ $got == "$want" ]] || because "readback_bytes $got, expected $2 x $3 + 48 x $d = $want"
+  check "$1 ($4): $3 bytes a pixel read back" "$why"
+}
+
+encoded() { # `encoded NAME MODE true|false`
+  local why=ok
+  grep -q "\"gpu_encoded\":[[:space:]]*$3" "$work/$1.$2.json" || because "gpu_encoded is not $3"
+  check "$1 ($2): gpu_encoded $3" "$why"
+}
+
+same showcase "$scenes/showcase.json" png
+encoded showcase auto true
+bytes showcase $((96 * 64)) 4 auto
+bytes showcase $((96 * 64)) 16 off
+same showcase_srgb "$scenes/showcase.json" png --encoding srgb --spp 5
+same room_gamma "$scenes/room.json" png --gamma 1.8 --exposure 1.5
+same transforms_dark "$scenes/transforms.json" png --encoding srgb --exposure -3.25 --spp 2
+same earth_truncate "$scenes/earth.json" png --quantize truncate --spp 3
+same csg_bright "$scenes/csg.json" png --exposure 2
+# Tiles of odd sizes, through staging buffers (the copy starts past the thresholds).
+same parallel_tiles "$scenes/parallel.json" png --tile 24 --staging --spp 3
+bytes parallel_tiles $((96 * 64)) 4 auto
+same showcase_region "$scenes/showcase.json" png --region 10,7,90,51 --tile 32
+bytes showcase_region $((80 * 44)) 4 auto
+same mesh_jpeg "$scenes/mesh.json" jpg
+same shadows_bmp "$scenes/shadows.json" bmp --spp 4
+# Batches that grow, and light passes: a pixel is encoded in the dispatch that completes it.
+same showcase_batches "$scenes/showcase.json" png --spp 16 --plan-budget 900 --tile 16
+python3 - "$scenes/showcase.json" "$work/lights.json" <<'PY'
+import json, random, sys
+s = json.load(open(sys.argv[1]))
+rng = random.Random(7)
+s["lights"] = [{"type": "point", "position": [rng.uniform(-6, 6), rng.uniform(1, 8), rng.uniform(-4, 7)],
+                "intensity": [0.2, 0.2, 0.2]} for _ in range(300)]
+json.dump(s, open(sys.argv[2], "w"))
+PY
+same light_passes "$work/lights.json" png --width 32 --height 20 --plan-budget 900 --tile 8 --spp 2
+why=ok
+per=$(json_num lights_per_pass "$work/light_passes.auto.json")
+[[ -n $per && $per -gt 0 && $per -lt 300 ]] || because "lights_per_pass $per: no passes"
+check "light_passes: rendered in passes" "$why"
+
+# Where the colours are needed as floats the shader does not encode.
+for m in exr aov certified; do
+  args=() out=$work/$m.png
+  [[ $m == exr ]] && out=$work/$m.exr
+  [[ $m == aov ]] && args=(--aov "$work/$m.aov.exr")
+  [[ $m == certified ]] && args=(--precision certified)
+  why=ok
+  "$bin" render "$scenes/showcase.json" -o "$out" --width 32 --height 20 --quiet --stats-json "$work/$m.json" \
+    "${args[@]}" 2>"$work/err" || because "exit $?: $(head -c 300 "$work/err")"
+  grep -q '"gpu_encoded":[[:space:]]*false' "$work/$m.json" || because "gpu_encoded is not false"
+  check "$m: the shader does not encode" "$why"
+done
+
+finish
