@@ -163,6 +163,7 @@ static const stats_field bvh_fields[] = {
 static const stats_field gpu_fields[] = {
     FIELD("staging", F_BOOL, gpu.staging),
     FIELD("gpu_encoded", F_BOOL, gpu.encoded),
+    FIELD("readback_cached", F_BOOL, gpu.readback_cached),
     FIELD("upload_ms", F_DOUBLE, gpu.upload_ms),
     FIELD("pipeline_ms", F_DOUBLE, gpu.pipeline_ms),
     FIELD("pipeline_cache_hit", F_BOOL, gpu.pipeline_cache_hit),

@@ -158,6 +158,11 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
   stats->encoded = opts->levels != NULL;
+  if (st == RC_OK) {
+    const rc_buffer *read = r->opts.levels ? (r->staging ? &r->aov_readback : &r->aov)
+                                           : (r->staging ? &r->accum_readback : &r->accum);
+    stats->readback_cached = (rc_mem_flags(ctx, &read->memory) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
+  }
   rc_mem_usage(ctx, &stats->memory_blocks, &stats->memory_bytes);
   if (st != RC_OK) {
     rc_gpu_renderer_destroy(r);

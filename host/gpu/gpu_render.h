@@ -73,6 +73,8 @@ typedef struct rc_gpu_stats {
   uint32_t workgroup_x, workgroup_y; /* invocations per workgroup, chosen from the subgroup size */
   bool staging;            /* uploads and readback went through staging buffers */
   bool encoded;            /* the shader encoded the pixels into 8-bit levels (opts.levels) */
+  bool readback_cached;    /* the memory the host reads the pixels from is HOST_CACHED (reads
+                              from write-combined memory are slow) */
   uint32_t memory_blocks;  /* device memory allocations (vk_memory.h) after set-up */
   uint64_t memory_bytes;   /* and their bytes */
   rc_scene_buffers scene_buffers;

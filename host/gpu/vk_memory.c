@@ -154,6 +154,10 @@ VkMappedMemoryRange rc_mem_range(const rc_vk_ctx *ctx, const rc_mem_slice *slice
   return r;
 }
 
+VkMemoryPropertyFlags rc_mem_flags(const rc_vk_ctx *ctx, const rc_mem_slice *slice) {
+  return ctx->memory.memoryTypes[slice->block->type].propertyFlags;
+}
+
 void rc_mem_usage(const rc_vk_ctx *ctx, uint32_t *blocks, VkDeviceSize *bytes) {
   *blocks = 0;
   *bytes = 0;

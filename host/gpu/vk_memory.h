@@ -43,6 +43,9 @@ void rc_mem_release_all(rc_vk_ctx *ctx);
 /* The slice's range for vkFlush/InvalidateMappedMemoryRanges: aligned to nonCoherentAtomSize. */
 VkMappedMemoryRange rc_mem_range(const rc_vk_ctx *ctx, const rc_mem_slice *slice);
 
+/* The property flags of the memory type a slice lies in. */
+VkMemoryPropertyFlags rc_mem_flags(const rc_vk_ctx *ctx, const rc_mem_slice *slice);
+
 /* Live blocks and their bytes, for the statistics and the tests. */
 void rc_mem_usage(const rc_vk_ctx *ctx, uint32_t *blocks, VkDeviceSize *bytes);
 
