@@ -108,7 +108,7 @@ static const rc_option render_options[] = {
      .help = "auto (default) or off: where the image is an 8-bit file and nothing else\n"
              "needs the colours as floats (no --aov, no certified re-render), the\n"
              "shader encodes each pixel into the file's levels and the host reads 4\n"
-             "bytes a pixel instead of 16; the same file, bit for bit"},
+             "bytes a pixel instead of 16; the same file, byte for byte"},
     {"--threads", NULL, RC_OPT_UINT, ARG(threads), "N", 1, 1024,
      .help = "cpu backend: threads (default: all cores); the image does not depend on it"},
     {"--flush-subnormals", NULL, RC_OPT_FLAG, ARG(flush_subnormals),
@@ -459,7 +459,7 @@ static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, c
 
 static rc_status certified_band(uint32_t y0, uint32_t rows, const float *rgb, const uint8_t *levels,
                                 const packed_aov *aov, void *user) {
-  (void)levels; /* certified renders read sums (render_args_levels) */
+  (void)levels; /* certified renders read sums (encode_on_gpu) */
   certified_sink *c = user;
   const rc_region r = c->a->part.region;
   size_t n = (size_t)rc_region_width(r) * rows;
@@ -527,7 +527,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   certified_sink sink = {.a = a, .packed = packed};
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
-  packed_levels levels;
+  packed_levels levels = {0};
   if (encode_on_gpu(a, packed)) {
     shader_levels(a, scene, packed->frame.samples_per_pixel, &levels);
     opts.levels = &levels;

@@ -557,7 +557,8 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
 
 rc_status rc_gpu_renderer_rerender(rc_gpu_renderer *r, rc_region region, const packed_aov *mask, rc_band_fn band,
                                    void *user, rc_gpu_stats *stats) {
-  RC_ASSERT(r->opts.aov && !r->opts.levels && region.x0 == r->region.x0 && region.x1 == r->region.x1 && region.y0 >= r->region.y0 &&
+  RC_ASSERT(r->opts.aov && !r->opts.levels);
+  RC_ASSERT(region.x0 == r->region.x0 && region.x1 == r->region.x1 && region.y0 >= r->region.y0 &&
             region.y1 <= r->region.y1);
   const rc_region whole = r->region;
   r->region = region;
