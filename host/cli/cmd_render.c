@@ -502,9 +502,10 @@ static bool encode_on_gpu(const render_args *a, const rc_packed_scene *packed) {
 }
 
 /* What the shader encodes a pixel's sum of spp samples with: the writer's table for the
- * output's encoding (levels8.h) moved to sums, which decides, and the curve, which only
- * tells the shader where to look in it. */
-static void shader_levels(const render_args *a, const rc_scene *scene, uint32_t spp, packed_levels *out) {
+ * output's encoding (levels8.h) moved to sums, which decides, and the curve (*curve, a
+ * specialization constant), which only tells the shader where to look in it. */
+static void shader_levels(const render_args *a, const rc_scene *scene, uint32_t spp, packed_levels *out,
+                          uint32_t *curve) {
   const rc_encoding enc = output_encoding(a, scene);
   const bool truncate = truncate_output(a, scene);
   rc_levels values, sums;
@@ -518,6 +519,7 @@ static void shader_levels(const render_args *a, const rc_scene *scene, uint32_t 
   out->value_scale = exp2f(enc.exposure) / (float)spp;
   out->inv_gamma = 1.0f / enc.gamma;
   out->bias = truncate ? 0.0f : 0.5f;
+  *curve = (uint32_t)enc.curve;
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -529,9 +531,8 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
   packed_levels levels = {0};
   if (encode_on_gpu(a, packed)) {
-    shader_levels(a, scene, packed->frame.samples_per_pixel, &levels);
+    shader_levels(a, scene, packed->frame.samples_per_pixel, &levels, &opts.level_curve);
     opts.levels = &levels;
-    opts.level_curve = (uint32_t)output_encoding(a, scene).curve;
   }
   rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
   if (st == RC_OK && certified && a->certified_rerender == RERENDER_GPU) {

@@ -46,6 +46,15 @@ static double resolve_tile_budget(const rc_vk_ctx *ctx, double wanted_ms) {
  * encoding. */
 #define LEVELS_OFFSET ((VkDeviceSize)sizeof(packed_levels))
 
+/* The buffer the shader leaves a tile's pixels in (their levels from LEVELS_OFFSET, or
+ * their sums), and the one the host reads them from: the same where it is mapped, else
+ * its staging twin. */
+static const rc_buffer *pixel_buffer(const rc_gpu_renderer *r) { return r->opts.levels ? &r->aov : &r->accum; }
+static const rc_buffer *pixel_readback(const rc_gpu_renderer *r) {
+  if (!r->staging) return pixel_buffer(r);
+  return r->opts.levels ? &r->aov_readback : &r->accum_readback;
+}
+
 /* The per-tile accumulation buffer and the status counters, with readback copies when
  * they are not mapped directly. */
 static rc_status create_outputs(rc_gpu_renderer *r) {
@@ -158,11 +167,8 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
   stats->encoded = opts->levels != NULL;
-  if (st == RC_OK) {
-    const rc_buffer *read = r->opts.levels ? (r->staging ? &r->aov_readback : &r->aov)
-                                           : (r->staging ? &r->accum_readback : &r->accum);
-    stats->readback_cached = (rc_mem_flags(ctx, &read->memory) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
-  }
+  if (st == RC_OK)
+    stats->readback_cached = (rc_mem_flags(ctx, &pixel_readback(r)->memory) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
   rc_mem_usage(ctx, &stats->memory_blocks, &stats->memory_bytes);
   if (st != RC_OK) {
     rc_gpu_renderer_destroy(r);
@@ -361,19 +367,18 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
   rc_status st = RC_OK;
   const bool levels = r->opts.levels != NULL;
   const VkDeviceSize pixel_bytes = levels ? 4 : 16, bytes = (VkDeviceSize)tw * th * pixel_bytes;
-  const rc_buffer *pixels = levels ? &r->aov : &r->accum;
   const VkDeviceSize offset = levels ? LEVELS_OFFSET : 0;
+  const rc_buffer *pb = pixel_readback(r);
   /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
    * the status) already made the pixels and AOVs visible: no second submit, which costs a
    * whole queue round trip on lavapipe. Staging copies them first. */
   if (r->staging) {
     st = begin(r);
     if (st != RC_OK) return st;
-    record_readback(r, pixels, levels ? &r->aov_readback : &r->accum_readback, offset, bytes);
+    record_readback(r, pixel_buffer(r), pb, offset, bytes);
     if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, 0, (VkDeviceSize)tw * th * sizeof(packed_aov));
     st = submit(r);
   }
-  const rc_buffer *pb = r->staging ? (levels ? &r->aov_readback : &r->accum_readback) : pixels;
   const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, pb);
   if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
