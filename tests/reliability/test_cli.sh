@@ -170,7 +170,8 @@ check "an EXR holds the linear value whatever the 8-bit encoding" "$([[ $? == 0 
 # it; a render does, first of all to check that its output names a format it writes,
 # before the scene and its meshes are read (so a refused scene loads it too); and a
 # binary whose module is missing says so and exits 3.
-loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c 'file=libOpenImageIO\.so' || true; }
+# (By its soname, or by its path where image_load.c loads the module's libraries first.)
+loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 sed 's/"radius": *[0-9.]*/"radius": -1/' "$S" >"$work/bad_radius.json"
 check "--version, --help and a refused command line do not load OpenImageIO" \
   "$(n=$(( $(loads_oiio "$bin" --version) + $(loads_oiio "$bin" render --help) +
