@@ -38,6 +38,8 @@ cmake --build build-asan -j"$(nproc)" >&2
 # - gpu_encode (byte identity of the shader's 8-bit encoding and the host's; every PNG
 #   rendered here on the GPU takes the shader's encoding and its readback, and
 #   unit_levels checks the table);
+# - spec_constants (bit identity of the host's specialization of the shader and the
+#   driver's; every GPU render here runs the host's, SPIRV-Tools included);
 # - parse_scale (parsing time; the fuzzers and strict_input run the parsers here) and
 #   memory_per_frame (peak RSS, which ASan's own allocator decides);
 # - slurm (the Slurm scripts; `merge` runs the same render and merge code here);
@@ -47,7 +49,7 @@ cmake --build build-asan -j"$(nproc)" >&2
 #   width; best_practices runs the allocator and every buffer path here, unit_plan the
 #   plan for each width).
 skip='extreme_S(0[2-9]|1[0-9]|2[0-3])|extreme_min|minimum_device|subgroup_width|gpu_vs_cpu|parse_scale'
-skip+='|memory_per_frame|slurm|doc_commands|gpu_render_bvh_vs_brute_force|ties|light_buffers|certified|gpu_encode'
+skip+='|memory_per_frame|slurm|doc_commands|gpu_render_bvh_vs_brute_force|ties|light_buffers|certified|gpu_encode|spec_constants'
 skip+='|shapes_(transformed_ellipsoid|rotated_cylinder_axis|rotated_cylinder_matrix|hyperboloid_two_sheets|plane_closed_form|mesh_crossings_bound|triangles_one_sided)'
 (cd build-asan && ctest --output-on-failure --timeout 1800 -j"$jobs" -E "$skip" "$@")
 if [ -x tools/fuzz.sh ]; then tools/fuzz.sh; fi

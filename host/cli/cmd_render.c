@@ -39,7 +39,8 @@ typedef struct {
   bool quiet, srgb, staging, allow_outside_paths, flush_subnormals;
   /* RC_OPT_CHOICE indices; -1: the scene's (or the default) */
   int backend, accel, encoding, quantize, precision, sphere, triangle, offset, camera_relative, rescale, reflection_depth, shadows,
-      scene_buffers, pipeline, light_buffers, eye_buffer, certified_rerender, certified_bound, gpu_encode;
+      scene_buffers, pipeline, spec_constants, light_buffers, eye_buffer, certified_rerender, certified_bound,
+      gpu_encode;
   double offset_epsilon; /* 0: the scene's */
   double gamma;          /* 0: the scene's (or 2.2) */
   double exposure;       /* NAN: the scene's */
@@ -63,6 +64,7 @@ static const char *const rerenders[] = {"cpu", "none", "gpu", NULL};
 enum { RERENDER_CPU, RERENDER_NONE, RERENDER_GPU };
 static const char *const cert_bounds[] = {"full", "half", "zero", NULL};
 static const char *const pipelines[] = {"specialized", "generic", NULL};
+static const char *const spec_constants[] = {"host", "driver", NULL};
 static const char *const auto_off[] = {"auto", "off", NULL};
 
 #define ARG(field) offsetof(render_args, field)
@@ -180,6 +182,10 @@ static const rc_option render_options[] = {
      .help = "specialized (default: compiled for this scene's primitive kinds, light\n"
              "count, shadows, specular model and bounces) or generic (one pipeline\n"
              "for every scene; to measure what specializing buys)"},
+    {"--spec-constants", NULL, RC_OPT_CHOICE, ARG(spec_constants), "W", .choices = spec_constants,
+     .help = "host (default: SPIRV-Tools applies the pipeline's specialization\n"
+             "constants and drops the code they rule out before the driver compiles)\n"
+             "or driver (the driver specializes the whole module; to compare the two)"},
     {"--staging", NULL, RC_OPT_FLAG, ARG(staging),
      .help = "upload and read back through staging buffers even on unified memory\n"
              "(also VKRAYCAST_FORCE_STAGING=1)"},
@@ -294,7 +300,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->exposure = NAN;
   a->backend = a->accel = a->encoding = a->quantize = a->precision = a->sphere = a->triangle = a->offset =
       a->camera_relative = a->rescale = a->reflection_depth = a->shadows = a->scene_buffers = a->pipeline =
-          a->light_buffers = a->eye_buffer = a->certified_rerender = a->certified_bound = a->gpu_encode = -1;
+          a->spec_constants = a->light_buffers = a->eye_buffer = a->certified_rerender = a->certified_bound = a->gpu_encode = -1;
   rc_status st = rc_parse_command(&rc_render_spec, argc, argv, a);
   if (st != RC_OK) return st;
   a->cpu = a->backend == 1;
@@ -306,6 +312,7 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   a->gpu.tile_budget_ms = a->tile_budget_ms; /* -1: the device's default (gpu_render.c) */
   a->gpu.plan_budget = a->plan_budget;
   a->gpu.generic_pipeline = a->pipeline == 1;
+  a->gpu.driver_spec_constants = a->spec_constants == 1;
   const char *force = getenv("VKRAYCAST_FORCE_STAGING");
   a->gpu.force_staging = a->staging || (force && force[0] && strcmp(force, "0") != 0);
   a->load.allow_outside_paths = a->allow_outside_paths;

@@ -167,6 +167,7 @@ static const stats_field gpu_fields[] = {
     FIELD("upload_ms", F_DOUBLE, gpu.upload_ms),
     FIELD("pipeline_ms", F_DOUBLE, gpu.pipeline_ms),
     FIELD("pipeline_cache_hit", F_BOOL, gpu.pipeline_cache_hit),
+    FIELD("specialize_ms", F_DOUBLE, gpu.specialize_ms),
     FIELD("readback_ms", F_DOUBLE, gpu.readback_ms),
     FIELD("upload_bytes", F_U64, gpu.upload_bytes),
     FIELD("readback_bytes", F_U64, gpu.readback_bytes),
@@ -226,6 +227,7 @@ char *rc_stats_json(const rc_render_stats *s) {
   /* What only the GPU backend has: absent on the CPU backend rather than zero. */
   if (strcmp(s->backend, "gpu") == 0) {
     cJSON_AddStringToObject(o, "pipeline", s->generic_pipeline ? "generic" : "specialized");
+    cJSON_AddStringToObject(o, "spec_constants", s->gpu.host_specialized ? "host" : "driver");
     cJSON_AddStringToObject(o, "scene_buffers", rc_scene_buffer_names[s->gpu.scene_buffers]);
     ADD_FIELDS(o, s, gpu_fields);
     cJSON_AddNumberToObject(o, "memory_mib", (double)s->gpu.memory_bytes / (1 << 20));

@@ -1,11 +1,13 @@
 /* gpu_pipeline.c: the compute pipeline, specialized to the scene (rc_shared.h, RC_SPEC_*:
  * what the scene lacks is compiled out), and the descriptor set that binds the scene
  * arrays and the output buffers to it. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "gpu/gpu_pipeline_cache.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/gpu_shaders.h"
+#include "gpu/spirv_specialize.h"
 
 /* The descriptor set layout (the scene arrays as the chosen buffer kind) and the pipeline
  * layout with the push constants. */
@@ -75,7 +77,7 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
   v[RC_SPEC_LEVELS] = r->opts.levels ? 1 + r->opts.level_curve : 0;
 }
 
-rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
+rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, rc_gpu_stats *stats) {
   rc_vk_ctx *ctx = r->ctx;
   RC_TRY(create_layouts(r));
 
@@ -89,14 +91,25 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
                                   : r->opts.f64                     ? RC_SHADER_F64
                                                                     : RC_SHADER_F32;
   rc_spirv code = rc_shader_raycast(r->opts.scene_buffers, precision, kinds);
+  uint32_t spec_values[RC_SPEC_COUNT];
+  VkSpecializationMapEntry entries[RC_SPEC_COUNT];
+  specialization(r, spec_values);
+  /* The constants applied here (spirv_specialize.h), or left to the driver. */
+  rc_spirv specialized = {0};
+  double t0 = rc_now_ms();
+  stats->host_specialized =
+      !r->opts.driver_spec_constants && rc_spirv_specialize(code, spec_values, RC_SPEC_COUNT, &specialized);
+  stats->specialize_ms = rc_now_ms() - t0;
+  if (stats->host_specialized) code = specialized;
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                   .codeSize = code.size,
                                   .pCode = code.words};
   VkShaderModule module;
-  RC_VK_TRY(vkCreateShaderModule(ctx->device, &smi, NULL, &module));
-  uint32_t spec_values[RC_SPEC_COUNT];
-  VkSpecializationMapEntry entries[RC_SPEC_COUNT];
-  specialization(r, spec_values);
+  VkResult made = vkCreateShaderModule(ctx->device, &smi, NULL, &module);
+  if (made != VK_SUCCESS) {
+    free((void *)specialized.words);
+    RC_VK_TRY(made);
+  }
   for (uint32_t i = 0; i < RC_SPEC_COUNT; i++) entries[i] = (VkSpecializationMapEntry){i, 4 * i, 4};
   VkSpecializationInfo spec = {.mapEntryCount = RC_SPEC_COUNT, .pMapEntries = entries, .dataSize = sizeof spec_values,
                                .pData = spec_values};
@@ -105,15 +118,16 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit) {
                                               .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                                               .module = module,
                                               .pName = "main",
-                                              .pSpecializationInfo = &spec},
+                                              .pSpecializationInfo = stats->host_specialized ? NULL : &spec},
                                     .layout = r->pipeline_layout};
   rc_pipeline_cache cache;
   rc_pipeline_cache_open(ctx, code, &cache);
-  *cache_hit = cache.loaded;
+  stats->pipeline_cache_hit = cache.loaded;
   VkResult res = vkCreateComputePipelines(ctx->device, cache.cache, 1, &ci, NULL, &r->pipeline);
   if (res == VK_SUCCESS) rc_pipeline_cache_close(ctx, &cache);
   else if (cache.cache) vkDestroyPipelineCache(ctx->device, cache.cache, NULL);
   vkDestroyShaderModule(ctx->device, module, NULL);
+  free((void *)specialized.words);
   if (res == VK_SUCCESS && rc_fault("pipeline")) {
     vkDestroyPipeline(ctx->device, r->pipeline, NULL);
     r->pipeline = VK_NULL_HANDLE;

@@ -157,7 +157,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   if (st == RC_OK) st = rc_gpu_upload_scene(r, scene, max_tile_pixels(r));
   double t1 = rc_now_ms();
   if (st == RC_OK) st = create_outputs(r);
-  if (st == RC_OK) st = rc_gpu_create_pipeline(r, &stats->pipeline_cache_hit);
+  if (st == RC_OK) st = rc_gpu_create_pipeline(r, stats);
   double t2 = rc_now_ms();
   if (st == RC_OK) st = rc_gpu_create_descriptors(r);
   if (st == RC_OK) st = create_commands(r);

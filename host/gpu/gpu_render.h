@@ -27,6 +27,8 @@ typedef struct rc_gpu_options {
   bool generic_pipeline; /* one pipeline for every scene (all primitive kinds, light count,
                             shadows, specular model and bounces read from the frame), to
                             measure what specializing to the scene buys */
+  bool driver_spec_constants; /* the driver applies the specialization constants, not the
+                                 host's SPIR-V optimizer (spirv_specialize.h) */
   rc_region region;     /* the pixels to render (region.h); all zero: the whole frame */
   /* NULL: the host reads each pixel's sums back and divides (bands of float RGB). Else
    * the output file's encoding (rc_shared.h): the shader encodes each pixel into its
@@ -42,6 +44,8 @@ typedef struct rc_gpu_stats {
   double upload_ms;    /* scene buffers, wall */
   double pipeline_ms;  /* shader module + pipeline creation, wall */
   bool pipeline_cache_hit; /* a valid pipeline cache file was loaded (gpu_pipeline_cache.h) */
+  bool host_specialized;   /* the module the driver got had its constants applied by the host */
+  double specialize_ms;    /* that, wall (part of pipeline_ms) */
   double gpu_ms;       /* sum of dispatch times from timestamp queries (wall if none) */
   double render_ms;    /* the whole frame, wall: dispatches, waits, readback */
   double readback_ms;  /* accumulation buffer to the host image, wall */

@@ -72,7 +72,7 @@ rc_status rc_gpu_upload_scene(rc_gpu_renderer *r, const rc_packed_scene *s, uint
 /* The descriptor set layout, the pipeline layout and the compute pipeline specialized to
  * the scene (*cache_hit: a pipeline cache file was loaded); then the descriptor set that
  * binds the uploaded arrays and the output buffers (gpu_pipeline.c). */
-rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, bool *cache_hit);
+rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, rc_gpu_stats *stats);
 rc_status rc_gpu_create_descriptors(rc_gpu_renderer *r);
 
 #endif

@@ -1,0 +1,31 @@
+/* spirv_specialize.h: raycast.comp's specialization constants applied on the host, by
+ * SPIRV-Tools' optimizer, before the driver sees the module.
+ *
+ * Why: a driver compiles the whole module and specializes after. lavapipe (Mesa 22.3)
+ * translates every function of the module into NIR, inlines them at every call site and
+ * only then folds the constants and drops the dead branches: for a 72 x 48 render of the
+ * showcase, 236-397 ms of vkCreateComputePipelines against 86-131 ms for the same module
+ * with its constants frozen and its dead code gone (docs/performance.md, "Start-up"). The
+ * passes only substitute the constants' values and remove code they make unreachable, so
+ * the specialized module computes what the driver's specialization of the original
+ * would: the bit-identity tests compare the two (`--spec-constants host|driver`). */
+#ifndef RC_SPIRV_SPECIALIZE_H
+#define RC_SPIRV_SPECIALIZE_H
+
+#include "gpu/gpu_shaders.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* `module` with spec constant i (SpecId i, a 32-bit scalar: uint, bool as VkBool32, or
+ * float as its bits) set to values[i] and made a constant, and the code that no longer
+ * runs removed. On success *out holds malloc'd words (free(out->words)); false where the
+ * optimizer refused the module, and the caller hands the driver the original. */
+bool rc_spirv_specialize(rc_spirv module, const uint32_t *values, uint32_t count, rc_spirv *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
