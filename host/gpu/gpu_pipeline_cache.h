@@ -2,7 +2,9 @@
  * skips the driver's shader compilation where the driver fills the cache (NVIDIA, AMD,
  * Intel). One file per device and shader module under $XDG_CACHE_HOME/vkraycast/ (else
  * ~/.cache/vkraycast/), named by a hash of the device's pipelineCacheUUID, vendor, device
- * and driver version and the SPIR-V; the specialized pipelines of one module share it.
+ * and driver version and the SPIR-V the driver is given: with the constants applied on the
+ * host (spirv_specialize.h) one file per specialization, with --spec-constants driver one
+ * per module, shared by its specializations.
  * A missing, corrupt, truncated or foreign file is ignored with a warning, and a cache
  * that cannot be written costs a warning: the cache never fails a render.
  * VKRAYCAST_PIPELINE_CACHE=0 turns it off. (lavapipe returns a 32-byte header and no
