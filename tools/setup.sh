@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config python3
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-tools spirv-tools
+  glslang-tools spirv-tools # spirv-val for the tests; SPIRV-Tools' optimizer, which the
+                            # renderer links (host/gpu/spirv_specialize.h)
   libopenimageio-dev openimageio-tools
   libcjson-dev libxxhash-dev
   libassimp-dev assimp-testmodels
