@@ -1,14 +1,15 @@
 /* spirv_specialize.h: raycast.comp's specialization constants applied on the host, by
  * SPIRV-Tools' optimizer, before the driver sees the module.
  *
- * Why: a driver compiles the whole module and specializes after. lavapipe (Mesa 22.3)
- * translates every function of the module into NIR, inlines them at every call site and
- * only then folds the constants and drops the dead branches: for a 72 x 48 render of the
- * showcase, 236-397 ms of vkCreateComputePipelines against 86-131 ms for the same module
- * with its constants frozen and its dead code gone (docs/performance.md, "Start-up"). The
- * passes only substitute the constants' values and remove code they make unreachable, so
- * the specialized module computes what the driver's specialization of the original
- * would: the bit-identity tests compare the two (`--spec-constants host|driver`). */
+ * Why: a driver may compile the whole module and specialize after; lavapipe (Mesa 22.3)
+ * does. It translates every function of the module into NIR, inlines them at every call
+ * site and only then folds the constants and drops the dead branches: for a 72 x 48
+ * render of the showcase, 236-397 ms of vkCreateComputePipelines against 86-131 ms for
+ * the same module with its constants frozen and its dead code gone (docs/performance.md,
+ * "Process start-up", finding 10). The passes only substitute the constants' values and
+ * remove the code they make unreachable or unused, so the specialized module computes what
+ * the driver's specialization of the original would: ctest's spec_constants compares the
+ * two (`--spec-constants host|driver`) bit for bit. */
 #ifndef RC_SPIRV_SPECIALIZE_H
 #define RC_SPIRV_SPECIALIZE_H
 

@@ -22,9 +22,9 @@ static pthread_once_t once = PTHREAD_ONCE_INIT;
  * libraries breadth first, and OpenVDB's and GDAL's own symbols (~120,000 references)
  * lie 25 and 120 libraries deep; loaded each on its own, a library comes first in its own
  * scope. Measured on the 2-core VM: 360-506 ms of CPU to load the module alone, 196-217 ms
- * after the list (docs/performance.md, "Start-up"). The list only orders what the module
- * would load anyway: a line that does not load is skipped, and without the file the
- * module loads as before. */
+ * after the list (docs/performance.md, "Process start-up", finding 9). The list orders
+ * what the module would load anyway: a line that does not load is skipped, and without the
+ * file the module loads as before. */
 static void preload_dependencies(const char *dir) {
   char path[PATH_MAX + 32], line[PATH_MAX];
   snprintf(path, sizeof path, "%s/vkraycast-image.deps", dir);
