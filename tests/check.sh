@@ -31,6 +31,9 @@ expect_refusal() {
   shift 3
   expect_exit2 "$name" "$work/o.png" "$want" "$bin" render "$scene" -o "$work/o.png" --quiet "$@"
 }
+# `same_pixels A B`: the two images' pixels equal bit for bit, by $bin's compare: no
+# channel (AOV channels included) differs by more than 0.
+same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
 finish() {
   echo "$passed passed, $failed failed"
   ((failed == 0))

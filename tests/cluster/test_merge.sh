@@ -15,9 +15,6 @@ scene=$scenes/showcase.json
 size=(--width 64 --height 48)
 region_of() { tr -d ' \n\t' <"$1" | sed -n 's/.*"region":\[\([0-9,]*\)\].*/\1/p'; }
 
-# Pixels equal bit for bit: no channel differs by more than 0.
-same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
-
 # Under the sanitizers (tools/test.sh's second pass) the same code paths run on fewer
 # combinations: the GPU in f32 at 16 spp and the CPU in f64 at 1 spp, plus what the
 # refusals below need.

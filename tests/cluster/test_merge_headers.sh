@@ -19,7 +19,6 @@ command -v oiiotool >/dev/null || { echo "FAIL: oiiotool (openimageio-tools) is 
 args=(--width 64 --height 48 --spp 1 --quiet)
 "$bin" render "$scenes/showcase.json" "${args[@]}" -o "$work/whole.exr" || exit 1
 for i in 0 1 2; do "$bin" render "$scenes/showcase.json" "${args[@]}" --shard $i/3 -o "$work/p$i.exr" || exit 1; done
-same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
 # Under the sanitizers (tools/test.sh's second pass) each kind of layout and of hostile
 # value runs once: the host code is the same for the rest, which the first pass covers.
 full=1

@@ -15,8 +15,6 @@ rm -rf "$work" && mkdir -p "$work"
 source "$(dirname "$0")/../check.sh"
 size=(--width 72 --height 48)
 
-same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
-
 # same NAME RENDER_ARGS...: the parsed scene $scene and its prepared file $vkrs render the
 # same PNG bytes and the same AOVs, by the file alone and (unless ALONE=1: the two differ
 # only in the digest check, which the refusals below test) by --prepared.

@@ -12,8 +12,6 @@ bin=$1 scenes=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 source "$(dirname "$0")/../check.sh"
 
-same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
-
 # `same NAME SCENE [render args]`: host against driver, 48x32, colours and decisions.
 same() {
   local name=$1 scene=$2 why=ok m
