@@ -167,6 +167,7 @@ static const stats_field gpu_fields[] = {
     FIELD("upload_ms", F_DOUBLE, gpu.upload_ms),
     FIELD("pipeline_ms", F_DOUBLE, gpu.pipeline_ms),
     FIELD("pipeline_cache_hit", F_BOOL, gpu.pipeline_cache_hit),
+    FIELD("spec_cache_hit", F_BOOL, gpu.spec_cache_hit),
     FIELD("specialize_ms", F_DOUBLE, gpu.specialize_ms),
     FIELD("readback_ms", F_DOUBLE, gpu.readback_ms),
     FIELD("upload_bytes", F_U64, gpu.upload_bytes),

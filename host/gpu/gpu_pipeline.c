@@ -7,7 +7,7 @@
 #include "gpu/gpu_pipeline_cache.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/gpu_shaders.h"
-#include "gpu/spirv_specialize.h"
+#include "gpu/spirv_cache.h"
 
 /* The descriptor set layout (the scene arrays as the chosen buffer kind) and the pipeline
  * layout with the push constants. */
@@ -97,8 +97,9 @@ rc_status rc_gpu_create_pipeline(rc_gpu_renderer *r, rc_gpu_stats *stats) {
   /* The constants applied here (spirv_specialize.h), or left to the driver. */
   rc_spirv specialized = {0};
   double t0 = rc_now_ms();
-  stats->host_specialized =
-      !r->opts.driver_spec_constants && rc_spirv_specialize(code, spec_values, RC_SPEC_COUNT, &specialized);
+  stats->host_specialized = !r->opts.driver_spec_constants &&
+                            rc_spirv_specialize_cached(code, spec_values, RC_SPEC_COUNT, &specialized,
+                                                       &stats->spec_cache_hit);
   stats->specialize_ms = rc_now_ms() - t0;
   if (stats->host_specialized) code = specialized;
   VkShaderModuleCreateInfo smi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,

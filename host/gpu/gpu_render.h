@@ -45,6 +45,7 @@ typedef struct rc_gpu_stats {
   double pipeline_ms;  /* shader module + pipeline creation, wall */
   bool pipeline_cache_hit; /* a valid pipeline cache file was loaded (gpu_pipeline_cache.h) */
   bool host_specialized;   /* the module the driver got had its constants applied by the host */
+  bool spec_cache_hit;     /* ... read from its file on disk (spirv_cache.h) */
   double specialize_ms;    /* that, wall (part of pipeline_ms) */
   double gpu_ms;       /* sum of dispatch times from timestamp queries (wall if none) */
   double render_ms;    /* the whole frame, wall: dispatches, waits, readback */

@@ -17,12 +17,25 @@ extern "C" bool rc_spirv_specialize(rc_spirv module, const uint32_t *values, uin
     // OpSpecConstantOp expressions and composites (gl_WorkGroupSize) built on them; then
     // drop the branches those decide, the functions nothing calls any more, and the code
     // whose results nothing uses. Bindings and the interface stay as they are: the pipeline
-    // layout is the same for both modules.
+    // layout is the same for both modules. Then the function-local variables become SSA
+    // values (the memory-to-register passes of spirv-opt -O, without its inlining, which
+    // made the module larger and lavapipe slower; RC_SPIRV_SPECIALIZE_PASSES names this list).
     opt.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(bits))
         .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
         .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
         .RegisterPass(spvtools::CreateDeadBranchElimPass())
         .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass())
+        .RegisterPass(spvtools::CreateAggressiveDCEPass(true))
+        .RegisterPass(spvtools::CreatePrivateToLocalPass())
+        .RegisterPass(spvtools::CreateLocalSingleBlockLoadStoreElimPass())
+        .RegisterPass(spvtools::CreateLocalSingleStoreElimPass())
+        .RegisterPass(spvtools::CreateAggressiveDCEPass(true))
+        .RegisterPass(spvtools::CreateScalarReplacementPass(100))
+        .RegisterPass(spvtools::CreateLocalAccessChainConvertPass())
+        .RegisterPass(spvtools::CreateLocalSingleBlockLoadStoreElimPass())
+        .RegisterPass(spvtools::CreateLocalSingleStoreElimPass())
+        .RegisterPass(spvtools::CreateAggressiveDCEPass(true))
+        .RegisterPass(spvtools::CreateSSARewritePass())
         .RegisterPass(spvtools::CreateAggressiveDCEPass(true));
     // The input is the build's own module, which spirv-val checks in the test suite; the
     // output is validated by the validation layer wherever that runs.

@@ -184,4 +184,41 @@ done
 mkdir -p "$work/ro" && touch "$work/ro/vkraycast" # a file where the folder should be
 expect "pipeline cache, no folder: renders with a warning" 0 "cannot create the pipeline cache folder" -- \
   env XDG_CACHE_HOME="$work/ro" "${small[@]}"
+
+# The specialized module beside it (host/gpu/spirv_cache.h): written on a first run, read on
+# the next, the same image either way; a damaged file costs a warning and is rewritten.
+rm -rf "$cache"
+XDG_CACHE_HOME=$cache "${small[@]}" -o "$work/spv1.png" --stats-json "$work/s1.json"
+spv=$(find "$cache/vkraycast" -name '*.spv' 2>/dev/null | head -1)
+check "specialized module cache: written" "$([[ -s "$spv" ]] && echo ok || echo "no .spv under $cache/vkraycast")"
+check "specialized module cache: a miss first" \
+  "$(grep -q '"spec_cache_hit":[[:space:]]*false' "$work/s1.json" && echo ok || echo "no miss in s1.json")"
+XDG_CACHE_HOME=$cache "${small[@]}" -o "$work/spv2.png" --stats-json "$work/s2.json" 2>"$work/err"
+check "specialized module cache: read back" \
+  "$(grep -q '"spec_cache_hit":[[:space:]]*true' "$work/s2.json" && echo ok || echo "no hit in s2.json")"
+check "specialized module cache: the same image" "$(cmp -s "$work/spv1.png" "$work/spv2.png" && echo ok || echo differs)"
+cp "$spv" "$work/good.spv"
+for damage in garbage truncated not_spirv; do
+  case $damage in
+    garbage) head -c 4096 /dev/urandom >"$spv" ;;
+    truncated) head -c 100 "$work/good.spv" >"$spv" ;;
+    # A whole file of the right key whose payload is not SPIR-V (its checksum made to match).
+    not_spirv) python3 - "$work/good.spv" "$spv" <<'PY' ;;
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+magic, key, size, _ = struct.unpack("<8sQQQ", data[:32])
+payload = bytes(size)
+h = 0xcbf29ce484222325
+for b in payload:
+    h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+open(sys.argv[2], "wb").write(struct.pack("<8sQQQ", magic, key, size, h) + payload)
+PY
+  esac
+  expect "specialized module cache, $damage file: renders with a warning" 0 "specialized shader cache ignored" -- \
+    env XDG_CACHE_HOME="$cache" "${small[@]}" -o "$work/spv3.png"
+  check "specialized module cache, $damage file: rewritten" \
+    "$(cmp -s "$spv" "$work/good.spv" && echo ok || echo 'not rewritten')"
+  check "specialized module cache, $damage file: the same image" \
+    "$(cmp -s "$work/spv1.png" "$work/spv3.png" && echo ok || echo differs)"
+done
 finish
