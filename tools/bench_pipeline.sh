@@ -1,61 +1,45 @@
 #!/usr/bin/env bash
-# What creating the pipeline costs a short GPU render, two builds side by side (finding 11
-# of docs/performance.md, "Process start-up"): a 32 x 24 render of each scene, the ways
-# interleaved, ROUNDS processes each (the machine is shared and noisy: compare only within
-# one run), validation on as in the test suite, Mesa's shader cache warm:
-#   A          BUILD_A as it is
-#   B-nocache  BUILD_B with VKRAYCAST_PIPELINE_CACHE=0 (every specialization made anew)
-#   B          BUILD_B as it is (the specialized module read from its file)
-# Prints per scene and way the medians of CPU seconds (user + system), pipeline_ms and
-# specialize_ms, and checks that the three give the same image and decisions.
-# Usage: tools/bench_pipeline.sh BUILD_A BUILD_B SCENE...   Env: ROUNDS (7)
+# The specialized pipeline against the generic one (docs/performance.md): for a
+# sphere-only, a mesh and a mixed scene, pipeline creation (shader module + compute
+# pipeline, where lavapipe compiles), the first frame, the steady-state frame (median of
+# frames 2..N, GPU timestamps) with one tile and with the adaptive tiles, and the
+# process's CPU time. ROUNDS separate processes per configuration, generic and specialized
+# interleaved in each round; each figure is the median over the rounds.
+#   tools/bench_pipeline.sh            (ROUNDS=5 REPEAT=5 SIZE=320x240 SPP=4)
 set -euo pipefail
-cd "$(dirname "$0")/.."
-a=$(realpath "$1") b=$(realpath "$2")
-shift 2
-rounds=${ROUNDS:-7}
-export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
-export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} VKRAYCAST_VALIDATION=1
-export VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=$root/build/vkraycast
+[[ -x $bin ]] || { echo "build first (tools/demo.sh)" >&2; exit 2; }
+rounds=${ROUNDS:-5} repeat=${REPEAT:-5} size=${SIZE:-320x240} spp=${SPP:-4}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export XDG_CACHE_HOME=$work/cache MESA_SHADER_CACHE_DIR=$work/mesa
-source tools/bench_common.sh
-ways=(A B-nocache B)
-run() { # WAY SCENE OUT [args]
-  local w=$1 scene=$2 out=$3 bin=$b/vkraycast
-  shift 3
-  [[ $w == A ]] && bin=$a/vkraycast
-  local env=()
-  [[ $w == B-nocache ]] && env=(VKRAYCAST_PIPELINE_CACHE=0)
-  env "${env[@]}" /usr/bin/time -f "%U %S" -o "$work/time" "$bin" render "$scene" -o "$out" --width 32 --height 24 \
-    -q "$@"
-}
-printf "%s cores, %s processes each, medians; CPU in s\n\n" "$(nproc)" "$rounds"
-echo "| scene | way | CPU | pipeline_ms | specialize_ms |"
-echo "|---|---|---|---|---|"
-for scene in "$@"; do
-  name=$(basename "$scene" .json)
-  for w in "${ways[@]}"; do # the images to compare, then the caches warmed for the rounds
-    run "$w" "$scene" "$work/$w.exr" --aov "$work/$w.aov.exr"
-    run "$w" "$scene" "$work/o.exr"
-    : >"$work/$w.txt"
-  done
-  for w in B-nocache B; do
-    for f in exr aov.exr; do
-      "$b/vkraycast" compare "$work/A.$f" "$work/$w.$f" --fail 0 --hardfail 0 >/dev/null ||
-        { echo "$name: $w's $f differs from A's" >&2; exit 1; }
+num() { sed -n "s/^[[:space:]]*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2" | head -1; }
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+scenes=("spheres|$root/tests/extremes/scenes/S21_many_spheres_D2.json"
+        "mesh|$root/scenes/mesh.json"
+        "mixed|$root/scenes/showcase.json"
+        "quadrics|$root/scenes/quadrics.json"
+        "csg|$root/scenes/csg.json")
+common=(--width "${size%x*}" --height "${size#*x}" --spp "$spp" --repeat "$repeat" --quiet)
+echo "| scene | objects | pipeline | tiles | pipeline ms | first frame ms | steady frame ms | dispatches | CPU ms (process) |"
+echo "|---|---|---|---|---|---|---|---|---|"
+for entry in "${scenes[@]}"; do
+  name=${entry%%|*} scene=${entry#*|}
+  for tiles in one adaptive; do
+    tile_opt=()
+    [[ $tiles == one ]] && tile_opt=(--tile 1024)
+    for r in $(seq "$rounds"); do
+      for p in specialized generic; do
+        "$bin" render "$scene" -o "$work/x.exr" --pipeline "$p" --allow-outside-paths "${common[@]}" "${tile_opt[@]}" \
+          --stats-json "$work/$name.$tiles.$p.$r.json"
+      done
     done
-  done
-  for ((r = 0; r < rounds; r++)); do
-    for w in "${ways[@]}"; do
-      run "$w" "$scene" "$work/o.exr" --stats-json "$work/st.json"
-      echo "$(awk '{print $1 + $2}' "$work/time") $(num pipeline_ms "$work/st.json") $(num specialize_ms "$work/st.json")" \
-        >>"$work/$w.txt"
+    for p in specialized generic; do
+      j=("$work/$name.$tiles.$p".*.json)
+      objects=$(( $(num spheres "${j[0]}") + $(num triangles "${j[0]}") + $(num quadrics "${j[0]}") + $(num composites "${j[0]}") ))
+      col() { for f in "${j[@]}"; do num "$1" "$f"; done | median; }
+      printf '| %s | %s | %s | %s | %.0f | %.0f | %.1f | %s | %.0f |\n' "$name" "$objects" "$p" "$tiles" \
+        "$(col pipeline_ms)" "$(col first_frame_ms)" "$(col render_ms)" "$(col dispatches)" "$(col cpu_ms)"
     done
-  done
-  for w in "${ways[@]}"; do
-    col() { awk -v c="$1" '{print $c}' "$work/$w.txt" | median; }
-    printf "| %s | %s | %.2f | %.0f | %.0f |\n" "$name" "$w" "$(col 1)" "$(col 2)" "$(col 3)"
   done
 done
