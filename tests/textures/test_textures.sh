@@ -20,8 +20,14 @@ rm -rf "$work" && mkdir -p "$work"
 source "$(dirname "$0")/../check.sh"
 command -v oiiotool >/dev/null || { echo "FAIL: oiiotool (openimageio-tools) is missing"; exit 1; }
 
-# pixel IMAGE X Y: "r g b" of one pixel of a float image
-pixel() { oiiotool --dumpdata "$1" 2>/dev/null | sed -n "s/^ *Pixel ($2, $3): *//p"; }
+# pixel IMAGE X Y: "r g b" of one pixel of a float image. Each image is dumped once, under
+# the hash of its bytes (a render may rewrite a file between queries): an oiiotool process
+# costs about 0.4 s of CPU, loading OpenImageIO, and the test asks for over a hundred pixels.
+pixel() {
+  local dump=$work/dump.$(md5sum <"$1" | cut -c1-32)
+  [[ -f $dump ]] || oiiotool --dumpdata "$1" >"$dump" 2>/dev/null
+  sed -n "s/^ *Pixel ($2, $3): *//p" "$dump"
+}
 
 variants=("--backend gpu --precision f32" "--backend gpu --precision f64" "--backend cpu --precision f64"
   "--backend cpu --precision f32")
