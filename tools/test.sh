@@ -19,9 +19,10 @@ echo "== the suite under AddressSanitizer and UndefinedBehaviorSanitizer (build-
 if [ ! -f build-asan/CMakeCache.txt ]; then
   CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAYCAST_SANITIZE=ON >&2
 fi
-# The pass above compiled the shader's variants into build/'s Mesa cache; this pass reuses
-# them (tests/CMakeLists.txt, VKRAYCAST_TEST_SHADER_CACHE).
-cmake -S . -B build-asan -DVKRAYCAST_TEST_SHADER_CACHE="$PWD/build/mesa-shader-cache" >/dev/null
+# The pass above compiled the shader's variants into build/'s Mesa cache and specialized
+# them into its XDG cache; this pass reuses both (tests/CMakeLists.txt,
+# VKRAYCAST_TEST_CACHE_DIR).
+cmake -S . -B build-asan -DVKRAYCAST_TEST_CACHE_DIR="$PWD/build" >/dev/null
 cmake --build build-asan -j"$(nproc)" >&2
 # The sanitizers look for memory errors and undefined behaviour in our code, which a code
 # path shows once; what gates numbers (tolerances, bit identity, scaling) on more scenes
