@@ -287,8 +287,9 @@ static rc_status check_outputs(const render_args *a) {
     rc_error("--aov %s: the decision outputs need a multi-channel float file: name it .exr", a->aov);
     return RC_ERR_USAGE;
   }
-  /* Before the scene and its meshes are read: a name no format writes costs nothing. */
-  return rc_output_check_format(a->output);
+  /* Before the scene and its meshes are read, a name no format writes costs nothing; a
+   * common one is checked after (rc_cmd_render), so that a refused scene costs no module. */
+  return rc_output_check_format_early(a->output);
 }
 
 static rc_status check_output_args(const render_args *a);
@@ -865,6 +866,7 @@ rc_status rc_cmd_render(int argc, char **argv) {
       st = RC_ERR_USAGE;
     }
   }
+  if (st == RC_OK) st = rc_output_check_format(a.output);
   if (st != RC_OK) {
     rc_scene_free(&scene);
     rc_prepared_close(a.prepared);

@@ -96,6 +96,13 @@ rc_status rc_output_check_format(const char *path) {
   return RC_OK;
 }
 
+rc_status rc_output_check_format_early(const char *path) {
+  static const char *const common[] = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg", ".hdr", ".bmp", ".ppm"};
+  for (size_t i = 0; i < sizeof common / sizeof *common; i++)
+    if (rc_has_extension(path, common[i])) return RC_OK;
+  return rc_output_check_format(path);
+}
+
 static void remember(int slot, rc_image_writer *w) {
   const char *p = w ? rc_image_writer_temp_path(w) : "";
   snprintf(pending[slot], sizeof pending[slot], "%s", p);

@@ -22,6 +22,13 @@ typedef struct rc_output rc_output;
  * message, or RC_ERR_INSTALL when the image module cannot be loaded. Loads the module, so
  * commands call it once their cheaper checks have passed, before anything is written. */
 rc_status rc_output_check_format(const char *path);
+/* rc_output_check_format before a scene is read: for the names every image format command
+ * writes in practice (.png, .exr, .tif, .jpg, .hdr, ...), nothing, as the command checks
+ * them with rc_output_check_format once the scene has been read; for any other name, that
+ * check now, so that a name no format writes costs no scene read. Why: loading the image
+ * module costs a process about 0.2 s of CPU, which a scene refused at parse need not pay
+ * (docs/performance.md, "Process start-up", finding 12). */
+rc_status rc_output_check_format_early(const char *path);
 
 /* meta: header attributes of both files (image_io.h). image_path NULL: the AOV file alone
  * (merge of AOV parts, written by rc_output_aov_rows). */

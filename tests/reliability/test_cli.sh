@@ -166,9 +166,10 @@ same "--encoding linear --exposure 0 override the scene's gamma and exposure" "$
 check "an EXR holds the linear value whatever the 8-bit encoding" "$([[ $? == 0 ]] && echo ok || head -5 "$work/g_cmp.txt")"
 
 # OpenImageIO (and its ~260 libraries) is loaded at the first image, not before
-# (host/image/image_module.h): --help, --version and a refused command line never load
-# it; a render does, first of all to check that its output names a format it writes,
-# before the scene and its meshes are read (so a refused scene loads it too); and a
+# (host/image/image_module.h): --help, --version, a refused command line and a scene
+# refused at parse never load it; a render does, to check that its output names a format it
+# writes: before the scene and its meshes are read where the name is not a common one (so
+# that such a scene is not read for nothing), after where it is (host/cli/output.h); and a
 # binary whose module is missing says so and exits 3.
 # (By its soname, or by its path where image_load.c loads the module's libraries first.)
 loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
@@ -176,6 +177,9 @@ sed 's/"radius": *[0-9.]*/"radius": -1/' "$S" >"$work/bad_radius.json"
 check "--version, --help and a refused command line do not load OpenImageIO" \
   "$(n=$(( $(loads_oiio "$bin" --version) + $(loads_oiio "$bin" render --help) +
           $(loads_oiio "$bin" render "$work/bad_radius.json" -o "$work/x.png" --spp 0) )); [[ $n == 0 ]] && echo ok || echo "$n loads")"
+check "a scene refused at parse does not load OpenImageIO (.png, .exr)" \
+  "$(n=$(( $(loads_oiio "$bin" render "$work/bad_radius.json" -o "$work/x.png") +
+          $(loads_oiio "$bin" render "$work/bad_radius.json" -o "$work/x.exr") )); [[ $n == 0 ]] && echo ok || echo "$n loads")"
 "$bin" render "$work/bad_radius.json" -o "$work/x.foo" 2>"$work/err"
 check "the output's format is checked before the scene is read" \
   "$([[ $? == 2 ]] && grep -q 'x.foo: no image format' "$work/err" && ! grep -q radius "$work/err" && echo ok || cat "$work/err")"
