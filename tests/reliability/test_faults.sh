@@ -102,12 +102,14 @@ cp "$work/keep.png" "$work/keep_copy.png"
 # Killed while writing, by every asynchronous signal whose default action terminates (and
 # SIGKILL): wait until the process holds its temporary image open (unnamed, O_TMPFILE:
 # /proc shows it as deleted), send the signal, and check it died of it, leaving the old
-# image as it was and no temporary.
+# image as it was and no temporary. The image is written once the frame is rendered: one
+# sample a pixel renders it sooner, and writing 1024 x 1024 pixels lasts long enough to
+# be seen.
 writing() { # pid: true once the process has a file open in $work that has no name
   find "/proc/$1/fd" -lname "$work/*(deleted)" 2>/dev/null | grep -q .
 }
 for sig in TERM INT HUP QUIT USR1 USR2 PIPE ALRM XCPU VTALRM PROF KILL; do
-  "$bin" render "$scenes/showcase.json" -o "$work/keep.png" --width 1024 --height 1024 --spp 4 --quiet 2>/dev/null &
+  "$bin" render "$scenes/showcase.json" -o "$work/keep.png" --width 1024 --height 1024 --spp 1 --quiet 2>/dev/null &
   pid=$!
   seen=no
   for _ in $(seq 1 1200); do
