@@ -329,12 +329,12 @@ static rc_status parse_args(int argc, char **argv, render_args *a) {
   }
   if (a->region_text && !rc_region_parse(a->region_text, &a->region_asked, &why)) {
     snprintf(msg, sizeof msg, "--region %s: %s", a->region_text, why);
-    rc_usage_error(&rc_render_spec, msg);
+    rc_usage_error(&rc_render_spec, "%s", msg);
     return RC_ERR_USAGE;
   }
   if (a->shard_text && !rc_shard_parse(a->shard_text, &a->shard_index, &a->shard_count, &why)) {
     snprintf(msg, sizeof msg, "--shard %s: %s", a->shard_text, why);
-    rc_usage_error(&rc_render_spec, msg);
+    rc_usage_error(&rc_render_spec, "%s", msg);
     return RC_ERR_USAGE;
   }
   if (a->flush_subnormals && (!a->cpu || !rc_ref_can_flush_subnormals())) {

@@ -209,6 +209,11 @@ expect_exit2 "--band-renders with --perturb" "$work/bp.png" "--band-renders and 
   "$bin" render "$S" -o "$work/bp.png" --band-renders 2 --perturb 3 "${B[@]}"
 expect_exit2 "a band image naming the AOV file" "$work/clash.exr" "name the same file" \
   "$bin" render "$S" -o "$work/clash.exr" --aov "$work/clash.band1.exr" --band-renders 1 "${B[@]}"
+# A bad --region or --shard is quoted in the message, never read as a format string.
+expect_exit2 "--region with conversion specifiers, quoted" "$work/pct.png" "--region %n%s%n%s: expected" \
+  "$bin" render "$S" -o "$work/pct.png" --region '%n%s%n%s' "${B[@]}"
+expect_exit2 "--shard with conversion specifiers, quoted" "$work/pct.exr" "--shard %n%s/%n:" \
+  "$bin" render "$S" -o "$work/pct.exr" --shard '%n%s/%n' "${B[@]}"
 
 # --version: the program, and what it was built and runs with.
 "$bin" --version >"$work/version.txt"
