@@ -6,8 +6,8 @@
  * host (spirv_specialize.h) one file per specialization, with --spec-constants driver one
  * per module, shared by its specializations.
  * A missing, corrupt, truncated or foreign file is ignored with a warning, and a cache
- * that cannot be written costs a warning: the cache never fails a render.
- * VKRAYCAST_PIPELINE_CACHE=0 turns it off. (lavapipe returns a 32-byte header and no
+ * that cannot be written costs a warning: the cache never fails a render (the file itself:
+ * disk_cache.h). VKRAYCAST_PIPELINE_CACHE=0 turns it off, with spirv_cache.h's. (lavapipe returns a 32-byte header and no
  * pipelines: its warm start comes from Mesa's own disk cache, MESA_SHADER_CACHE_DIR;
  * docs/performance.md measures both.) */
 #ifndef RC_GPU_PIPELINE_CACHE_H
