@@ -55,27 +55,32 @@ static bool make_dir(const char *dir) {
   return S_ISDIR(st.st_mode);
 }
 
-void *rc_disk_cache_read(const char *path, const char *magic, uint64_t key, size_t *size, const char **why) {
-  *why = NULL;
+void *rc_disk_cache_read(const char *path, const char *magic, uint64_t key, const char *what, size_t *size) {
   int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return NULL;
   struct stat st;
   file_header h;
   void *data = NULL;
-  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) *why = "not a regular file";
-  else if (read(fd, &h, sizeof h) != (ssize_t)sizeof h || memcmp(h.magic, magic, 8) != 0) *why = "not a file of this cache";
-  else if (h.key != key) *why = "made for another key";
+  const char *why = NULL;
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) why = "not a regular file";
+  else if (read(fd, &h, sizeof h) != (ssize_t)sizeof h || memcmp(h.magic, magic, 8) != 0) why = "not a vkraycast cache file";
+  else if (h.key != key) why = "made for another device, driver, shader or set of constants";
   else if (h.size == 0 || h.size > RC_DISK_CACHE_MAX_BYTES || (uint64_t)st.st_size != sizeof h + h.size)
-    *why = "truncated";
-  else if (!(data = malloc(h.size))) *why = "out of memory";
+    why = "truncated";
+  else if (!(data = malloc(h.size))) why = "out of memory";
   else if (read(fd, data, h.size) != (ssize_t)h.size || rc_fnv1a(RC_FNV_OFFSET, data, h.size) != h.checksum) {
-    *why = "checksum mismatch";
+    why = "checksum mismatch";
     free(data);
     data = NULL;
   }
   close(fd);
+  if (why) rc_disk_cache_ignored(path, what, why);
   if (data) *size = h.size;
   return data;
+}
+
+void rc_disk_cache_ignored(const char *path, const char *what, const char *why) {
+  rc_warning("%s: %s ignored (%s); it will be rewritten", path, what, why);
 }
 
 static bool write_all(int fd, const void *p, size_t n) {

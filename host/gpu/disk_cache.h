@@ -27,9 +27,13 @@ bool rc_disk_cache_enabled(void);
 bool rc_disk_cache_path(uint64_t key, const char *suffix, char *out, size_t n);
 
 /* The payload of the file at `path` if it is a whole file of this magic (8 bytes) and key
- * (malloc'd, its size in *size), else NULL; *why says why a file that exists was not
- * usable ("truncated", "checksum mismatch", ...), and is NULL when there was no file. */
-void *rc_disk_cache_read(const char *path, const char *magic, uint64_t key, size_t *size, const char **why);
+ * (malloc'd, its size in *size), else NULL: no file, or one that exists and is not usable,
+ * which rc_disk_cache_ignored reports. `what` names the cache ("pipeline cache", ...). */
+void *rc_disk_cache_read(const char *path, const char *magic, uint64_t key, const char *what, size_t *size);
+
+/* Warns that the file at `path` is ignored, and why: for a caller's own checks of a
+ * payload rc_disk_cache_read returned. */
+void rc_disk_cache_ignored(const char *path, const char *what, const char *why);
 
 /* Writes the file; on failure warns, naming `what` ("pipeline cache", ...). */
 void rc_disk_cache_write(const char *path, const char *magic, uint64_t key, const void *data, size_t size,

@@ -41,13 +41,9 @@ void rc_pipeline_cache_open(const rc_vk_ctx *ctx, rc_spirv module, rc_pipeline_c
   void *data = NULL;
   size_t size = 0;
   if (rc_disk_cache_path(pc->key, ".bin", pc->path, sizeof pc->path)) {
-    const char *why;
-    data = rc_disk_cache_read(pc->path, MAGIC, pc->key, &size, &why);
-    if (why && strcmp(why, "not a file of this cache") == 0) why = "not a vkraycast pipeline cache";
-    if (why && strcmp(why, "made for another key") == 0) why = "made for another device, driver or shader";
-    if (data && !driver_header_matches(ctx, data, size)) why = "made for another device or driver";
-    if (why) {
-      rc_warning("%s: pipeline cache ignored (%s); it will be rewritten", pc->path, why);
+    data = rc_disk_cache_read(pc->path, MAGIC, pc->key, "pipeline cache", &size);
+    if (data && !driver_header_matches(ctx, data, size)) {
+      rc_disk_cache_ignored(pc->path, "pipeline cache", "made for another device or driver");
       free(data);
       data = NULL;
       size = 0;

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/rc_base.h"
 #include "gpu/disk_cache.h"
 
 #define MAGIC "VKRCSP01"
@@ -29,19 +28,17 @@ bool rc_spirv_specialize_cached(rc_spirv module, const uint32_t *values, uint32_
   bool cached = rc_disk_cache_enabled() && rc_disk_cache_path(key, ".spv", path, sizeof path);
   if (cached) {
     size_t size = 0;
-    const char *why;
-    uint32_t *words = rc_disk_cache_read(path, MAGIC, key, &size, &why);
+    uint32_t *words = rc_disk_cache_read(path, MAGIC, key, "specialized shader cache", &size);
     if (words && (size % 4 != 0 || words[0] != SPIRV_MAGIC)) {
+      rc_disk_cache_ignored(path, "specialized shader cache", "not SPIR-V");
       free(words);
       words = NULL;
-      why = "not SPIR-V";
     }
     if (words) {
       *out = (rc_spirv){.words = words, .size = size};
       *hit = true;
       return true;
     }
-    if (why) rc_warning("%s: specialized shader cache ignored (%s); it will be rewritten", path, why);
   }
   if (!rc_spirv_specialize(module, values, count, out)) return false;
   if (cached) rc_disk_cache_write(path, MAGIC, key, out->words, out->size, "specialized shader cache");
