@@ -14,13 +14,11 @@ cd "$(dirname "$0")/.."
 a=$(realpath "$1") b=$(realpath "$2")
 shift 2
 rounds=${ROUNDS:-7}
-export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
-export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} VKRAYCAST_VALIDATION=1
-export VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export XDG_CACHE_HOME=$work/cache MESA_SHADER_CACHE_DIR=$work/mesa
 source tools/bench_common.sh
+as_the_tests
+export XDG_CACHE_HOME=$work/cache MESA_SHADER_CACHE_DIR=$work/mesa
 ways=(A B-nocache B)
 run() { # WAY SCENE OUT [args]
   local w=$1 scene=$2 out=$3 bin=$b/vkraycast

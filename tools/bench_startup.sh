@@ -15,12 +15,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=$(realpath "${1:-build}")
 rounds=${ROUNDS:-7}
-export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
-export VK_ICD_FILENAMES=$VK_DRIVER_FILES XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} VKRAYCAST_VALIDATION=1
-export VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 source tools/bench_common.sh
+as_the_tests
 # The copy without the list: the binary finds the module (and the importer) beside itself.
 mkdir "$work/nolist"
 cp "$build/vkraycast" "$build/vkraycast-image.so" "$build/vkraycast-mesh-import" "$work/nolist/"
