@@ -105,11 +105,11 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #include "rc_random.glsl"
 #include "rc_camera.glsl"
 #include "rc_triangle.glsl"
-#if RC_CERTIFY
-#include "rc_certify.glsl"
-#endif
 #if RC_QUADRICS
 #include "rc_quadric.glsl"
+#endif
+#if RC_CERTIFY
+#include "rc_certify.glsl"  // after rc_quadric.glsl: it recomputes the quadric tests
 #endif
 #if RC_PATCHES
 #include "rc_patch.glsl"

@@ -11,8 +11,8 @@
 // between its origin and unit direction and the reference's, and each bound below adds what
 // that perturbation can change (first order, as pbrt's running error bounds: Pharr, Jakob &
 // Humphreys, PBR 4th ed. §6.8; Higham, Accuracy and Stability of Numerical Algorithms §3.1,
-// gamma(n) = n u / (1 - n u)). Tests this file has no bound for (bounded quadrics, composites,
-// patches, the fast formulas, one-sided triangles) leave their sample
+// gamma(n) = n u / (1 - n u)). Tests this file has no bound for (composites, patches, the
+// fast formulas, one-sided triangles) leave their sample
 // uncertified whenever a ray tests them: the host re-renders it, so the image stays exact.
 
 bool cert_ok = true;          // every decision of this sample so far is certified
@@ -286,5 +286,366 @@ void cert_plane(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   precise real t = -fz / vz;
   real e_t = (abs(vz) > e_vz) ? (e_fz + abs(t) * e_vz) / (abs(vz) - e_vz) + gamma_bound(1.0) * abs(t) : real(RC_T_FAR);
   cert_root(t, e_t, t_max, t > 0.0);
+}
+
+// |M| v for the quadric's symmetric part and v >= 0: bounds |M w| componentwise wherever
+// |w| <= v componentwise.
+rvec3 cert_abs_apply(packed_quadric q, rvec3 v) {
+  rvec3 D = abs(rvec3(q.diag));
+  rvec3 O = abs(rvec3(q.off));
+  return rvec3(D.x * v.x + O.x * v.y + O.y * v.z, O.x * v.x + D.y * v.y + O.z * v.z, O.y * v.x + O.z * v.y + D.z * v.z);
+}
+
+// How far quadric_local(q, x) can be from the reference's, componentwise, where x is at most
+// e from the reference's x and its terms have magnitudes `mag`: each row r moves by |r| e and
+// rounds by gamma(n) of |r|.mag (a dot product, and for a point the subtraction before it).
+rvec3 cert_local_error(packed_quadric q, rvec3 mag, real e, real n) {
+  rvec3 ax = rvec3(q.axis_x);
+  rvec3 ay = rvec3(q.axis_y);
+  rvec3 az = rvec3(q.axis_z);
+  return e * rvec3(length(ax), length(ay), length(az)) +
+         gamma_bound(n) * rvec3(dot(abs(ax), mag), dot(abs(ay), mag), dot(abs(az), mag));
+}
+
+// One slab of box_span, recomputed with bounds: ta = (lo - f) / v moves by the numerator's
+// error (ef, and the subtraction's rounding) and by v's (ev) over |v| - ev, and rounds once
+// more. The slab's entry tn and exit tx, and the larger error e. A slab whose v may have
+// either sign (|v| within its bound) gives no ends (-/+ RC_T_FAR, error 0): it is
+// cert_slab_parallel's. False for such a slab.
+bool cert_slab(real lo, real hi, real f, real v, real ef, real ev, out real tn, out real tx, out real e) {
+  tn = -real(RC_T_FAR);
+  tx = real(RC_T_FAR);
+  e = 0.0;
+  if (!(abs(v) > cert_factor() * ev)) return false;
+  precise real ta = (lo - f) / v;
+  precise real tb = (hi - f) / v;
+  real ea = (abs(v) > ev) ? (ef + gamma_bound(1.0) * abs(lo - f) + abs(ta) * ev) / (abs(v) - ev) + gamma_bound(1.0) * abs(ta)
+                          : real(RC_T_FAR);
+  real eb = (abs(v) > ev) ? (ef + gamma_bound(1.0) * abs(hi - f) + abs(tb) * ev) / (abs(v) - ev) + gamma_bound(1.0) * abs(tb)
+                          : real(RC_T_FAR);
+  tn = select_min(ta, tb);
+  tx = select_max(ta, tb);
+  e = select_max(ea, eb);
+  return true;
+}
+
+// The span's end among three slabs' (the largest entry for s = 1, the smallest exit for
+// s = -1) and its error e; `sure` when each other slab's end lies on the losing side by more
+// than both bounds, so that the reference's end is on the same face. Otherwise the error is
+// the largest of the three (a max or a min moves by no more than its arguments).
+real cert_span_end(real s, real t0, real e0, real t1, real e1, real t2, real e2, out real e, out bool sure) {
+  real k = cert_factor();
+  real w = t0;
+  e = e0;
+  if (s * t1 > s * w) {
+    w = t1;
+    e = e1;
+  }
+  if (s * t2 > s * w) {
+    w = t2;
+    e = e2;
+  }
+  uint lose = 0u;
+  if (t0 == w || s * (w - t0) > k * (e + e0)) lose++;
+  if (t1 == w || s * (w - t1) > k * (e + e1)) lose++;
+  if (t2 == w || s * (w - t2) > k * (e + e2)) lose++;
+  uint wins = ((t0 == w) ? 1u : 0u) + ((t1 == w) ? 1u : 0u) + ((t2 == w) ? 1u : 0u);
+  sure = lose == 3u && wins == 1u;
+  if (!sure) e = select_max(e0, select_max(e1, e2));
+  return w;
+}
+
+// A slab the ray runs nearly parallel to (cert_slab's left-overs). Along the span [-reach_t,
+// reach_t] of the other slabs, f + t v stays within ef + reach_t (|v| + ev) of f for both
+// precisions, and each one's ta, tb lie beyond the span: the slab changes nothing where f is
+// inside it by more than that, and empties the span where f is outside by more. 1: inside
+// (or not parallel), 0: outside, 2: uncertain.
+uint cert_slab_parallel(real lo, real hi, real f, real v, real ef, real ev, real reach_t) {
+  if (abs(v) > cert_factor() * ev) return 1u;
+  real reach = cert_factor() * (ef + reach_t * (abs(v) + ev));
+  if (f - lo > reach && hi - f > reach) return 1u;
+  if (lo - f > reach || f - hi > reach) return 0u;
+  return 2u;
+}
+
+// box_span's decisions for the ray (f, v) in the quadric's frame, f and v at most ef and ev
+// (componentwise) from the reference's: the span [b_in, b_out], its ends' errors e_in and
+// e_out, and whether the entry and exit faces are certain (`sure`, bits 1 and 2). Returns 0
+// where the box is certainly missed, 1 where it is certainly met, 2 where that is uncertain.
+uint cert_box(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, out real b_in, out real b_out, out real e_in,
+              out real e_out, out uint sure) {
+  rvec3 lo = rvec3(q.lo);
+  rvec3 hi = rvec3(q.hi);
+  real nx, xx, ex, ny, xy, ey, nz, xz, ez;
+  cert_slab(lo.x, hi.x, f.x, v.x, ef.x, ev.x, nx, xx, ex);
+  cert_slab(lo.y, hi.y, f.y, v.y, ef.y, ev.y, ny, xy, ey);
+  cert_slab(lo.z, hi.z, f.z, v.z, ef.z, ev.z, nz, xz, ez);
+  bool sure_in, sure_out;
+  b_in = cert_span_end(1.0, nx, ex, ny, ey, nz, ez, e_in, sure_in);
+  b_out = cert_span_end(-1.0, xx, ex, xy, ey, xz, ez, e_out, sure_out);
+  real e_span = select_max(e_in, e_out);
+  sure = (sure_in ? 1u : 0u) | (sure_out ? 2u : 0u);
+  real k = cert_factor();
+  real reach_t = select_max(abs(b_in), abs(b_out)) + k * e_span;
+  uint px = cert_slab_parallel(lo.x, hi.x, f.x, v.x, ef.x, ev.x, reach_t);
+  uint py = cert_slab_parallel(lo.y, hi.y, f.y, v.y, ef.y, ev.y, reach_t);
+  uint pz = cert_slab_parallel(lo.z, hi.z, f.z, v.z, ef.z, ev.z, reach_t);
+  if (px == 0u || py == 0u || pz == 0u) return 0u;
+  if (b_in - b_out > k * 2.0 * e_span) return 0u;
+  if (px == 2u || py == 2u || pz == 2u || !(b_out - b_in > k * 2.0 * e_span)) return 2u;
+  return 1u;
+}
+
+// The quadric's coefficients (quadric_roots) a, h, c and discriminant, recomputed, and their
+// errors. At f32's own (f, v) the exact a = v.Mv, h = f.Mv + L.v and c = f.Mf + 2 L.f + J are
+// off from the computed ones by their rounding (gamma(6), gamma(7), gamma(8) of the terms'
+// magnitudes); from the reference's (f + df, v + dv) by exactly
+//   da = 2 Mv.dv + dv.M dv,  dh = Mv.df + (Mf + L).dv + df.M dv,  dc = 2 (Mf + L).df + df.M df,
+// bounded with |M|. The exact discriminant h^2 - a c then moves by exactly
+//   2 h dh + dh^2 - a dc - c da - da dc = G_f.df + G_v.dv + 2 h df.M dv + dh^2 - a df.M df
+//                                         - c dv.M dv - da dc,
+// with its gradient G_f = 2 (h Mv - a (Mf + L)), G_v = 2 (h (Mf + L) - c Mv): the gradient, not
+// the magnitudes of its terms, which cancel (for a sphere |G_f| = 2 |l|, the ray's distance
+// from the centre, against 4 |f| term by term: the bound was ten times wider for a ray that
+// meets a cylinder head-on). G is computed here, plus its rounding. The computed
+// discriminant (Lagrange's form for a diagonal M, else h^2 - a c) adds the rounding of its
+// own terms from f32's values. Returns the discriminant's error bound.
+real cert_quadric_terms(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, out real a, out real h, out real c,
+                        out real disc, out real e_a, out real e_h, out real e_c) {
+  rvec3 D = rvec3(q.diag);
+  rvec3 L = rvec3(q.linear);
+  real J = real(q.constant);
+  precise rvec3 mv = quadric_apply(q, v);
+  precise rvec3 mf = quadric_apply(q, f);
+  precise real aa = dot(v, mv);
+  precise real m = dot(f, mv);
+  precise real ld = dot(L, v);
+  precise real lf = dot(L, f);
+  precise real hh = m + ld;
+  precise real cc = dot(f, mf) + 2.0 * lf + J;
+  a = aa;
+  h = hh;
+  c = cc;
+  rvec3 av = abs(v);
+  rvec3 af = abs(f);
+  rvec3 al = abs(L);
+  rvec3 mav = cert_abs_apply(q, av);
+  rvec3 maf = cert_abs_apply(q, af);
+  real ra = gamma_bound(6.0) * dot(av, mav);
+  real rm = gamma_bound(6.0) * dot(af, mav);
+  real rld = gamma_bound(3.0) * dot(al, av);
+  real rlf = gamma_bound(3.0) * dot(al, af);
+  real rh = rm + rld + gamma_bound(1.0) * abs(hh);
+  real rc = gamma_bound(8.0) * (dot(af, maf) + 2.0 * dot(al, af) + abs(J));
+  rvec3 gv = abs(mv) + gamma_bound(3.0) * mav;
+  rvec3 gf = abs(mf + L) + gamma_bound(4.0) * (maf + al);
+  real pa = 2.0 * dot(gv, ev) + dot(ev, cert_abs_apply(q, ev));
+  real ph = dot(gv, ef) + dot(gf, ev) + dot(ef, cert_abs_apply(q, ev));
+  real pc = 2.0 * dot(gf, ef) + dot(ef, cert_abs_apply(q, ef));
+  e_a = ra + pa;
+  e_h = rh + ph;
+  e_c = rc + pc;
+  real hm = abs(hh) + rh;
+  real am = abs(aa) + ra;
+  real cm = abs(cc) + rc;
+  rvec3 mfl = mf + L;
+  rvec3 grad_f = abs(2.0 * (hh * mv - aa * mfl)) + 2.0 * (rh * gv + ra * gf) + gamma_bound(8.0) * 2.0 * (abs(hh) * gv + abs(aa) * gf);
+  rvec3 grad_v = abs(2.0 * (hh * mfl - cc * mv)) + 2.0 * (rh * gf + rc * gv) + gamma_bound(8.0) * 2.0 * (abs(hh) * gf + abs(cc) * gv);
+  real moved = dot(grad_f, ef) + dot(grad_v, ev) + 2.0 * hm * dot(ef, cert_abs_apply(q, ev)) + ph * ph +
+               am * dot(ef, cert_abs_apply(q, ef)) + cm * dot(ev, cert_abs_apply(q, ev)) + pa * pc;
+  real rounded;
+  if (q.off == vec3(0.0)) {
+    precise real cxy = v.x * f.y - v.y * f.x;
+    precise real cxz = v.x * f.z - v.z * f.x;
+    precise real cyz = v.y * f.z - v.z * f.y;
+    disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2.0 * m * ld - 2.0 * aa * lf +
+           ld * ld - aa * J;
+    real exy = gamma_bound(2.0) * (abs(v.x * f.y) + abs(v.y * f.x));
+    real exz = gamma_bound(2.0) * (abs(v.x * f.z) + abs(v.z * f.x));
+    real eyz = gamma_bound(2.0) * (abs(v.y * f.z) + abs(v.z * f.y));
+    real dxy = abs(D.x * D.y);
+    real dxz = abs(D.x * D.z);
+    real dyz = abs(D.y * D.z);
+    real terms = dxy * cxy * cxy + dxz * cxz * cxz + dyz * cyz * cyz + 2.0 * abs(m * ld) + 2.0 * abs(aa * lf) + ld * ld +
+                 abs(aa * J);
+    rounded = dxy * (2.0 * abs(cxy) * exy + exy * exy) + dxz * (2.0 * abs(cxz) * exz + exz * exz) +
+              dyz * (2.0 * abs(cyz) * eyz + eyz * eyz) + 2.0 * (abs(m) * rld + abs(ld) * rm + rm * rld) +
+              2.0 * (abs(aa) * rlf + abs(lf) * ra + ra * rlf) + 2.0 * abs(ld) * rld + rld * rld + abs(J) * ra +
+              gamma_bound(12.0) * terms;
+  } else {
+    disc = hh * hh - aa * cc;
+    rounded = 2.0 * abs(hh) * rh + rh * rh + abs(aa) * rc + abs(cc) * ra + ra * rc + gamma_bound(2.0) * (hh * hh + abs(aa * cc));
+  }
+  return moved + rounded;
+}
+
+// An open quadric surface's root t (bound e) against the box span (intersect_quadric_surface):
+// taken where it lies certainly in the box, not where certainly outside, and in between the
+// reference may take it where this precision does not or the other way round (cert_maybe).
+// True when this precision takes it.
+bool cert_surface_root(real t, real e, real b_in, real b_out, real e_in, real e_out, real t_max) {
+  real k = cert_factor();
+  real m_in = t - b_in;
+  real m_out = b_out - t;
+  if (m_in < -k * (e + e_in) || m_out < -k * (e + e_out)) return false;
+  if (m_in > k * (e + e_in) && m_out > k * (e + e_out)) return cert_root(t, e, t_max, t > 0.0);
+  bool taken = t > 0.0 && t <= t_max && m_in >= 0.0 && m_out >= 0.0;
+  cert_maybe(t - k * e, t + k * e, t_max, taken);
+  return taken;
+}
+
+// One end t of a solid's clipped piece (solid_intervals): the box face's t (`box`, error
+// e_box) or the root's (`quad`, e_quad; -/+ RC_T_FAR for an open end), whichever the clip
+// keeps: where the clip's choice is certain, the chosen one's error, else the larger of
+// theirs (a max or a min moves by no more than its arguments). Taken as cert_root says;
+// where taken, the surface it lies on must be certain too: the clip's choice, and for a box
+// face the axis that won the span (`face_sure`). True when taken.
+bool cert_solid_end(real t, bool on_box, real box, real e_box, real quad, real e_quad, bool face_sure, real t_max) {
+  bool side_sure = !(abs(quad) < real(RC_T_FAR)) || abs(box - quad) > cert_factor() * (e_box + e_quad);
+  real e = side_sure ? (on_box ? e_box : e_quad) : select_max(e_box, e_quad);
+  if (!cert_root(t, e, t_max, t > 0.0)) return false;
+  if (!side_sure || (on_box && !face_sure)) cert_fail();
+  return true;
+}
+
+// A solid's pieces (solid_intervals) and the first end in (0, t_max] (first_interval_end),
+// for the roots [t_lo, t_hi] (error e_r) of a quadric of the given kind. A piece whose
+// existence is uncertain (its ends within their bounds of each other) is cert_maybe's.
+void cert_solid(uint kind, real t_lo, real t_hi, real e_r, real b_in, real b_out, real e_in, real e_out, uint sure,
+                real t_max) {
+  real k = cert_factor();
+  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -real(RC_T_FAR);
+  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : real(RC_T_FAR));
+  uint pieces = (kind == RC_QR_OUTSIDE) ? 2u : 1u;
+  for (uint p = 0u; p < pieces; p++) {
+    real lo = (p == 0u) ? lo0 : t_hi;
+    real hi = (p == 0u) ? hi0 : real(RC_T_FAR);
+    real e_lo = (abs(lo) < real(RC_T_FAR)) ? e_r : 0.0;
+    real e_hi = (abs(hi) < real(RC_T_FAR)) ? e_r : 0.0;
+    bool box_starts = b_in >= lo;
+    bool box_ends = b_out <= hi;
+    real s = box_starts ? b_in : lo;
+    real e = box_ends ? b_out : hi;
+    real e_s = select_max(e_in, e_lo);
+    real e_e = select_max(e_out, e_hi);
+    if (s - e > k * (e_s + e_e)) continue;
+    if (!(e - s > k * (e_s + e_e))) {
+      bool taken = s <= e && ((s > 0.0 && s <= t_max) || (e > 0.0 && e <= t_max));
+      cert_maybe(select_min(s, e) - k * select_max(e_s, e_e), select_max(s, e) + k * select_max(e_s, e_e), t_max, taken);
+      if (taken) return;
+      continue;
+    }
+    if (cert_solid_end(s, box_starts, b_in, e_in, lo, e_lo, (sure & 1u) != 0u, t_max)) return;
+    if (cert_solid_end(e, box_ends, b_out, e_out, hi, e_hi, (sure & 2u) != 0u, t_max)) return;
+  }
+}
+
+// A bounded quadric's decisions (intersect_quadric: a surface or a solid in its box), in the
+// quadric's frame. f and v carry the ray's perturbation through the frame's rows
+// (cert_local_error); the box (cert_box), the coefficients (cert_quadric_terms), then the
+// roots as the sphere's: q = -(h + sign(h) sqrt(disc)) with sqrt's error, q / a and c / q
+// each with the quotient's. Only the named shapes' kinds are bounded: a ray along which the
+// quadric is linear (a = 0) is certain only for a box (no quadratic or linear part), and a
+// grazing ray only where a > 0 (the roots, if any, near -h / a), unless it leaves the surface
+// (both roots behind); a root pinned at RC_T_FAR is not bounded.
+void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
+  real k = cert_factor();
+  rvec3 f = quadric_local(q, o - rvec3(q.center));
+  rvec3 v = quadric_local(q, d);
+  rvec3 ef = cert_local_error(q, abs(o) + abs(rvec3(q.center)), cert_eo, 4.0);
+  rvec3 ev = cert_local_error(q, abs(d), cert_ed, 3.0);
+  real b_in, b_out, e_in, e_out;
+  uint sure;
+  uint box = cert_box(q, f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+  if (box == 0u) return;
+  if (box == 2u) {
+    cert_fail();
+    return;
+  }
+  real a, h, c, disc, e_a, e_h, e_c;
+  real e_disc = cert_quadric_terms(q, f, v, ef, ev, a, h, c, disc, e_a, e_h, e_c);
+  bool solid = (q.flags & RC_QUADRIC_SOLID) != 0u;
+  if (a == 0.0 && e_a == 0.0 && h == 0.0 && e_h == 0.0) {
+    cert_require(c, e_c);
+    if (solid && c <= 0.0) cert_solid(RC_QR_ALL, 0.0, 0.0, 0.0, b_in, b_out, e_in, e_out, sure, t_max);
+    return;
+  }
+  if (!(abs(a) > k * e_a)) {
+    cert_fail();
+    return;
+  }
+  // Q(t) = a t^2 + 2 h t + c with a, h and c all positive has no root ahead: a ray leaving a
+  // surface that curves towards it, from outside (c > 0 beyond its bound, or the surface a
+  // spawned ray leaves, whose error-bound offset puts both precisions' origins on the side
+  // its normal points to), as the sphere's leaving rays (cert_sphere_grazing).
+  if (a > 0.0 && h > k * e_h && (c > k * e_c || (cert_self && c > 0.0))) return;
+  if (!(abs(disc) > k * e_disc)) {
+    if (a < 0.0) {
+      cert_fail();
+      return;
+    }
+    real spread = sqrt(select_max(disc, 0.0) + k * e_disc) + k * e_h;
+    real a_lo = a - k * e_a;
+    real a_hi = a + k * e_a;
+    real lo = select_min((-h - spread) / a_lo, (-h - spread) / a_hi);
+    real hi = select_max((-h + spread) / a_lo, (-h + spread) / a_hi);
+    lo = select_max(lo - gamma_bound(3.0) * abs(lo), b_in - k * e_in);
+    hi = select_min(hi + gamma_bound(3.0) * abs(hi), b_out + k * e_out);
+    if (lo > hi) return;
+    cert_maybe(lo, hi, t_max, disc >= 0.0 && hi > 0.0 && lo <= t_max);
+    return;
+  }
+  if (disc < 0.0) {
+    if (solid && a < 0.0) cert_solid(RC_QR_ALL, 0.0, 0.0, 0.0, b_in, b_out, e_in, e_out, sure, t_max);
+    return;
+  }
+  precise real sq = sqrt(disc);
+  precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);
+  if (qq == 0.0 || abs(qq) >= abs(a) * real(RC_T_FAR) || abs(c) >= abs(qq) * real(RC_T_FAR)) {
+    cert_fail();
+    return;
+  }
+  precise real r0 = qq / a;
+  precise real r1 = c / qq;
+  real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
+  real e_q = e_h + e_sq + gamma_bound(2.0) * abs(qq);
+  real e_r0 = (abs(a) > e_a) ? (e_q + abs(r0) * e_a) / (abs(a) - e_a) + gamma_bound(1.0) * abs(r0) : real(RC_T_FAR);
+  real e_r1 = (abs(qq) > e_q) ? (e_c + abs(r1) * e_q) / (abs(qq) - e_q) + gamma_bound(1.0) * abs(r1) : real(RC_T_FAR);
+  real e_r = select_max(e_r0, e_r1);
+  real t_lo = select_min(r0, r1);
+  real t_hi = select_max(r0, r1);
+  if (solid) {
+    cert_solid((a > 0.0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure, t_max);
+    return;
+  }
+  if (cert_surface_root(t_lo, e_r, b_in, b_out, e_in, e_out, t_max)) return;
+  cert_surface_root(t_hi, e_r, b_in, b_out, e_in, e_out, t_max);
+}
+
+// How far a quadric surface's normal normalize(R^T (M R (p - c) + L)) (quadric_normal) can
+// turn where p is at most ep from the reference's: f = R (p - c) moves by ||R|| ep and rounds
+// as cert_local_error says, g = M f + L by ||M|| of that and gamma(4) of |M||f| + |L|, and
+// R^T g by ||R|| of g's move and gamma(3) of its terms; then cert_turn_of. The spectral norms
+// are bounded by Gershgorin's circles: ||M|| by M's largest absolute row sum (M symmetric),
+// ||R||^2 by that of the rows' Gram matrix (1 for an orthonormal frame, where the Frobenius
+// norm says sqrt(3)).
+real cert_quadric_normal(packed_quadric q, rvec3 p, real ep) {
+  rvec3 ax = rvec3(q.axis_x);
+  rvec3 ay = rvec3(q.axis_y);
+  rvec3 az = rvec3(q.axis_z);
+  rvec3 L = rvec3(q.linear);
+  real gx = abs(dot(ax, ax)) + abs(dot(ax, ay)) + abs(dot(ax, az));
+  real gy = abs(dot(ay, ax)) + abs(dot(ay, ay)) + abs(dot(ay, az));
+  real gz = abs(dot(az, ax)) + abs(dot(az, ay)) + abs(dot(az, az));
+  real rn = sqrt(select_max(gx, select_max(gy, gz))) * (1.0 + gamma_bound(4.0));
+  rvec3 rows = cert_abs_apply(q, rvec3(1.0));
+  real mn = select_max(rows.x, select_max(rows.y, rows.z)) * (1.0 + gamma_bound(2.0));
+  rvec3 f = quadric_local(q, p - rvec3(q.center));
+  rvec3 g = quadric_apply(q, f) + L;
+  rvec3 n = g.x * ax + g.y * ay + g.z * az;
+  rvec3 ef = cert_local_error(q, abs(p) + abs(rvec3(q.center)), 0.0, 4.0);
+  real eg = mn * (rn * ep + length(ef)) + gamma_bound(4.0) * length(cert_abs_apply(q, abs(f)) + abs(L));
+  real e_n = rn * eg + gamma_bound(3.0) * length(abs(g.x) * abs(ax) + abs(g.y) * abs(ay) + abs(g.z) * abs(az));
+  return cert_turn_of(e_n, length(n));
 }
 #endif

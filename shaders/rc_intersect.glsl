@@ -239,6 +239,10 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
       cert_plane(q, o, d, t_max);
       return;
     }
+    if (kind == RC_HIT_QUADRIC && (q.flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0u) {
+      cert_quadric(q, o, d, t_max);
+      return;
+    }
 #endif
     cert_fail();
   }

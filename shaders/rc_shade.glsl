@@ -253,6 +253,12 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
       cert_require(dot(sf.n, sf.ng), en + gamma_bound(12.0));
     }
   }
+#if RC_QUADRICS
+  if (h.kind == RC_HIT_QUADRIC && ((h.part >> 2u) & 3u) == 0u) {
+    packed_quadric q = load_quadric(h.part >> RC_CSG_CODE_LEAF_SHIFT);
+    if ((q.flags & RC_QUADRIC_UNBOUNDED) == 0u) en += cert_quadric_normal(q, sf.p, ep);
+  }
+#endif
   cert_ep = ep;
   cert_en = en;
 }

@@ -197,3 +197,312 @@ void REF(cert_plane)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
                                 : (real)RC_T_FAR;
   REF(cert_root)(sc, t, e_t, t_max, t > 0);
 }
+
+rvec3 REF(cert_abs_apply)(const packed_quadric *q, rvec3 v) {
+  rvec3 D = RV(abs)(rvec3_from(q->diag));
+  rvec3 O = RV(abs)(rvec3_from(q->off));
+  return RV(make)(D.x * v.x + O.x * v.y + O.y * v.z, O.x * v.x + D.y * v.y + O.z * v.z, O.y * v.x + O.z * v.y + D.z * v.z);
+}
+
+rvec3 REF(cert_local_error)(const packed_quadric *q, rvec3 mag, real e, real n) {
+  rvec3 ax = rvec3_from(q->axis_x);
+  rvec3 ay = rvec3_from(q->axis_y);
+  rvec3 az = rvec3_from(q->axis_z);
+  return RV(add)(RV(scale)(RV(make)(RV(length)(ax), RV(length)(ay), RV(length)(az)), e),
+                 RV(scale)(RV(make)(RV(dot)(RV(abs)(ax), mag), RV(dot)(RV(abs)(ay), mag), RV(dot)(RV(abs)(az), mag)),
+                           REF(gamma_bound)(n)));
+}
+
+bool REF(cert_slab)(const ref_scene *sc, real lo, real hi, real f, real v, real ef, real ev, real *tn, real *tx, real *e) {
+  *tn = -(real)RC_T_FAR;
+  *tx = (real)RC_T_FAR;
+  *e = 0;
+  if (!(R_ABS(v) > REF(cert_factor)(sc) * ev)) return false;
+  real ta = (lo - f) / v;
+  real tb = (hi - f) / v;
+  real ea = (R_ABS(v) > ev) ? (ef + REF(gamma_bound)(1) * R_ABS(lo - f) + R_ABS(ta) * ev) / (R_ABS(v) - ev) +
+                                  REF(gamma_bound)(1) * R_ABS(ta)
+                            : (real)RC_T_FAR;
+  real eb = (R_ABS(v) > ev) ? (ef + REF(gamma_bound)(1) * R_ABS(hi - f) + R_ABS(tb) * ev) / (R_ABS(v) - ev) +
+                                  REF(gamma_bound)(1) * R_ABS(tb)
+                            : (real)RC_T_FAR;
+  *tn = rmin(ta, tb);
+  *tx = rmax(ta, tb);
+  *e = rmax(ea, eb);
+  return true;
+}
+
+real REF(cert_span_end)(const ref_scene *sc, real s, real t0, real e0, real t1, real e1, real t2, real e2, real *e,
+                        bool *sure) {
+  real k = REF(cert_factor)(sc);
+  real w = t0;
+  *e = e0;
+  if (s * t1 > s * w) {
+    w = t1;
+    *e = e1;
+  }
+  if (s * t2 > s * w) {
+    w = t2;
+    *e = e2;
+  }
+  uint32_t lose = 0;
+  if (t0 == w || s * (w - t0) > k * (*e + e0)) lose++;
+  if (t1 == w || s * (w - t1) > k * (*e + e1)) lose++;
+  if (t2 == w || s * (w - t2) > k * (*e + e2)) lose++;
+  uint32_t wins = ((t0 == w) ? 1u : 0u) + ((t1 == w) ? 1u : 0u) + ((t2 == w) ? 1u : 0u);
+  *sure = lose == 3u && wins == 1u;
+  if (!*sure) *e = rmax(e0, rmax(e1, e2));
+  return w;
+}
+
+uint32_t REF(cert_slab_parallel)(const ref_scene *sc, real lo, real hi, real f, real v, real ef, real ev, real reach_t) {
+  if (R_ABS(v) > REF(cert_factor)(sc) * ev) return 1;
+  real reach = REF(cert_factor)(sc) * (ef + reach_t * (R_ABS(v) + ev));
+  if (f - lo > reach && hi - f > reach) return 1;
+  if (lo - f > reach || f - hi > reach) return 0;
+  return 2;
+}
+
+uint32_t REF(cert_box)(const ref_scene *sc, const packed_quadric *q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, real *b_in,
+                       real *b_out, real *e_in, real *e_out, uint32_t *sure) {
+  rvec3 lo = rvec3_from(q->lo);
+  rvec3 hi = rvec3_from(q->hi);
+  real nx, xx, ex, ny, xy, ey, nz, xz, ez;
+  REF(cert_slab)(sc, lo.x, hi.x, f.x, v.x, ef.x, ev.x, &nx, &xx, &ex);
+  REF(cert_slab)(sc, lo.y, hi.y, f.y, v.y, ef.y, ev.y, &ny, &xy, &ey);
+  REF(cert_slab)(sc, lo.z, hi.z, f.z, v.z, ef.z, ev.z, &nz, &xz, &ez);
+  bool sure_in, sure_out;
+  *b_in = REF(cert_span_end)(sc, 1, nx, ex, ny, ey, nz, ez, e_in, &sure_in);
+  *b_out = REF(cert_span_end)(sc, -1, xx, ex, xy, ey, xz, ez, e_out, &sure_out);
+  real e_span = rmax(*e_in, *e_out);
+  *sure = (sure_in ? 1u : 0u) | (sure_out ? 2u : 0u);
+  real k = REF(cert_factor)(sc);
+  real reach_t = rmax(R_ABS(*b_in), R_ABS(*b_out)) + k * e_span;
+  uint32_t px = REF(cert_slab_parallel)(sc, lo.x, hi.x, f.x, v.x, ef.x, ev.x, reach_t);
+  uint32_t py = REF(cert_slab_parallel)(sc, lo.y, hi.y, f.y, v.y, ef.y, ev.y, reach_t);
+  uint32_t pz = REF(cert_slab_parallel)(sc, lo.z, hi.z, f.z, v.z, ef.z, ev.z, reach_t);
+  if (px == 0 || py == 0 || pz == 0) return 0;
+  if (*b_in - *b_out > k * 2 * e_span) return 0;
+  if (px == 2 || py == 2 || pz == 2 || !(*b_out - *b_in > k * 2 * e_span)) return 2;
+  return 1;
+}
+
+real REF(cert_quadric_terms)(const packed_quadric *q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, real *a, real *h, real *c,
+                             real *disc, real *e_a, real *e_h, real *e_c) {
+  rvec3 D = rvec3_from(q->diag);
+  rvec3 L = rvec3_from(q->linear);
+  real J = (real)q->constant;
+  rvec3 mv = REF(quadric_apply)(q, v);
+  rvec3 mf = REF(quadric_apply)(q, f);
+  real aa = RV(dot)(v, mv);
+  real m = RV(dot)(f, mv);
+  real ld = RV(dot)(L, v);
+  real lf = RV(dot)(L, f);
+  real hh = m + ld;
+  real cc = RV(dot)(f, mf) + 2 * lf + J;
+  *a = aa;
+  *h = hh;
+  *c = cc;
+  rvec3 av = RV(abs)(v);
+  rvec3 af = RV(abs)(f);
+  rvec3 al = RV(abs)(L);
+  rvec3 mav = REF(cert_abs_apply)(q, av);
+  rvec3 maf = REF(cert_abs_apply)(q, af);
+  real ra = REF(gamma_bound)(6) * RV(dot)(av, mav);
+  real rm = REF(gamma_bound)(6) * RV(dot)(af, mav);
+  real rld = REF(gamma_bound)(3) * RV(dot)(al, av);
+  real rlf = REF(gamma_bound)(3) * RV(dot)(al, af);
+  real rh = rm + rld + REF(gamma_bound)(1) * R_ABS(hh);
+  real rc = REF(gamma_bound)(8) * (RV(dot)(af, maf) + 2 * RV(dot)(al, af) + R_ABS(J));
+  rvec3 gv = RV(add)(RV(abs)(mv), RV(scale)(mav, REF(gamma_bound)(3)));
+  rvec3 gf = RV(add)(RV(abs)(RV(add)(mf, L)), RV(scale)(RV(add)(maf, al), REF(gamma_bound)(4)));
+  real pa = 2 * RV(dot)(gv, ev) + RV(dot)(ev, REF(cert_abs_apply)(q, ev));
+  real ph = RV(dot)(gv, ef) + RV(dot)(gf, ev) + RV(dot)(ef, REF(cert_abs_apply)(q, ev));
+  real pc = 2 * RV(dot)(gf, ef) + RV(dot)(ef, REF(cert_abs_apply)(q, ef));
+  *e_a = ra + pa;
+  *e_h = rh + ph;
+  *e_c = rc + pc;
+  real hm = R_ABS(hh) + rh;
+  real am = R_ABS(aa) + ra;
+  real cm = R_ABS(cc) + rc;
+  rvec3 mfl = RV(add)(mf, L);
+  rvec3 grad_f = RV(add)(RV(add)(RV(abs)(RV(scale)(RV(sub)(RV(scale)(mv, hh), RV(scale)(mfl, aa)), 2)),
+                                 RV(scale)(RV(add)(RV(scale)(gv, rh), RV(scale)(gf, ra)), 2)),
+                         RV(scale)(RV(add)(RV(scale)(gv, R_ABS(hh)), RV(scale)(gf, R_ABS(aa))), REF(gamma_bound)(8) * 2));
+  rvec3 grad_v = RV(add)(RV(add)(RV(abs)(RV(scale)(RV(sub)(RV(scale)(mfl, hh), RV(scale)(mv, cc)), 2)),
+                                 RV(scale)(RV(add)(RV(scale)(gf, rh), RV(scale)(gv, rc)), 2)),
+                         RV(scale)(RV(add)(RV(scale)(gf, R_ABS(hh)), RV(scale)(gv, R_ABS(cc))), REF(gamma_bound)(8) * 2));
+  real moved = RV(dot)(grad_f, ef) + RV(dot)(grad_v, ev) + 2 * hm * RV(dot)(ef, REF(cert_abs_apply)(q, ev)) + ph * ph +
+               am * RV(dot)(ef, REF(cert_abs_apply)(q, ef)) + cm * RV(dot)(ev, REF(cert_abs_apply)(q, ev)) + pa * pc;
+  real rounded;
+  if (rcm_eq_f(q->off, rcm_make_f(0, 0, 0))) {
+    real cxy = v.x * f.y - v.y * f.x;
+    real cxz = v.x * f.z - v.z * f.x;
+    real cyz = v.y * f.z - v.z * f.y;
+    *disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2 * m * ld - 2 * aa * lf +
+            ld * ld - aa * J;
+    real exy = REF(gamma_bound)(2) * (R_ABS(v.x * f.y) + R_ABS(v.y * f.x));
+    real exz = REF(gamma_bound)(2) * (R_ABS(v.x * f.z) + R_ABS(v.z * f.x));
+    real eyz = REF(gamma_bound)(2) * (R_ABS(v.y * f.z) + R_ABS(v.z * f.y));
+    real dxy = R_ABS(D.x * D.y);
+    real dxz = R_ABS(D.x * D.z);
+    real dyz = R_ABS(D.y * D.z);
+    real terms = dxy * cxy * cxy + dxz * cxz * cxz + dyz * cyz * cyz + 2 * R_ABS(m * ld) + 2 * R_ABS(aa * lf) + ld * ld +
+                 R_ABS(aa * J);
+    rounded = dxy * (2 * R_ABS(cxy) * exy + exy * exy) + dxz * (2 * R_ABS(cxz) * exz + exz * exz) +
+              dyz * (2 * R_ABS(cyz) * eyz + eyz * eyz) + 2 * (R_ABS(m) * rld + R_ABS(ld) * rm + rm * rld) +
+              2 * (R_ABS(aa) * rlf + R_ABS(lf) * ra + ra * rlf) + 2 * R_ABS(ld) * rld + rld * rld + R_ABS(J) * ra +
+              REF(gamma_bound)(12) * terms;
+  } else {
+    *disc = hh * hh - aa * cc;
+    rounded = 2 * R_ABS(hh) * rh + rh * rh + R_ABS(aa) * rc + R_ABS(cc) * ra + ra * rc +
+              REF(gamma_bound)(2) * (hh * hh + R_ABS(aa * cc));
+  }
+  return moved + rounded;
+}
+
+bool REF(cert_surface_root)(const ref_scene *sc, real t, real e, real b_in, real b_out, real e_in, real e_out,
+                            real t_max) {
+  real k = REF(cert_factor)(sc);
+  real m_in = t - b_in;
+  real m_out = b_out - t;
+  if (m_in < -k * (e + e_in) || m_out < -k * (e + e_out)) return false;
+  if (m_in > k * (e + e_in) && m_out > k * (e + e_out)) return REF(cert_root)(sc, t, e, t_max, t > 0);
+  bool taken = t > 0 && t <= t_max && m_in >= 0 && m_out >= 0;
+  REF(cert_maybe)(sc, t - k * e, t + k * e, t_max, taken);
+  return taken;
+}
+
+bool REF(cert_solid_end)(const ref_scene *sc, real t, bool on_box, real box, real e_box, real quad, real e_quad,
+                         bool face_sure, real t_max) {
+  bool side_sure = !(R_ABS(quad) < (real)RC_T_FAR) || R_ABS(box - quad) > REF(cert_factor)(sc) * (e_box + e_quad);
+  real e = side_sure ? (on_box ? e_box : e_quad) : rmax(e_box, e_quad);
+  if (!REF(cert_root)(sc, t, e, t_max, t > 0)) return false;
+  if (!side_sure || (on_box && !face_sure)) REF(cert_fail)();
+  return true;
+}
+
+void REF(cert_solid)(const ref_scene *sc, uint32_t kind, real t_lo, real t_hi, real e_r, real b_in, real b_out,
+                     real e_in, real e_out, uint32_t sure, real t_max) {
+  real k = REF(cert_factor)(sc);
+  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -(real)RC_T_FAR;
+  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : (real)RC_T_FAR);
+  uint32_t pieces = (kind == RC_QR_OUTSIDE) ? 2 : 1;
+  for (uint32_t p = 0; p < pieces; p++) {
+    real lo = (p == 0) ? lo0 : t_hi;
+    real hi = (p == 0) ? hi0 : (real)RC_T_FAR;
+    real e_lo = (R_ABS(lo) < (real)RC_T_FAR) ? e_r : 0;
+    real e_hi = (R_ABS(hi) < (real)RC_T_FAR) ? e_r : 0;
+    bool box_starts = b_in >= lo;
+    bool box_ends = b_out <= hi;
+    real s = box_starts ? b_in : lo;
+    real e = box_ends ? b_out : hi;
+    real e_s = rmax(e_in, e_lo);
+    real e_e = rmax(e_out, e_hi);
+    if (s - e > k * (e_s + e_e)) continue;
+    if (!(e - s > k * (e_s + e_e))) {
+      bool taken = s <= e && ((s > 0 && s <= t_max) || (e > 0 && e <= t_max));
+      REF(cert_maybe)(sc, rmin(s, e) - k * rmax(e_s, e_e), rmax(s, e) + k * rmax(e_s, e_e), t_max, taken);
+      if (taken) return;
+      continue;
+    }
+    if (REF(cert_solid_end)(sc, s, box_starts, b_in, e_in, lo, e_lo, (sure & 1u) != 0, t_max)) return;
+    if (REF(cert_solid_end)(sc, e, box_ends, b_out, e_out, hi, e_hi, (sure & 2u) != 0, t_max)) return;
+  }
+}
+
+void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
+  real k = REF(cert_factor)(sc);
+  rvec3 f = REF(quadric_local)(q, RV(sub)(o, rvec3_from(q->center)));
+  rvec3 v = REF(quadric_local)(q, d);
+  rvec3 ef = REF(cert_local_error)(q, RV(add)(RV(abs)(o), RV(abs)(rvec3_from(q->center))), ref_cert_eo, 4);
+  rvec3 ev = REF(cert_local_error)(q, RV(abs)(d), ref_cert_ed, 3);
+  real b_in, b_out, e_in, e_out;
+  uint32_t sure;
+  uint32_t box = REF(cert_box)(sc, q, f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
+  if (box == 0) return;
+  if (box == 2) {
+    REF(cert_fail)();
+    return;
+  }
+  real a, h, c, disc, e_a, e_h, e_c;
+  real e_disc = REF(cert_quadric_terms)(q, f, v, ef, ev, &a, &h, &c, &disc, &e_a, &e_h, &e_c);
+  bool solid = (q->flags & RC_QUADRIC_SOLID) != 0;
+  if (a == 0 && e_a == 0 && h == 0 && e_h == 0) {
+    REF(cert_require)(sc, c, e_c);
+    if (solid && c <= 0) REF(cert_solid)(sc, RC_QR_ALL, 0, 0, 0, b_in, b_out, e_in, e_out, sure, t_max);
+    return;
+  }
+  if (!(R_ABS(a) > k * e_a)) {
+    REF(cert_fail)();
+    return;
+  }
+  if (a > 0 && h > k * e_h && (c > k * e_c || (ref_cert_self && c > 0))) return;
+  if (!(R_ABS(disc) > k * e_disc)) {
+    if (a < 0) {
+      REF(cert_fail)();
+      return;
+    }
+    real spread = R_SQRT(rmax(disc, 0) + k * e_disc) + k * e_h;
+    real a_lo = a - k * e_a;
+    real a_hi = a + k * e_a;
+    real lo = rmin((-h - spread) / a_lo, (-h - spread) / a_hi);
+    real hi = rmax((-h + spread) / a_lo, (-h + spread) / a_hi);
+    lo = rmax(lo - REF(gamma_bound)(3) * R_ABS(lo), b_in - k * e_in);
+    hi = rmin(hi + REF(gamma_bound)(3) * R_ABS(hi), b_out + k * e_out);
+    if (lo > hi) return;
+    REF(cert_maybe)(sc, lo, hi, t_max, disc >= 0 && hi > 0 && lo <= t_max);
+    return;
+  }
+  if (disc < 0) {
+    if (solid && a < 0) REF(cert_solid)(sc, RC_QR_ALL, 0, 0, 0, b_in, b_out, e_in, e_out, sure, t_max);
+    return;
+  }
+  real sq = R_SQRT(disc);
+  real qq = (h >= 0) ? -(h + sq) : -(h - sq);
+  if (qq == 0 || R_ABS(qq) >= R_ABS(a) * (real)RC_T_FAR || R_ABS(c) >= R_ABS(qq) * (real)RC_T_FAR) {
+    REF(cert_fail)();
+    return;
+  }
+  real r0 = qq / a;
+  real r1 = c / qq;
+  real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
+  real e_q = e_h + e_sq + REF(gamma_bound)(2) * R_ABS(qq);
+  real e_r0 = (R_ABS(a) > e_a) ? (e_q + R_ABS(r0) * e_a) / (R_ABS(a) - e_a) + REF(gamma_bound)(1) * R_ABS(r0)
+                               : (real)RC_T_FAR;
+  real e_r1 = (R_ABS(qq) > e_q) ? (e_c + R_ABS(r1) * e_q) / (R_ABS(qq) - e_q) + REF(gamma_bound)(1) * R_ABS(r1)
+                                : (real)RC_T_FAR;
+  real e_r = rmax(e_r0, e_r1);
+  real t_lo = rmin(r0, r1);
+  real t_hi = rmax(r0, r1);
+  if (solid) {
+    REF(cert_solid)(sc, (a > 0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure,
+                    t_max);
+    return;
+  }
+  if (REF(cert_surface_root)(sc, t_lo, e_r, b_in, b_out, e_in, e_out, t_max)) return;
+  REF(cert_surface_root)(sc, t_hi, e_r, b_in, b_out, e_in, e_out, t_max);
+}
+
+real REF(cert_quadric_normal)(const packed_quadric *q, rvec3 p, real ep) {
+  rvec3 ax = rvec3_from(q->axis_x);
+  rvec3 ay = rvec3_from(q->axis_y);
+  rvec3 az = rvec3_from(q->axis_z);
+  rvec3 L = rvec3_from(q->linear);
+  real gx = R_ABS(RV(dot)(ax, ax)) + R_ABS(RV(dot)(ax, ay)) + R_ABS(RV(dot)(ax, az));
+  real gy = R_ABS(RV(dot)(ay, ax)) + R_ABS(RV(dot)(ay, ay)) + R_ABS(RV(dot)(ay, az));
+  real gz = R_ABS(RV(dot)(az, ax)) + R_ABS(RV(dot)(az, ay)) + R_ABS(RV(dot)(az, az));
+  real rn = R_SQRT(rmax(gx, rmax(gy, gz))) * (1 + REF(gamma_bound)(4));
+  rvec3 rows = REF(cert_abs_apply)(q, RV(make)(1, 1, 1));
+  real mn = rmax(rows.x, rmax(rows.y, rows.z)) * (1 + REF(gamma_bound)(2));
+  rvec3 f = REF(quadric_local)(q, RV(sub)(p, rvec3_from(q->center)));
+  rvec3 g = RV(add)(REF(quadric_apply)(q, f), L);
+  rvec3 n = RV(add)(RV(add)(RV(scale)(ax, g.x), RV(scale)(ay, g.y)), RV(scale)(az, g.z));
+  rvec3 ef = REF(cert_local_error)(q, RV(add)(RV(abs)(p), RV(abs)(rvec3_from(q->center))), 0, 4);
+  real eg = mn * (rn * ep + RV(length)(ef)) +
+            REF(gamma_bound)(4) * RV(length)(RV(add)(REF(cert_abs_apply)(q, RV(abs)(f)), RV(abs)(L)));
+  real e_n = rn * eg + REF(gamma_bound)(3) * RV(length)(RV(add)(RV(add)(RV(scale)(RV(abs)(ax), R_ABS(g.x)),
+                                                                         RV(scale)(RV(abs)(ay), R_ABS(g.y))),
+                                                                 RV(scale)(RV(abs)(az), R_ABS(g.z))));
+  return REF(cert_turn_of)(e_n, RV(length)(n));
+}

@@ -197,6 +197,10 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
       REF(cert_plane)(sc, q, o, d, t_max);
       return;
     }
+    if (kind == RC_HIT_QUADRIC && (q->flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0) {
+      REF(cert_quadric)(sc, q, o, d, t_max);
+      return;
+    }
     REF(cert_fail)();
   }
 }

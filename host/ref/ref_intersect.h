@@ -87,6 +87,22 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \
   void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max); \
   void ref_cert_plane_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);     \
+  V ref_cert_abs_apply_##S(const packed_quadric *q, V v);                                       \
+  V ref_cert_local_error_##S(const packed_quadric *q, V mag, R e, R n);                         \
+  bool ref_cert_slab_##S(const ref_scene *sc, R lo, R hi, R f, R v, R ef, R ev, R *tn, R *tx, R *e); \
+  R ref_cert_span_end_##S(const ref_scene *sc, R s, R t0, R e0, R t1, R e1, R t2, R e2, R *e, bool *sure); \
+  uint32_t ref_cert_slab_parallel_##S(const ref_scene *sc, R lo, R hi, R f, R v, R ef, R ev, R reach_t); \
+  uint32_t ref_cert_box_##S(const ref_scene *sc, const packed_quadric *q, V f, V v, V ef, V ev, R *b_in, R *b_out, \
+                            R *e_in, R *e_out, uint32_t *sure);                                  \
+  R ref_cert_quadric_terms_##S(const packed_quadric *q, V f, V v, V ef, V ev, R *a, R *h, R *c, R *disc, R *e_a, \
+                               R *e_h, R *e_c);                                                  \
+  bool ref_cert_surface_root_##S(const ref_scene *sc, R t, R e, R b_in, R b_out, R e_in, R e_out, R t_max); \
+  bool ref_cert_solid_end_##S(const ref_scene *sc, R t, bool on_box, R box, R e_box, R quad, R e_quad, \
+                              bool face_sure, R t_max);                                          \
+  void ref_cert_solid_##S(const ref_scene *sc, uint32_t kind, R t_lo, R t_hi, R e_r, R b_in, R b_out, R e_in, \
+                          R e_out, uint32_t sure, R t_max);                                      \
+  void ref_cert_quadric_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);   \
+  R ref_cert_quadric_normal_##S(const packed_quadric *q, V p, R ep);                            \
   void ref_closest_hit_linear_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);               \
   bool ref_occluded_linear_##S(const ref_scene *sc, V o, V d, R t_max);                         \
   V ref_safe_inverse_##S(V d);                                                                  \

@@ -200,6 +200,10 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
       REF(cert_require)(sc, RV(dot)(sf->n, sf->ng), en + REF(gamma_bound)(12));
     }
   }
+  if (h->kind == RC_HIT_QUADRIC && ((h->part >> 2u) & 3u) == 0) {
+    const packed_quadric *q = &sc->quadrics[h->part >> RC_CSG_CODE_LEAF_SHIFT];
+    if ((q->flags & RC_QUADRIC_UNBOUNDED) == 0) en += REF(cert_quadric_normal)(q, sf->p, ep);
+  }
   ref_cert_ep = ep;
   ref_cert_en = en;
 }
