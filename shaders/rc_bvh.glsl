@@ -121,14 +121,12 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   // another copy of the whole object dispatch (composites included) here cost the
   // quadric and CSG scenes 25-40 % of their frame time; even this loop, never entered,
   // cost 6 % until RC_KIND_PLANES compiled it out.
-#if RC_CERTIFY
-  ray_shear sh = ray_shear_for(d);  // for the certificates only: a plane has no shear
-#endif
   for (uint k = first; k < frame.quadric_count; k++) {
+    packed_quadric q = load_quadric(k);
 #if RC_CERTIFY
-    if (certify) cert_object(first_quadric_object + k, o, d, sh, any ? t_max : h.t);
+    if (certify) cert_plane_object(first_quadric_object + k, q, o, d, any ? t_max : h.t);
 #endif
-    real t = intersect_plane(load_quadric(k), o, d, any ? t_max : h.t);
+    real t = intersect_plane(q, o, d, any ? t_max : h.t);
 #if RC_CERTIFY
     if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) continue;
 #endif

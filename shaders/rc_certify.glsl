@@ -564,22 +564,25 @@ void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   }
   real a, h, c, disc, e_a, e_h, e_c;
   real e_disc = cert_quadric_terms(q, f, v, ef, ev, a, h, c, disc, e_a, e_h, e_c);
-  bool solid = (q.flags & RC_QUADRIC_SOLID) != 0u;
+  // The kind and roots (quadric_roots), then one inlined copy of the solid's and one of the
+  // surface's decisions: a SIMD shader runs every copy.
+  uint kind = RC_QR_NONE;
+  real t_lo = 0.0;
+  real t_hi = 0.0;
+  real e_r = 0.0;
   if (a == 0.0 && e_a == 0.0 && h == 0.0 && e_h == 0.0) {
     cert_require(c, e_c);
-    if (solid && c <= 0.0) cert_solid(RC_QR_ALL, 0.0, 0.0, 0.0, b_in, b_out, e_in, e_out, sure, t_max);
-    return;
-  }
-  if (!(abs(a) > k * e_a)) {
+    kind = (c <= 0.0) ? RC_QR_ALL : RC_QR_NONE;
+  } else if (!(abs(a) > k * e_a)) {
     cert_fail();
     return;
-  }
-  // Q(t) = a t^2 + 2 h t + c with a, h and c all positive has no root ahead: a ray leaving a
-  // surface that curves towards it, from outside (c > 0 beyond its bound, or the surface a
-  // spawned ray leaves, whose error-bound offset puts both precisions' origins on the side
-  // its normal points to), as the sphere's leaving rays (cert_sphere_grazing).
-  if (a > 0.0 && h > k * e_h && (c > k * e_c || (cert_self && c > 0.0))) return;
-  if (!(abs(disc) > k * e_disc)) {
+  } else if (a > 0.0 && h > k * e_h && (c > k * e_c || (cert_self && c > 0.0))) {
+    // Q(t) = a t^2 + 2 h t + c with a, h and c all positive has no root ahead: a ray leaving
+    // a surface that curves towards it, from outside (c > 0 beyond its bound, or the surface
+    // a spawned ray leaves, whose error-bound offset puts both precisions' origins on the
+    // side its normal points to), as the sphere's leaving rays (cert_sphere_grazing).
+    return;
+  } else if (!(abs(disc) > k * e_disc)) {
     if (a < 0.0) {
       cert_fail();
       return;
@@ -591,33 +594,34 @@ void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
     real hi = select_max((-h + spread) / a_lo, (-h + spread) / a_hi);
     lo = select_max(lo - gamma_bound(3.0) * abs(lo), b_in - k * e_in);
     hi = select_min(hi + gamma_bound(3.0) * abs(hi), b_out + k * e_out);
-    if (lo > hi) return;
-    cert_maybe(lo, hi, t_max, disc >= 0.0 && hi > 0.0 && lo <= t_max);
+    if (lo <= hi) cert_maybe(lo, hi, t_max, disc >= 0.0 && hi > 0.0 && lo <= t_max);
+    return;
+  } else if (disc < 0.0) {
+    kind = (a > 0.0) ? RC_QR_NONE : RC_QR_ALL;
+  } else {
+    precise real sq = sqrt(disc);
+    precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);
+    if (qq == 0.0 || abs(qq) >= abs(a) * real(RC_T_FAR) || abs(c) >= abs(qq) * real(RC_T_FAR)) {
+      cert_fail();
+      return;
+    }
+    precise real r0 = qq / a;
+    precise real r1 = c / qq;
+    real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
+    real e_q = e_h + e_sq + gamma_bound(2.0) * abs(qq);
+    real e_r0 = (abs(a) > e_a) ? (e_q + abs(r0) * e_a) / (abs(a) - e_a) + gamma_bound(1.0) * abs(r0) : real(RC_T_FAR);
+    real e_r1 = (abs(qq) > e_q) ? (e_c + abs(r1) * e_q) / (abs(qq) - e_q) + gamma_bound(1.0) * abs(r1) : real(RC_T_FAR);
+    e_r = select_max(e_r0, e_r1);
+    t_lo = select_min(r0, r1);
+    t_hi = select_max(r0, r1);
+    kind = (a > 0.0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
+  }
+  if (kind == RC_QR_NONE) return;
+  if ((q.flags & RC_QUADRIC_SOLID) != 0u) {
+    cert_solid(kind, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure, t_max);
     return;
   }
-  if (disc < 0.0) {
-    if (solid && a < 0.0) cert_solid(RC_QR_ALL, 0.0, 0.0, 0.0, b_in, b_out, e_in, e_out, sure, t_max);
-    return;
-  }
-  precise real sq = sqrt(disc);
-  precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);
-  if (qq == 0.0 || abs(qq) >= abs(a) * real(RC_T_FAR) || abs(c) >= abs(qq) * real(RC_T_FAR)) {
-    cert_fail();
-    return;
-  }
-  precise real r0 = qq / a;
-  precise real r1 = c / qq;
-  real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
-  real e_q = e_h + e_sq + gamma_bound(2.0) * abs(qq);
-  real e_r0 = (abs(a) > e_a) ? (e_q + abs(r0) * e_a) / (abs(a) - e_a) + gamma_bound(1.0) * abs(r0) : real(RC_T_FAR);
-  real e_r1 = (abs(qq) > e_q) ? (e_c + abs(r1) * e_q) / (abs(qq) - e_q) + gamma_bound(1.0) * abs(r1) : real(RC_T_FAR);
-  real e_r = select_max(e_r0, e_r1);
-  real t_lo = select_min(r0, r1);
-  real t_hi = select_max(r0, r1);
-  if (solid) {
-    cert_solid((a > 0.0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure, t_max);
-    return;
-  }
+  if (kind == RC_QR_ALL) return;
   if (cert_surface_root(t_lo, e_r, b_in, b_out, e_in, e_out, t_max)) return;
   cert_surface_root(t_hi, e_r, b_in, b_out, e_in, e_out, t_max);
 }

@@ -74,11 +74,10 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   const packed_frame *f = sc->frame;
   if (f->plane_count == 0) return false;
   uint32_t first = f->quadric_count - f->plane_count, first_quadric_object = f->sphere_count + f->triangle_count;
-  ref_shear sh;
-  if (f->certify) sh = REF(ray_shear_for)(d);
   for (uint32_t k = first; k < f->quadric_count; k++) {
-    if (f->certify) REF(cert_object)(sc, first_quadric_object + k, o, d, &sh, any ? t_max : h->t);
-    real t = REF(intersect_plane)(&sc->quadrics[k], o, d, any ? t_max : h->t);
+    const packed_quadric *q = &sc->quadrics[k];
+    if (f->certify) REF(cert_plane_object)(sc, first_quadric_object + k, q, o, d, any ? t_max : h->t);
+    real t = REF(intersect_plane)(q, o, d, any ? t_max : h->t);
     if (f->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, first_quadric_object + k, t, 0, RV(make)(0, 0, 0), REF(csg_code)(k, 0, false, false), h);

@@ -427,18 +427,19 @@ void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rv
   }
   real a, h, c, disc, e_a, e_h, e_c;
   real e_disc = REF(cert_quadric_terms)(q, f, v, ef, ev, &a, &h, &c, &disc, &e_a, &e_h, &e_c);
-  bool solid = (q->flags & RC_QUADRIC_SOLID) != 0;
+  uint32_t kind = RC_QR_NONE;
+  real t_lo = 0;
+  real t_hi = 0;
+  real e_r = 0;
   if (a == 0 && e_a == 0 && h == 0 && e_h == 0) {
     REF(cert_require)(sc, c, e_c);
-    if (solid && c <= 0) REF(cert_solid)(sc, RC_QR_ALL, 0, 0, 0, b_in, b_out, e_in, e_out, sure, t_max);
-    return;
-  }
-  if (!(R_ABS(a) > k * e_a)) {
+    kind = (c <= 0) ? RC_QR_ALL : RC_QR_NONE;
+  } else if (!(R_ABS(a) > k * e_a)) {
     REF(cert_fail)();
     return;
-  }
-  if (a > 0 && h > k * e_h && (c > k * e_c || (ref_cert_self && c > 0))) return;
-  if (!(R_ABS(disc) > k * e_disc)) {
+  } else if (a > 0 && h > k * e_h && (c > k * e_c || (ref_cert_self && c > 0))) {
+    return;
+  } else if (!(R_ABS(disc) > k * e_disc)) {
     if (a < 0) {
       REF(cert_fail)();
       return;
@@ -450,36 +451,36 @@ void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rv
     real hi = rmax((-h + spread) / a_lo, (-h + spread) / a_hi);
     lo = rmax(lo - REF(gamma_bound)(3) * R_ABS(lo), b_in - k * e_in);
     hi = rmin(hi + REF(gamma_bound)(3) * R_ABS(hi), b_out + k * e_out);
-    if (lo > hi) return;
-    REF(cert_maybe)(sc, lo, hi, t_max, disc >= 0 && hi > 0 && lo <= t_max);
+    if (lo <= hi) REF(cert_maybe)(sc, lo, hi, t_max, disc >= 0 && hi > 0 && lo <= t_max);
+    return;
+  } else if (disc < 0) {
+    kind = (a > 0) ? RC_QR_NONE : RC_QR_ALL;
+  } else {
+    real sq = R_SQRT(disc);
+    real qq = (h >= 0) ? -(h + sq) : -(h - sq);
+    if (qq == 0 || R_ABS(qq) >= R_ABS(a) * (real)RC_T_FAR || R_ABS(c) >= R_ABS(qq) * (real)RC_T_FAR) {
+      REF(cert_fail)();
+      return;
+    }
+    real r0 = qq / a;
+    real r1 = c / qq;
+    real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
+    real e_q = e_h + e_sq + REF(gamma_bound)(2) * R_ABS(qq);
+    real e_r0 = (R_ABS(a) > e_a) ? (e_q + R_ABS(r0) * e_a) / (R_ABS(a) - e_a) + REF(gamma_bound)(1) * R_ABS(r0)
+                                 : (real)RC_T_FAR;
+    real e_r1 = (R_ABS(qq) > e_q) ? (e_c + R_ABS(r1) * e_q) / (R_ABS(qq) - e_q) + REF(gamma_bound)(1) * R_ABS(r1)
+                                  : (real)RC_T_FAR;
+    e_r = rmax(e_r0, e_r1);
+    t_lo = rmin(r0, r1);
+    t_hi = rmax(r0, r1);
+    kind = (a > 0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
+  }
+  if (kind == RC_QR_NONE) return;
+  if ((q->flags & RC_QUADRIC_SOLID) != 0) {
+    REF(cert_solid)(sc, kind, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure, t_max);
     return;
   }
-  if (disc < 0) {
-    if (solid && a < 0) REF(cert_solid)(sc, RC_QR_ALL, 0, 0, 0, b_in, b_out, e_in, e_out, sure, t_max);
-    return;
-  }
-  real sq = R_SQRT(disc);
-  real qq = (h >= 0) ? -(h + sq) : -(h - sq);
-  if (qq == 0 || R_ABS(qq) >= R_ABS(a) * (real)RC_T_FAR || R_ABS(c) >= R_ABS(qq) * (real)RC_T_FAR) {
-    REF(cert_fail)();
-    return;
-  }
-  real r0 = qq / a;
-  real r1 = c / qq;
-  real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
-  real e_q = e_h + e_sq + REF(gamma_bound)(2) * R_ABS(qq);
-  real e_r0 = (R_ABS(a) > e_a) ? (e_q + R_ABS(r0) * e_a) / (R_ABS(a) - e_a) + REF(gamma_bound)(1) * R_ABS(r0)
-                               : (real)RC_T_FAR;
-  real e_r1 = (R_ABS(qq) > e_q) ? (e_c + R_ABS(r1) * e_q) / (R_ABS(qq) - e_q) + REF(gamma_bound)(1) * R_ABS(r1)
-                                : (real)RC_T_FAR;
-  real e_r = rmax(e_r0, e_r1);
-  real t_lo = rmin(r0, r1);
-  real t_hi = rmax(r0, r1);
-  if (solid) {
-    REF(cert_solid)(sc, (a > 0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure,
-                    t_max);
-    return;
-  }
+  if (kind == RC_QR_ALL) return;
   if (REF(cert_surface_root)(sc, t_lo, e_r, b_in, b_out, e_in, e_out, t_max)) return;
   REF(cert_surface_root)(sc, t_hi, e_r, b_in, b_out, e_in, e_out, t_max);
 }

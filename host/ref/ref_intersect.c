@@ -213,6 +213,15 @@ void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, co
   ref_cert_ok = ok && ref_cert_ok;
 }
 
+void REF(cert_plane_object)(const ref_scene *sc, uint32_t object, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
+  bool ok = ref_cert_ok;
+  ref_cert_ok = true;
+  ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
+  REF(cert_plane)(sc, q, o, d, t_max);
+  ref_cert_hit_ok = ref_cert_ok;
+  ref_cert_ok = ok && ref_cert_ok;
+}
+
 void REF(cert_closest)(const ref_scene *sc, const ref_hit *h) {
   bool certain = (h->kind == RC_HIT_NONE) ? !(ref_cert_beyond < (real)RC_T_FAR)
                                           : ref_cert_beyond > h->t + REF(cert_factor)(sc) * h->err;

@@ -62,6 +62,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_cert_limit_##S(const ref_scene *sc, R t, R e);                                          \
   void ref_cert_order_##S(const ref_scene *sc, R t, uint32_t object, const ref_hit_##S *h);       \
   void ref_cert_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
+  void ref_cert_plane_object_##S(const ref_scene *sc, uint32_t object, const packed_quadric *q, V o, V d, R t_max); \
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
   bool ref_cert_blocker_ends_##S(void);                                                         \

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# --precision certified is sound (docs/numerics.md §10): on example scenes and on the
+# --precision certified is sound (docs/numerics.md §10): on example scenes (quadrics.json: every
+# bounded quadric, a mirror box under them) and on the
 # extremes scenes where plain f32 makes other decisions than the f64 reference (cracks between
 # triangles, a fan, a huge triangle, contact shadows, a far cylinder, a crowd of far spheres
 # and of far ellipsoids, a grazing ground plane), every pixel the GPU's f32 pass certifies has the f64 CPU
@@ -46,7 +47,8 @@ json.dump(s, open(sys.argv[2], "w"))
 PY
 
 faulted=0
-for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$scenes/earth.json" "$work/ellipsoids.json" \
+for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$scenes/earth.json" "$scenes/quadrics.json" \
+         "$work/ellipsoids.json" \
          "$extremes/S05_ground_h1e0.json" "$extremes/S08_cracks_0deg_at_0.json" "$extremes/S09_fan_1000.json" \
          "$extremes/S11_huge_triangle_1e7.json" "$extremes/S17_contact_X0_h1e-2.json" \
          "$extremes/S20_far_cylinder_1e6.json" "$extremes/S21_many_spheres_D1e3.json"; do
