@@ -415,17 +415,11 @@ real cert_quadric_terms(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, 
   rvec3 D = rvec3(q.diag);
   rvec3 L = rvec3(q.linear);
   real J = real(q.constant);
-  precise rvec3 mv = quadric_apply(q, v);
-  precise rvec3 mf = quadric_apply(q, f);
-  precise real aa = dot(v, mv);
-  precise real m = dot(f, mv);
-  precise real ld = dot(L, v);
-  precise real lf = dot(L, f);
-  precise real hh = m + ld;
-  precise real cc = dot(f, mf) + 2.0 * lf + J;
-  a = aa;
-  h = hh;
-  c = cc;
+  quadric_terms k = quadric_coefficients(q, f, v);
+  a = k.a;
+  h = k.h;
+  c = k.c;
+  disc = quadric_discriminant(q, f, v, k);
   rvec3 av = abs(v);
   rvec3 af = abs(f);
   rvec3 al = abs(L);
@@ -435,46 +429,41 @@ real cert_quadric_terms(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, 
   real rm = gamma_bound(6.0) * dot(af, mav);
   real rld = gamma_bound(3.0) * dot(al, av);
   real rlf = gamma_bound(3.0) * dot(al, af);
-  real rh = rm + rld + gamma_bound(1.0) * abs(hh);
+  real rh = rm + rld + gamma_bound(1.0) * abs(k.h);
   real rc = gamma_bound(8.0) * (dot(af, maf) + 2.0 * dot(al, af) + abs(J));
-  rvec3 gv = abs(mv) + gamma_bound(3.0) * mav;
-  rvec3 gf = abs(mf + L) + gamma_bound(4.0) * (maf + al);
+  rvec3 gv = abs(k.mv) + gamma_bound(3.0) * mav;
+  rvec3 mfl = k.mf + L;
+  rvec3 gf = abs(mfl) + gamma_bound(4.0) * (maf + al);
   real pa = 2.0 * dot(gv, ev) + dot(ev, cert_abs_apply(q, ev));
   real ph = dot(gv, ef) + dot(gf, ev) + dot(ef, cert_abs_apply(q, ev));
   real pc = 2.0 * dot(gf, ef) + dot(ef, cert_abs_apply(q, ef));
   e_a = ra + pa;
   e_h = rh + ph;
   e_c = rc + pc;
-  real hm = abs(hh) + rh;
-  real am = abs(aa) + ra;
-  real cm = abs(cc) + rc;
-  rvec3 mfl = mf + L;
-  rvec3 grad_f = abs(2.0 * (hh * mv - aa * mfl)) + 2.0 * (rh * gv + ra * gf) + gamma_bound(8.0) * 2.0 * (abs(hh) * gv + abs(aa) * gf);
-  rvec3 grad_v = abs(2.0 * (hh * mfl - cc * mv)) + 2.0 * (rh * gf + rc * gv) + gamma_bound(8.0) * 2.0 * (abs(hh) * gf + abs(cc) * gv);
+  real hm = abs(k.h) + rh;
+  real am = abs(k.a) + ra;
+  real cm = abs(k.c) + rc;
+  rvec3 grad_f = abs(2.0 * (k.h * k.mv - k.a * mfl)) + 2.0 * (rh * gv + ra * gf) + gamma_bound(8.0) * 2.0 * (abs(k.h) * gv + abs(k.a) * gf);
+  rvec3 grad_v = abs(2.0 * (k.h * mfl - k.c * k.mv)) + 2.0 * (rh * gf + rc * gv) + gamma_bound(8.0) * 2.0 * (abs(k.h) * gf + abs(k.c) * gv);
   real moved = dot(grad_f, ef) + dot(grad_v, ev) + 2.0 * hm * dot(ef, cert_abs_apply(q, ev)) + ph * ph +
                am * dot(ef, cert_abs_apply(q, ef)) + cm * dot(ev, cert_abs_apply(q, ev)) + pa * pc;
   real rounded;
   if (q.off == vec3(0.0)) {
-    precise real cxy = v.x * f.y - v.y * f.x;
-    precise real cxz = v.x * f.z - v.z * f.x;
-    precise real cyz = v.y * f.z - v.z * f.y;
-    disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2.0 * m * ld - 2.0 * aa * lf +
-           ld * ld - aa * J;
+    rvec3 w = quadric_minors(f, v);
     real exy = gamma_bound(2.0) * (abs(v.x * f.y) + abs(v.y * f.x));
     real exz = gamma_bound(2.0) * (abs(v.x * f.z) + abs(v.z * f.x));
     real eyz = gamma_bound(2.0) * (abs(v.y * f.z) + abs(v.z * f.y));
     real dxy = abs(D.x * D.y);
     real dxz = abs(D.x * D.z);
     real dyz = abs(D.y * D.z);
-    real terms = dxy * cxy * cxy + dxz * cxz * cxz + dyz * cyz * cyz + 2.0 * abs(m * ld) + 2.0 * abs(aa * lf) + ld * ld +
-                 abs(aa * J);
-    rounded = dxy * (2.0 * abs(cxy) * exy + exy * exy) + dxz * (2.0 * abs(cxz) * exz + exz * exz) +
-              dyz * (2.0 * abs(cyz) * eyz + eyz * eyz) + 2.0 * (abs(m) * rld + abs(ld) * rm + rm * rld) +
-              2.0 * (abs(aa) * rlf + abs(lf) * ra + ra * rlf) + 2.0 * abs(ld) * rld + rld * rld + abs(J) * ra +
+    real terms = dxy * w.x * w.x + dxz * w.y * w.y + dyz * w.z * w.z + 2.0 * abs(k.m * k.ld) + 2.0 * abs(k.a * k.lf) + k.ld * k.ld +
+                 abs(k.a * J);
+    rounded = dxy * (2.0 * abs(w.x) * exy + exy * exy) + dxz * (2.0 * abs(w.y) * exz + exz * exz) +
+              dyz * (2.0 * abs(w.z) * eyz + eyz * eyz) + 2.0 * (abs(k.m) * rld + abs(k.ld) * rm + rm * rld) +
+              2.0 * (abs(k.a) * rlf + abs(k.lf) * ra + ra * rlf) + 2.0 * abs(k.ld) * rld + rld * rld + abs(J) * ra +
               gamma_bound(12.0) * terms;
   } else {
-    disc = hh * hh - aa * cc;
-    rounded = 2.0 * abs(hh) * rh + rh * rh + abs(aa) * rc + abs(cc) * ra + ra * rc + gamma_bound(2.0) * (hh * hh + abs(aa * cc));
+    rounded = 2.0 * abs(k.h) * rh + rh * rh + abs(k.a) * rc + abs(k.c) * ra + ra * rc + gamma_bound(2.0) * (k.h * k.h + abs(k.a * k.c));
   }
   return moved + rounded;
 }

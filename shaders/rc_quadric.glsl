@@ -36,31 +36,70 @@ rvec3 quadric_apply(packed_quadric q, rvec3 v) {
   return r;
 }
 
-// The quadratic a t^2 + 2 h t + c of Q along f + t v (the ray in the quadric's frame) and
-// its roots, classified. For a diagonal M (the named shapes) the discriminant h^2 - a c
-// is formed by Lagrange's identity, the Hearn-Baker form of the sphere test generalized
-// (D = diag, L = linear, J = constant):
-//   h^2 - a c = -sum_{i<j} D_i D_j (v_i f_j - v_j f_i)^2 + 2 (sum D_i v_i f_i)(L.v)
-//               - 2 a (L.f) + (L.v)^2 - a J,
-// with no cancellation between two large squares when the quadric is far away; a general
-// matrix uses h^2 - a c as it stands. The roots are the stable pair c/q, q/a with
-// q = -(h + sign(h) sqrt(disc)); a = 0 (a ray parallel to a cylinder's or paraboloid's
-// axis) has its own branch, and a root beyond RC_T_FAR (a tiny a) is pinned there
-// instead of dividing (docs/numerics.md §3).
-uint quadric_roots(packed_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi) {
-  t_lo = -real(RC_T_FAR);
-  t_hi = real(RC_T_FAR);
-  rvec3 D = rvec3(q.diag);
+// The quadratic a t^2 + 2 h t + c of Q along f + t v (the ray in the quadric's frame):
+// a = v.Mv, h = f.Mv + L.v, c = f.Mf + 2 L.f + J, and the products they are made of, which
+// the discriminant and the certificate's bounds (rc_certify.glsl) reuse.
+struct quadric_terms {
+  rvec3 mv;  // M v
+  rvec3 mf;  // M f
+  real m;    // f.Mv
+  real ld;   // L.v
+  real lf;   // L.f
+  real a;
+  real h;
+  real c;
+};
+
+quadric_terms quadric_coefficients(packed_quadric q, rvec3 f, rvec3 v) {
   rvec3 L = rvec3(q.linear);
-  real J = real(q.constant);
   precise rvec3 mv = quadric_apply(q, v);
   precise rvec3 mf = quadric_apply(q, f);
-  precise real a = dot(v, mv);
   precise real m = dot(f, mv);
   precise real ld = dot(L, v);
   precise real lf = dot(L, f);
+  precise real a = dot(v, mv);
   precise real h = m + ld;
-  precise real c = dot(f, mf) + 2.0 * lf + J;
+  precise real c = dot(f, mf) + 2.0 * lf + real(q.constant);
+  return quadric_terms(mv, mf, m, ld, lf, a, h, c);
+}
+
+// The 2x2 minors v_i f_j - v_j f_i (xy, xz, yz) of Lagrange's identity below.
+rvec3 quadric_minors(rvec3 f, rvec3 v) {
+  precise rvec3 w = rvec3(v.x * f.y - v.y * f.x, v.x * f.z - v.z * f.x, v.y * f.z - v.z * f.y);
+  return w;
+}
+
+// h^2 - a c. For a diagonal M (the named shapes) it is formed by Lagrange's identity, the
+// Hearn-Baker form of the sphere test generalized (D = diag, L = linear, J = constant):
+//   h^2 - a c = -sum_{i<j} D_i D_j (v_i f_j - v_j f_i)^2 + 2 (sum D_i v_i f_i)(L.v)
+//               - 2 a (L.f) + (L.v)^2 - a J,
+// with no cancellation between two large squares when the quadric is far away; a general
+// matrix uses h^2 - a c as it stands.
+real quadric_discriminant(packed_quadric q, rvec3 f, rvec3 v, quadric_terms k) {
+  rvec3 D = rvec3(q.diag);
+  real J = real(q.constant);
+  precise real disc;
+  if (q.off == vec3(0.0)) {
+    precise rvec3 w = quadric_minors(f, v);
+    disc = -(D.x * D.y * w.x * w.x + D.x * D.z * w.y * w.y + D.y * D.z * w.z * w.z) + 2.0 * k.m * k.ld -
+           2.0 * k.a * k.lf + k.ld * k.ld - k.a * J;
+  } else {
+    disc = k.h * k.h - k.a * k.c;
+  }
+  return disc;
+}
+
+// The roots of the quadratic (quadric_coefficients), classified. They are the stable pair
+// c/q, q/a with q = -(h + sign(h) sqrt(disc)); a = 0 (a ray parallel to a cylinder's or
+// paraboloid's axis) has its own branch, and a root beyond RC_T_FAR (a tiny a) is pinned
+// there instead of dividing (docs/numerics.md §3).
+uint quadric_roots(packed_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t_hi) {
+  t_lo = -real(RC_T_FAR);
+  t_hi = real(RC_T_FAR);
+  quadric_terms k = quadric_coefficients(q, f, v);
+  real a = k.a;
+  real h = k.h;
+  real c = k.c;
   if (a == 0.0) {
     if (h == 0.0) return (c <= 0.0) ? RC_QR_ALL : RC_QR_NONE;
     // A grazing ray (a plane's tiny v.z) puts the root beyond RC_T_FAR: pinned, not divided.
@@ -70,16 +109,7 @@ uint quadric_roots(packed_quadric q, rvec3 f, rvec3 v, out real t_lo, out real t
     else t_lo = root;
     return RC_QR_BETWEEN;
   }
-  precise real disc;
-  if (q.off == vec3(0.0)) {
-    precise real cxy = v.x * f.y - v.y * f.x;
-    precise real cxz = v.x * f.z - v.z * f.x;
-    precise real cyz = v.y * f.z - v.z * f.y;
-    disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2.0 * m * ld - 2.0 * a * lf +
-           ld * ld - a * J;
-  } else {
-    disc = h * h - a * c;
-  }
+  real disc = quadric_discriminant(q, f, v, k);
   if (disc < 0.0) return (a > 0.0) ? RC_QR_NONE : RC_QR_ALL;
   precise real sq = sqrt(disc);
   precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);

@@ -292,17 +292,11 @@ real REF(cert_quadric_terms)(const packed_quadric *q, rvec3 f, rvec3 v, rvec3 ef
   rvec3 D = rvec3_from(q->diag);
   rvec3 L = rvec3_from(q->linear);
   real J = (real)q->constant;
-  rvec3 mv = REF(quadric_apply)(q, v);
-  rvec3 mf = REF(quadric_apply)(q, f);
-  real aa = RV(dot)(v, mv);
-  real m = RV(dot)(f, mv);
-  real ld = RV(dot)(L, v);
-  real lf = RV(dot)(L, f);
-  real hh = m + ld;
-  real cc = RV(dot)(f, mf) + 2 * lf + J;
-  *a = aa;
-  *h = hh;
-  *c = cc;
+  ref_quadric_terms k = REF(quadric_coefficients)(q, f, v);
+  *a = k.a;
+  *h = k.h;
+  *c = k.c;
+  *disc = REF(quadric_discriminant)(q, f, v, &k);
   rvec3 av = RV(abs)(v);
   rvec3 af = RV(abs)(f);
   rvec3 al = RV(abs)(L);
@@ -312,51 +306,46 @@ real REF(cert_quadric_terms)(const packed_quadric *q, rvec3 f, rvec3 v, rvec3 ef
   real rm = REF(gamma_bound)(6) * RV(dot)(af, mav);
   real rld = REF(gamma_bound)(3) * RV(dot)(al, av);
   real rlf = REF(gamma_bound)(3) * RV(dot)(al, af);
-  real rh = rm + rld + REF(gamma_bound)(1) * R_ABS(hh);
+  real rh = rm + rld + REF(gamma_bound)(1) * R_ABS(k.h);
   real rc = REF(gamma_bound)(8) * (RV(dot)(af, maf) + 2 * RV(dot)(al, af) + R_ABS(J));
-  rvec3 gv = RV(add)(RV(abs)(mv), RV(scale)(mav, REF(gamma_bound)(3)));
-  rvec3 gf = RV(add)(RV(abs)(RV(add)(mf, L)), RV(scale)(RV(add)(maf, al), REF(gamma_bound)(4)));
+  rvec3 gv = RV(add)(RV(abs)(k.mv), RV(scale)(mav, REF(gamma_bound)(3)));
+  rvec3 mfl = RV(add)(k.mf, L);
+  rvec3 gf = RV(add)(RV(abs)(mfl), RV(scale)(RV(add)(maf, al), REF(gamma_bound)(4)));
   real pa = 2 * RV(dot)(gv, ev) + RV(dot)(ev, REF(cert_abs_apply)(q, ev));
   real ph = RV(dot)(gv, ef) + RV(dot)(gf, ev) + RV(dot)(ef, REF(cert_abs_apply)(q, ev));
   real pc = 2 * RV(dot)(gf, ef) + RV(dot)(ef, REF(cert_abs_apply)(q, ef));
   *e_a = ra + pa;
   *e_h = rh + ph;
   *e_c = rc + pc;
-  real hm = R_ABS(hh) + rh;
-  real am = R_ABS(aa) + ra;
-  real cm = R_ABS(cc) + rc;
-  rvec3 mfl = RV(add)(mf, L);
-  rvec3 grad_f = RV(add)(RV(add)(RV(abs)(RV(scale)(RV(sub)(RV(scale)(mv, hh), RV(scale)(mfl, aa)), 2)),
+  real hm = R_ABS(k.h) + rh;
+  real am = R_ABS(k.a) + ra;
+  real cm = R_ABS(k.c) + rc;
+  rvec3 grad_f = RV(add)(RV(add)(RV(abs)(RV(scale)(RV(sub)(RV(scale)(k.mv, k.h), RV(scale)(mfl, k.a)), 2)),
                                  RV(scale)(RV(add)(RV(scale)(gv, rh), RV(scale)(gf, ra)), 2)),
-                         RV(scale)(RV(add)(RV(scale)(gv, R_ABS(hh)), RV(scale)(gf, R_ABS(aa))), REF(gamma_bound)(8) * 2));
-  rvec3 grad_v = RV(add)(RV(add)(RV(abs)(RV(scale)(RV(sub)(RV(scale)(mfl, hh), RV(scale)(mv, cc)), 2)),
+                         RV(scale)(RV(add)(RV(scale)(gv, R_ABS(k.h)), RV(scale)(gf, R_ABS(k.a))), REF(gamma_bound)(8) * 2));
+  rvec3 grad_v = RV(add)(RV(add)(RV(abs)(RV(scale)(RV(sub)(RV(scale)(mfl, k.h), RV(scale)(k.mv, k.c)), 2)),
                                  RV(scale)(RV(add)(RV(scale)(gf, rh), RV(scale)(gv, rc)), 2)),
-                         RV(scale)(RV(add)(RV(scale)(gf, R_ABS(hh)), RV(scale)(gv, R_ABS(cc))), REF(gamma_bound)(8) * 2));
+                         RV(scale)(RV(add)(RV(scale)(gf, R_ABS(k.h)), RV(scale)(gv, R_ABS(k.c))), REF(gamma_bound)(8) * 2));
   real moved = RV(dot)(grad_f, ef) + RV(dot)(grad_v, ev) + 2 * hm * RV(dot)(ef, REF(cert_abs_apply)(q, ev)) + ph * ph +
                am * RV(dot)(ef, REF(cert_abs_apply)(q, ef)) + cm * RV(dot)(ev, REF(cert_abs_apply)(q, ev)) + pa * pc;
   real rounded;
   if (rcm_eq_f(q->off, rcm_make_f(0, 0, 0))) {
-    real cxy = v.x * f.y - v.y * f.x;
-    real cxz = v.x * f.z - v.z * f.x;
-    real cyz = v.y * f.z - v.z * f.y;
-    *disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2 * m * ld - 2 * aa * lf +
-            ld * ld - aa * J;
+    rvec3 w = REF(quadric_minors)(f, v);
     real exy = REF(gamma_bound)(2) * (R_ABS(v.x * f.y) + R_ABS(v.y * f.x));
     real exz = REF(gamma_bound)(2) * (R_ABS(v.x * f.z) + R_ABS(v.z * f.x));
     real eyz = REF(gamma_bound)(2) * (R_ABS(v.y * f.z) + R_ABS(v.z * f.y));
     real dxy = R_ABS(D.x * D.y);
     real dxz = R_ABS(D.x * D.z);
     real dyz = R_ABS(D.y * D.z);
-    real terms = dxy * cxy * cxy + dxz * cxz * cxz + dyz * cyz * cyz + 2 * R_ABS(m * ld) + 2 * R_ABS(aa * lf) + ld * ld +
-                 R_ABS(aa * J);
-    rounded = dxy * (2 * R_ABS(cxy) * exy + exy * exy) + dxz * (2 * R_ABS(cxz) * exz + exz * exz) +
-              dyz * (2 * R_ABS(cyz) * eyz + eyz * eyz) + 2 * (R_ABS(m) * rld + R_ABS(ld) * rm + rm * rld) +
-              2 * (R_ABS(aa) * rlf + R_ABS(lf) * ra + ra * rlf) + 2 * R_ABS(ld) * rld + rld * rld + R_ABS(J) * ra +
+    real terms = dxy * w.x * w.x + dxz * w.y * w.y + dyz * w.z * w.z + 2 * R_ABS(k.m * k.ld) + 2 * R_ABS(k.a * k.lf) + k.ld * k.ld +
+                 R_ABS(k.a * J);
+    rounded = dxy * (2 * R_ABS(w.x) * exy + exy * exy) + dxz * (2 * R_ABS(w.y) * exz + exz * exz) +
+              dyz * (2 * R_ABS(w.z) * eyz + eyz * eyz) + 2 * (R_ABS(k.m) * rld + R_ABS(k.ld) * rm + rm * rld) +
+              2 * (R_ABS(k.a) * rlf + R_ABS(k.lf) * ra + ra * rlf) + 2 * R_ABS(k.ld) * rld + rld * rld + R_ABS(J) * ra +
               REF(gamma_bound)(12) * terms;
   } else {
-    *disc = hh * hh - aa * cc;
-    rounded = 2 * R_ABS(hh) * rh + rh * rh + R_ABS(aa) * rc + R_ABS(cc) * ra + ra * rc +
-              REF(gamma_bound)(2) * (hh * hh + R_ABS(aa * cc));
+    rounded = 2 * R_ABS(k.h) * rh + rh * rh + R_ABS(k.a) * rc + R_ABS(k.c) * ra + ra * rc +
+              REF(gamma_bound)(2) * (k.h * k.h + R_ABS(k.a * k.c));
   }
   return moved + rounded;
 }

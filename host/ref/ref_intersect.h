@@ -123,6 +123,10 @@ extern _Thread_local uint32_t ref_crossing_blame;
   uint32_t ref_csg_code_##S(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip);           \
   V ref_quadric_local_##S(const packed_quadric *q, V v);                                           \
   V ref_quadric_apply_##S(const packed_quadric *q, V v);                                           \
+  typedef struct ref_quadric_terms_##S { V mv, mf; R m, ld, lf, a, h, c; } ref_quadric_terms_##S; \
+  ref_quadric_terms_##S ref_quadric_coefficients_##S(const packed_quadric *q, V f, V v);           \
+  V ref_quadric_minors_##S(V f, V v);                                                             \
+  R ref_quadric_discriminant_##S(const packed_quadric *q, V f, V v, const ref_quadric_terms_##S *k); \
   uint32_t ref_quadric_roots_##S(const packed_quadric *q, V f, V v, R *t_lo, R *t_hi);             \
   void ref_box_slab_##S(R lo, R hi, R o, R d, uint32_t k, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
   void ref_box_span_##S(V lo, V hi, V o, V d, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \

@@ -28,20 +28,45 @@ rvec3 REF(quadric_apply)(const packed_quadric *q, rvec3 v) {
                   O.y * v.x + O.z * v.y + D.z * v.z);
 }
 
+ref_quadric_terms REF(quadric_coefficients)(const packed_quadric *q, rvec3 f, rvec3 v) {
+  rvec3 L = v3(q->linear);
+  rvec3 mv = REF(quadric_apply)(q, v);
+  rvec3 mf = REF(quadric_apply)(q, f);
+  real m = RV(dot)(f, mv);
+  real ld = RV(dot)(L, v);
+  real lf = RV(dot)(L, f);
+  real a = RV(dot)(v, mv);
+  real h = m + ld;
+  real c = RV(dot)(f, mf) + 2 * lf + (real)q->constant;
+  return (ref_quadric_terms){mv, mf, m, ld, lf, a, h, c};
+}
+
+rvec3 REF(quadric_minors)(rvec3 f, rvec3 v) {
+  return RV(make)(v.x * f.y - v.y * f.x, v.x * f.z - v.z * f.x, v.y * f.z - v.z * f.y);
+}
+
+real REF(quadric_discriminant)(const packed_quadric *q, rvec3 f, rvec3 v, const ref_quadric_terms *k) {
+  rvec3 D = v3(q->diag);
+  real J = (real)q->constant;
+  real disc;
+  if (rcm_eq_f(q->off, rcm_make_f(0, 0, 0))) {
+    rvec3 w = REF(quadric_minors)(f, v);
+    disc = -(D.x * D.y * w.x * w.x + D.x * D.z * w.y * w.y + D.y * D.z * w.z * w.z) + 2 * k->m * k->ld -
+           2 * k->a * k->lf + k->ld * k->ld - k->a * J;
+  } else {
+    disc = k->h * k->h - k->a * k->c;
+  }
+  return disc;
+}
+
 uint32_t REF(quadric_roots)(const packed_quadric *q, rvec3 f, rvec3 v, real *t_lo, real *t_hi) {
   const real far = (real)RC_T_FAR;
   *t_lo = -far;
   *t_hi = far;
-  rvec3 D = v3(q->diag), L = v3(q->linear);
-  real J = (real)q->constant;
-  rvec3 mv = REF(quadric_apply)(q, v);
-  rvec3 mf = REF(quadric_apply)(q, f);
-  real a = RV(dot)(v, mv);
-  real m = RV(dot)(f, mv);
-  real ld = RV(dot)(L, v);
-  real lf = RV(dot)(L, f);
-  real h = m + ld;
-  real c = RV(dot)(f, mf) + 2 * lf + J;
+  ref_quadric_terms k = REF(quadric_coefficients)(q, f, v);
+  real a = k.a;
+  real h = k.h;
+  real c = k.c;
   if (a == 0) {
     if (h == 0) return c <= 0 ? RC_QR_ALL : RC_QR_NONE;
     real root = R_ABS(c) >= R_ABS(2 * h) * (real)RC_T_FAR ? ((c > 0) == (h > 0) ? -(real)RC_T_FAR : (real)RC_T_FAR)
@@ -50,16 +75,7 @@ uint32_t REF(quadric_roots)(const packed_quadric *q, rvec3 f, rvec3 v, real *t_l
     else *t_lo = root;
     return RC_QR_BETWEEN;
   }
-  real disc;
-  if (rcm_eq_f(q->off, rcm_make_f(0, 0, 0))) {
-    real cxy = v.x * f.y - v.y * f.x;
-    real cxz = v.x * f.z - v.z * f.x;
-    real cyz = v.y * f.z - v.z * f.y;
-    disc = -(D.x * D.y * cxy * cxy + D.x * D.z * cxz * cxz + D.y * D.z * cyz * cyz) + 2 * m * ld - 2 * a * lf +
-           ld * ld - a * J;
-  } else {
-    disc = h * h - a * c;
-  }
+  real disc = REF(quadric_discriminant)(q, f, v, &k);
   if (disc < 0) return a > 0 ? RC_QR_NONE : RC_QR_ALL;
   real sq = R_SQRT(disc);
   real qq = (h >= 0) ? -(h + sq) : -(h - sq);
