@@ -224,8 +224,23 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
   cert_ed = ed;
 }
 
-void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+// Where an object's test begins: its decisions are judged apart from the path's so far (a
+// shadow ray's blocker by its own test's, cert_hit_ok, for cert_blocked), and a spawned
+// ray's root on the object it leaves is cert_root's to drop (cert_self). Returns the path's
+// certificate so far, which cert_test_end joins again.
+bool cert_test_begin(uint object) {
+  bool ok = cert_ok;
+  cert_ok = true;
   cert_self = spawned_ray && object == cert_spawn_object && offset_strategy == RC_OFFSET_ERROR_BOUND;
+  return ok;
+}
+
+void cert_test_end(bool ok) {
+  cert_hit_ok = cert_ok;
+  cert_ok = ok && cert_ok;
+}
+
+void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   uint index;
   uint kind = object_kind(object, index);
   if (kind == RC_HIT_SPHERE) {
@@ -249,14 +264,11 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
 }
 
 // The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
-// the kinds rc_certify.glsl bounds, none of the others. A shadow ray's are also kept apart
-// (cert_hit_ok), for cert_blocked.
+// the kinds rc_certify.glsl bounds, none of the others.
 void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
-  bool ok = cert_ok;
-  cert_ok = true;
+  bool ok = cert_test_begin(object);
   cert_object_tests(object, o, d, sh, t_max);
-  cert_hit_ok = cert_ok;
-  cert_ok = ok && cert_ok;
+  cert_test_end(ok);
 }
 
 #if RC_QUADRICS
@@ -264,12 +276,9 @@ void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
 // alone. cert_object there inlined every kind's into the loop, and a SIMD shader runs them
 // all: with the bounded quadrics' it cost room.json's certified frame 1.5x (commit message).
 void cert_plane_object(uint object, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
-  bool ok = cert_ok;
-  cert_ok = true;
-  cert_self = spawned_ray && object == cert_spawn_object && offset_strategy == RC_OFFSET_ERROR_BOUND;
+  bool ok = cert_test_begin(object);
   cert_plane(q, o, d, t_max);
-  cert_hit_ok = cert_ok;
-  cert_ok = ok && cert_ok;
+  cert_test_end(ok);
 }
 #endif
 

@@ -183,8 +183,19 @@ void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, re
   ref_cert_ed = ed;
 }
 
-void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
+bool REF(cert_test_begin)(const ref_scene *sc, uint32_t object) {
+  bool ok = ref_cert_ok;
+  ref_cert_ok = true;
   ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
+  return ok;
+}
+
+void REF(cert_test_end)(bool ok) {
+  ref_cert_hit_ok = ref_cert_ok;
+  ref_cert_ok = ok && ref_cert_ok;
+}
+
+void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
   uint32_t index;
   uint32_t kind = REF(object_kind)(sc, object, &index);
   if (kind == RC_HIT_SPHERE) {
@@ -206,20 +217,15 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
 }
 
 void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
-  bool ok = ref_cert_ok;
-  ref_cert_ok = true;
+  bool ok = REF(cert_test_begin)(sc, object);
   REF(cert_object_tests)(sc, object, o, d, sh, t_max);
-  ref_cert_hit_ok = ref_cert_ok;
-  ref_cert_ok = ok && ref_cert_ok;
+  REF(cert_test_end)(ok);
 }
 
 void REF(cert_plane_object)(const ref_scene *sc, uint32_t object, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
-  bool ok = ref_cert_ok;
-  ref_cert_ok = true;
-  ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
+  bool ok = REF(cert_test_begin)(sc, object);
   REF(cert_plane)(sc, q, o, d, t_max);
-  ref_cert_hit_ok = ref_cert_ok;
-  ref_cert_ok = ok && ref_cert_ok;
+  REF(cert_test_end)(ok);
 }
 
 void REF(cert_closest)(const ref_scene *sc, const ref_hit *h) {

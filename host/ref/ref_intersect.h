@@ -66,6 +66,8 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
   bool ref_cert_blocker_ends_##S(void);                                                         \
+  bool ref_cert_test_begin_##S(const ref_scene *sc, uint32_t object);                            \
+  void ref_cert_test_end_##S(bool ok);                                                          \
   void ref_cert_object_tests_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
   /* ref_certify.c, the twin of rc_certify.glsl, and its per-thread state. */                    \
   extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S, ref_cert_hit_ok_##S, \
