@@ -110,6 +110,9 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #endif
 #if RC_CERTIFY
 #include "rc_certify.glsl"  // after rc_quadric.glsl: it recomputes the quadric tests
+#if RC_QUADRICS
+#include "rc_certify_csg.glsl"
+#endif
 #endif
 #if RC_PATCHES
 #include "rc_patch.glsl"

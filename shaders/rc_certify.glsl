@@ -12,7 +12,7 @@
 // that perturbation can change (first order, as pbrt's running error bounds: Pharr, Jakob &
 // Humphreys, PBR 4th ed. §6.8; Higham, Accuracy and Stability of Numerical Algorithms §3.1,
 // gamma(n) = n u / (1 - n u)). Tests this file has no bound for (composites, patches, the
-// fast formulas, one-sided triangles) leave their sample
+// fast formulas) leave their sample
 // uncertified whenever a ray tests them: the host re-renders it, so the image stays exact.
 
 bool cert_ok = true;          // every decision of this sample so far is certified
@@ -110,18 +110,25 @@ void cert_maybe(real lo, real hi, real t_max, bool taken) {
 // offset the reference's origin is off that surface by more than its own error too (pbrt's
 // OffsetRayOrigin), so it drops the root as well. In a closest-hit query t_max is the nearest
 // hit so far: a root past it is remembered (cert_beyond) for cert_closest. True when taken.
-bool cert_root(real t, real e, real t_max, bool ahead) {
+// The reference's root lies in [t - e_down, t + e_up] (cert_root_within); a root whose
+// bounds are the same both ways is cert_root's.
+bool cert_root_within(real t, real e_down, real e_up, real t_max, bool ahead) {
   if (!ahead && cert_self) return false;
-  cert_require(t, e);
+  real k = cert_factor();
+  if (!(ahead ? t > k * e_down : -t > k * e_up)) cert_ok = false;
   if (!ahead) return false;
-  if (cert_any) cert_require(t - t_max, e + cert_t_max_err);
-  if (!(t <= t_max)) {
-    cert_beyond = select_min(cert_beyond, t - cert_factor() * e);
+  bool within = t <= t_max;
+  if (cert_any && !(within ? t_max - t > k * (e_up + cert_t_max_err) : t - t_max > k * (e_down + cert_t_max_err)))
+    cert_ok = false;
+  if (!within) {
+    cert_beyond = select_min(cert_beyond, t - k * e_down);
     return false;
   }
-  cert_t_err = e;
+  cert_t_err = select_max(e_down, e_up);
   return true;
 }
+
+bool cert_root(real t, real e, real t_max, bool ahead) { return cert_root_within(t, e, e, t_max, ahead); }
 
 // A sphere the ray grazes: the discriminant's sign is uncertain, so the reference may find
 // roots where this precision finds none, or none where it finds two. Its roots, if any, are
@@ -216,6 +223,32 @@ real cert_triangle_t_error(sheared_triangle st, real t, real det, real e_det, re
   return (ee * zt + (se + 3.0 * ee) * zeta) / (abs(det) - e_det) + gamma_bound(3.0) * (ez + abs(t) * se) / abs(det);
 }
 
+// Which side of a one-sided triangle the ray meets (rc_triangle.glsl, triangle_facing): the
+// facing F = d . N, N = cross(a, b), a = v1 - v0, b = v2 - v0, negative at the front. Each of
+// N's components is a difference of two products of rounded differences: it carries gamma(4)
+// of those products' magnitudes, gamma(6) of the rounded a's and b's (the f64 reference's
+// own rounding is cert_factor's). The dot adds gamma(3) of its terms, and the direction's move
+// |dd| |N|, |N| at most N's rounded 1-norm plus its error (cert_facing_error). RC_SIDE_FRONT
+// or RC_SIDE_BACK where F's sign is certain (F = 0 counts as behind, as in the test), else RC_SIDE_UNSURE.
+
+real cert_facing_error(packed_triangle tri, rvec3 d) {
+  rvec3 v0 = rvec3(tri.v0);
+  rvec3 a = rvec3(tri.v1) - v0;
+  rvec3 b = rvec3(tri.v2) - v0;
+  rvec3 n = cross(a, b);
+  rvec3 e_n = gamma_bound(6.0) * rvec3(abs(a.y * b.z) + abs(a.z * b.y), abs(a.z * b.x) + abs(a.x * b.z),
+                                        abs(a.x * b.y) + abs(a.y * b.x));
+  rvec3 ad = abs(d);
+  real n_norm = abs(n.x) + abs(n.y) + abs(n.z) + e_n.x + e_n.y + e_n.z;
+  return cert_ed * n_norm + dot(ad, e_n) + gamma_bound(3.0) * dot(ad, abs(n));
+}
+
+uint cert_triangle_side(packed_triangle tri, rvec3 d) {
+  real f = triangle_facing(tri, d);
+  if (!(abs(f) > cert_factor() * cert_facing_error(tri, d))) return RC_SIDE_UNSURE;
+  return (f < 0.0) ? RC_SIDE_FRONT : RC_SIDE_BACK;
+}
+
 // The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed. A
 // sheared coordinate a.x - s.x a.z moves by |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <=
 // |dd| (1 + |s.x|) / |d.z|, and rounds by gamma(5) of its terms (pbrt's delta_x); an edge
@@ -227,8 +260,12 @@ real cert_triangle_t_error(sheared_triangle st, real t, real det, real e_det, re
 // rounds by gamma(2) of its terms, and cert_maybe judges that interval. A spawned ray's root
 // on the triangle it leaves is dropped by both, as cert_root says. t and its bound are
 // computed once for both cases: llvmpipe runs every branch a SIMD vector's lanes take.
-void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
-  if (triangle_formula != RC_TRIANGLE_WATERTIGHT || (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) {
+//
+// side_unsure: a one-sided triangle whose side cert_triangle_side could not certify. Either
+// precision may then test the triangle where the other skips it, and only a certain miss
+// agrees with both.
+void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool side_unsure) {
+  if (triangle_formula != RC_TRIANGLE_WATERTIGHT) {
     cert_fail();
     return;
   }
@@ -246,6 +283,10 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
   bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
   bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
   if (pos && neg) return;
+  if (side_unsure) {
+    cert_fail();
+    return;
+  }
   real dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
   real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
   precise real sum = st.e.x + st.e.y + st.e.z;
@@ -271,7 +312,11 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max) {
 #if RC_QUADRICS
 // The plane test's decisions (rc_quadric.glsl, intersect_plane): the denominator n.d moves by
 // |n| |dd| and rounds by gamma(3) |n| |d|; the numerator n.(o - c) by |n| |do| and gamma(4)
-// of |n| (|o| + |c|); t = -fz / vz by both over |vz|.
+// of |n| (|o| + |c|). The reference's root -fz / vz then has a magnitude between
+// (|fz| - e_fz) / (|vz| + e_vz) and (|fz| + e_fz) / (|vz| - e_vz), and t is within its
+// quotient's rounding of that: a ray nearly parallel to the plane has a root far away whose
+// upper bound is far larger still, but whose lower bound, all that its decisions against
+// t_max need, stays near t.
 void cert_plane(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   rvec3 n = rvec3(q.axis_z);
   real nm = length(n);
@@ -284,8 +329,12 @@ void cert_plane(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   bool facing = ((q.flags & RC_QUADRIC_ONE_SIDED) == 0u) || vz < 0.0;
   if (vz == 0.0 || !facing || abs(fz) >= abs(vz) * real(RC_T_FAR)) return;
   precise real t = -fz / vz;
-  real e_t = (abs(vz) > e_vz) ? (e_fz + abs(t) * e_vz) / (abs(vz) - e_vz) + gamma_bound(1.0) * abs(t) : real(RC_T_FAR);
-  cert_root(t, e_t, t_max, t > 0.0);
+  real near = select_max(abs(fz) - e_fz, 0.0) / (abs(vz) + e_vz);
+  real far = (abs(vz) > e_vz) ? (abs(fz) + e_fz) / (abs(vz) - e_vz) : real(RC_T_FAR);
+  real rounding = gamma_bound(1.0) * abs(t);
+  real e_down = ((t > 0.0) ? abs(t) - near : far - abs(t)) + rounding;
+  real e_up = ((t > 0.0) ? far - abs(t) : abs(t) - near) + rounding;
+  cert_root_within(t, e_down, e_up, t_max, t > 0.0);
 }
 
 // |M| v for the quadric's symmetric part and v >= 0: bounds |M w| componentwise wherever
@@ -529,16 +578,85 @@ void cert_solid(uint kind, real t_lo, real t_hi, real e_r, real b_in, real b_out
   }
 }
 
+// quadric_roots' kind and roots for the ray (f, v) in the quadric's frame, whose box span is
+// [b_in, b_out] (errors e_in, e_out): the coefficients (cert_quadric_terms), then the roots
+// as the sphere's, q = -(h + sign(h) sqrt(disc)) with sqrt's error, q / a and c / q each with
+// the quotient's: t_lo <= t_hi and their bound e_r. Only the named shapes' kinds are bounded:
+// a ray along which the quadric is linear (a = 0) is certain only for a box (no quadratic or
+// linear part), and a grazing ray only where a > 0 (the roots, if any, near -h / a), unless
+// it leaves the surface (both roots behind); a root pinned at RC_T_FAR is not bounded. Those
+// two judge only the roots ahead, and are decided here (certified, cert_maybe's, or failed);
+// for a composite's operand (`whole`), whose every end counts, a grazing ray fails. False
+// where the decision was made here; true where the caller goes on with the kind.
+bool cert_quadric_kind(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, real b_in, real b_out, real e_in,
+                       real e_out, real t_max, bool whole, out uint kind, out real t_lo, out real t_hi, out real e_r) {
+  real k = cert_factor();
+  kind = RC_QR_NONE;
+  t_lo = 0.0;
+  t_hi = 0.0;
+  e_r = 0.0;
+  real a, h, c, disc, e_a, e_h, e_c;
+  real e_disc = cert_quadric_terms(q, f, v, ef, ev, a, h, c, disc, e_a, e_h, e_c);
+  if (a == 0.0 && e_a == 0.0 && h == 0.0 && e_h == 0.0) {
+    cert_require(c, e_c);
+    kind = (c <= 0.0) ? RC_QR_ALL : RC_QR_NONE;
+    return true;
+  }
+  if (!(abs(a) > k * e_a)) {
+    cert_fail();
+    return false;
+  }
+  if (!whole && a > 0.0 && h > k * e_h && (c > k * e_c || (cert_self && c > 0.0))) {
+    // Q(t) = a t^2 + 2 h t + c with a, h and c all positive has no root ahead: a ray leaving
+    // a surface that curves towards it, from outside (c > 0 beyond its bound, or the surface
+    // a spawned ray leaves, whose error-bound offset puts both precisions' origins on the
+    // side its normal points to), as the sphere's leaving rays (cert_sphere_grazing).
+    return false;
+  }
+  if (!(abs(disc) > k * e_disc)) {
+    if (a < 0.0 || whole) {
+      cert_fail();
+      return false;
+    }
+    real spread = sqrt(select_max(disc, 0.0) + k * e_disc) + k * e_h;
+    real a_lo = a - k * e_a;
+    real a_hi = a + k * e_a;
+    real lo = select_min((-h - spread) / a_lo, (-h - spread) / a_hi);
+    real hi = select_max((-h + spread) / a_lo, (-h + spread) / a_hi);
+    lo = select_max(lo - gamma_bound(3.0) * abs(lo), b_in - k * e_in);
+    hi = select_min(hi + gamma_bound(3.0) * abs(hi), b_out + k * e_out);
+    if (lo <= hi) cert_maybe(lo, hi, t_max, disc >= 0.0 && hi > 0.0 && lo <= t_max);
+    return false;
+  }
+  if (disc < 0.0) {
+    kind = (a > 0.0) ? RC_QR_NONE : RC_QR_ALL;
+    return true;
+  }
+  precise real sq = sqrt(disc);
+  precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);
+  if (qq == 0.0 || abs(qq) >= abs(a) * real(RC_T_FAR) || abs(c) >= abs(qq) * real(RC_T_FAR)) {
+    cert_fail();
+    return false;
+  }
+  precise real r0 = qq / a;
+  precise real r1 = c / qq;
+  real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
+  real e_q = e_h + e_sq + gamma_bound(2.0) * abs(qq);
+  real e_r0 = (abs(a) > e_a) ? (e_q + abs(r0) * e_a) / (abs(a) - e_a) + gamma_bound(1.0) * abs(r0) : real(RC_T_FAR);
+  real e_r1 = (abs(qq) > e_q) ? (e_c + abs(r1) * e_q) / (abs(qq) - e_q) + gamma_bound(1.0) * abs(r1) : real(RC_T_FAR);
+  e_r = select_max(e_r0, e_r1);
+  t_lo = select_min(r0, r1);
+  t_hi = select_max(r0, r1);
+  kind = (a > 0.0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
+  return true;
+}
+
 // A bounded quadric's decisions (intersect_quadric: a surface or a solid in its box), in the
 // quadric's frame. f and v carry the ray's perturbation through the frame's rows
-// (cert_local_error); the box (cert_box), the coefficients (cert_quadric_terms), then the
-// roots as the sphere's: q = -(h + sign(h) sqrt(disc)) with sqrt's error, q / a and c / q
-// each with the quotient's. Only the named shapes' kinds are bounded: a ray along which the
-// quadric is linear (a = 0) is certain only for a box (no quadratic or linear part), and a
-// grazing ray only where a > 0 (the roots, if any, near -h / a), unless it leaves the surface
-// (both roots behind); a root pinned at RC_T_FAR is not bounded.
+// (cert_local_error); the box (cert_box), the kind and roots (cert_quadric_kind), then one
+// inlined copy of the solid's and one of the surface's decisions: a SIMD shader runs every
+// copy.
 void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
-  real k = cert_factor();
   rvec3 f = quadric_local(q, o - rvec3(q.center));
   rvec3 v = quadric_local(q, d);
   rvec3 ef = cert_local_error(q, abs(o) + abs(rvec3(q.center)), cert_eo, 4.0);
@@ -551,60 +669,9 @@ void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
     cert_fail();
     return;
   }
-  real a, h, c, disc, e_a, e_h, e_c;
-  real e_disc = cert_quadric_terms(q, f, v, ef, ev, a, h, c, disc, e_a, e_h, e_c);
-  // The kind and roots (quadric_roots), then one inlined copy of the solid's and one of the
-  // surface's decisions: a SIMD shader runs every copy.
-  uint kind = RC_QR_NONE;
-  real t_lo = 0.0;
-  real t_hi = 0.0;
-  real e_r = 0.0;
-  if (a == 0.0 && e_a == 0.0 && h == 0.0 && e_h == 0.0) {
-    cert_require(c, e_c);
-    kind = (c <= 0.0) ? RC_QR_ALL : RC_QR_NONE;
-  } else if (!(abs(a) > k * e_a)) {
-    cert_fail();
-    return;
-  } else if (a > 0.0 && h > k * e_h && (c > k * e_c || (cert_self && c > 0.0))) {
-    // Q(t) = a t^2 + 2 h t + c with a, h and c all positive has no root ahead: a ray leaving
-    // a surface that curves towards it, from outside (c > 0 beyond its bound, or the surface
-    // a spawned ray leaves, whose error-bound offset puts both precisions' origins on the
-    // side its normal points to), as the sphere's leaving rays (cert_sphere_grazing).
-    return;
-  } else if (!(abs(disc) > k * e_disc)) {
-    if (a < 0.0) {
-      cert_fail();
-      return;
-    }
-    real spread = sqrt(select_max(disc, 0.0) + k * e_disc) + k * e_h;
-    real a_lo = a - k * e_a;
-    real a_hi = a + k * e_a;
-    real lo = select_min((-h - spread) / a_lo, (-h - spread) / a_hi);
-    real hi = select_max((-h + spread) / a_lo, (-h + spread) / a_hi);
-    lo = select_max(lo - gamma_bound(3.0) * abs(lo), b_in - k * e_in);
-    hi = select_min(hi + gamma_bound(3.0) * abs(hi), b_out + k * e_out);
-    if (lo <= hi) cert_maybe(lo, hi, t_max, disc >= 0.0 && hi > 0.0 && lo <= t_max);
-    return;
-  } else if (disc < 0.0) {
-    kind = (a > 0.0) ? RC_QR_NONE : RC_QR_ALL;
-  } else {
-    precise real sq = sqrt(disc);
-    precise real qq = (h >= 0.0) ? -(h + sq) : -(h - sq);
-    if (qq == 0.0 || abs(qq) >= abs(a) * real(RC_T_FAR) || abs(c) >= abs(qq) * real(RC_T_FAR)) {
-      cert_fail();
-      return;
-    }
-    precise real r0 = qq / a;
-    precise real r1 = c / qq;
-    real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
-    real e_q = e_h + e_sq + gamma_bound(2.0) * abs(qq);
-    real e_r0 = (abs(a) > e_a) ? (e_q + abs(r0) * e_a) / (abs(a) - e_a) + gamma_bound(1.0) * abs(r0) : real(RC_T_FAR);
-    real e_r1 = (abs(qq) > e_q) ? (e_c + abs(r1) * e_q) / (abs(qq) - e_q) + gamma_bound(1.0) * abs(r1) : real(RC_T_FAR);
-    e_r = select_max(e_r0, e_r1);
-    t_lo = select_min(r0, r1);
-    t_hi = select_max(r0, r1);
-    kind = (a > 0.0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
-  }
+  uint kind;
+  real t_lo, t_hi, e_r;
+  if (!cert_quadric_kind(q, f, v, ef, ev, b_in, b_out, e_in, e_out, t_max, false, kind, t_lo, t_hi, e_r)) return;
   if (kind == RC_QR_NONE) return;
   if ((q.flags & RC_QUADRIC_SOLID) != 0u) {
     cert_solid(kind, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure, t_max);

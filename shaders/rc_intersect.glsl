@@ -246,9 +246,16 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
   if (kind == RC_HIT_SPHERE) {
     cert_sphere(o, d, load_sphere(index), t_max);
   } else if (kind == RC_HIT_TRIANGLE) {
-    cert_triangle(o, sh, load_triangle(index), t_max);
+    packed_triangle tri = load_triangle(index);
+    uint side = RC_SIDE_FRONT;
+    if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) side = cert_triangle_side(tri, d);
+    if (side != RC_SIDE_BACK) cert_triangle(o, sh, tri, t_max, side == RC_SIDE_UNSURE);
   } else {
 #if RC_QUADRICS
+    if (has_kind(RC_KIND_CSG) && kind == RC_HIT_CSG) {
+      cert_csg(index, o, d, t_max);
+      return;
+    }
     packed_quadric q = load_quadric(index);
     if (kind == RC_HIT_QUADRIC && (q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
       cert_plane(q, o, d, t_max);

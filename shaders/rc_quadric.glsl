@@ -8,9 +8,13 @@
 // normal to x, y, z), whether it was the leaf's exit, and whether it comes from a
 // subtracted solid (its outward normal is then reversed).
 
-// The interval stack (RC_CSG_SLOT, rc_shared.h).
+// The interval stack (RC_CSG_SLOT, rc_shared.h); in certified mode, each end's error bound
+// beside it (rc_certify_csg.glsl).
 real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 uint csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+#if RC_CERTIFY
+real csg_e[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+#endif
 
 // 1 + the composite whose mesh operand a ray line crossed more often than its bound, or
 // an odd number of times (a hole): raycast.comp reports it and the render fails.
@@ -315,6 +319,11 @@ real intersect_quadric(uint index, rvec3 o, rvec3 d, real t_max, out uint code) 
   return first_interval_end(0u, n, t_max, code);
 }
 
+// Whether a point is inside op(A, B), inside A or not and B or not.
+bool csg_inside(uint op, bool in_a, bool in_b) {
+  return (op == RC_CSG_UNION) ? (in_a || in_b) : ((op == RC_CSG_INTERSECTION) ? (in_a && in_b) : (in_a && !in_b));
+}
+
 // Combines the lists at `a` (na ends) and `b` (nb ends) by `op` into the scratch slot:
 // one walk over both lists in t order, keeping the ends where op(in a, in b) changes.
 // Ends of the subtracted list get the flip bit. Zero-length intervals are dropped and
@@ -343,7 +352,7 @@ uint combine_intervals(uint op, uint a, uint na, uint b, uint nb) {
       in_b = !in_b;
       j++;
     }
-    bool in_now = (op == RC_CSG_UNION) ? (in_a || in_b) : ((op == RC_CSG_INTERSECTION) ? (in_a && in_b) : (in_a && !in_b));
+    bool in_now = csg_inside(op, in_a, in_b);
     if (in_now == in_r) continue;
     in_r = in_now;
     if (n > 0u && csg_t[out_base + n - 1u] == t) {

@@ -210,10 +210,28 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
 }
 
 #if RC_CERTIFY
+// Whether the hit point is o + t d, or that point's projection onto a plane (quadric_refine's
+// Newton step is one there): a transformed sphere's, a box face's, a plane's, a mesh
+// operand's. Not a curved quadric surface's, which the step moves along its curvature, nor a
+// triangle's or a sphere's, computed on the surface.
+bool cert_point_on_ray(hit_record h, uint transform) {
+  if (transform != RC_NO_TRANSFORM) return true;
+#if RC_QUADRICS
+  if (h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG) {
+    if ((h.part & RC_CSG_CODE_MESH) != 0u || ((h.part >> 2u) & 3u) != 0u) return true;
+    return (load_quadric(h.part >> RC_CSG_CODE_LEAF_SHIFT).flags & RC_QUADRIC_UNBOUNDED) != 0u;
+  }
+#endif
+  return false;
+}
+
 // The surface's decisions and the perturbation of its point and normal (rc_shade.glsl,
 // surface_at). The exact hit point of a ray moved by (do, dd) moves by (|do| + t |dd|) / |cos|
 // along the surface (cos = n.d), on top of both points' rounding (p_error, and where the point
-// is o + t d, t's own error, which p_error leaves out). A sphere's normal n, with p = C + r n
+// is o + t d, t's own error, which p_error leaves out). Where the point is o + t d (or its
+// projection onto a plane, which moves no two points further apart), it is closer: o + t d
+// against o_ref + t_ref d_ref differs by at most |do| + t |dd| + |t - t_ref|, and t's bound
+// (h.err) already holds the rays' move. A sphere's normal n, with p = C + r n
 // rounded by p_error, moves by p's move plus that rounding, over r; through a transform A
 // (where p is o + t d instead) by |A| times twice p's move over r, and normalize(A^T n) by
 // |A| / sigma_min(A) of it, sigma_min(A) >= 2 |det A| / |A|_F^2. The side the normal is
@@ -221,12 +239,13 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
 void cert_surface(rvec3 d, hit_record h, surface sf) {
   uint transform = (has_kind(RC_KIND_SPHERE_TRANSFORMS) && h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform
                                                                                     : RC_NO_TRANSFORM;
-  bool along_ray = h.kind == RC_HIT_QUADRIC || transform != RC_NO_TRANSFORM;
+  bool along_ray = h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG || transform != RC_NO_TRANSFORM;
   real ep_round = 2.0 * length(sf.p_error) + (along_ray ? h.err : 0.0);
   real cosine = abs(dot(sf.ng, d));
   real e_cos = cert_ed + gamma_bound(12.0);
   cert_require(cosine, e_cos);
-  real ep = ep_round + 2.0 * (cert_eo + h.t * cert_ed) / select_max(cosine - e_cos, RC_SMALLEST_NORMAL);
+  real moved = cert_eo + h.t * cert_ed;
+  real ep = ep_round + (cert_point_on_ray(h, transform) ? moved : 2.0 * moved / select_max(cosine - e_cos, RC_SMALLEST_NORMAL));
   real en = gamma_bound(12.0);
   if (h.kind == RC_HIT_SPHERE) {
     real r = real(load_sphere(h.index).radius);
@@ -254,7 +273,10 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
     }
   }
 #if RC_QUADRICS
-  if (h.kind == RC_HIT_QUADRIC && ((h.part >> 2u) & 3u) == 0u) {
+  // A quadric's surface, alone or a composite's leaf (not a mesh operand's triangle, whose
+  // face normal only rounds).
+  bool leaf = h.kind == RC_HIT_QUADRIC || (h.kind == RC_HIT_CSG && (h.part & RC_CSG_CODE_MESH) == 0u);
+  if (leaf && ((h.part >> 2u) & 3u) == 0u) {
     packed_quadric q = load_quadric(h.part >> RC_CSG_CODE_LEAF_SHIFT);
     if ((q.flags & RC_QUADRIC_UNBOUNDED) == 0u) en += cert_quadric_normal(q, sf.p, ep);
   }
@@ -263,15 +285,32 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
   cert_en = en;
 }
 
-// The perturbation of a spawned ray's origin: the point's, and the offset, which the
-// reference's differs from by at most this one's length, and the offset's rounding.
+// The perturbation of a spawned ray's origin (spawn_origin): the point's, the offset's turn,
+// and its rounding. The epsilon offset lies along the geometric normal, which turns by at most
+// cert_en (ng is n, or a triangle's face normal whose only error is rounding). The ulp and
+// error-bound offsets are a few ulps of this precision, the reference's as many of f64's: the
+// two differ by at most twice this one's length. The t-min strategy's origin is the point; its
+// start, epsilon along the ray, is cert_t_min_start's.
 real cert_origin(surface sf, rvec3 origin) {
-  return cert_ep + 2.0 * length(origin - sf.p) + gamma_bound(2.0) * length(origin);
+  real off = length(origin - sf.p);
+  real turn = (offset_strategy == RC_OFFSET_EPSILON) ? cert_en : 2.0;
+  return cert_ep + turn * off + gamma_bound(2.0) * (length(origin) + off);
+}
+
+// The t-min strategy's start origin + epsilon d (t_min_start), for a direction ed from the
+// reference's: the offset turns by epsilon ed and rounds with the sum, whose terms are at most
+// |origin| + 2 epsilon for an origin up to epsilon from the point. The other strategies start
+// at their origin.
+real cert_t_min_start(real eo, real ed, rvec3 origin) {
+  if (offset_strategy != RC_OFFSET_T_MIN) return eo;
+  real eps = real(offset_epsilon);
+  return eo + eps * ed + gamma_bound(2.0) * (length(origin) + 2.0 * eps);
 }
 
 // A shadow ray's perturbation (rc_shade.glsl, light_at and shade_phong) and its decision to be
 // cast (n.l > 0): towards a point light its direction turns as its origin's move (and the
-// subtraction's rounding) over the distance allows (cert_turn), and t_max moves by as much.
+// subtraction's rounding) over the distance allows (cert_turn), and t_max moves by as much
+// (and t_min_end's rounding).
 void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
   real eo = cert_origin(sf, origin);
   if (light.type == RC_LIGHT_POINT) {
@@ -280,13 +319,13 @@ void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
     real xl = cert_ep + gamma_bound(4.0) * r;
     cert_require(n_dot_l, cert_en + cert_turn_of(xl, r) + gamma_bound(4.0));
     real xd = eo + gamma_bound(4.0) * dist;
-    cert_eo = eo;
     cert_ed = cert_turn_of(xd, dist);
-    cert_t_max_err = eo + gamma_bound(6.0) * dist;
+    cert_eo = cert_t_min_start(eo, cert_ed, origin);
+    cert_t_max_err = eo + gamma_bound(7.0) * dist;
   } else {
     cert_require(n_dot_l, cert_en + gamma_bound(4.0));
-    cert_eo = eo;
     cert_ed = 0.0;
+    cert_eo = cert_t_min_start(eo, cert_ed, origin);
     cert_t_max_err = 0.0;
   }
 }
@@ -300,9 +339,11 @@ void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
 // second term is at most 2 dn + 6 eta. The reflection rounds by about gamma(9) (a dot
 // product, two products, a difference). normalize turns r by cert_turn of the sum, r_ref
 // being a unit vector.
+// The origin passed is the start: for the t-min strategy, the point moved along r.
 void cert_reflect(surface sf, rvec3 origin, real ed_in) {
-  cert_eo = cert_origin(sf, origin);
   cert_ed = cert_turn(ed_in * (1.0 + gamma_bound(32.0)) + 2.0 * cert_en + gamma_bound(58.0));
+  bool moved = offset_strategy == RC_OFFSET_T_MIN;
+  cert_eo = cert_t_min_start(cert_origin(sf, moved ? sf.p : origin), cert_ed, origin);
 }
 #endif
 

@@ -123,6 +123,10 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_CERTIFY_ON 1u
 #define RC_CERTIFY_HALVED 2u
 #define RC_CERTIFY_ZERO 3u
+/* The side of a one-sided triangle a certified ray meets (cert_triangle_side). */
+#define RC_SIDE_FRONT 0u
+#define RC_SIDE_BACK 1u
+#define RC_SIDE_UNSURE 2u
 
 #define RC_SPHERE_GEOMETRIC 0u  /* Hearn-Baker discriminant, stable roots, centre-relative normal */
 #define RC_SPHERE_ALGEBRAIC 1u  /* textbook b^2 - 4ac, (-b -/+ sqrt)/2a, normal from o + t d */

@@ -203,8 +203,10 @@ real intersect_triangle_cramer(rvec3 o, rvec3 d, packed_triangle tri, real t_max
 // Whether d meets the triangle's front, the side its geometric normal cross(v1 - v0,
 // v2 - v0) points to (counter-clockwise winding seen from there): a one-sided triangle
 // (RC_TRIANGLE_ONE_SIDED) is there for such rays only. Edge on counts as behind.
-bool triangle_faces_ray(packed_triangle tri, rvec3 d) {
+real triangle_facing(packed_triangle tri, rvec3 d) {
   rvec3 v0 = rvec3(tri.v0);
   precise real facing = dot(d, cross(rvec3(tri.v1) - v0, rvec3(tri.v2) - v0));
-  return facing < 0.0;
+  return facing;
 }
+
+bool triangle_faces_ray(packed_triangle tri, rvec3 d) { return triangle_facing(tri, d) < 0.0; }

@@ -60,17 +60,24 @@ void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool tak
   ref_cert_beyond = rmin(ref_cert_beyond, lo);
 }
 
-bool REF(cert_root)(const ref_scene *sc, real t, real e, real t_max, bool ahead) {
+bool REF(cert_root_within)(const ref_scene *sc, real t, real e_down, real e_up, real t_max, bool ahead) {
   if (!ahead && ref_cert_self) return false;
-  REF(cert_require)(sc, t, e);
+  real k = REF(cert_factor)(sc);
+  if (!(ahead ? t > k * e_down : -t > k * e_up)) ref_cert_ok = false;
   if (!ahead) return false;
-  if (ref_cert_any) REF(cert_require)(sc, t - t_max, e + ref_cert_t_max_err);
-  if (!(t <= t_max)) {
-    ref_cert_beyond = rmin(ref_cert_beyond, t - REF(cert_factor)(sc) * e);
+  bool within = t <= t_max;
+  if (ref_cert_any && !(within ? t_max - t > k * (e_up + ref_cert_t_max_err) : t - t_max > k * (e_down + ref_cert_t_max_err)))
+    ref_cert_ok = false;
+  if (!within) {
+    ref_cert_beyond = rmin(ref_cert_beyond, t - k * e_down);
     return false;
   }
-  ref_cert_t_err = e;
+  ref_cert_t_err = rmax(e_down, e_up);
   return true;
+}
+
+bool REF(cert_root)(const ref_scene *sc, real t, real e, real t_max, bool ahead) {
+  return REF(cert_root_within)(sc, t, e, e, t_max, ahead);
 }
 
 void REF(cert_sphere_grazing)(const ref_scene *sc, real disc, real b, real c, real e_disc, real e_b, real e_c,
@@ -140,8 +147,28 @@ real REF(cert_triangle_t_error)(const ref_sheared *st, real t, real det, real e_
 }
 
 
-void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max) {
-  if (sc->frame->triangle_formula != RC_TRIANGLE_WATERTIGHT || (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0) {
+real REF(cert_facing_error)(packed_triangle tri, rvec3 d) {
+  rvec3 v0 = rvec3_from(tri.v0);
+  rvec3 a = RV(sub)(rvec3_from(tri.v1), v0);
+  rvec3 b = RV(sub)(rvec3_from(tri.v2), v0);
+  rvec3 n = RV(cross)(a, b);
+  rvec3 e_n = RV(scale)(RV(make)(R_ABS(a.y * b.z) + R_ABS(a.z * b.y), R_ABS(a.z * b.x) + R_ABS(a.x * b.z),
+                                 R_ABS(a.x * b.y) + R_ABS(a.y * b.x)),
+                        REF(gamma_bound)(6));
+  rvec3 ad = RV(abs)(d);
+  real n_norm = R_ABS(n.x) + R_ABS(n.y) + R_ABS(n.z) + e_n.x + e_n.y + e_n.z;
+  return (ref_cert_ed) * n_norm + RV(dot)(ad, e_n) + REF(gamma_bound)(3) * RV(dot)(ad, RV(abs)(n));
+}
+
+uint32_t REF(cert_triangle_side)(const ref_scene *sc, packed_triangle tri, rvec3 d) {
+  real f = REF(triangle_facing)(tri, d);
+  if (!(R_ABS(f) > REF(cert_factor)(sc) * REF(cert_facing_error)(tri, d))) return RC_SIDE_UNSURE;
+  return (f < 0) ? RC_SIDE_FRONT : RC_SIDE_BACK;
+}
+
+void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max,
+                        bool side_unsure) {
+  if (sc->frame->triangle_formula != RC_TRIANGLE_WATERTIGHT) {
     REF(cert_fail)();
     return;
   }
@@ -159,6 +186,10 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
   bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
   if (pos && neg) return;
+  if (side_unsure) {
+    REF(cert_fail)();
+    return;
+  }
   real dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
   real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
   real sum = st.e.x + st.e.y + st.e.z;
@@ -193,9 +224,12 @@ void REF(cert_plane)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   bool facing = ((q->flags & RC_QUADRIC_ONE_SIDED) == 0) || vz < 0;
   if (vz == 0 || !facing || R_ABS(fz) >= R_ABS(vz) * (real)RC_T_FAR) return;
   real t = -fz / vz;
-  real e_t = (R_ABS(vz) > e_vz) ? (e_fz + R_ABS(t) * e_vz) / (R_ABS(vz) - e_vz) + REF(gamma_bound)(1) * R_ABS(t)
-                                : (real)RC_T_FAR;
-  REF(cert_root)(sc, t, e_t, t_max, t > 0);
+  real near = rmax(R_ABS(fz) - e_fz, 0) / (R_ABS(vz) + e_vz);
+  real far = (R_ABS(vz) > e_vz) ? (R_ABS(fz) + e_fz) / (R_ABS(vz) - e_vz) : (real)RC_T_FAR;
+  real rounding = REF(gamma_bound)(1) * R_ABS(t);
+  real e_down = ((t > 0) ? R_ABS(t) - near : far - R_ABS(t)) + rounding;
+  real e_up = ((t > 0) ? far - R_ABS(t) : R_ABS(t) - near) + rounding;
+  REF(cert_root_within)(sc, t, e_down, e_up, t_max, t > 0);
 }
 
 rvec3 REF(cert_abs_apply)(const packed_quadric *q, rvec3 v) {
@@ -400,8 +434,69 @@ void REF(cert_solid)(const ref_scene *sc, uint32_t kind, real t_lo, real t_hi, r
   }
 }
 
-void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
+bool REF(cert_quadric_kind)(const ref_scene *sc, const packed_quadric *q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev,
+                            real b_in, real b_out, real e_in, real e_out, real t_max, bool whole, uint32_t *kind,
+                            real *t_lo, real *t_hi, real *e_r) {
   real k = REF(cert_factor)(sc);
+  *kind = RC_QR_NONE;
+  *t_lo = 0;
+  *t_hi = 0;
+  *e_r = 0;
+  real a, h, c, disc, e_a, e_h, e_c;
+  real e_disc = REF(cert_quadric_terms)(q, f, v, ef, ev, &a, &h, &c, &disc, &e_a, &e_h, &e_c);
+  if (a == 0 && e_a == 0 && h == 0 && e_h == 0) {
+    REF(cert_require)(sc, c, e_c);
+    *kind = (c <= 0) ? RC_QR_ALL : RC_QR_NONE;
+    return true;
+  }
+  if (!(R_ABS(a) > k * e_a)) {
+    REF(cert_fail)();
+    return false;
+  }
+  if (!whole && a > 0 && h > k * e_h && (c > k * e_c || (ref_cert_self && c > 0))) {
+    return false;
+  }
+  if (!(R_ABS(disc) > k * e_disc)) {
+    if (a < 0 || whole) {
+      REF(cert_fail)();
+      return false;
+    }
+    real spread = R_SQRT(rmax(disc, 0) + k * e_disc) + k * e_h;
+    real a_lo = a - k * e_a;
+    real a_hi = a + k * e_a;
+    real lo = rmin((-h - spread) / a_lo, (-h - spread) / a_hi);
+    real hi = rmax((-h + spread) / a_lo, (-h + spread) / a_hi);
+    lo = rmax(lo - REF(gamma_bound)(3) * R_ABS(lo), b_in - k * e_in);
+    hi = rmin(hi + REF(gamma_bound)(3) * R_ABS(hi), b_out + k * e_out);
+    if (lo <= hi) REF(cert_maybe)(sc, lo, hi, t_max, disc >= 0 && hi > 0 && lo <= t_max);
+    return false;
+  }
+  if (disc < 0) {
+    *kind = (a > 0) ? RC_QR_NONE : RC_QR_ALL;
+    return true;
+  }
+  real sq = R_SQRT(disc);
+  real qq = (h >= 0) ? -(h + sq) : -(h - sq);
+  if (qq == 0 || R_ABS(qq) >= R_ABS(a) * (real)RC_T_FAR || R_ABS(c) >= R_ABS(qq) * (real)RC_T_FAR) {
+    REF(cert_fail)();
+    return false;
+  }
+  real r0 = qq / a;
+  real r1 = c / qq;
+  real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
+  real e_q = e_h + e_sq + REF(gamma_bound)(2) * R_ABS(qq);
+  real e_r0 = (R_ABS(a) > e_a) ? (e_q + R_ABS(r0) * e_a) / (R_ABS(a) - e_a) + REF(gamma_bound)(1) * R_ABS(r0)
+                               : (real)RC_T_FAR;
+  real e_r1 = (R_ABS(qq) > e_q) ? (e_c + R_ABS(r1) * e_q) / (R_ABS(qq) - e_q) + REF(gamma_bound)(1) * R_ABS(r1)
+                                : (real)RC_T_FAR;
+  *e_r = rmax(e_r0, e_r1);
+  *t_lo = rmin(r0, r1);
+  *t_hi = rmax(r0, r1);
+  *kind = (a > 0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
+  return true;
+}
+
+void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   rvec3 f = REF(quadric_local)(q, RV(sub)(o, rvec3_from(q->center)));
   rvec3 v = REF(quadric_local)(q, d);
   rvec3 ef = REF(cert_local_error)(q, RV(add)(RV(abs)(o), RV(abs)(rvec3_from(q->center))), ref_cert_eo, 4);
@@ -414,56 +509,10 @@ void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rv
     REF(cert_fail)();
     return;
   }
-  real a, h, c, disc, e_a, e_h, e_c;
-  real e_disc = REF(cert_quadric_terms)(q, f, v, ef, ev, &a, &h, &c, &disc, &e_a, &e_h, &e_c);
-  uint32_t kind = RC_QR_NONE;
-  real t_lo = 0;
-  real t_hi = 0;
-  real e_r = 0;
-  if (a == 0 && e_a == 0 && h == 0 && e_h == 0) {
-    REF(cert_require)(sc, c, e_c);
-    kind = (c <= 0) ? RC_QR_ALL : RC_QR_NONE;
-  } else if (!(R_ABS(a) > k * e_a)) {
-    REF(cert_fail)();
+  uint32_t kind;
+  real t_lo, t_hi, e_r;
+  if (!REF(cert_quadric_kind)(sc, q, f, v, ef, ev, b_in, b_out, e_in, e_out, t_max, false, &kind, &t_lo, &t_hi, &e_r))
     return;
-  } else if (a > 0 && h > k * e_h && (c > k * e_c || (ref_cert_self && c > 0))) {
-    return;
-  } else if (!(R_ABS(disc) > k * e_disc)) {
-    if (a < 0) {
-      REF(cert_fail)();
-      return;
-    }
-    real spread = R_SQRT(rmax(disc, 0) + k * e_disc) + k * e_h;
-    real a_lo = a - k * e_a;
-    real a_hi = a + k * e_a;
-    real lo = rmin((-h - spread) / a_lo, (-h - spread) / a_hi);
-    real hi = rmax((-h + spread) / a_lo, (-h + spread) / a_hi);
-    lo = rmax(lo - REF(gamma_bound)(3) * R_ABS(lo), b_in - k * e_in);
-    hi = rmin(hi + REF(gamma_bound)(3) * R_ABS(hi), b_out + k * e_out);
-    if (lo <= hi) REF(cert_maybe)(sc, lo, hi, t_max, disc >= 0 && hi > 0 && lo <= t_max);
-    return;
-  } else if (disc < 0) {
-    kind = (a > 0) ? RC_QR_NONE : RC_QR_ALL;
-  } else {
-    real sq = R_SQRT(disc);
-    real qq = (h >= 0) ? -(h + sq) : -(h - sq);
-    if (qq == 0 || R_ABS(qq) >= R_ABS(a) * (real)RC_T_FAR || R_ABS(c) >= R_ABS(qq) * (real)RC_T_FAR) {
-      REF(cert_fail)();
-      return;
-    }
-    real r0 = qq / a;
-    real r1 = c / qq;
-    real e_sq = e_disc / (sq + R_SQRT(rmax(disc - e_disc, 0))) + REF(gamma_bound)(2) * sq;
-    real e_q = e_h + e_sq + REF(gamma_bound)(2) * R_ABS(qq);
-    real e_r0 = (R_ABS(a) > e_a) ? (e_q + R_ABS(r0) * e_a) / (R_ABS(a) - e_a) + REF(gamma_bound)(1) * R_ABS(r0)
-                                 : (real)RC_T_FAR;
-    real e_r1 = (R_ABS(qq) > e_q) ? (e_c + R_ABS(r1) * e_q) / (R_ABS(qq) - e_q) + REF(gamma_bound)(1) * R_ABS(r1)
-                                  : (real)RC_T_FAR;
-    e_r = rmax(e_r0, e_r1);
-    t_lo = rmin(r0, r1);
-    t_hi = rmax(r0, r1);
-    kind = (a > 0) ? RC_QR_BETWEEN : RC_QR_OUTSIDE;
-  }
   if (kind == RC_QR_NONE) return;
   if ((q->flags & RC_QUADRIC_SOLID) != 0) {
     REF(cert_solid)(sc, kind, t_lo, t_hi, e_r, b_in, b_out, e_in, e_out, sure, t_max);

@@ -201,8 +201,15 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
   if (kind == RC_HIT_SPHERE) {
     REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
   } else if (kind == RC_HIT_TRIANGLE) {
-    REF(cert_triangle)(sc, o, sh, sc->triangles[index], t_max);
+    packed_triangle tri = sc->triangles[index];
+    uint32_t side = RC_SIDE_FRONT;
+    if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0) side = REF(cert_triangle_side)(sc, tri, d);
+    if (side != RC_SIDE_BACK) REF(cert_triangle)(sc, o, sh, tri, t_max, side == RC_SIDE_UNSURE);
   } else {
+    if (kind == RC_HIT_CSG) {
+      REF(cert_csg)(sc, index, o, d, t_max);
+      return;
+    }
     const packed_quadric *q = &sc->quadrics[index];
     if (kind == RC_HIT_QUADRIC && (q->flags & RC_QUADRIC_UNBOUNDED) != 0) {
       REF(cert_plane)(sc, q, o, d, t_max);

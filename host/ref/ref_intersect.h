@@ -53,6 +53,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_intersect_triangle_##S(V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, V *bary); \
   R ref_intersect_triangle_moller_trumbore_##S(V o, V d, packed_triangle tri, R t_max, V *bary);   \
   R ref_intersect_triangle_cramer_##S(V o, V d, packed_triangle tri, R t_max, V *bary);            \
+  R ref_triangle_facing_##S(packed_triangle tri, V d);                                          \
   bool ref_triangle_faces_ray_##S(packed_triangle tri, V d);                                      \
   uint32_t ref_object_kind_##S(const ref_scene *sc, uint32_t object, uint32_t *index);           \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
@@ -80,6 +81,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_fail_##S(void);                                                                 \
   R ref_cert_turn_##S(R x);                                                                     \
   R ref_cert_turn_of_##S(R e, R len);                                                           \
+  bool ref_cert_root_within_##S(const ref_scene *sc, R t, R e_down, R e_up, R t_max, bool ahead); \
   bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
   void ref_cert_maybe_##S(const ref_scene *sc, R lo, R hi, R t_max, bool taken);                \
   void ref_cert_sphere_grazing_##S(const ref_scene *sc, R disc, R b, R c, R e_disc, R e_b, R e_c, R t_max, R t_near, \
@@ -88,8 +90,17 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_sphere_roots_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R scale, R rel); \
   R ref_cert_norm_##S(const packed_transform *m);                                               \
   void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \
-  void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max); \
+  R ref_cert_facing_error_##S(packed_triangle tri, V d);                                        \
+  uint32_t ref_cert_triangle_side_##S(const ref_scene *sc, packed_triangle tri, V d);           \
+  void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, \
+                             bool side_unsure);                                                  \
   void ref_cert_plane_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);     \
+  bool ref_cert_leaf_intervals_##S(const ref_scene *sc, uint32_t leaf, const packed_quadric *q, V o, V d, \
+                                   uint32_t base, uint32_t *n);                                  \
+  bool ref_cert_combine_##S(const ref_scene *sc, uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb, \
+                            uint32_t *n);                                                        \
+  void ref_cert_first_end_##S(const ref_scene *sc, uint32_t n, R t_max);                        \
+  void ref_cert_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max);                 \
   V ref_cert_abs_apply_##S(const packed_quadric *q, V v);                                       \
   V ref_cert_local_error_##S(const packed_quadric *q, V mag, R e, R n);                         \
   bool ref_cert_slab_##S(const ref_scene *sc, R lo, R hi, R f, R v, R ef, R ev, R *tn, R *tx, R *e); \
@@ -104,6 +115,8 @@ extern _Thread_local uint32_t ref_crossing_blame;
                               bool face_sure, R t_max);                                          \
   void ref_cert_solid_##S(const ref_scene *sc, uint32_t kind, R t_lo, R t_hi, R e_r, R b_in, R b_out, R e_in, \
                           R e_out, uint32_t sure, R t_max);                                      \
+  bool ref_cert_quadric_kind_##S(const ref_scene *sc, const packed_quadric *q, V f, V v, V ef, V ev, R b_in, R b_out, \
+                                 R e_in, R e_out, R t_max, bool whole, uint32_t *kind, R *t_lo, R *t_hi, R *e_r); \
   void ref_cert_quadric_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);   \
   R ref_cert_quadric_normal_##S(const packed_quadric *q, V p, R ep);                            \
   void ref_closest_hit_linear_##S(const ref_scene *sc, V o, V d, ref_hit_##S *h);               \
@@ -122,6 +135,9 @@ extern _Thread_local uint32_t ref_crossing_blame;
 
 /* ref_quadric.c, the twin of rc_quadric.glsl. */
 #define REF_DECLARE_QUADRIC(S, R, V)                                                            \
+  extern _Thread_local R ref_csg_t_##S[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];                       \
+  extern _Thread_local uint32_t ref_csg_code_of_##S[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];           \
+  extern _Thread_local R ref_csg_e_##S[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];                       \
   uint32_t ref_csg_code_##S(uint32_t leaf, uint32_t face, bool leaf_exit, bool flip);           \
   V ref_quadric_local_##S(const packed_quadric *q, V v);                                           \
   V ref_quadric_apply_##S(const packed_quadric *q, V v);                                           \
@@ -137,6 +153,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_first_interval_end_##S(uint32_t base, uint32_t n, R t_max, uint32_t *code);             \
   R ref_intersect_plane_##S(const packed_quadric *q, V o, V d, R t_max);                              \
   R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
+  bool ref_csg_inside_##S(uint32_t op, bool in_a, bool in_b);                                  \
   uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
   bool ref_line_meets_box_##S(V lo, V hi, V o, V d);                                            \
   uint32_t ref_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const packed_quadric *q, V o, V d, bool flip, \

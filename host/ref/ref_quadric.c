@@ -5,8 +5,9 @@
 
 #include "ref/ref_real.h"
 
-static _Thread_local real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
-static _Thread_local uint32_t csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+_Thread_local real csg_t[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+_Thread_local uint32_t csg_code_of[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
+_Thread_local real csg_e[(RC_CSG_STACK + 1u) * RC_CSG_SLOT];
 
 static rvec3 v3(vec3 a) { return rvec3_from(a); }
 
@@ -256,6 +257,10 @@ real REF(intersect_quadric)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 
   return REF(first_interval_end)(0, n, t_max, code);
 }
 
+bool REF(csg_inside)(uint32_t op, bool in_a, bool in_b) {
+  return op == RC_CSG_UNION ? (in_a || in_b) : (op == RC_CSG_INTERSECTION ? (in_a && in_b) : (in_a && !in_b));
+}
+
 uint32_t REF(combine_intervals)(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb) {
   uint32_t out_base = RC_CSG_STACK * RC_CSG_SLOT;
   uint32_t i = 0, j = 0, n = 0;
@@ -275,7 +280,7 @@ uint32_t REF(combine_intervals)(uint32_t op, uint32_t a, uint32_t na, uint32_t b
       in_b = !in_b;
       j++;
     }
-    bool in_now = op == RC_CSG_UNION ? (in_a || in_b) : (op == RC_CSG_INTERSECTION ? (in_a && in_b) : (in_a && !in_b));
+    bool in_now = REF(csg_inside)(op, in_a, in_b);
     if (in_now == in_r) continue;
     in_r = in_now;
     if (n > 0 && csg_t[out_base + n - 1] == t) {

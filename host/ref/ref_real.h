@@ -54,6 +54,11 @@ static inline vec3 vec3_from(rvec3 a) { return a; }
 #define ref_cert_blocked_later REF(cert_blocked_later)
 #define ref_cert_blocker_certain REF(cert_blocker_certain)
 
+/* rc_quadric.glsl's interval stack, this precision's (ref_intersect.h). */
+#define csg_t REF(csg_t)
+#define csg_code_of REF(csg_code_of)
+#define csg_e REF(csg_e)
+
 /* GLSL's rvec4 (rc_patch.glsl's rows of four control points), a plain struct here. */
 typedef struct { real x, y, z, w; } rvec4;
 

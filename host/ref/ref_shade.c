@@ -166,14 +166,24 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
   return sf;
 }
 
+bool REF(cert_point_on_ray)(const ref_scene *sc, const ref_hit *h, uint32_t transform) {
+  if (transform != RC_NO_TRANSFORM) return true;
+  if (h->kind == RC_HIT_QUADRIC || h->kind == RC_HIT_CSG) {
+    if ((h->part & RC_CSG_CODE_MESH) != 0 || ((h->part >> 2u) & 3u) != 0) return true;
+    return (sc->quadrics[h->part >> RC_CSG_CODE_LEAF_SHIFT].flags & RC_QUADRIC_UNBOUNDED) != 0;
+  }
+  return false;
+}
+
 void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref_surface *sf) {
   uint32_t transform = (h->kind == RC_HIT_SPHERE) ? sc->spheres[h->index].transform : RC_NO_TRANSFORM;
-  bool along_ray = h->kind == RC_HIT_QUADRIC || transform != RC_NO_TRANSFORM;
+  bool along_ray = h->kind == RC_HIT_QUADRIC || h->kind == RC_HIT_CSG || transform != RC_NO_TRANSFORM;
   real ep_round = 2 * RV(length)(sf->p_error) + (along_ray ? h->err : 0);
   real cosine = R_ABS(RV(dot)(sf->ng, d));
   real e_cos = ref_cert_ed + REF(gamma_bound)(12);
   REF(cert_require)(sc, cosine, e_cos);
-  real ep = ep_round + 2 * (ref_cert_eo + h->t * ref_cert_ed) / rmax(cosine - e_cos, RC_SMALLEST_NORMAL);
+  real moved = ref_cert_eo + h->t * ref_cert_ed;
+  real ep = ep_round + (REF(cert_point_on_ray)(sc, h, transform) ? moved : 2 * moved / rmax(cosine - e_cos, RC_SMALLEST_NORMAL));
   real en = REF(gamma_bound)(12);
   if (h->kind == RC_HIT_SPHERE) {
     real r = (real)sc->spheres[h->index].radius;
@@ -200,7 +210,8 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
       REF(cert_require)(sc, RV(dot)(sf->n, sf->ng), en + REF(gamma_bound)(12));
     }
   }
-  if (h->kind == RC_HIT_QUADRIC && ((h->part >> 2u) & 3u) == 0) {
+  bool leaf = h->kind == RC_HIT_QUADRIC || (h->kind == RC_HIT_CSG && (h->part & RC_CSG_CODE_MESH) == 0);
+  if (leaf && ((h->part >> 2u) & 3u) == 0) {
     const packed_quadric *q = &sc->quadrics[h->part >> RC_CSG_CODE_LEAF_SHIFT];
     if ((q->flags & RC_QUADRIC_UNBOUNDED) == 0) en += REF(cert_quadric_normal)(q, sf->p, ep);
   }
@@ -208,32 +219,41 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
   ref_cert_en = en;
 }
 
-real REF(cert_origin)(const ref_surface *sf, rvec3 origin) {
-  return ref_cert_ep + 2 * RV(length)(RV(sub)(origin, sf->p)) + REF(gamma_bound)(2) * RV(length)(origin);
+real REF(cert_origin)(const ref_scene *sc, const ref_surface *sf, rvec3 origin) {
+  real off = RV(length)(RV(sub)(origin, sf->p));
+  real turn = (sc->frame->offset_strategy == RC_OFFSET_EPSILON) ? ref_cert_en : 2;
+  return ref_cert_ep + turn * off + REF(gamma_bound)(2) * (RV(length)(origin) + off);
+}
+
+real REF(cert_t_min_start)(const ref_scene *sc, real eo, real ed, rvec3 origin) {
+  if (sc->frame->offset_strategy != RC_OFFSET_T_MIN) return eo;
+  real eps = (real)sc->frame->offset_epsilon;
+  return eo + eps * ed + REF(gamma_bound)(2) * (RV(length)(origin) + 2 * eps);
 }
 
 void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface *sf, rvec3 origin, real n_dot_l) {
-  real eo = REF(cert_origin)(sf, origin);
+  real eo = REF(cert_origin)(sc, sf, origin);
   if (light.type == RC_LIGHT_POINT) {
     real r = RV(length)(RV(sub)(rvec3_from(light.position), sf->p));
     real dist = RV(length)(RV(sub)(rvec3_from(light.position), origin));
     real xl = ref_cert_ep + REF(gamma_bound)(4) * r;
     REF(cert_require)(sc, n_dot_l, ref_cert_en + REF(cert_turn_of)(xl, r) + REF(gamma_bound)(4));
     real xd = eo + REF(gamma_bound)(4) * dist;
-    ref_cert_eo = eo;
     ref_cert_ed = REF(cert_turn_of)(xd, dist);
-    ref_cert_t_max_err = eo + REF(gamma_bound)(6) * dist;
+    ref_cert_eo = REF(cert_t_min_start)(sc, eo, ref_cert_ed, origin);
+    ref_cert_t_max_err = eo + REF(gamma_bound)(7) * dist;
   } else {
     REF(cert_require)(sc, n_dot_l, ref_cert_en + REF(gamma_bound)(4));
-    ref_cert_eo = eo;
     ref_cert_ed = 0;
+    ref_cert_eo = REF(cert_t_min_start)(sc, eo, ref_cert_ed, origin);
     ref_cert_t_max_err = 0;
   }
 }
 
-void REF(cert_reflect)(const ref_surface *sf, rvec3 origin, real ed_in) {
-  ref_cert_eo = REF(cert_origin)(sf, origin);
+void REF(cert_reflect)(const ref_scene *sc, const ref_surface *sf, rvec3 origin, real ed_in) {
   ref_cert_ed = REF(cert_turn)(ed_in * (1 + REF(gamma_bound)(32)) + 2 * ref_cert_en + REF(gamma_bound)(58));
+  bool moved = sc->frame->offset_strategy == RC_OFFSET_T_MIN;
+  ref_cert_eo = REF(cert_t_min_start)(sc, REF(cert_origin)(sc, sf, moved ? sf->p : origin), ref_cert_ed, origin);
 }
 
 /* The integer of a real's width, for the Wächter-Binder ulp offset. */

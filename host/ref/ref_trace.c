@@ -51,7 +51,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     d = RV(normalize)(RV(reflect)(d, sf.n));
     o = REF(t_min_start)(sc, o, d);
     first = 0, end = sc->frame->bvh_node_count; /* the eye buffer is for primary rays */
-    if (sc->frame->certify) REF(cert_reflect)(&sf, o, ed_in);
+    if (sc->frame->certify) REF(cert_reflect)(sc, &sf, o, ed_in);
     ref_reflection_rays++;
   }
   return color;

@@ -148,8 +148,10 @@ real REF(intersect_triangle_cramer)(rvec3 o, rvec3 d, packed_triangle tri, real 
 /* Whether d meets the triangle's front, the side its geometric normal cross(v1 - v0,
  * v2 - v0) points to (counter-clockwise winding seen from there): a one-sided triangle
  * (RC_TRIANGLE_ONE_SIDED) is there for such rays only. Edge on counts as behind. */
-bool REF(triangle_faces_ray)(packed_triangle tri, rvec3 d) {
+real REF(triangle_facing)(packed_triangle tri, rvec3 d) {
   rvec3 v0 = rvec3_from(tri.v0);
   real facing = RV(dot)(d, RV(cross)(RV(sub)(rvec3_from(tri.v1), v0), RV(sub)(rvec3_from(tri.v2), v0)));
-  return facing < 0;
+  return facing;
 }
+
+bool REF(triangle_faces_ray)(packed_triangle tri, rvec3 d) { return REF(triangle_facing)(tri, d) < 0; }

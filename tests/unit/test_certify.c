@@ -78,7 +78,7 @@ TEST(triangle_t_bound_is_sound_and_tighter_than_pbrts) {
     ref_cert_any_f = ref_cert_self_f = false;
     ref_cert_beyond_f = (float)RC_T_FAR;
     ref_spawned_ray = false;
-    ref_cert_triangle_f(&sc, of, &sh, tri, (float)RC_T_FAR);
+    ref_cert_triangle_f(&sc, of, &sh, tri, (float)RC_T_FAR, false);
     vec3 bary_f;
     float tf = ref_intersect_triangle_f(of, &sh, tri, (float)RC_T_FAR, &bary_f);
     if (!ref_cert_ok_f || !(tf < (float)RC_T_FAR)) continue; /* uncertain, or missed */
@@ -101,9 +101,63 @@ TEST(triangle_t_bound_is_sound_and_tighter_than_pbrts) {
   CHECK(worst <= 1);
 }
 
+/* A one-sided triangle's side (cert_facing_error, cert_triangle_side): rays from nearly in
+ * the triangle's plane to well off it, on triangles from 10^-2 to 10^2 across and up to 100
+ * times that from the origin, their f32 direction up to ed from the reference's (ed = 0,
+ * and ed = 1e-6 in the worst direction, along the normal). The f64 facing of the reference's
+ * direction is within the bound of f32's; the cases include f32 and f64 signs that differ,
+ * so a bound too small would show, and the move along the normal reaches more than half
+ * the bound, so that a halved bound would not hold. */
+TEST(one_sided_triangle_side_is_sound_and_attained) {
+  packed_frame frame = {0};
+  frame.certify = RC_CERTIFY_ON;
+  ref_scene sc = {.frame = &frame};
+  int certified = 0, flips = 0;
+  double worst = 0;
+  for (int k = 0; k < 20000; k++) {
+    double scale = pow(10, 4 * uniform() - 2);
+    dvec3 c = rcm_scale_d(rcm_make_d(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1), scale * 100 * uniform());
+    vec3 v[3];
+    for (int j = 0; j < 3; j++) {
+      dvec3 p = rcm_add_d(c, rcm_scale_d(rcm_make_d(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1), scale));
+      v[j] = rcm_make_f((float)p.x, (float)p.y, (float)p.z);
+    }
+    packed_triangle tri = {v[0], 0, v[1], RC_NO_NORMALS, v[2], RC_TRIANGLE_ONE_SIDED};
+    dvec3 n = rcm_cross_d(rcm_sub_d(rcm_to_d(v[1]), rcm_to_d(v[0])), rcm_sub_d(rcm_to_d(v[2]), rcm_to_d(v[0])));
+    if (!(rcm_length_d(n) > 0)) continue;
+    n = rcm_normalize_d(n);
+    /* A direction in the plane, tilted off it by 10^-9 .. 10^-1 to either side. */
+    dvec3 in = rcm_normalize_d(rcm_cross_d(n, rcm_make_d(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5)));
+    double tilt = (uniform() < 0.5 ? -1 : 1) * pow(10, -9 + 8 * uniform());
+    dvec3 dd = rcm_normalize_d(rcm_add_d(in, rcm_scale_d(n, tilt)));
+    vec3 df = rcm_make_f((float)dd.x, (float)dd.y, (float)dd.z);
+    double ed = (k % 2) ? 1e-6 : 0;
+    /* The reference's direction: f32's, moved by ed against f32's side of the plane. */
+    float ff = ref_triangle_facing_f(tri, df);
+    dvec3 dref = rcm_add_d(rcm_to_d(df), rcm_scale_d(n, ff < 0 ? ed : -ed));
+    double fd = ref_triangle_facing_d(tri, dref);
+    ref_cert_ed_f = (float)ed;
+    double bound = ref_cert_facing_error_f(tri, df);
+    uint32_t side = ref_cert_triangle_side_f(&sc, tri, df);
+    double err = fabs((double)ff - fd);
+    CHECK(err <= bound);
+    if (err / bound > worst) worst = err / bound;
+    flips += (ff < 0) != (fd < 0);
+    if (side == RC_SIDE_UNSURE) continue;
+    certified++;
+    CHECK((side == RC_SIDE_FRONT) == (fd < 0));
+  }
+  ref_cert_ed_f = 0;
+  CHECK(certified > 10000);
+  CHECK(flips > 10);
+  CHECK(worst > 0.5);
+  CHECK(worst <= 1);
+}
+
 int main(void) {
   TEST_MAIN_BEGIN
   RUN(unit_vector_turn_is_sound_and_attained);
   RUN(triangle_t_bound_is_sound_and_tighter_than_pbrts);
+  RUN(one_sided_triangle_side_is_sound_and_attained);
   TEST_MAIN_END
 }

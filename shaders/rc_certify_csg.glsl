@@ -1,0 +1,171 @@
+// rc_certify_csg.glsl: certified decisions of composite solids (intersect_csg; docs/numerics.md
+// §10). The certificate reruns the composite's program over interval lists whose ends carry
+// error bounds (csg_e): each leaf's list must have the reference's shape (the same ends on the
+// same surfaces, cert_leaf_intervals), each merge must take the ends in the reference's order
+// (cert_combine), and the first end ahead is then judged as any root (cert_first_end). A leaf's
+// ends behind the ray count too: they decide whether the ray starts inside. Mesh operands
+// have no bound here: a test of a composite with one is uncertified.
+
+// A leaf's intervals (solid_intervals, whose ends it writes at `base`), each end's bound in
+// csg_e: a box face's that of its span end (cert_box), a root's the roots' (cert_quadric_kind),
+// an open end none (RC_T_FAR is the same constant in both precisions). False, the test
+// failed, where the list's shape is uncertain: whether the box is met, the quadric's kind,
+// which of a box face and a root a clip keeps, whether a piece exists, which face wins a span.
+bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint base, out uint n) {
+  n = solid_intervals(leaf, q, o, d, false, base);
+  real k = cert_factor();
+  rvec3 f = quadric_local(q, o - rvec3(q.center));
+  rvec3 v = quadric_local(q, d);
+  rvec3 ef = cert_local_error(q, abs(o) + abs(rvec3(q.center)), cert_eo, 4.0);
+  rvec3 ev = cert_local_error(q, abs(d), cert_ed, 3.0);
+  real b_in, b_out, e_in, e_out;
+  uint sure;
+  uint box = cert_box(q, f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+  if (box == 0u && n == 0u) return true;
+  uint kind;
+  real t_lo, t_hi, e_r;
+  if (box != 1u || !cert_quadric_kind(q, f, v, ef, ev, b_in, b_out, e_in, e_out, real(RC_T_FAR), true, kind, t_lo,
+                                      t_hi, e_r)) {
+    cert_fail();
+    return false;
+  }
+  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -real(RC_T_FAR);
+  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : real(RC_T_FAR));
+  uint pieces = (kind == RC_QR_NONE) ? 0u : ((kind == RC_QR_OUTSIDE) ? 2u : 1u);
+  uint m = 0u;
+  for (uint p = 0u; p < pieces; p++) {
+    if (!budget_step()) return false;
+    real lo = (p == 0u) ? lo0 : t_hi;
+    real hi = (p == 0u) ? hi0 : real(RC_T_FAR);
+    real e_lo = (abs(lo) < real(RC_T_FAR)) ? e_r : 0.0;
+    real e_hi = (abs(hi) < real(RC_T_FAR)) ? e_r : 0.0;
+    bool box_starts = b_in >= lo;
+    bool box_ends = b_out <= hi;
+    bool clip_sure = (!(abs(lo) < real(RC_T_FAR)) || abs(b_in - lo) > k * (e_in + e_lo)) &&
+                     (!(abs(hi) < real(RC_T_FAR)) || abs(b_out - hi) > k * (e_out + e_hi));
+    bool face_sure = (!box_starts || (sure & 1u) != 0u) && (!box_ends || (sure & 2u) != 0u);
+    real s = box_starts ? b_in : lo;
+    real e = box_ends ? b_out : hi;
+    real e_s = box_starts ? e_in : e_lo;
+    real e_e = box_ends ? e_out : e_hi;
+    if (s - e > k * (e_s + e_e)) continue;
+    if (!clip_sure || !face_sure || !(e - s > k * (e_s + e_e)) || m + 2u > n) {
+      cert_fail();
+      return false;
+    }
+    csg_e[base + m] = e_s;
+    csg_e[base + m + 1u] = e_e;
+    m += 2u;
+  }
+  if (m != n) cert_fail();
+  return m == n;
+}
+
+// combine_intervals' walk, certified: of the two lists' next ends, the one taken first must
+// lie before the other by more than both bounds, or be the same open end (exact in both
+// precisions); an end dropped with the one before it must be such an open end too (two
+// finite ends equal here need not be equal in the reference). Each end's bound goes with it.
+// False, the test failed, where an order is uncertain.
+bool cert_combine(uint op, uint a, uint na, uint b, uint nb, out uint n) {
+  uint out_base = RC_CSG_STACK * RC_CSG_SLOT;
+  real k = cert_factor();
+  uint i = 0u;
+  uint j = 0u;
+  n = 0u;
+  bool in_a = false;
+  bool in_b = false;
+  bool in_r = false;
+  while (i < na || j < nb) {
+    if (!budget_step()) return false;
+    if (i < na && j < nb) {
+      real ta = csg_t[a + i];
+      real tb = csg_t[b + j];
+      bool same_open = ta == tb && !(abs(ta) < real(RC_T_FAR));
+      if (!same_open && !(abs(ta - tb) > k * (csg_e[a + i] + csg_e[b + j]))) {
+        cert_fail();
+        return false;
+      }
+    }
+    bool take_a = j >= nb || (i < na && csg_t[a + i] <= csg_t[b + j]);
+    real t;
+    real e;
+    uint code;
+    if (take_a) {
+      t = csg_t[a + i];
+      e = csg_e[a + i];
+      code = csg_code_of[a + i];
+      in_a = !in_a;
+      i++;
+    } else {
+      t = csg_t[b + j];
+      e = csg_e[b + j];
+      code = csg_code_of[b + j] ^ ((op == RC_CSG_DIFFERENCE) ? 1u : 0u);
+      in_b = !in_b;
+      j++;
+    }
+    bool in_now = csg_inside(op, in_a, in_b);
+    if (in_now == in_r) continue;
+    in_r = in_now;
+    if (n > 0u && csg_t[out_base + n - 1u] == t) {
+      if (abs(t) < real(RC_T_FAR)) {
+        cert_fail();
+        return false;
+      }
+      n--;
+      continue;
+    }
+    csg_t[out_base + n] = t;
+    csg_e[out_base + n] = e;
+    csg_code_of[out_base + n] = code;
+    n++;
+  }
+  return true;
+}
+
+// first_interval_end's decision: each finite end in turn is a root (cert_root: behind the ray
+// beyond its bound, or the surface a spawned ray leaves; ahead, and within t_max or past it)
+// until one is taken.
+void cert_first_end(uint n, real t_max) {
+  for (uint i = 0u; i < n; i++) {
+    if (!budget_step()) return;
+    real t = csg_t[i];
+    if (abs(t) < real(RC_T_FAR) && cert_root(t, csg_e[i], t_max, t > 0.0)) return;
+  }
+}
+
+// A composite's decisions (intersect_csg): its program over certified lists, then its first
+// end ahead. The end's code (the leaf, the face, entry or exit, the flip) is then the
+// reference's: every list's shape and every merge's order are.
+void cert_csg(uint index, rvec3 o, rvec3 d, real t_max) {
+  packed_csg c = load_csg(index);
+  uint count[RC_CSG_STACK];
+  uint sp = 0u;
+  for (uint k = 0u; k < c.count; k++) {
+    if (!budget_step()) return;
+    uint ins = load_csg_instruction(c.first + k);
+    uint op = ins >> RC_CSG_OP_SHIFT;
+    uint operand = ins & RC_CSG_OPERAND_MASK;
+    if (op == RC_CSG_LEAF) {
+      packed_quadric q = load_quadric(operand);
+      if ((q.flags & RC_QUADRIC_MESH) != 0u) {
+        cert_fail();
+        return;
+      }
+      if (!cert_leaf_intervals(operand, q, o, d, sp * RC_CSG_SLOT, count[sp])) return;
+      sp++;
+      continue;
+    }
+    uint a = (sp - 2u) * RC_CSG_SLOT;
+    uint n;
+    if (!cert_combine(op, a, count[sp - 2u], (sp - 1u) * RC_CSG_SLOT, count[sp - 1u], n)) return;
+    for (uint i = 0u; i < n; i++) {
+      if (!budget_step()) return;
+      csg_t[a + i] = csg_t[RC_CSG_STACK * RC_CSG_SLOT + i];
+      csg_e[a + i] = csg_e[RC_CSG_STACK * RC_CSG_SLOT + i];
+      csg_code_of[a + i] = csg_code_of[RC_CSG_STACK * RC_CSG_SLOT + i];
+    }
+    count[sp - 2u] = n;
+    sp--;
+  }
+  cert_first_end(count[0], t_max);
+}
