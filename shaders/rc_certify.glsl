@@ -249,10 +249,33 @@ uint cert_triangle_side(packed_triangle tri, rvec3 d) {
   return (f < 0.0) ? RC_SIDE_FRONT : RC_SIDE_BACK;
 }
 
-// The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed. A
-// sheared coordinate a.x - s.x a.z moves by |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <=
-// |dd| (1 + |s.x|) / |d.z|, and rounds by gamma(5) of its terms (pbrt's delta_x); an edge
-// function x y' - y x' by the products of those and gamma(2) of its terms. A miss is certified
+// The watertight test's edge functions' bound: a sheared coordinate a.x - s.x a.z moves by
+// |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <= |dd| (1 + |s.x|) / |d.z|, and rounds by
+// gamma(5) of its terms (pbrt's delta_x); an edge function x y' - y x' by the products of
+// those and gamma(2) of its terms. dz: the depths' bound (cert_triangle_t_error).
+real cert_edge_error(sheared_triangle st, ray_shear sh, out real dz) {
+  real inv = abs(sh.s.z);
+  real sx = abs(sh.s.x);
+  real sy = abs(sh.s.y);
+  real zr = max3_abs(st.z) / inv;
+  real xm = max3_abs(st.x);
+  real ym = max3_abs(st.y);
+  real dx = cert_eo * (1.0 + sx) + cert_ed * (1.0 + sx) * inv * zr + gamma_bound(5.0) * (xm + 2.0 * sx * zr);
+  real dy = cert_eo * (1.0 + sy) + cert_ed * (1.0 + sy) * inv * zr + gamma_bound(5.0) * (ym + 2.0 * sy * zr);
+  dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
+  return 2.0 * (dx * ym + xm * dy + dx * dy) + gamma_bound(2.0) * 2.0 * xm * ym;
+}
+
+// Whether two edge functions have certainly opposite signs (each beyond k): the line
+// certainly misses the triangle.
+bool cert_edges_apart(sheared_triangle st, real k) {
+  bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
+  bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
+  return pos && neg;
+}
+
+// The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed with
+// cert_edge_error's bound. A miss is certified
 // by two edge functions of certain opposite signs, a hit by three of certain sign; t's bound
 // is cert_triangle_t_error's. Otherwise the ray passes near an edge, and the reference may
 // take the hit where this precision does not, or not where it does; either's hit is at the
@@ -270,24 +293,14 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool 
     return;
   }
   sheared_triangle st = shear_triangle(o, sh, tri);
-  real inv = abs(sh.s.z);
-  real sx = abs(sh.s.x);
-  real sy = abs(sh.s.y);
-  real zr = max3_abs(st.z) / inv;
-  real xm = max3_abs(st.x);
-  real ym = max3_abs(st.y);
-  real dx = cert_eo * (1.0 + sx) + cert_ed * (1.0 + sx) * inv * zr + gamma_bound(5.0) * (xm + 2.0 * sx * zr);
-  real dy = cert_eo * (1.0 + sy) + cert_ed * (1.0 + sy) * inv * zr + gamma_bound(5.0) * (ym + 2.0 * sy * zr);
-  real ee = 2.0 * (dx * ym + xm * dy + dx * dy) + gamma_bound(2.0) * 2.0 * xm * ym;
+  real dz;
+  real ee = cert_edge_error(st, sh, dz);
   real k = cert_factor() * ee;
-  bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
-  bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
-  if (pos && neg) return;
+  if (cert_edges_apart(st, k)) return;
   if (side_unsure) {
     cert_fail();
     return;
   }
-  real dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
   real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
   precise real sum = st.e.x + st.e.y + st.e.z;
   real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
@@ -307,6 +320,34 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool 
   real det = enclosing_det(st.e);
   bool taken = det != 0.0 && ahead && t <= t_max;
   cert_maybe(t - cert_factor() * e_t, t + cert_factor() * e_t, t_max, taken);
+}
+
+// triangle_crossing's decision for the ray's whole line, certified with cert_triangle's
+// bounds: 0 where the line certainly does not cross, 1 where it certainly does (t, its bound
+// e), 2 where it passes within the bound of an edge: the neighbour across the edge may own
+// the crossing instead (another normal), or at a silhouette both or neither cross; the
+// crossing, if any, then lies in the plane's t +/- e. 3 where the triangle is edge-on (no
+// interval). A spawned ray's crossing that the test pins at 0 (the surface it leaves) keeps
+// that value, its bound grown by the distance it was moved.
+uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out real e) {
+  t = real(RC_T_FAR);
+  e = 0.0;
+  sheared_triangle st = shear_triangle(o, sh, tri);
+  real dz;
+  real ee = cert_edge_error(st, sh, dz);
+  real k = cert_factor() * ee;
+  if (cert_edges_apart(st, k)) return 0u;
+  real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
+  precise real sum = st.e.x + st.e.y + st.e.z;
+  real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
+  if (!(abs(sum) > cert_factor() * e_sum)) return 3u;
+  t = triangle_t(st, sum);
+  e = cert_triangle_t_error(st, t, sum, e_sum, ee, dz, se);
+  if (spawned_ray && abs(t) <= triangle_t_error(st, sum)) {
+    e += abs(t);
+    t = 0.0;
+  }
+  return (select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k) ? 1u : 2u;
 }
 
 #if RC_QUADRICS
@@ -417,14 +458,13 @@ uint cert_slab_parallel(real lo, real hi, real f, real v, real ef, real ev, real
   return 2u;
 }
 
-// box_span's decisions for the ray (f, v) in the quadric's frame, f and v at most ef and ev
-// (componentwise) from the reference's: the span [b_in, b_out], its ends' errors e_in and
-// e_out, and whether the entry and exit faces are certain (`sure`, bits 1 and 2). Returns 0
-// where the box is certainly missed, 1 where it is certainly met, 2 where that is uncertain.
-uint cert_box(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, out real b_in, out real b_out, out real e_in,
+// box_span's decisions for the box [lo, hi] and the ray (f, v) in its frame (a quadric's, or
+// the scene's for a BVH node), f and v at most ef and ev (componentwise) from the
+// reference's: the span [b_in, b_out], its ends' errors e_in and e_out, and whether the entry
+// and exit faces are certain (`sure`, bits 1 and 2). Returns 0 where the box is certainly
+// missed, 1 where it is certainly met, 2 where that is uncertain.
+uint cert_box(rvec3 lo, rvec3 hi, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, out real b_in, out real b_out, out real e_in,
               out real e_out, out uint sure) {
-  rvec3 lo = rvec3(q.lo);
-  rvec3 hi = rvec3(q.hi);
   real nx, xx, ex, ny, xy, ey, nz, xz, ez;
   cert_slab(lo.x, hi.x, f.x, v.x, ef.x, ev.x, nx, xx, ex);
   cert_slab(lo.y, hi.y, f.y, v.y, ef.y, ev.y, ny, xy, ey);
@@ -663,7 +703,7 @@ void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   rvec3 ev = cert_local_error(q, abs(d), cert_ed, 3.0);
   real b_in, b_out, e_in, e_out;
   uint sure;
-  uint box = cert_box(q, f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+  uint box = cert_box(rvec3(q.lo), rvec3(q.hi), f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
   if (box == 0u) return;
   if (box == 2u) {
     cert_fail();

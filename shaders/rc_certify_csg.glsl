@@ -3,8 +3,8 @@
 // error bounds (csg_e): each leaf's list must have the reference's shape (the same ends on the
 // same surfaces, cert_leaf_intervals), each merge must take the ends in the reference's order
 // (cert_combine), and the first end ahead is then judged as any root (cert_first_end). A leaf's
-// ends behind the ray count too: they decide whether the ray starts inside. Mesh operands
-// have no bound here: a test of a composite with one is uncertified.
+// ends behind the ray count too: they decide whether the ray starts inside. A mesh
+// operand's list is its crossings' (cert_mesh_intervals).
 
 // A leaf's intervals (solid_intervals, whose ends it writes at `base`), each end's bound in
 // csg_e: a box face's that of its span end (cert_box), a root's the roots' (cert_quadric_kind),
@@ -20,7 +20,7 @@ bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint bas
   rvec3 ev = cert_local_error(q, abs(d), cert_ed, 3.0);
   real b_in, b_out, e_in, e_out;
   uint sure;
-  uint box = cert_box(q, f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+  uint box = cert_box(rvec3(q.lo), rvec3(q.hi), f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
   if (box == 0u && n == 0u) return true;
   uint kind;
   real t_lo, t_hi, e_r;
@@ -59,6 +59,79 @@ bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint bas
   }
   if (m != n) cert_fail();
   return m == n;
+}
+
+// A mesh operand's crossings (mesh_intervals, whose list it writes at `base`), each end's
+// bound in csg_e. Every BVH node the test skips must be certainly missed by the reference's
+// line (cert_box, in the scene's frame), and every triangle it tests certainly crossed or
+// not (cert_crossing), except near an edge: there the reference may cross the neighbour
+// instead, or at a silhouette cross twice where this precision crosses not at all (or the
+// other way round), but only within the plane's interval, which must then be behind the
+// origin or past the query (cert_maybe): the mesh is closed, so such differences come in
+// pairs and leave the parity, inside or outside, alike at the origin, and what lies past t_max
+// (or past the nearest hit, which cert_maybe keeps) cannot change the first end before it.
+// Two crossings nearer each other than their bounds likewise. False, the test failed, where
+// a triangle is edge-on.
+bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_max, uint base, out uint n) {
+  n = mesh_intervals(csg, q, o, d, false, base);
+  if (crossing_blame != 0u) {
+    cert_fail();
+    return false;
+  }
+  real k = cert_factor();
+  ray_shear sh = ray_shear_for(d);
+  rvec3 ef = rvec3(cert_eo, cert_eo, cert_eo);
+  rvec3 ev = rvec3(cert_ed, cert_ed, cert_ed);
+  if (!budget_take(n)) return false;
+  for (uint i = 0u; i < n; i++) csg_e[base + i] = -1.0;
+  uint node = q.mesh_root;
+  while (node < q.mesh_end) {
+    if (!budget_step()) return false;
+    packed_bvh_node b = load_bvh_node(node);
+    if (!line_meets_box(rvec3(b.lo), rvec3(b.hi), o, d)) {
+      real b_in, b_out, e_in, e_out;
+      uint sure;
+      if (cert_box(rvec3(b.lo), rvec3(b.hi), o, d, ef, ev, b_in, b_out, e_in, e_out, sure) != 0u) {
+        cert_fail();
+        return false;
+      }
+      node = b.skip;
+      continue;
+    }
+    if (b.leaf == 0u) {
+      node++;
+      continue;
+    }
+    uint first = b.leaf >> RC_BVH_LEAF_SHIFT;
+    uint count = b.leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+    if (!budget_take(count)) return false;
+    for (uint j = first; j < first + count; j++) {
+      uint tri = load_bvh_prim(j);
+      real t, e;
+      uint crossed = cert_crossing(o, sh, load_triangle(tri), t, e);
+      if (crossed == 3u) {
+        cert_fail();
+        return false;
+      }
+      if (crossed == 0u) continue;
+      if (crossed == 2u) cert_maybe(t - k * e, t + k * e, t_max, false);
+      if (!budget_take(n)) return false;
+      for (uint i = 0u; i < n; i++) {
+        if ((csg_code_of[base + i] >> RC_CSG_CODE_LEAF_SHIFT) == tri) csg_e[base + i] = e;
+      }
+    }
+    node = b.skip;
+  }
+  if (!budget_take(n)) return false;
+  for (uint i = 0u; i < n; i++) {
+    if (!(csg_e[base + i] >= 0.0)) {
+      cert_fail();
+      return false;
+    }
+    if (i > 0u && !(csg_t[base + i] - csg_t[base + i - 1u] > k * (csg_e[base + i] + csg_e[base + i - 1u])))
+      cert_maybe(csg_t[base + i - 1u] - k * csg_e[base + i - 1u], csg_t[base + i] + k * csg_e[base + i], t_max, false);
+  }
+  return true;
 }
 
 // combine_intervals' walk, certified: of the two lists' next ends, the one taken first must
@@ -147,11 +220,10 @@ void cert_csg(uint index, rvec3 o, rvec3 d, real t_max) {
     uint operand = ins & RC_CSG_OPERAND_MASK;
     if (op == RC_CSG_LEAF) {
       packed_quadric q = load_quadric(operand);
-      if ((q.flags & RC_QUADRIC_MESH) != 0u) {
-        cert_fail();
-        return;
-      }
-      if (!cert_leaf_intervals(operand, q, o, d, sp * RC_CSG_SLOT, count[sp])) return;
+      bool listed = (has_kind(RC_KIND_CSG_MESHES) && (q.flags & RC_QUADRIC_MESH) != 0u)
+                        ? cert_mesh_intervals(index, q, o, d, t_max, sp * RC_CSG_SLOT, count[sp])
+                        : cert_leaf_intervals(operand, q, o, d, sp * RC_CSG_SLOT, count[sp]);
+      if (!listed) return;
       sp++;
       continue;
     }

@@ -166,6 +166,25 @@ uint32_t REF(cert_triangle_side)(const ref_scene *sc, packed_triangle tri, rvec3
   return (f < 0) ? RC_SIDE_FRONT : RC_SIDE_BACK;
 }
 
+real REF(cert_edge_error)(const ref_sheared *st, const ref_shear *sh, real *dz) {
+  real inv = R_ABS(sh->s.z);
+  real sx = R_ABS(sh->s.x);
+  real sy = R_ABS(sh->s.y);
+  real zr = REF(max3_abs)(st->z) / inv;
+  real xm = REF(max3_abs)(st->x);
+  real ym = REF(max3_abs)(st->y);
+  real dx = (ref_cert_eo) * (1 + sx) + (ref_cert_ed) * (1 + sx) * inv * zr + REF(gamma_bound)(5) * (xm + 2 * sx * zr);
+  real dy = (ref_cert_eo) * (1 + sy) + (ref_cert_ed) * (1 + sy) * inv * zr + REF(gamma_bound)(5) * (ym + 2 * sy * zr);
+  *dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
+  return 2 * (dx * ym + xm * dy + dx * dy) + REF(gamma_bound)(2) * 2 * xm * ym;
+}
+
+bool REF(cert_edges_apart)(const ref_sheared *st, real k) {
+  bool pos = st->e.x > k || st->e.y > k || st->e.z > k;
+  bool neg = st->e.x < -k || st->e.y < -k || st->e.z < -k;
+  return pos && neg;
+}
+
 void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max,
                         bool side_unsure) {
   if (sc->frame->triangle_formula != RC_TRIANGLE_WATERTIGHT) {
@@ -173,24 +192,14 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
     return;
   }
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
-  real inv = R_ABS(sh->s.z);
-  real sx = R_ABS(sh->s.x);
-  real sy = R_ABS(sh->s.y);
-  real zr = REF(max3_abs)(st.z) / inv;
-  real xm = REF(max3_abs)(st.x);
-  real ym = REF(max3_abs)(st.y);
-  real dx = (ref_cert_eo) * (1 + sx) + (ref_cert_ed) * (1 + sx) * inv * zr + REF(gamma_bound)(5) * (xm + 2 * sx * zr);
-  real dy = (ref_cert_eo) * (1 + sy) + (ref_cert_ed) * (1 + sy) * inv * zr + REF(gamma_bound)(5) * (ym + 2 * sy * zr);
-  real ee = 2 * (dx * ym + xm * dy + dx * dy) + REF(gamma_bound)(2) * 2 * xm * ym;
+  real dz;
+  real ee = REF(cert_edge_error)(&st, sh, &dz);
   real k = REF(cert_factor)(sc) * ee;
-  bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
-  bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
-  if (pos && neg) return;
+  if (REF(cert_edges_apart)(&st, k)) return;
   if (side_unsure) {
     REF(cert_fail)();
     return;
   }
-  real dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
   real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
   real sum = st.e.x + st.e.y + st.e.z;
   real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
@@ -210,6 +219,27 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   real det = REF(enclosing_det)(st.e);
   bool taken = det != 0 && ahead && t <= t_max;
   REF(cert_maybe)(sc, t - REF(cert_factor)(sc) * e_t, t + REF(cert_factor)(sc) * e_t, t_max, taken);
+}
+
+uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real *t, real *e) {
+  *t = (real)RC_T_FAR;
+  *e = 0;
+  ref_sheared st = REF(shear_triangle)(o, sh, tri);
+  real dz;
+  real ee = REF(cert_edge_error)(&st, sh, &dz);
+  real k = REF(cert_factor)(sc) * ee;
+  if (REF(cert_edges_apart)(&st, k)) return 0;
+  real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
+  real sum = st.e.x + st.e.y + st.e.z;
+  real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
+  if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) return 3;
+  *t = REF(triangle_t)(&st, sum);
+  *e = REF(cert_triangle_t_error)(&st, *t, sum, e_sum, ee, dz, se);
+  if (ref_spawned_ray && R_ABS(*t) <= REF(triangle_t_error)(&st, sum)) {
+    *e += R_ABS(*t);
+    *t = 0;
+  }
+  return (rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k) ? 1 : 2;
 }
 
 void REF(cert_plane)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
@@ -297,10 +327,8 @@ uint32_t REF(cert_slab_parallel)(const ref_scene *sc, real lo, real hi, real f, 
   return 2;
 }
 
-uint32_t REF(cert_box)(const ref_scene *sc, const packed_quadric *q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, real *b_in,
+uint32_t REF(cert_box)(const ref_scene *sc, rvec3 lo, rvec3 hi, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, real *b_in,
                        real *b_out, real *e_in, real *e_out, uint32_t *sure) {
-  rvec3 lo = rvec3_from(q->lo);
-  rvec3 hi = rvec3_from(q->hi);
   real nx, xx, ex, ny, xy, ey, nz, xz, ez;
   REF(cert_slab)(sc, lo.x, hi.x, f.x, v.x, ef.x, ev.x, &nx, &xx, &ex);
   REF(cert_slab)(sc, lo.y, hi.y, f.y, v.y, ef.y, ev.y, &ny, &xy, &ey);
@@ -503,7 +531,7 @@ void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rv
   rvec3 ev = REF(cert_local_error)(q, RV(abs)(d), ref_cert_ed, 3);
   real b_in, b_out, e_in, e_out;
   uint32_t sure;
-  uint32_t box = REF(cert_box)(sc, q, f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
+  uint32_t box = REF(cert_box)(sc, rvec3_from(q->lo), rvec3_from(q->hi), f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
   if (box == 0) return;
   if (box == 2) {
     REF(cert_fail)();

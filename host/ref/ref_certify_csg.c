@@ -14,7 +14,7 @@ bool REF(cert_leaf_intervals)(const ref_scene *sc, uint32_t leaf, const packed_q
   rvec3 ev = REF(cert_local_error)(q, RV(abs)(d), ref_cert_ed, 3);
   real b_in, b_out, e_in, e_out;
   uint32_t sure;
-  uint32_t box = REF(cert_box)(sc, q, f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
+  uint32_t box = REF(cert_box)(sc, rvec3_from(q->lo), rvec3_from(q->hi), f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
   if (box == 0 && *n == 0) return true;
   uint32_t kind;
   real t_lo, t_hi, e_r;
@@ -52,6 +52,64 @@ bool REF(cert_leaf_intervals)(const ref_scene *sc, uint32_t leaf, const packed_q
   }
   if (m != *n) REF(cert_fail)();
   return m == *n;
+}
+
+bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d,
+                              real t_max, uint32_t base, uint32_t *n) {
+  *n = REF(mesh_intervals)(sc, csg, q, o, d, false, base);
+  if (ref_crossing_blame != 0) {
+    REF(cert_fail)();
+    return false;
+  }
+  real k = REF(cert_factor)(sc);
+  ref_shear sh = REF(ray_shear_for)(d);
+  rvec3 ef = RV(make)(ref_cert_eo, ref_cert_eo, ref_cert_eo);
+  rvec3 ev = RV(make)(ref_cert_ed, ref_cert_ed, ref_cert_ed);
+  for (uint32_t i = 0; i < *n; i++) csg_e[base + i] = -1;
+  uint32_t node = q->mesh_root;
+  while (node < q->mesh_end) {
+    const packed_bvh_node *b = &sc->bvh_nodes[node];
+    if (!REF(line_meets_box)(rvec3_from(b->lo), rvec3_from(b->hi), o, d)) {
+      real b_in, b_out, e_in, e_out;
+      uint32_t sure;
+      if (REF(cert_box)(sc, rvec3_from(b->lo), rvec3_from(b->hi), o, d, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure) != 0) {
+        REF(cert_fail)();
+        return false;
+      }
+      node = b->skip;
+      continue;
+    }
+    if (b->leaf == 0) {
+      node++;
+      continue;
+    }
+    uint32_t first = b->leaf >> RC_BVH_LEAF_SHIFT;
+    uint32_t count = b->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
+    for (uint32_t j = first; j < first + count; j++) {
+      uint32_t tri = sc->bvh_prims[j];
+      real t, e;
+      uint32_t crossed = REF(cert_crossing)(sc, o, &sh, sc->triangles[tri], &t, &e);
+      if (crossed == 3) {
+        REF(cert_fail)();
+        return false;
+      }
+      if (crossed == 0) continue;
+      if (crossed == 2) REF(cert_maybe)(sc, t - k * e, t + k * e, t_max, false);
+      for (uint32_t i = 0; i < *n; i++) {
+        if ((csg_code_of[base + i] >> RC_CSG_CODE_LEAF_SHIFT) == tri) csg_e[base + i] = e;
+      }
+    }
+    node = b->skip;
+  }
+  for (uint32_t i = 0; i < *n; i++) {
+    if (!(csg_e[base + i] >= 0)) {
+      REF(cert_fail)();
+      return false;
+    }
+    if (i > 0 && !(csg_t[base + i] - csg_t[base + i - 1] > k * (csg_e[base + i] + csg_e[base + i - 1])))
+      REF(cert_maybe)(sc, csg_t[base + i - 1] - k * csg_e[base + i - 1], csg_t[base + i] + k * csg_e[base + i], t_max, false);
+  }
+  return true;
 }
 
 bool REF(cert_combine)(const ref_scene *sc, uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb,
@@ -127,11 +185,10 @@ void REF(cert_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t
     uint32_t operand = ins & RC_CSG_OPERAND_MASK;
     if (op == RC_CSG_LEAF) {
       const packed_quadric *q = &sc->quadrics[operand];
-      if ((q->flags & RC_QUADRIC_MESH) != 0) {
-        REF(cert_fail)();
-        return;
-      }
-      if (!REF(cert_leaf_intervals)(sc, operand, q, o, d, sp * RC_CSG_SLOT, &count[sp])) return;
+      bool listed = ((q->flags & RC_QUADRIC_MESH) != 0)
+                        ? REF(cert_mesh_intervals)(sc, index, q, o, d, t_max, sp * RC_CSG_SLOT, &count[sp])
+                        : REF(cert_leaf_intervals)(sc, operand, q, o, d, sp * RC_CSG_SLOT, &count[sp]);
+      if (!listed) return;
       sp++;
       continue;
     }

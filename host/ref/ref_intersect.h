@@ -91,11 +91,16 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_cert_norm_##S(const packed_transform *m);                                               \
   void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \
   R ref_cert_facing_error_##S(packed_triangle tri, V d);                                        \
+  R ref_cert_edge_error_##S(const ref_sheared_##S *st, const ref_shear_##S *sh, R *dz);          \
+  bool ref_cert_edges_apart_##S(const ref_sheared_##S *st, R k);                                 \
   uint32_t ref_cert_triangle_side_##S(const ref_scene *sc, packed_triangle tri, V d);           \
   void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, \
                              bool side_unsure);                                                  \
+  uint32_t ref_cert_crossing_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R *t, R *e); \
   void ref_cert_plane_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);     \
   bool ref_cert_leaf_intervals_##S(const ref_scene *sc, uint32_t leaf, const packed_quadric *q, V o, V d, \
+                                   uint32_t base, uint32_t *n);                                  \
+  bool ref_cert_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const packed_quadric *q, V o, V d, R t_max, \
                                    uint32_t base, uint32_t *n);                                  \
   bool ref_cert_combine_##S(const ref_scene *sc, uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb, \
                             uint32_t *n);                                                        \
@@ -106,7 +111,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   bool ref_cert_slab_##S(const ref_scene *sc, R lo, R hi, R f, R v, R ef, R ev, R *tn, R *tx, R *e); \
   R ref_cert_span_end_##S(const ref_scene *sc, R s, R t0, R e0, R t1, R e1, R t2, R e2, R *e, bool *sure); \
   uint32_t ref_cert_slab_parallel_##S(const ref_scene *sc, R lo, R hi, R f, R v, R ef, R ev, R reach_t); \
-  uint32_t ref_cert_box_##S(const ref_scene *sc, const packed_quadric *q, V f, V v, V ef, V ev, R *b_in, R *b_out, \
+  uint32_t ref_cert_box_##S(const ref_scene *sc, V lo, V hi, V f, V v, V ef, V ev, R *b_in, R *b_out, \
                             R *e_in, R *e_out, uint32_t *sure);                                  \
   R ref_cert_quadric_terms_##S(const packed_quadric *q, V f, V v, V ef, V ev, R *a, R *h, R *c, R *disc, R *e_a, \
                                R *e_h, R *e_c);                                                  \

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # --precision certified is sound (docs/numerics.md §10): on example scenes (quadrics.json: every
-# bounded quadric, a mirror box under them) and on the
+# bounded quadric, a mirror box under them; dollhouse.json: a one-sided mesh, t-min offsets),
+# on composites with tied and nearly coincident surfaces, and on the
 # extremes scenes where plain f32 makes other decisions than the f64 reference (cracks between
 # triangles, a fan, a huge triangle, contact shadows, a far cylinder, a crowd of far spheres
 # and of far ellipsoids, a grazing ground plane), every pixel the GPU's f32 pass certifies has the f64 CPU
@@ -11,7 +12,8 @@
 # uncertified (compare's certified_in_band). The test is shown able to fail: with the
 # bound injected as zero (--certified-bound zero) the same comparisons count broken
 # certificates, or certified pixels in the band, on at least 8 of these scenes (9 when
-# this was written). (Halved, it breaks none: the bounds are
+# this was written; f32 makes the reference's decisions on dollhouse and the composites,
+# so a zero bound breaks none there). (Halved, it breaks none: the bounds are
 # conservative by more than 2 wherever f32 differs; docs/numerics.md §10.) With the default
 # re-render, on either backend, every decision is the reference's, and the pixels
 # re-rendered are the uncertified ones. With the f64 shader re-rendering them on the GPU
@@ -46,9 +48,50 @@ s["objects"] = [{"type": "sphere", "center": [0, 0, 0], "radius": o["radius"], "
 json.dump(s, open(sys.argv[2], "w"))
 PY
 
+# Composites at their hardest: a box minus a box flush with its top face and two boxes that
+# touch (interval ends tied exactly), and minus a cylinder 1e-7 wider than the one it cuts;
+# two spheres 1e-7 apart intersected; two boxes 1.2e-7 apart joined; a mirror sphere cut by
+# a box; a cube mesh joined with the box it coincides with, and a torus mesh cut by a box
+# (mesh operands: crossings near edges and at silhouettes); all standing on the ground plane
+# their bottoms lie in (docs/numerics.md §10).
+cp "$scenes/meshes/cube.obj" "$scenes/meshes/torus.obj" "$work/"
+python3 - "$work/composites.json" <<'PY'
+import json, sys
+def box(lo, hi): return {"type": "box", "min": lo, "max": hi}
+def csg(op, left, right, material, translate, turn=(0, 0, 0)):
+    return {"type": "csg", "op": op, "left": left, "right": right, "material": material,
+            "transform": {"translate": translate, "rotate_deg": list(turn)}}
+objects = [
+    csg("difference", box([-1, -1, -1], [1, 1, 1]), box([-0.5, -0.5, 0], [0.5, 0.5, 1]), "mirror", [-2, 0, 0]),
+    csg("union", box([-1, -1, -1], [0, 1, 1]), box([0, -1, -1], [1, 1, 1]), "blue", [1, 0, 0], (0, 30, 0)),
+    csg("intersection", {"type": "sphere", "center": [0, 0, 0], "radius": 1},
+        {"type": "sphere", "center": [1e-7, 0, 0], "radius": 1 + 1e-7}, "green", [4, 0, 0]),
+    csg("difference", {"type": "sphere", "center": [0, 0, 0], "radius": 1.2}, box([0, 0, -2], [2, 2, 2]), "mirror",
+        [1, 0, 3], (10, 20, 0)),
+    csg("union", box([-1, -1, -1], [0, 1, 1]), box([1.2e-7, -1, -1], [1, 1, 1]), "green", [2.5, 0, -2.5], (0, -40, 0)),
+    csg("difference", {"type": "cylinder", "center": [0, 0, 0], "radius": 0.8, "height": 2},
+        {"type": "cylinder", "center": [0, 0, 0], "radius": 0.8000001, "height": 1}, "blue", [-0.5, 0, -2.5]),
+    csg("union", {"type": "mesh", "file": "cube.obj"}, box([-1, -1, -1], [1, 1, 1]), "blue", [-3, 0, 2.5],
+        (0, 15, 0)),
+    csg("intersection", {"type": "mesh", "file": "torus.obj"}, box([-2, -1, -0.6], [2, 1, 2]), "green",
+        [4, 0.3, 2.5], (60, 0, 0)),
+    {"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0], "material": "white"}]
+json.dump({"version": 1, "image": {"width": 160, "height": 120, "samples_per_pixel": 1},
+           "camera": {"eye": [0, 3.5, 7.5], "look_at": [1, 0, 1], "up": [0, 1, 0], "fov_y_deg": 55},
+           "background": [0, 0, 0], "ambient_light": [1, 1, 1],
+           "materials": {"white": {"ambient": [0.05] * 3, "diffuse": [0.8] * 3},
+                         "mirror": {"ambient": [0.05, 0, 0], "diffuse": [0.8, 0.1, 0.1], "specular": [0.3] * 3,
+                                    "shininess": 30, "mirror": 0.3},
+                         "blue": {"ambient": [0, 0, 0.05], "diffuse": [0.1, 0.1, 0.8]},
+                         "green": {"ambient": [0, 0.05, 0], "diffuse": [0.1, 0.8, 0.1]}},
+           "lights": [{"type": "point", "position": [2, 6, 6], "intensity": [40, 40, 40]},
+                      {"type": "directional", "direction": [-0.3, -1, -0.2], "intensity": [0.5] * 3}],
+           "objects": objects}, open(sys.argv[1], "w"))
+PY
+
 faulted=0
 for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$scenes/earth.json" "$scenes/quadrics.json" \
-         "$work/ellipsoids.json" \
+         "$scenes/dollhouse.json" "$work/ellipsoids.json" "$work/composites.json" \
          "$extremes/S05_ground_h1e0.json" "$extremes/S08_cracks_0deg_at_0.json" "$extremes/S09_fan_1000.json" \
          "$extremes/S11_huge_triangle_1e7.json" "$extremes/S17_contact_X0_h1e-2.json" \
          "$extremes/S20_far_cylinder_1e6.json" "$extremes/S21_many_spheres_D1e3.json"; do
