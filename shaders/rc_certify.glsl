@@ -195,17 +195,9 @@ void cert_sphere_roots(rvec3 o, rvec3 d, packed_sphere s, real t_max, real scale
   real e_sq = e_disc / (sq + sqrt(select_max(disc - e_disc, 0.0))) + gamma_bound(2.0) * sq;
   real e_q = e_b + e_sq + gamma_bound(2.0) * abs(q);
   real e_t0 = (abs(q) > e_q) ? (e_c + abs(t0) * e_q) / (abs(q) - e_q) + gamma_bound(1.0) * abs(t0) : real(RC_T_FAR);
-  // Each root keeps its own bound where the two lie apart by more than both (the reference's
-  // nearer root is then the same one), else both take the larger: a min or a max moves by no
-  // more than its arguments. A ray leaving a sphere has a root near its origin, whose bound
-  // is c's over |q|, and one a chord behind, whose bound carries the direction's turn
-  // over the chord.
-  bool apart = abs(t0 - q) > cert_factor() * (e_q + e_t0);
   real e = select_max(e_q, e_t0);
-  real e_near = apart ? ((t0 < q) ? e_t0 : e_q) : e;
-  real e_exit = apart ? ((t0 < q) ? e_q : e_t0) : e;
-  if (cert_root(t_near, e_near * scale + abs(t_near) * rel, t_max, t_near > 0.0)) return;
-  cert_root(t_exit, e_exit * scale + abs(t_exit) * rel, t_max, t_exit > 0.0);
+  if (cert_root(t_near, e * scale + abs(t_near) * rel, t_max, t_near > 0.0)) return;
+  cert_root(t_exit, e * scale + abs(t_exit) * rel, t_max, t_exit > 0.0);
 }
 
 // Frobenius norm of a transform's linear part: it bounds how far A stretches a vector.

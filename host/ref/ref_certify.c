@@ -126,12 +126,9 @@ void REF(cert_sphere_roots)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere
   real e_q = e_b + e_sq + REF(gamma_bound)(2) * R_ABS(q);
   real e_t0 = (R_ABS(q) > e_q) ? (e_c + R_ABS(t0) * e_q) / (R_ABS(q) - e_q) + REF(gamma_bound)(1) * R_ABS(t0)
                                : (real)RC_T_FAR;
-  bool apart = R_ABS(t0 - q) > REF(cert_factor)(sc) * (e_q + e_t0);
   real e = rmax(e_q, e_t0);
-  real e_near = apart ? ((t0 < q) ? e_t0 : e_q) : e;
-  real e_exit = apart ? ((t0 < q) ? e_q : e_t0) : e;
-  if (REF(cert_root)(sc, t_near, e_near * scale + R_ABS(t_near) * rel, t_max, t_near > 0)) return;
-  REF(cert_root)(sc, t_exit, e_exit * scale + R_ABS(t_exit) * rel, t_max, t_exit > 0);
+  if (REF(cert_root)(sc, t_near, e * scale + R_ABS(t_near) * rel, t_max, t_near > 0)) return;
+  REF(cert_root)(sc, t_exit, e * scale + R_ABS(t_exit) * rel, t_max, t_exit > 0);
 }
 
 real REF(cert_norm)(const packed_transform *m) {
