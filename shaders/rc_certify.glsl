@@ -691,19 +691,29 @@ bool cert_quadric_kind(packed_quadric q, rvec3 f, rvec3 v, rvec3 ef, rvec3 ev, r
   return true;
 }
 
+// The ray in the quadric's frame, f and v with their errors ef and ev (cert_local_error: the
+// ray's perturbation through the frame's rows and their rounding), and its box's decisions
+// (cert_box, whose result it returns): what a bounded quadric's certificate and a
+// composite leaf's both start from.
+uint cert_quadric_box(packed_quadric q, rvec3 o, rvec3 d, out rvec3 f, out rvec3 v, out rvec3 ef, out rvec3 ev,
+                      out real b_in, out real b_out, out real e_in, out real e_out, out uint sure) {
+  f = quadric_local(q, o - rvec3(q.center));
+  v = quadric_local(q, d);
+  ef = cert_local_error(q, abs(o) + abs(rvec3(q.center)), cert_eo, 4.0);
+  ev = cert_local_error(q, abs(d), cert_ed, 3.0);
+  return cert_box(rvec3(q.lo), rvec3(q.hi), f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+}
+
 // A bounded quadric's decisions (intersect_quadric: a surface or a solid in its box), in the
-// quadric's frame. f and v carry the ray's perturbation through the frame's rows
-// (cert_local_error); the box (cert_box), the kind and roots (cert_quadric_kind), then one
+// quadric's frame (cert_quadric_box: the ray there and the box); the kind and roots
+// (cert_quadric_kind), then one
 // inlined copy of the solid's and one of the surface's decisions: a SIMD shader runs every
 // copy.
 void cert_quadric(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
-  rvec3 f = quadric_local(q, o - rvec3(q.center));
-  rvec3 v = quadric_local(q, d);
-  rvec3 ef = cert_local_error(q, abs(o) + abs(rvec3(q.center)), cert_eo, 4.0);
-  rvec3 ev = cert_local_error(q, abs(d), cert_ed, 3.0);
+  rvec3 f, v, ef, ev;
   real b_in, b_out, e_in, e_out;
   uint sure;
-  uint box = cert_box(rvec3(q.lo), rvec3(q.hi), f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+  uint box = cert_quadric_box(q, o, d, f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
   if (box == 0u) return;
   if (box == 2u) {
     cert_fail();

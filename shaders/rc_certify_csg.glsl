@@ -14,13 +14,10 @@
 bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint base, out uint n) {
   n = solid_intervals(leaf, q, o, d, false, base);
   real k = cert_factor();
-  rvec3 f = quadric_local(q, o - rvec3(q.center));
-  rvec3 v = quadric_local(q, d);
-  rvec3 ef = cert_local_error(q, abs(o) + abs(rvec3(q.center)), cert_eo, 4.0);
-  rvec3 ev = cert_local_error(q, abs(d), cert_ed, 3.0);
+  rvec3 f, v, ef, ev;
   real b_in, b_out, e_in, e_out;
   uint sure;
-  uint box = cert_box(rvec3(q.lo), rvec3(q.hi), f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
+  uint box = cert_quadric_box(q, o, d, f, v, ef, ev, b_in, b_out, e_in, e_out, sure);
   if (box == 0u && n == 0u) return true;
   uint kind;
   real t_lo, t_hi, e_r;

@@ -524,14 +524,20 @@ bool REF(cert_quadric_kind)(const ref_scene *sc, const packed_quadric *q, rvec3 
   return true;
 }
 
+uint32_t REF(cert_quadric_box)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, rvec3 *f, rvec3 *v,
+                               rvec3 *ef, rvec3 *ev, real *b_in, real *b_out, real *e_in, real *e_out, uint32_t *sure) {
+  *f = REF(quadric_local)(q, RV(sub)(o, rvec3_from(q->center)));
+  *v = REF(quadric_local)(q, d);
+  *ef = REF(cert_local_error)(q, RV(add)(RV(abs)(o), RV(abs)(rvec3_from(q->center))), ref_cert_eo, 4);
+  *ev = REF(cert_local_error)(q, RV(abs)(d), ref_cert_ed, 3);
+  return REF(cert_box)(sc, rvec3_from(q->lo), rvec3_from(q->hi), *f, *v, *ef, *ev, b_in, b_out, e_in, e_out, sure);
+}
+
 void REF(cert_quadric)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
-  rvec3 f = REF(quadric_local)(q, RV(sub)(o, rvec3_from(q->center)));
-  rvec3 v = REF(quadric_local)(q, d);
-  rvec3 ef = REF(cert_local_error)(q, RV(add)(RV(abs)(o), RV(abs)(rvec3_from(q->center))), ref_cert_eo, 4);
-  rvec3 ev = REF(cert_local_error)(q, RV(abs)(d), ref_cert_ed, 3);
+  rvec3 f, v, ef, ev;
   real b_in, b_out, e_in, e_out;
   uint32_t sure;
-  uint32_t box = REF(cert_box)(sc, rvec3_from(q->lo), rvec3_from(q->hi), f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
+  uint32_t box = REF(cert_quadric_box)(sc, q, o, d, &f, &v, &ef, &ev, &b_in, &b_out, &e_in, &e_out, &sure);
   if (box == 0) return;
   if (box == 2) {
     REF(cert_fail)();

@@ -8,13 +8,10 @@ bool REF(cert_leaf_intervals)(const ref_scene *sc, uint32_t leaf, const packed_q
                               uint32_t base, uint32_t *n) {
   *n = REF(solid_intervals)(leaf, q, o, d, false, base);
   real k = REF(cert_factor)(sc);
-  rvec3 f = REF(quadric_local)(q, RV(sub)(o, rvec3_from(q->center)));
-  rvec3 v = REF(quadric_local)(q, d);
-  rvec3 ef = REF(cert_local_error)(q, RV(add)(RV(abs)(o), RV(abs)(rvec3_from(q->center))), ref_cert_eo, 4);
-  rvec3 ev = REF(cert_local_error)(q, RV(abs)(d), ref_cert_ed, 3);
+  rvec3 f, v, ef, ev;
   real b_in, b_out, e_in, e_out;
   uint32_t sure;
-  uint32_t box = REF(cert_box)(sc, rvec3_from(q->lo), rvec3_from(q->hi), f, v, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure);
+  uint32_t box = REF(cert_quadric_box)(sc, q, o, d, &f, &v, &ef, &ev, &b_in, &b_out, &e_in, &e_out, &sure);
   if (box == 0 && *n == 0) return true;
   uint32_t kind;
   real t_lo, t_hi, e_r;

@@ -120,6 +120,8 @@ extern _Thread_local uint32_t ref_crossing_blame;
                               bool face_sure, R t_max);                                          \
   void ref_cert_solid_##S(const ref_scene *sc, uint32_t kind, R t_lo, R t_hi, R e_r, R b_in, R b_out, R e_in, \
                           R e_out, uint32_t sure, R t_max);                                      \
+  uint32_t ref_cert_quadric_box_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, V *f, V *v, V *ef, V *ev, \
+                                    R *b_in, R *b_out, R *e_in, R *e_out, uint32_t *sure);       \
   bool ref_cert_quadric_kind_##S(const ref_scene *sc, const packed_quadric *q, V f, V v, V ef, V ev, R b_in, R b_out, \
                                  R e_in, R e_out, R t_max, bool whole, uint32_t *kind, R *t_lo, R *t_hi, R *e_r); \
   void ref_cert_quadric_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);   \
