@@ -172,13 +172,30 @@ void main() {
   uint total = 0u;      // ... when it is complete
   bool aov_write = false;
   uint uncertified = 0u;  // samples (or light passes) of this dispatch not certified (rc_certify.glsl)
+  vec3 certified_sum = vec3(0.0);  // the certified samples' colours so far (packed_aov)
+  uint uncertified_mask = 0u;
+  bool trace_all = true;  // false: trace only the samples in trace_mask
+  uint trace_mask = 0u;
+  packed_aov mark;
   if (inside) {
     sum = accum[slot];
-    // Certified mode's f64 re-render (push.masked): a pixel the f32 pass certified is
-    // complete before it starts; the host keeps the f32 pass's colour for it.
-    if (push.masked != 0u && !(aov[slot].uncertified > 0.0))
-      sum = vec4(0.0, 0.0, 0.0, float(scene_samples_per_pixel() * (light_passes ? scene_light_count() : 1u)));
     uint done = uint(sum.a);
+    if (certify && done > 0u) certified_sum = aov[slot].certified_sum;
+    // Certified mode's f64 re-render (push.masked): a pixel the f32 pass certified is
+    // complete before it starts; the host keeps the f32 pass's colour for it. Where the
+    // f32 pass's record names every uncertified sample, only those are traced, added to
+    // the sum of the certified ones.
+    if (push.masked != 0u) {
+      mark = aov[slot];
+      if (!(mark.uncertified > 0.0)) {
+        sum = vec4(0.0, 0.0, 0.0, float(scene_samples_per_pixel() * (light_passes ? scene_light_count() : 1u)));
+        done = uint(sum.a);
+      } else if (!light_passes && float(bitCount(mark.uncertified_mask)) == mark.uncertified) {
+        trace_all = false;
+        trace_mask = mark.uncertified_mask;
+        if (done == 0u) sum.rgb = mark.certified_sum;
+      }
+    }
     if (light_passes) {
       // Progress counts lights: the next pass of sample s starts at light done - s x lights,
       // and traces the sample's rays again (the same rays: nothing in them is random).
@@ -204,13 +221,27 @@ void main() {
     } else {
       total = scene_samples_per_pixel();
       target = min(done + push.batch_samples, total);
-      aov_write = aov_enabled && done == 0u && target > 0u;
+      // Sample 0 makes the record; a re-render that skips it keeps the f32 pass's.
+      aov_write = aov_enabled && done == 0u && target > 0u && (trace_all || (trace_mask & 1u) != 0u);
       for (uint s = done; s < target; s++) {
+        if (!trace_all && (s >= 32u || ((trace_mask >> s) & 1u) == 0u)) continue;
         if (!budget_step()) break;
-        sum.rgb += vec3(trace_sample(pixel, s));
+        vec3 c = vec3(trace_sample(pixel, s));
+        sum.rgb += c;
 #if RC_CERTIFY
-        if (!cert_ok) uncertified++;
+        if (!cert_ok) {
+          uncertified++;
+          if (s < 32u) uncertified_mask |= 1u << s;
+        } else {
+          certified_sum += c;
+        }
 #endif
+      }
+      if (aov_write && push.masked != 0u) {
+        // The marks stay for the pixel's later dispatches.
+        aov_record.uncertified = mark.uncertified;
+        aov_record.certified_sum = mark.certified_sum;
+        aov_record.uncertified_mask = mark.uncertified_mask;
       }
     }
 #if RC_QUADRICS
@@ -238,8 +269,13 @@ void main() {
   accum[slot] = vec4(sum.rgb, float(target));
   if (encode_levels && target == total) levels[slot] = encode_pixel(sum.rgb);
   if (aov_write) aov[slot] = aov_record;
-  // The count gathers over the pixel's dispatches: its first wrote the record, with 0.
-  if (certify) aov[slot].uncertified += float(uncertified);
+  // The count and the bits gather over the pixel's dispatches: its first wrote the
+  // record, with none. The sum runs on, in sample order, as the colour's does.
+  if (certify) {
+    aov[slot].uncertified += float(uncertified);
+    aov[slot].uncertified_mask |= uncertified_mask;
+    aov[slot].certified_sum = certified_sum;
+  }
   if (target < total) atomicAdd(status.incomplete_pixels, 1u);
   if (shadow_rays != 0u) atomicAdd(status.shadow_rays, shadow_rays);
 #if RC_PATCHES

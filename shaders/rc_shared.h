@@ -481,6 +481,11 @@ struct packed_aov {
   float hit; float object; float t; float shadow_bits;
   vec3 normal; float uncertified; /* with frame.certify: the pixel's samples (all of them,
                                      not only the first) whose decisions are not certified */
+  /* With frame.certify, what the re-render needs to trace only the uncertified samples:
+   * the f32 sum of the certified samples' colours, in sample order, and bit s set when
+   * sample s < 32 is uncertified. Where the bits count fewer samples than `uncertified`
+   * (samples from 32 on, light passes) the whole pixel is rendered again. */
+  vec3 certified_sum; uint uncertified_mask;
 };
 
 /* A BVH node: one box, in depth-first order (an interior node's first child is the next
@@ -623,8 +628,9 @@ RC_ASSERT_SIZE(packed_levels, 16 + 4 * RC_LEVEL_COUNT);
 
 RC_ASSERT_LAYOUT(packed_aov, hit, 0);    RC_ASSERT_LAYOUT(packed_aov, object, 4);
 RC_ASSERT_LAYOUT(packed_aov, t, 8);      RC_ASSERT_LAYOUT(packed_aov, shadow_bits, 12);
-RC_ASSERT_LAYOUT(packed_aov, normal, 16);
-RC_ASSERT_SIZE(packed_aov, 32);
+RC_ASSERT_LAYOUT(packed_aov, normal, 16);   RC_ASSERT_LAYOUT(packed_aov, uncertified, 28);
+RC_ASSERT_LAYOUT(packed_aov, certified_sum, 32); RC_ASSERT_LAYOUT(packed_aov, uncertified_mask, 44);
+RC_ASSERT_SIZE(packed_aov, 48);
 
 RC_ASSERT_LAYOUT(packed_push, tile_x, 0); RC_ASSERT_LAYOUT(packed_push, tile_width, 8);
 RC_ASSERT_LAYOUT(packed_push, batch_samples, 16); RC_ASSERT_LAYOUT(packed_push, row_stride, 20);

@@ -18,6 +18,8 @@ void aov_begin(hit_record h) {
   aov_record.normal = vec3(0.0);
   // Counted by raycast.comp under certify; otherwise no sample is certified.
   aov_record.uncertified = certify ? 0.0 : float(scene_samples_per_pixel());
+  aov_record.certified_sum = vec3(0.0);
+  aov_record.uncertified_mask = 0u;
 }
 
 rvec3 trace_sample(uvec2 pixel, uint s) {

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/certified_marks.h"
 #include "cli/cli.h"
 #include "cli/options.h"
 #include "gpu/gpu_render.h"
@@ -86,11 +87,12 @@ static const rc_option render_options[] = {
              "then f64 where the device has shaderFloat64, else certified\n"
              "(docs/accuracy.md). certified: f32 with\n"
              "every hit, object and shadow decision checked against its error bound,\n"
-             "and the pixels of samples it cannot vouch for rendered again in f64\n"
+             "and the samples it cannot vouch for rendered again in f64\n"
              "(docs/numerics.md §10)"},
     {"--certified-rerender", NULL, RC_OPT_CHOICE, ARG(certified_rerender), "R", .choices = rerenders,
-     .help = "--precision certified: the uncertified samples' pixels rendered again in f64:\n"
-             "gpu (the default on a GPU with shaderFloat64) traces just those pixels\n"
+     .help = "--precision certified: the uncertified samples rendered again in f64\n"
+             "(a pixel's all where one from sample 32 on is uncertified):\n"
+             "gpu (the default on a GPU with shaderFloat64) traces just those samples\n"
              "with the f64 shader; cpu (the default elsewhere: lavapipe, the cpu\n"
              "backend) on the CPU reference; none leaves them as traced (to measure\n"
              "the certificates: the AOV's `uncertified` channel marks them)"},
@@ -454,13 +456,22 @@ static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, c
   (void)levels; /* a re-render reads sums */
   certified_sink *c = user;
   const size_t width = rc_region_width(c->a->part.region), first = (size_t)y0 * width;
+  const uint32_t spp = c->packed->frame.samples_per_pixel;
   for (size_t i = 0; i < (size_t)rows * width; i++) {
-    if (!(c->aov[first + i].uncertified > 0)) continue;
+    packed_aov *mark = &c->aov[first + i];
+    if (!(mark->uncertified > 0)) continue;
     memcpy(&c->rgb[3 * (first + i)], &rgb[3 * i], 3 * sizeof *rgb);
-    float uncertified = c->aov[first + i].uncertified; /* the f32 pass's count stays */
-    c->aov[first + i] = aov[i];
-    c->aov[first + i].uncertified = uncertified;
+    /* The record is sample 0's: the re-render's where it traced sample 0, else the f32
+     * pass's, certified. The marks stay. */
+    if (rc_aov_rerenders(mark, 0)) {
+      packed_aov marks = *mark;
+      *mark = aov[i];
+      mark->uncertified = marks.uncertified;
+      mark->uncertified_mask = marks.uncertified_mask;
+      mark->certified_sum = marks.certified_sum;
+    }
     c->stats.pixels_rerendered++;
+    c->stats.samples_rerendered += rc_aov_samples_rerendered(mark, spp);
   }
   return RC_OK;
 }
@@ -579,6 +590,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
     rs->patch_stall_x = rs->gpu.patch_stall_x, rs->patch_stall_y = rs->gpu.patch_stall_y;
     rs->samples_uncertified = sink.stats.samples_uncertified;
     rs->pixels_rerendered = sink.stats.pixels_rerendered;
+    rs->samples_rerendered = sink.stats.samples_rerendered;
     rs->rerender_ms = sink.stats.rerender_ms;
   }
   free(sink.rgb);
@@ -637,6 +649,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     rs->simd8_efficiency = last_stats.vector_steps ? (double)last_stats.lane_steps / last_stats.vector_steps : 1;
     rs->samples_uncertified = last_stats.samples_uncertified;
     rs->pixels_rerendered = last_stats.pixels_rerendered;
+    rs->samples_rerendered = last_stats.samples_rerendered;
     rs->rerender_ms = last_stats.rerender_ms;
   }
   free(ms);

@@ -57,8 +57,9 @@ void rc_stats_print(const rc_render_stats *s) {
             "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
             s->bvh.build_ms, s->bvh.repeats);
   if (s->rerender && strcmp(s->rerender, "off") != 0)
-    fprintf(stderr, "vkraycast: certified: %llu samples uncertified; %llu pixels rendered again in f64 (%s), %.1f ms\n",
-            (unsigned long long)s->samples_uncertified, (unsigned long long)s->pixels_rerendered, s->rerender,
+    fprintf(stderr, "vkraycast: certified: %llu samples uncertified; %llu samples of %llu pixels rendered again in "
+            "f64 (%s), %.1f ms\n", (unsigned long long)s->samples_uncertified,
+            (unsigned long long)s->samples_rerendered, (unsigned long long)s->pixels_rerendered, s->rerender,
             s->rerender_ms);
   if (s->light_buffers.lights)
     fprintf(stderr, "vkraycast: light buffers for %u lights: %llu cells, %llu empty, %llu with a list, %llu with a "
@@ -139,6 +140,7 @@ static const stats_field bvh_fields[] = {
     FIELD("bvh_repeats_left_out", F_U32, bvh.repeats),
     FIELD("samples_uncertified", F_U64, samples_uncertified),
     FIELD("pixels_rerendered", F_U64, pixels_rerendered),
+    FIELD("samples_rerendered", F_U64, samples_rerendered),
     FIELD("rerender", F_STRING, rerender),
     FIELD("rerender_ms", F_DOUBLE, rerender_ms),
     FIELD("light_buffers", F_U32, light_buffers.lights),

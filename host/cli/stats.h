@@ -44,8 +44,10 @@ typedef struct rc_render_stats {
   rc_light_buffer_stats light_buffers; /* zero without them (--light-buffers off, no point light, ...) */
   /* --precision certified (rc_certify.glsl): samples whose decisions were not all certified,
    * the pixels rendered again in f64 for them ("cpu": the CPU reference; "none": left as
-   * traced), and the wall time of those re-renders. */
-  uint64_t samples_uncertified, pixels_rerendered;
+   * traced) and the samples traced in them (the uncertified ones, or all of a pixel's
+   * where its record cannot name them: base/certified_marks.h), and the wall time of
+   * those re-renders. */
+  uint64_t samples_uncertified, pixels_rerendered, samples_rerendered;
   const char *rerender;
   double rerender_ms;
 } rc_render_stats;

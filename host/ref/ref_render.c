@@ -3,6 +3,8 @@
  * order 0..spp-1, as the shader does across its batches. */
 #include "ref/ref_render.h"
 
+#include "base/certified_marks.h"
+
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -49,11 +51,21 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
   size_t index = (size_t)(y - j->region.y0) * rc_region_width(j->region) + (x - j->region.x0);
   float *o = j->rgb + 3 * index;
   memset(sample_steps, 0, spp * sizeof *sample_steps);
-  if (j->only_uncertified && !(j->aov[index].uncertified > 0)) return;
-  uint32_t uncertified = 0;
+  /* rc_ref_rerender: the f32 pass's record marks what to render again. */
+  const packed_aov *mark = j->only_uncertified ? &j->aov[index] : NULL;
+  if (mark && !(mark->uncertified > 0)) return;
+  uint32_t uncertified = 0, uncertified_mask = 0;
+  vec3 certified_sum = {0, 0, 0};
+  bool traced_first = true;
   if (j->f64) {
     dvec3 sum = {0, 0, 0};
+    if (mark && rc_aov_per_sample(mark))
+      sum = (dvec3){mark->certified_sum.x, mark->certified_sum.y, mark->certified_sum.z};
     for (uint32_t s = 0; s < spp; s++) {
+      if (mark && !rc_aov_rerenders(mark, s)) {
+        if (s == 0) traced_first = false;
+        continue;
+      }
       uint64_t w = ref_work;
       sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
       sample_steps[s] = (uint32_t)(ref_work - w);
@@ -65,18 +77,33 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
     vec3 sum = {0, 0, 0};
     for (uint32_t s = 0; s < spp; s++) {
       uint64_t w = ref_work;
-      sum = rcm_add_f(sum, ref_trace_sample_f(&j->scene, x, y, s));
+      vec3 c = ref_trace_sample_f(&j->scene, x, y, s);
+      sum = rcm_add_f(sum, c);
       sample_steps[s] = (uint32_t)(ref_work - w);
-      if (j->frame->certify && !ref_cert_ok_f) uncertified++;
+      if (!j->frame->certify) continue;
+      if (!ref_cert_ok_f) {
+        uncertified++;
+        if (s < 32) uncertified_mask |= 1u << s;
+      } else {
+        certified_sum = rcm_add_f(certified_sum, c);
+      }
     }
     o[0] = sum.x / (float)spp, o[1] = sum.y / (float)spp, o[2] = sum.z / (float)spp;
   }
-  packed_aov rec = ref_aov_record;
+  /* A re-render that skipped sample 0 keeps the f32 pass's record (certified, so the
+   * reference's decisions); the marks stay either way. */
+  packed_aov rec = traced_first ? ref_aov_record : *mark;
   if (j->frame->certify) {
     rec.uncertified = (float)uncertified;
+    rec.uncertified_mask = uncertified_mask;
+    rec.certified_sum = certified_sum;
     atomic_fetch_add(&j->samples_uncertified, uncertified);
   }
-  if (j->only_uncertified) rec.uncertified = j->aov[index].uncertified; /* the f32 pass's count stays */
+  if (mark) {
+    rec.uncertified = mark->uncertified;
+    rec.uncertified_mask = mark->uncertified_mask;
+    rec.certified_sum = mark->certified_sum;
+  }
   if (j->aov) j->aov[index] = rec;
   if (ref_crossing_blame) {
     unsigned none = 0;
@@ -241,12 +268,16 @@ rc_status rc_ref_rerender(const rc_packed_scene *p, const rc_ref_options *opts, 
   job j = {.scene = scene_of(p), .frame = &plain, .f64 = true, .rgb = rgb, .aov = aov, .region = region,
            .flush_subnormals = opts->flush_subnormals, .only_uncertified = true};
   j.scene.frame = &plain;
-  uint64_t pixels = 0;
-  for (size_t i = 0; i < rc_region_pixels(region); i++) pixels += aov[i].uncertified > 0;
+  uint64_t pixels = 0, samples = 0;
+  for (size_t i = 0; i < rc_region_pixels(region); i++) {
+    pixels += aov[i].uncertified > 0;
+    samples += rc_aov_samples_rerendered(&aov[i], plain.samples_per_pixel);
+  }
   double t0 = rc_now_ms();
   rc_status st = run(&j, opts, stats);
   stats->rerender_ms += rc_now_ms() - t0;
   stats->pixels_rerendered += pixels;
+  stats->samples_rerendered += samples;
   return st;
 }
 

@@ -34,7 +34,7 @@ typedef struct rc_ref_stats {
   uint32_t patch_stall_object, patch_stall_x, patch_stall_y;
   /* --precision certified (frame.certify, rc_certify.glsl): the f32 pass's samples whose
    * decisions were not all certified; rc_ref_rerender's pixels and wall time. */
-  uint64_t samples_uncertified, pixels_rerendered;
+  uint64_t samples_uncertified, pixels_rerendered, samples_rerendered;
   double rerender_ms;
   /* A model of what SIMD lanes lose (issue 48): the loop steps of every sample (lane_steps),
    * and the steps of vectors of 8 neighbouring pixels of a row that run each sample until

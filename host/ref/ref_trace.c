@@ -15,6 +15,8 @@ void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
   ref_aov_record.shadow_bits = 0.0f;
   ref_aov_record.normal = rcm_make_f(0, 0, 0);
   ref_aov_record.uncertified = sc->frame->certify ? 0.0f : (float)sc->frame->samples_per_pixel;
+  ref_aov_record.certified_sum = rcm_make_f(0, 0, 0);
+  ref_aov_record.uncertified_mask = 0;
 }
 
 rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s) {

@@ -163,6 +163,8 @@ int main(void) {
   OFF("aov.shadow_bits", packed_aov, shadow_bits);
   OFF("aov.normal", packed_aov, normal);
   OFF("aov.uncertified", packed_aov, uncertified);
+  OFF("aov.certified_sum", packed_aov, certified_sum);
+  OFF("aov.uncertified_mask", packed_aov, uncertified_mask);
   printf("aov stride %zu\n", sizeof(packed_aov));
 
   printf("Frame binding %d\n", RC_BINDING_FRAME);
