@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # What --precision certified costs (docs/numerics.md §10, docs/performance.md): per scene,
 # the frame time of GPU f32, GPU certified (f32 with certificates, the uncertified samples'
-# pixels again on the f64 CPU reference), GPU f64 and the CPU reference in f64, run in turn
+# samples again on the f64 CPU reference), GPU f64 and the CPU reference in f64, run in turn
 # (f32, certified, f64, cpu f64, f32, ...) ROUNDS processes each with --repeat FRAMES; the
-# share of samples left uncertified and of pixels re-rendered; and the pixels whose
+# share of samples left uncertified, of pixels re-rendered and of samples traced again
+# in them (the uncertified ones, or whole pixels: base/certified_marks.h); and the pixels whose
 # first-sample decisions plain f32 gets wrong against the CPU f64 reference, which certified
 # mode gets right (AOV compare).
 # Usage: tools/bench_certified.sh [BIN] [SCENE...]   (default: build/vkraycast, scenes/*.json)
@@ -23,8 +24,8 @@ source tools/bench_common.sh
 modes=("--precision f32" "--precision certified" "--precision f64" "--backend cpu --precision f64")
 echo "$bin; $(nproc) cores; $rounds processes each, --repeat $frames${ARGS:+, $ARGS}; medians of render_wall_ms"
 echo
-echo "| scene | f32 ms | certified ms | certified / f32 | f64 ms | CPU f64 ms | uncertified samples | pixels re-rendered | f32 decisions wrong | certified decisions wrong |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| scene | f32 ms | certified ms | certified / f32 | f64 ms | CPU f64 ms | uncertified samples | pixels re-rendered | samples re-rendered | f32 decisions wrong | certified decisions wrong |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   for m in 0 1 2 3; do : >"$work/$m.txt"; done
   for ((r = 0; r < rounds; r++)); do
@@ -51,9 +52,10 @@ for s in "${scenes[@]}"; do
   samples=$(($(num width "$work/c.json") * $(num height "$work/c.json") * $(num samples_per_pixel "$work/c.json")))
   pixels=$(($(num width "$work/c.json") * $(num height "$work/c.json")))
   f32=$(median <"$work/0.txt") cert=$(median <"$work/1.txt")
-  printf "| %s | %.1f | %.1f | %.2f | %.1f | %.1f | %.2f %% | %.2f %% | %s | %s |\n" "$(basename "$s" .json)" \
+  printf "| %s | %.1f | %.1f | %.2f | %.1f | %.1f | %.2f %% | %.2f %% | %.2f %% | %s | %s |\n" "$(basename "$s" .json)" \
     "$f32" "$cert" "$(awk -v x="$f32" -v y="$cert" 'BEGIN { print y / x }')" "$(median <"$work/2.txt")" \
     "$(median <"$work/3.txt")" "$(awk -v u="$(num samples_uncertified "$work/c.json")" -v n="$samples" 'BEGIN { print 100 * u / n }')" \
     "$(awk -v u="$(num pixels_rerendered "$work/c.json")" -v n="$pixels" 'BEGIN { print 100 * u / n }')" \
+    "$(awk -v u="$(num samples_rerendered "$work/c.json")" -v n="$samples" 'BEGIN { print 100 * u / n }')" \
     "$(wrong "$work/f32.aov.exr")" "$(wrong "$work/c.aov.exr")"
 done
