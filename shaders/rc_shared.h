@@ -84,7 +84,7 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_SPEC_SHADOWS 11         /* 1: trace shadow rays, 0: not, or RC_SHADOWS_FROM_FRAME */
 #define RC_SPEC_SPECULAR_MODEL 12  /* RC_SPECULAR_*, or RC_SPECULAR_FROM_FRAME */
 #define RC_SPEC_REFLECTION_DEPTH 13 /* mirror bounces, or RC_DEPTH_FROM_FRAME */
-#define RC_SPEC_SAMPLES 14         /* samples per pixel, or RC_SAMPLES_FROM_FRAME */
+#define RC_SPEC_SAMPLES 14         /* 1 for one sample a pixel, else RC_SAMPLES_FROM_FRAME */
 /* bool: a sample's lights are shaded in passes of push.light_pass (host/gpu/gpu_plan.h),
  * and accum.a counts lights (sample x lights + lights done) instead of samples */
 #define RC_SPEC_LIGHT_PASSES 15

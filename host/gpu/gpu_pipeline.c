@@ -72,7 +72,11 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
   v[RC_SPEC_SHADOWS] = generic ? RC_SHADOWS_FROM_FRAME : f->shadows;
   v[RC_SPEC_SPECULAR_MODEL] = generic ? RC_SPECULAR_FROM_FRAME : f->specular_model;
   v[RC_SPEC_REFLECTION_DEPTH] = generic ? RC_DEPTH_FROM_FRAME : f->reflection_depth;
-  v[RC_SPEC_SAMPLES] = generic ? RC_SAMPLES_FROM_FRAME : f->samples_per_pixel;
+  /* One sample a pixel has code of its own (no random offsets: rc_random.glsl); any other
+   * count is read from the frame, so that the same scene at another count (tradeoff's spp
+   * sweep, a test's --spp) finds its pipeline in the driver's cache instead of compiling
+   * one: the count is only the sample loop's bound, read once per pixel. */
+  v[RC_SPEC_SAMPLES] = generic || f->samples_per_pixel != 1 ? RC_SAMPLES_FROM_FRAME : 1;
   v[RC_SPEC_LIGHT_PASSES] = r->light_passes ? VK_TRUE : VK_FALSE;
   v[RC_SPEC_LEVELS] = r->opts.levels ? 1 + r->opts.level_curve : 0;
 }
