@@ -45,7 +45,11 @@ static rc_status create_layouts(rc_gpu_renderer *r) {
 static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) {
   const packed_frame *f = &r->frame;
   bool generic = r->opts.generic_pipeline;
-  float epsilon = f->offset_epsilon;
+  /* Only the epsilon and t-min strategies read the offset; for the others a scene's own
+   * (which packing units scale: numerics.md §1) would make a pipeline of its own for
+   * nothing, so they get the shader's default. */
+  const bool offset_used = f->offset_strategy == RC_OFFSET_EPSILON || f->offset_strategy == RC_OFFSET_T_MIN;
+  float epsilon = offset_used ? f->offset_epsilon : 1.0e-4f;
   v[RC_SPEC_LOCAL_SIZE_X] = r->local_x;
   v[RC_SPEC_LOCAL_SIZE_Y] = r->local_y;
   v[RC_SPEC_LOOP_BUDGET] = r->budget;
