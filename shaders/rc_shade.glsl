@@ -285,16 +285,22 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
   cert_en = en;
 }
 
-// The perturbation of a spawned ray's origin (spawn_origin): the point's, the offset's turn,
-// and its rounding. The epsilon offset lies along the geometric normal, which turns by at most
-// cert_en (ng is n, or a triangle's face normal whose only error is rounding). The ulp and
-// error-bound offsets are a few ulps of this precision, the reference's as many of f64's: the
-// two differ by at most twice this one's length. The t-min strategy's origin is the point; its
-// start, epsilon along the ray, is cert_t_min_start's.
+// The perturbation of a spawned ray's origin (spawn_origin): the point's, the two offsets'
+// difference, and the rounding. The epsilon offset lies along the geometric normal, which turns
+// by at most cert_en (ng is n, or a triangle's face normal whose only error is rounding). The
+// error-bound offset is the point's error bound along ng and an ulp; the reference's is f64's,
+// whose p_error is the same magnitudes times f64's gamma, 2^-29 of ours, so it is at most
+// 2^-26 (|p_error| + |p| + ep + off) long, its ulp included: the two differ by at most this
+// one's length and that. The ulp offset moves a coordinate near 0 by a fixed amount in either
+// precision, so it keeps the bound of twice this one's length. The t-min strategy's origin is
+// the point; its start, epsilon along the ray, is cert_t_min_start's.
 real cert_origin(surface sf, rvec3 origin) {
   real off = length(origin - sf.p);
-  real turn = (offset_strategy == RC_OFFSET_EPSILON) ? cert_en : 2.0;
-  return cert_ep + turn * off + gamma_bound(2.0) * (length(origin) + off);
+  real moved = (offset_strategy == RC_OFFSET_EPSILON) ? cert_en * off
+               : (offset_strategy == RC_OFFSET_ERROR_BOUND)
+                   ? off + real(1.4901161193847656e-8) * (length(sf.p_error) + length(sf.p) + cert_ep + off)
+                   : 2.0 * off;
+  return cert_ep + moved + gamma_bound(2.0) * (length(origin) + off);
 }
 
 // The t-min strategy's start origin + epsilon d (t_min_start), for a direction ed from the

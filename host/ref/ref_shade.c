@@ -221,8 +221,11 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
 
 real REF(cert_origin)(const ref_scene *sc, const ref_surface *sf, rvec3 origin) {
   real off = RV(length)(RV(sub)(origin, sf->p));
-  real turn = (sc->frame->offset_strategy == RC_OFFSET_EPSILON) ? ref_cert_en : 2;
-  return ref_cert_ep + turn * off + REF(gamma_bound)(2) * (RV(length)(origin) + off);
+  real moved = (sc->frame->offset_strategy == RC_OFFSET_EPSILON) ? (ref_cert_en) * off
+               : (sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND)
+                   ? off + (real)1.4901161193847656e-8 * (RV(length)(sf->p_error) + RV(length)(sf->p) + ref_cert_ep + off)
+                   : 2 * off;
+  return ref_cert_ep + moved + REF(gamma_bound)(2) * (RV(length)(origin) + off);
 }
 
 real REF(cert_t_min_start)(const ref_scene *sc, real eo, real ed, rvec3 origin) {
