@@ -29,7 +29,7 @@ layout(constant_id = RC_SPEC_BVH) const bool use_bvh = true;
 layout(constant_id = RC_SPEC_SPHERE_FORMULA) const uint sphere_formula = RC_SPHERE_GEOMETRIC;
 layout(constant_id = RC_SPEC_TRIANGLE_FORMULA) const uint triangle_formula = RC_TRIANGLE_WATERTIGHT;
 layout(constant_id = RC_SPEC_OFFSET_STRATEGY) const uint offset_strategy = RC_OFFSET_ERROR_BOUND;
-layout(constant_id = RC_SPEC_OFFSET_EPSILON) const float offset_epsilon = 1.0e-4;
+layout(constant_id = RC_SPEC_OFFSET_EPSILON) const float offset_epsilon = RC_OFFSET_EPSILON_DEFAULT;
 layout(constant_id = RC_SPEC_KINDS) const uint scene_kinds = RC_KIND_ALL;
 layout(constant_id = RC_SPEC_LIGHT_COUNT) const uint spec_light_count = RC_LIGHTS_FROM_FRAME;
 layout(constant_id = RC_SPEC_SHADOWS) const uint spec_shadows = RC_SHADOWS_FROM_FRAME;

@@ -27,4 +27,12 @@ static inline uint32_t rc_aov_samples_rerendered(const packed_aov *a, uint32_t s
   return rc_aov_per_sample(a) ? (uint32_t)__builtin_popcount(a->uncertified_mask) : samples_per_pixel;
 }
 
+/* Carries the f32 pass's marks (count, bits, certified sum) into `to`, a re-rendered
+ * record, which the re-render's own frame (certify off) does not fill. */
+static inline void rc_aov_keep_marks(packed_aov *to, const packed_aov *marks) {
+  to->uncertified = marks->uncertified;
+  to->uncertified_mask = marks->uncertified_mask;
+  to->certified_sum = marks->certified_sum;
+}
+
 #endif

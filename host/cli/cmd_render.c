@@ -466,9 +466,7 @@ static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, c
     if (rc_aov_rerenders(mark, 0)) {
       packed_aov marks = *mark;
       *mark = aov[i];
-      mark->uncertified = marks.uncertified;
-      mark->uncertified_mask = marks.uncertified_mask;
-      mark->certified_sum = marks.certified_sum;
+      rc_aov_keep_marks(mark, &marks);
     }
     c->stats.pixels_rerendered++;
     c->stats.samples_rerendered += rc_aov_samples_rerendered(mark, spp);

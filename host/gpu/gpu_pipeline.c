@@ -47,9 +47,9 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
   bool generic = r->opts.generic_pipeline;
   /* Only the epsilon and t-min strategies read the offset; for the others a scene's own
    * (which packing units scale: numerics.md §1) would make a pipeline of its own for
-   * nothing, so they get the shader's default. */
+   * nothing, so they get the default, the shader's too. */
   const bool offset_used = f->offset_strategy == RC_OFFSET_EPSILON || f->offset_strategy == RC_OFFSET_T_MIN;
-  float epsilon = offset_used ? f->offset_epsilon : 1.0e-4f;
+  float epsilon = offset_used ? f->offset_epsilon : (float)RC_OFFSET_EPSILON_DEFAULT;
   v[RC_SPEC_LOCAL_SIZE_X] = r->local_x;
   v[RC_SPEC_LOCAL_SIZE_Y] = r->local_y;
   v[RC_SPEC_LOOP_BUDGET] = r->budget;

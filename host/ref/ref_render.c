@@ -99,11 +99,7 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
     rec.certified_sum = certified_sum;
     atomic_fetch_add(&j->samples_uncertified, uncertified);
   }
-  if (mark) {
-    rec.uncertified = mark->uncertified;
-    rec.uncertified_mask = mark->uncertified_mask;
-    rec.certified_sum = mark->certified_sum;
-  }
+  if (mark) rc_aov_keep_marks(&rec, mark);
   if (j->aov) j->aov[index] = rec;
   if (ref_crossing_blame) {
     unsigned none = 0;
