@@ -12,6 +12,7 @@ packages=(
   glslang-tools spirv-tools # spirv-val for the tests; SPIRV-Tools' optimizer, which the
                             # renderer links (host/gpu/spirv_specialize.h)
   libopenimageio-dev openimageio-tools
+  libopenexr-dev # EXRs read without OpenImageIO's 260 libraries (host/image/exr_read.cpp)
   libcjson-dev libxxhash-dev
   libassimp-dev assimp-testmodels
   clang libclang-rt-14-dev

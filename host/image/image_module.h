@@ -13,6 +13,8 @@
 
 #define RC_IMAGE_API_VERSION 5u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
+/* vkraycast-exr.so (exr_read.cpp): the same table, its readers only. */
+#define RC_EXR_MODULE_SYMBOL "rc_exr_module_api"
 
 typedef struct rc_image_api {
   uint32_t version; /* RC_IMAGE_API_VERSION: a module from another build is refused */
