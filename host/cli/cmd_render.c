@@ -577,11 +577,12 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
      * time is the write's (write_ms), not the frame's, as on the CPU backend, whose frame
      * time stops before its bands are written. Counted in both, it made the steady frame
      * of a 2- or 3-frame --repeat (steady() takes the later of frames 2 and 3) the
-     * frame plus the write. The certified re-render in the sink stays in the frame. */
-    double written = last && *out ? rc_output_write_ms(*out) : 0;
+     * frame plus the write. The certified re-render in the sink stays in the frame. (No
+     * output yet, or a discarded frame: no write time, and rc_output_write_ms of NULL is 0.) */
+    double written = rc_output_write_ms(*out);
     if (st == RC_OK) st = rc_gpu_renderer_render(r, band, user, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
-    wall_ms[i] = rs->gpu.render_ms - (last && *out ? rc_output_write_ms(*out) - written : 0);
+    wall_ms[i] = rs->gpu.render_ms - (rc_output_write_ms(*out) - written);
   }
   if (st == RC_OK) {
     rs->first_frame_ms = wall_ms[0];

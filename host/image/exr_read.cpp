@@ -85,6 +85,12 @@ static std::unique_ptr<rc_image_reader> open_exr(const char *path) {
 static int width_of(const rc_image_reader *r) { return r->window.max.x - r->window.min.x + 1; }
 static int height_of(const rc_image_reader *r) { return r->window.max.y - r->window.min.y + 1; }
 
+static void describe(const rc_image_reader *r, int *width, int *height, int *channels) {
+  *width = width_of(r);
+  *height = height_of(r);
+  *channels = (int)r->names.size();
+}
+
 /* Rows [y0, y1) of the data window, interleaved in `names` order, as float. */
 static void read_rows(rc_image_reader *r, int y0, int y1, float *pixels) {
   const size_t nch = r->names.size(), w = (size_t)width_of(r);
@@ -101,9 +107,7 @@ static rc_image_reader *reader_open(const char *path, int *width, int *height, i
                                     char *err, size_t err_len) {
   try {
     auto r = open_exr(path);
-    *width = width_of(r.get());
-    *height = height_of(r.get());
-    *channels = (int)r->names.size();
+    describe(r.get(), width, height, channels);
     *float32 = r->float32;
     return r.release();
   } catch (const std::exception &e) {
@@ -180,9 +184,7 @@ static int read_named(const char *path, int *width, int *height, int *channels, 
       std::snprintf(names[i], 32, "%s", r->names[(size_t)i].c_str());
       *name_count = i + 1;
     }
-    *width = width_of(r.get());
-    *height = height_of(r.get());
-    *channels = (int)r->names.size();
+    describe(r.get(), width, height, channels);
     *pixels = buf;
     return 0;
   } catch (const std::exception &e) {
@@ -191,17 +193,12 @@ static int read_named(const char *path, int *width, int *height, int *channels, 
   }
 }
 
-static int read(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len) {
-  int n = 0;
-  return read_named(path, width, height, channels, pixels, nullptr, 0, &n, err, err_len);
-}
-
-/* The readers only: a table with every writer NULL (image_load.c never asks it to write). */
+/* The readers only: a table with every writer NULL, and `read` too (image_load.c reads
+ * whole images through read_named alone, and never asks this module to write). */
 extern "C" __attribute__((visibility("default"))) const rc_image_api *rc_exr_module_api(void) {
   static rc_image_api table;
   table.version = RC_IMAGE_API_VERSION;
   table.read_named = read_named;
-  table.read = read;
   table.reader_open = reader_open;
   table.reader_meta = reader_meta;
   table.reader_channel = reader_channel;

@@ -167,11 +167,11 @@ int rc_image_stores_levels(const char *path) {
   return m ? m->stores_levels(path) : -1;
 }
 
+/* rc_image_read_named without the names, as image_io.cpp has it: one place tries the EXR
+ * reader first. */
 int rc_image_read(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len) {
-  const rc_image_api *x = exr_module(path);
-  if (x && x->read(path, width, height, channels, pixels, NULL, 0) == 0) return 0;
-  const rc_image_api *m = module(err, err_len);
-  return m ? m->read(path, width, height, channels, pixels, err, err_len) : -1;
+  int n = 0;
+  return rc_image_read_named(path, width, height, channels, pixels, NULL, 0, &n, err, err_len);
 }
 
 rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height, int *channels, bool *float32,

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#define RC_IMAGE_API_VERSION 5u
+#define RC_IMAGE_API_VERSION 6u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
 /* vkraycast-exr.so (exr_read.cpp): the same table, its readers only. */
 #define RC_EXR_MODULE_SYMBOL "rc_exr_module_api"
@@ -31,7 +31,6 @@ typedef struct rc_image_api {
   int (*read_named)(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
                     int max_names, int *name_count, char *err, size_t err_len);
   int (*can_write)(const char *path);
-  int (*read)(const char *path, int *width, int *height, int *channels, float **pixels, char *err, size_t err_len);
   rc_image_reader *(*reader_open)(const char *path, int *width, int *height, int *channels, bool *float32, char *err,
                                   size_t err_len);
   int (*reader_meta)(const rc_image_reader *r, const char *name, char *value, size_t len);
