@@ -1,5 +1,5 @@
 /* exr_read.cpp: the readers of image_io.h for OpenEXR files, through OpenEXR alone, built
- * as vkraycast-exr.so. Loading OpenImageIO's ~260 libraries costs about 0.2 s of CPU
+ * with exr_write.cpp as vkraycast-exr.so. Loading OpenImageIO's ~260 libraries costs about 0.2 s of CPU
  * (image_load.c); OpenEXR's ten cost about 2 ms, and `compare` of two EXRs needs nothing
  * else (docs/performance.md, "Process start-up", finding 13). image_load.c tries this
  * module first for a name ending in .exr and falls back to OpenImageIO's reader whenever
@@ -8,7 +8,7 @@
  * same file: the data window's pixels as float, rows top to bottom, the channels in
  * OpenImageIO's order, and the header's string attributes by name, plus "compression" by
  * OpenImageIO's names of the methods; ctest `exr_reader` compares the two. */
-#include "image/image_module.h"
+#include "image/exr_module.h"
 
 #include <ImathBox.h>
 #include <ImfChannelList.h>
@@ -63,6 +63,7 @@ struct rc_image_reader {
  * are left to OpenImageIO). Throws on any failure. */
 static std::unique_ptr<rc_image_reader> open_exr(const char *path) {
   auto r = std::make_unique<rc_image_reader>();
+  rc_exr_threads();
   r->in = std::make_unique<Imf::InputFile>(path);
   const Imf::Header &h = r->in->header();
   r->window = h.dataWindow();
@@ -193,8 +194,7 @@ static int read_named(const char *path, int *width, int *height, int *channels, 
   }
 }
 
-/* The readers only: a table with every writer NULL, and `read` too (image_load.c reads
- * whole images through read_named alone, and never asks this module to write). */
+/* The module's table: these readers and exr_write.cpp's writers. */
 extern "C" __attribute__((visibility("default"))) const rc_image_api *rc_exr_module_api(void) {
   static rc_image_api table;
   table.version = RC_IMAGE_API_VERSION;
@@ -204,5 +204,6 @@ extern "C" __attribute__((visibility("default"))) const rc_image_api *rc_exr_mod
   table.reader_channel = reader_channel;
   table.reader_rows = reader_rows;
   table.reader_close = reader_close;
+  rc_exr_writers(&table);
   return &table;
 }

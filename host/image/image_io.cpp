@@ -2,11 +2,11 @@
 // error stops at this boundary and comes back as text.
 #include "image/image_io.h"
 #include "image/levels8.h"
+#include "image/staged_file.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -48,20 +48,6 @@ std::string color_space(const rc_encoding &e) {
     return name;
   }
   return "Linear";
-}
-
-// The folder a path names its file in ("." for a bare name).
-std::string dir_of(const std::string &path) {
-  size_t slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
-// A short temporary name beside the target: its length does not grow with the target's
-// (a valid 250-character name must still work under a 255-byte NAME_MAX).
-std::string temp_name(const std::string &dir) {
-  static unsigned counter;
-  return dir + "/.vkraycast-" + std::to_string(static_cast<long>(getpid())) + "-" + std::to_string(counter++) + ".tmp";
 }
 
 std::string errno_text(const std::string &what, int e) { return what + ": " + std::strerror(e); }
@@ -113,8 +99,7 @@ class checked_file : public OIIO::Filesystem::IOProxy {
 struct rc_image_writer {
   std::unique_ptr<ImageOutput> out;
   std::unique_ptr<checked_file> proxy;
-  FILE *file = nullptr;
-  std::string path, dir, tmp; // tmp: the named temporary; empty while the file has no name
+  rc_staged staged{}; // the temporary and the target (staged_file.h)
   int width = 0, height = 0, channels = 0, next_row = 0;
   bool fp = false;
   rc_levels levels;                   // 8-bit formats: the encoding's table (levels8.h)
@@ -130,33 +115,9 @@ std::string write_error(rc_image_writer *w, const std::string &plugin_error, con
   return plugin_error.empty() ? fallback : plugin_error;
 }
 
-// The temporary: unnamed (O_TMPFILE) where the filesystem allows it, so no signal, not
-// even SIGKILL, can leave it behind; else a short name beside the target.
-bool open_temp(rc_image_writer *w, std::string &err) {
-  int fd = open(w->dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
-  if (fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
-    w->tmp = temp_name(w->dir);
-    fd = open(w->tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  }
-  if (fd < 0) {
-    int e = errno;
-    w->tmp.clear();
-    err = e == ENOENT || e == ENOTDIR ? errno_text("no such directory " + w->dir, e) : errno_text(w->dir, e);
-    return false;
-  }
-  w->file = fdopen(fd, "wb");
-  if (!w->file) {
-    err = errno_text("fdopen", errno);
-    close(fd);
-    if (!w->tmp.empty()) std::remove(w->tmp.c_str());
-    return false;
-  }
-  return true;
-}
-
-// Gives up the temporary: closes it, and removes it if it has a name. A plugin closed on
-// an unfinished image complains on stderr (libpng: "No IDATs written into file") after the
-// run has already said what failed: stderr is pointed at /dev/null meanwhile.
+// Gives up the temporary. A plugin closed on an unfinished image complains on stderr
+// (libpng: "No IDATs written into file") after the run has already said what failed:
+// stderr is pointed at /dev/null meanwhile.
 void discard_temp(rc_image_writer *w) {
   if (w->out) {
     fflush(stderr);
@@ -168,9 +129,7 @@ void discard_temp(rc_image_writer *w) {
     if (null >= 0) close(null);
   }
   w->proxy.reset();
-  if (w->file) fclose(w->file);
-  w->file = nullptr;
-  if (!w->tmp.empty()) std::remove(w->tmp.c_str());
+  rc_staged_discard(&w->staged);
 }
 
 // Every byte on disk before the file gets its final name: the plugin's close, the
@@ -180,52 +139,10 @@ bool finish_temp(rc_image_writer *w, std::string &err) {
   bool closed = w->out->close();
   std::string plugin_error = closed ? "" : w->out->geterror();
   w->out.reset();
+  char e[512] = "";
   if (!closed || w->proxy->error) err = write_error(w, plugin_error, "the image writer failed");
-  else if (fflush(w->file) != 0) err = errno_text("write failed", errno);
-  else if (fsync(fileno(w->file)) != 0) err = errno_text("fsync failed", errno);
+  else if (rc_staged_sync(&w->staged, e, sizeof e) != 0) err = e;
   return err.empty();
-}
-
-// The finished file's name (linkat for an unnamed one), the rename over the target, and
-// fsync of the folder so that the rename survives a crash. Signals wait meanwhile, so no
-// handler runs between linkat and rename, nor before a failed name is removed.
-bool name_temp(rc_image_writer *w, std::string &err) {
-  sigset_t all, old;
-  sigfillset(&all);
-  sigprocmask(SIG_BLOCK, &all, &old);
-  bool ok = true;
-  if (w->tmp.empty()) {
-    w->tmp = temp_name(w->dir);
-    std::string self = "/proc/self/fd/" + std::to_string(fileno(w->file));
-    if (linkat(AT_FDCWD, self.c_str(), AT_FDCWD, w->tmp.c_str(), AT_SYMLINK_FOLLOW) != 0) {
-      err = errno_text("cannot give the finished image a name in " + w->dir, errno);
-      w->tmp.clear();
-      ok = false;
-    }
-  }
-  w->proxy.reset();
-  if (fclose(w->file) != 0 && ok) {
-    err = errno_text("write failed", errno);
-    ok = false;
-  }
-  w->file = nullptr;
-  if (ok && std::rename(w->tmp.c_str(), w->path.c_str()) != 0) {
-    err = errno_text("cannot rename the finished image into place", errno);
-    ok = false;
-  }
-  if (ok) {
-    w->tmp.clear();
-    int dfd = open(w->dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-      fsync(dfd);
-      close(dfd);
-    }
-  } else if (!w->tmp.empty()) {
-    std::remove(w->tmp.c_str());
-    w->tmp.clear();
-  }
-  sigprocmask(SIG_SETMASK, &old, nullptr);
-  return ok;
 }
 
 }  // namespace
@@ -267,16 +184,10 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
       spec.attribute("png:filter", png_filter_sub);
     }
     for (int i = 0; i < meta_count; i++) spec.attribute(meta[i].name, meta[i].value);
-    w->path = path;
-    w->dir = dir_of(path);
     w->width = width, w->height = height, w->channels = channels;
     if (!w->fp) rc_levels_make(enc, truncate, &w->levels);
-    std::string e;
-    if (!open_temp(w.get(), e)) {
-      set_error(err, err_len, e);
-      return nullptr;
-    }
-    w->proxy = std::make_unique<checked_file>(w->file);
+    if (rc_staged_open(&w->staged, path, err, err_len) != 0) return nullptr;
+    w->proxy = std::make_unique<checked_file>(w->staged.file);
     w->out->set_ioproxy(w->proxy.get());
     if (!w->out->open(path, spec)) {
       set_error(err, err_len, write_error(w.get(), w->out->geterror(), "cannot start the image"));
@@ -290,7 +201,7 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
   }
 }
 
-extern "C" const char *rc_image_writer_temp_path(const rc_image_writer *w) { return w->tmp.c_str(); }
+extern "C" const char *rc_image_writer_temp_path(const rc_image_writer *w) { return rc_staged_temp_path(&w->staged); }
 
 namespace {
 
@@ -359,18 +270,9 @@ extern "C" rc_image_writer *rc_file_writer_open(const char *path, const void *by
                                                 size_t err_len) {
   try {
     auto w = std::make_unique<rc_image_writer>();
-    w->path = path;
-    w->dir = dir_of(path);
-    std::string e;
-    if (!open_temp(w.get(), e)) {
-      set_error(err, err_len, e);
-      return nullptr;
-    }
-    if (fwrite(bytes, 1, len, w->file) != len || fflush(w->file) != 0) e = errno_text("write failed", errno);
-    else if (fsync(fileno(w->file)) != 0) e = errno_text("fsync failed", errno);
-    if (!e.empty()) {
+    if (rc_staged_open(&w->staged, path, err, err_len) != 0) return nullptr;
+    if (rc_staged_write_all(&w->staged, bytes, len, err, err_len) != 0) {
       discard_temp(w.get());
-      set_error(err, err_len, e);
       return nullptr;
     }
     return w.release(); // no rows: finish has nothing left to do, close names it
@@ -387,17 +289,12 @@ extern "C" int rc_image_writer_close(rc_image_writer *w, int commit, char *err, 
     return 0;
   }
   try {
-    std::string e;
     if (rc_image_writer_finish(w, err, err_len) != 0) {
       discard_temp(w);
       return -1;
     }
-    if (!name_temp(w, e)) {
-      discard_temp(w);
-      set_error(err, err_len, e);
-      return -1;
-    }
-    return 0;
+    w->proxy.reset();
+    return rc_staged_commit(&w->staged, err, err_len);
   } catch (const std::exception &e) {
     discard_temp(w);
     set_error(err, err_len, e.what());

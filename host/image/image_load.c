@@ -1,6 +1,6 @@
 /* image_load.c: image_io.h for the vkraycast binary, forwarding to vkraycast-image.so,
- * loaded on the first call (image_module.h says why), and reading .exr files through
- * vkraycast-exr.so first (below, exr_module). The modules are looked for beside the binary
+ * loaded on the first call (image_module.h says why), and reading and writing .exr files
+ * through vkraycast-exr.so first (below, exr_module). The modules are looked for beside the binary
  * (/proc/self/exe), where the build puts them. */
 #include "image/image_module.h"
 
@@ -80,73 +80,114 @@ static const rc_image_api *module(char *err, size_t err_len) {
   return api;
 }
 
-/* The readers of OpenEXR files through OpenEXR alone (exr_read.cpp, vkraycast-exr.so): about
- * 2 ms to load against OpenImageIO's 0.2 s of CPU, which is most of what `compare` of two
- * EXRs cost. Tried first for a name ending in .exr; whatever it cannot read (or a missing
- * module) goes to OpenImageIO as before, so errors keep its messages.
- * VKRAYCAST_EXR_READER=oiio reads every EXR through OpenImageIO (ctest exr_reader compares
- * the two). */
+/* OpenEXR files through OpenEXR alone (vkraycast-exr.so: exr_read.cpp, exr_write.cpp):
+ * about 2 ms to load against OpenImageIO's 0.2 s of CPU, which was most of what `compare`
+ * of two EXRs, and a render to an EXR, cost. Tried first for a name ending in .exr; an EXR
+ * this reader cannot read (or a missing module) goes to OpenImageIO as before, so errors
+ * keep its messages. VKRAYCAST_EXR_READER=oiio reads, and VKRAYCAST_EXR_WRITER=oiio writes,
+ * every EXR through OpenImageIO (ctest exr_module compares the two). */
 static const rc_image_api *exr_api;
 static pthread_once_t exr_once = PTHREAD_ONCE_INIT;
 
 static void load_exr(void) {
-  const char *choice = getenv("VKRAYCAST_EXR_READER");
-  if (choice && strcmp(choice, "oiio") == 0) return;
   char error[PATH_MAX + 600];
   exr_api = load_module("vkraycast-exr.so", RC_EXR_MODULE_SYMBOL, false, error, sizeof error);
 }
 
-static const rc_image_api *exr_module(const char *path) {
-  size_t n = strlen(path);
-  if (n < 4 || strcasecmp(path + n - 4, ".exr") != 0) return NULL;
+static const rc_image_api *exr_loaded(void) {
   pthread_once(&exr_once, load_exr);
   return exr_api;
 }
 
-/* A reader from either module: the table that opened it travels with it. */
+/* The OpenEXR module for `path`, or NULL: not an .exr name, the module missing, or
+ * OpenImageIO chosen by the variable `choice`. */
+static const rc_image_api *exr_module(const char *path, const char *choice) {
+  size_t n = strlen(path);
+  if (n < 4 || strcasecmp(path + n - 4, ".exr") != 0) return NULL;
+  const char *c = getenv(choice);
+  if (c && strcmp(c, "oiio") == 0) return NULL;
+  return exr_loaded();
+}
+
+#define EXR_READER "VKRAYCAST_EXR_READER"
+#define EXR_WRITER "VKRAYCAST_EXR_WRITER"
+
+/* A reader or writer from either module: the table that opened it travels with it. */
 struct rc_image_reader {
   const rc_image_api *m;
   rc_image_reader *inner;
 };
+struct rc_image_writer {
+  const rc_image_api *m;
+  rc_image_writer *inner;
+};
 
-int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
-                   bool truncate, char *err, size_t err_len) {
-  const rc_image_api *m = module(err, err_len);
-  return m ? m->write(path, width, height, channels, pixels, enc, truncate, err, err_len) : -1;
+/* Wraps `inner`, opened by `m`; NULL (inner closed) if out of memory. */
+static rc_image_writer *wrap_writer(const rc_image_api *m, rc_image_writer *inner, char *err, size_t err_len) {
+  if (!inner) return NULL;
+  rc_image_writer *w = malloc(sizeof *w);
+  if (!w) {
+    m->writer_close(inner, 0, NULL, 0);
+    snprintf(err, err_len, "out of memory");
+    return NULL;
+  }
+  w->m = m, w->inner = inner;
+  return w;
 }
 
 rc_image_writer *rc_image_writer_open(const char *path, int width, int height, int channels, const char *const *names,
                                       rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count,
                                       char *err, size_t err_len) {
-  const rc_image_api *m = module(err, err_len);
-  return m ? m->writer_open(path, width, height, channels, names, enc, truncate, meta, meta_count, err, err_len) : NULL;
+  const rc_image_api *m = exr_module(path, EXR_WRITER);
+  if (!m) m = module(err, err_len);
+  if (!m) return NULL;
+  rc_image_writer *inner = m->writer_open(path, width, height, channels, names, enc, truncate, meta, meta_count, err, err_len);
+  return wrap_writer(m, inner, err, err_len);
 }
 
-/* A writer exists only once the module is loaded. */
+/* The whole image at once, as image_io.cpp has it: one band. */
+int rc_image_write(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
+                   bool truncate, char *err, size_t err_len) {
+  rc_image_writer *w = rc_image_writer_open(path, width, height, channels, NULL, enc, truncate, NULL, 0, err, err_len);
+  if (!w) return -1;
+  if (rc_image_writer_rows(w, height, pixels, err, err_len) != 0) {
+    rc_image_writer_close(w, 0, NULL, 0);
+    return -1;
+  }
+  return rc_image_writer_close(w, 1, err, err_len);
+}
+
 int rc_image_writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len) {
-  return api->writer_rows(w, rows, pixels, err, err_len);
+  return w->m->writer_rows(w->inner, rows, pixels, err, err_len);
 }
 
 int rc_image_writer_levels(rc_image_writer *w, int rows, const unsigned char *levels, char *err, size_t err_len) {
-  return api->writer_levels(w, rows, levels, err, err_len);
+  return w->m->writer_levels(w->inner, rows, levels, err, err_len);
 }
 
-int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len) { return api->writer_finish(w, err, err_len); }
+int rc_image_writer_finish(rc_image_writer *w, char *err, size_t err_len) {
+  return w->m->writer_finish(w->inner, err, err_len);
+}
 
 int rc_image_writer_close(rc_image_writer *w, int commit, char *err, size_t err_len) {
-  return api->writer_close(w, commit, err, err_len);
+  int rc = w->m->writer_close(w->inner, commit, err, err_len);
+  free(w);
+  return rc;
 }
 
+/* Bytes as they are (a .vkrs): the OpenEXR module's writer, which needs no image library;
+ * OpenImageIO's module only where that one is missing. */
 rc_image_writer *rc_file_writer_open(const char *path, const void *bytes, size_t len, char *err, size_t err_len) {
-  const rc_image_api *m = module(err, err_len);
-  return m ? m->file_writer_open(path, bytes, len, err, err_len) : NULL;
+  const rc_image_api *m = exr_loaded();
+  if (!m) m = module(err, err_len);
+  return m ? wrap_writer(m, m->file_writer_open(path, bytes, len, err, err_len), err, err_len) : NULL;
 }
 
-const char *rc_image_writer_temp_path(const rc_image_writer *w) { return api->writer_temp_path(w); }
+const char *rc_image_writer_temp_path(const rc_image_writer *w) { return w->m->writer_temp_path(w->inner); }
 
 int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
                         int max_names, int *name_count, char *err, size_t err_len) {
-  const rc_image_api *x = exr_module(path);
+  const rc_image_api *x = exr_module(path, EXR_READER);
   if (x && x->read_named(path, width, height, channels, pixels, names, max_names, name_count, NULL, 0) == 0) return 0;
   const rc_image_api *m = module(err, err_len);
   return m ? m->read_named(path, width, height, channels, pixels, names, max_names, name_count, err, err_len) : -1;
@@ -154,6 +195,8 @@ int rc_image_read_named(const char *path, int *width, int *height, int *channels
 
 /* Without the module: -1, and the reason on stderr. */
 int rc_image_can_write(const char *path) {
+  const rc_image_api *x = exr_module(path, EXR_WRITER);
+  if (x) return x->can_write(path);
   char err[sizeof load_error];
   const rc_image_api *m = module(err, sizeof err);
   if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);
@@ -161,6 +204,8 @@ int rc_image_can_write(const char *path) {
 }
 
 int rc_image_stores_levels(const char *path) {
+  const rc_image_api *x = exr_module(path, EXR_WRITER);
+  if (x) return x->stores_levels(path);
   char err[sizeof load_error];
   const rc_image_api *m = module(err, sizeof err);
   if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);
@@ -181,7 +226,7 @@ rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height,
     snprintf(err, err_len, "out of memory");
     return NULL;
   }
-  r->m = exr_module(path);
+  r->m = exr_module(path, EXR_READER);
   r->inner = r->m ? r->m->reader_open(path, width, height, channels, float32, NULL, 0) : NULL;
   if (!r->inner) {
     r->m = module(err, err_len);

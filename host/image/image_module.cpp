@@ -3,7 +3,7 @@
 #include "image/image_module.h"
 
 static const rc_image_api api = {
-    RC_IMAGE_API_VERSION, rc_image_write,       rc_image_writer_open,       rc_image_writer_rows,
+    RC_IMAGE_API_VERSION, rc_image_writer_open,       rc_image_writer_rows,
     rc_image_writer_finish, rc_image_writer_close, rc_file_writer_open,     rc_image_writer_temp_path,
     rc_image_read_named,  rc_image_can_write,   rc_image_reader_open,
     rc_image_reader_meta, rc_image_reader_channel, rc_image_reader_rows, rc_image_reader_close,

@@ -11,15 +11,14 @@
 
 #include <stdint.h>
 
-#define RC_IMAGE_API_VERSION 6u
+#define RC_IMAGE_API_VERSION 7u
 #define RC_IMAGE_MODULE_SYMBOL "rc_image_module_api"
-/* vkraycast-exr.so (exr_read.cpp): the same table, its readers only. */
+/* vkraycast-exr.so (exr_read.cpp, exr_write.cpp): the same table for .exr files, and the
+ * plain file writer. */
 #define RC_EXR_MODULE_SYMBOL "rc_exr_module_api"
 
 typedef struct rc_image_api {
   uint32_t version; /* RC_IMAGE_API_VERSION: a module from another build is refused */
-  int (*write)(const char *path, int width, int height, int channels, const float *pixels, rc_encoding enc,
-               bool truncate, char *err, size_t err_len);
   rc_image_writer *(*writer_open)(const char *path, int width, int height, int channels, const char *const *names,
                                   rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count, char *err,
                                   size_t err_len);
