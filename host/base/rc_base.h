@@ -131,7 +131,8 @@ bool rc_path_within(const char *dir, const char *path);
 bool rc_has_extension(const char *path, const char *ext);
 
 /* Fault injection for the tests of the error paths: true when VKRAYCAST_FAULT names this
- * fault ("device-lost", "device-memory", "pipeline", "host-memory"). The real handling
+ * fault ("device-lost", "device-memory", "pipeline", "host-memory"; "no-tmpfile" is read by
+ * the image modules themselves, image/staged_file.c). The real handling
  * code then runs as if the driver or the allocator had failed. */
 bool rc_fault(const char *name);
 /* VKRAYCAST_FAULT=NAME:ARGS: ARGS for a fault that takes values, else NULL. */

@@ -5,7 +5,8 @@
 # every kind of EXR the renderer writes: an image, its AOVs, the parts of a sharded render,
 # a compare heat map. A render to an EXR and `prepare` load no OpenImageIO; a write that
 # fails (a full disk, on the image or on its AOVs) is reported, exit status 2, and leaves
-# the old files and no temporary behind.
+# the old files and no temporary behind; so does one through a named temporary, where
+# O_TMPFILE is refused (two modules' names at once, a full disk, SIGTERM).
 # Usage: test_exr_writer.sh VKRAYCAST SCENES_DIR WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
@@ -86,4 +87,42 @@ for case in "image 256 256" "AOVs 64 96"; do
   [[ -z "$(find "$work" -name '.vkraycast-*')" ]] || because "a temporary was left"
   check "a full disk on the $what: refused, old files intact" "$why"
 done
+
+# Named temporaries (VKRAYCAST_FAULT=no-tmpfile: a filesystem without O_TMPFILE). A PNG
+# and its EXR AOVs are written at once by the two modules, whose counters of temporary
+# names share the pid: the second passes over the name the first took. Then a full disk,
+# and SIGTERM while the image is written: no temporary is left either way.
+temps() { find "$work" -maxdepth 1 -name '.vkraycast-*'; }
+why=ok
+VKRAYCAST_FAULT=no-tmpfile "$bin" render "$scenes/mesh.json" "${size[@]}" -o "$work/named.png" \
+  --aov "$work/named.aov.exr" 2>"$work/err" || because "exit status $?: $(head -c 300 "$work/err")"
+same_pixels "$work/named.aov.exr" "$work/exr.aov.exr" || because "the AOVs differ from the unnamed temporary's"
+[[ -s $work/named.png ]] || because "no PNG"
+[[ -z "$(temps)" ]] || because "left: $(temps)"
+check "named temporaries, two modules at once: both files, none left" "$why"
+why=ok
+VKRAYCAST_FAULT=no-tmpfile bash -c 'ulimit -f 64; exec "$@"' _ "$bin" render "$scenes/mesh.json" --width 256 \
+  --height 256 --quiet -o "$work/keep.exr" --aov "$work/keep.aov.exr" 2>"$work/err"
+rc=$?
+[[ $rc == 2 ]] || because "exit status $rc"
+[[ "$(md5sum "$work"/keep.exr "$work"/keep.aov.exr)" == "$sums" ]] || because "an old file changed"
+[[ -z "$(temps)" ]] || because "left: $(temps)"
+check "named temporaries, a full disk: refused, none left" "$why"
+why=ok
+VKRAYCAST_FAULT=no-tmpfile "$bin" render "$scenes/showcase.json" -o "$work/keep.exr" --width 1024 --height 1024 \
+  --spp 1 --quiet 2>/dev/null &
+pid=$!
+seen=no
+for _ in $(seq 1 1200); do
+  [[ -n "$(temps)" ]] && { seen=yes; break; }
+  sleep 0.05
+done
+kill -TERM $pid
+wait $pid
+rc=$?
+[[ $seen == yes ]] || because "never saw the temporary"
+[[ $rc == 143 ]] || because "exit status $rc, expected 143"
+[[ "$(md5sum "$work"/keep.exr "$work"/keep.aov.exr)" == "$sums" ]] || because "an old file changed"
+[[ -z "$(temps)" ]] || because "left: $(temps)"
+check "named temporary, SIGTERM while writing: removed" "$why"
 finish
