@@ -12,7 +12,8 @@ packages=(
   glslang-tools spirv-tools # spirv-val for the tests; SPIRV-Tools' optimizer, which the
                             # renderer links (host/gpu/spirv_specialize.h)
   libopenimageio-dev openimageio-tools
-  libopenexr-dev # EXRs read without OpenImageIO's 260 libraries (host/image/exr_read.cpp)
+  libopenexr-dev # EXRs read and written without OpenImageIO's 260 libraries (host/image/exr_*.cpp)
+  libpng-dev zlib1g-dev # PNGs written without them (host/image/png_write.c)
   libcjson-dev libxxhash-dev
   libassimp-dev assimp-testmodels
   clang libclang-rt-14-dev

@@ -1,8 +1,10 @@
 /* image_load.c: image_io.h for the vkraycast binary, forwarding to vkraycast-image.so,
- * loaded on the first call (image_module.h says why), and reading and writing .exr files
- * through vkraycast-exr.so first (below, exr_module). The modules are looked for beside the binary
+ * loaded on the first call (image_module.h says why), reading and writing .exr files
+ * through vkraycast-exr.so first (below, exr_module) and writing .png files through the
+ * binary's own libpng writer (png_writer). The modules are looked for beside the binary
  * (/proc/self/exe), where the build puts them. */
 #include "image/image_module.h"
+#include "image/png_writer.h"
 
 #include <dlfcn.h>
 #include <limits.h>
@@ -112,6 +114,17 @@ static const rc_image_api *exr_module(const char *path, const char *choice) {
 #define EXR_READER "VKRAYCAST_EXR_READER"
 #define EXR_WRITER "VKRAYCAST_EXR_WRITER"
 
+/* The PNG writer linked into the binary (png_write.c) for `path`, or NULL: not a .png name,
+ * not 3 unnamed channels (alpha and named channels are OpenImageIO's), or OpenImageIO chosen
+ * by VKRAYCAST_PNG_WRITER=oiio. channels 3 and names NULL where only the name is known
+ * (can_write, stores_levels): every PNG the renderer writes is one. */
+static const rc_image_api *png_writer(const char *path, int channels, const char *const *names) {
+  size_t n = strlen(path);
+  if (n < 4 || strcasecmp(path + n - 4, ".png") != 0 || channels != 3 || names) return NULL;
+  const char *c = getenv("VKRAYCAST_PNG_WRITER");
+  return c && strcmp(c, "oiio") == 0 ? NULL : rc_png_writer_api();
+}
+
 /* A reader or writer from either module: the table that opened it travels with it. */
 struct rc_image_reader {
   const rc_image_api *m;
@@ -139,6 +152,7 @@ rc_image_writer *rc_image_writer_open(const char *path, int width, int height, i
                                       rc_encoding enc, bool truncate, const rc_image_meta *meta, int meta_count,
                                       char *err, size_t err_len) {
   const rc_image_api *m = exr_module(path, EXR_WRITER);
+  if (!m) m = png_writer(path, channels, names);
   if (!m) m = module(err, err_len);
   if (!m) return NULL;
   rc_image_writer *inner = m->writer_open(path, width, height, channels, names, enc, truncate, meta, meta_count, err, err_len);
@@ -197,6 +211,7 @@ int rc_image_read_named(const char *path, int *width, int *height, int *channels
 int rc_image_can_write(const char *path) {
   const rc_image_api *x = exr_module(path, EXR_WRITER);
   if (x) return x->can_write(path);
+  if (png_writer(path, 3, NULL)) return 1;
   char err[sizeof load_error];
   const rc_image_api *m = module(err, sizeof err);
   if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);
@@ -206,6 +221,7 @@ int rc_image_can_write(const char *path) {
 int rc_image_stores_levels(const char *path) {
   const rc_image_api *x = exr_module(path, EXR_WRITER);
   if (x) return x->stores_levels(path);
+  if (png_writer(path, 3, NULL)) return 1;
   char err[sizeof load_error];
   const rc_image_api *m = module(err, sizeof err);
   if (!m) fprintf(stderr, "vkraycast: error: %s\n", err);

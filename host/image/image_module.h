@@ -2,8 +2,10 @@
  * with it (its format plugins' codecs: OpenEXR, libraw, FFmpeg, GDAL, DCMTK, OpenVDB, ...),
  * and loading them costs ~0.5 s of CPU before main; `vkraycast` therefore loads image_io.cpp
  * as a module (vkraycast-image.so, beside the binary) the first time it reads or writes an
- * image (image_load.c), so that --help, --version, `devices` and every refusal of bad input
- * start in milliseconds. Tests and tools link image_io.cpp directly (rc_image). */
+ * image that neither vkraycast-exr.so (OpenEXR) nor the binary's PNG writer (png_write.c)
+ * handles (image_load.c), so that --help, --version, `devices`, every refusal of bad input
+ * and renders to .exr and .png start in milliseconds. Tests and tools link image_io.cpp
+ * directly (rc_image). The table serves all three. */
 #ifndef RC_IMAGE_MODULE_H
 #define RC_IMAGE_MODULE_H
 
