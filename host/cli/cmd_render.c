@@ -520,23 +520,26 @@ static bool encode_on_gpu(const render_args *a, const rc_packed_scene *packed) {
 
 /* What the shader encodes a pixel's sum of spp samples with: the writer's table for the
  * output's encoding (levels8.h) moved to sums, which decides, and the curve (*curve, a
- * specialization constant), which only tells the shader where to look in it. */
-static void shader_levels(const render_args *a, const rc_scene *scene, uint32_t spp, packed_levels *out,
+ * specialization constant), which only tells the shader where to look in it. False where
+ * the table cannot go to the GPU, and the host encodes: a GPU may flush subnormal operands
+ * to zero (docs/numerics.md §1), which would move a threshold to 0. Level 1's is the least,
+ * (1/510)^gamma of white over 2^exposure: a normal float up to a gamma of about 14 (at
+ * exposure 0), and --gamma goes to 100. */
+static bool shader_levels(const render_args *a, const rc_scene *scene, uint32_t spp, packed_levels *out,
                           uint32_t *curve) {
   const rc_encoding enc = output_encoding(a, scene);
   const bool truncate = truncate_output(a, scene);
   rc_levels values, sums;
   rc_levels_make(enc, truncate, &values);
   rc_levels_of_sums(&values, spp, &sums);
-  /* A GPU may flush subnormal operands to zero (docs/numerics.md §1), which would move a
-   * threshold to 0. The least is level 1's, 1/510 of white over 2^64 (RC_MAX_EXPOSURE)
-   * at most: far above FLT_MIN. */
-  for (int k = 1; k < RC_LEVELS; k++) RC_ASSERT(sums.threshold[k] >= FLT_MIN);
+  for (int k = 1; k < RC_LEVELS; k++)
+    if (!(sums.threshold[k] >= FLT_MIN)) return false;
   memcpy(out->sum_threshold, sums.threshold, sizeof out->sum_threshold);
   out->value_scale = exp2f(enc.exposure) / (float)spp;
   out->inv_gamma = 1.0f / enc.gamma;
   out->bias = truncate ? 0.0f : 0.5f;
   *curve = (uint32_t)enc.curve;
+  return true;
 }
 
 static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_scene *scene,
@@ -547,10 +550,8 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
   rc_gpu_options opts = a->gpu;
   opts.progress = !a->quiet && isatty(STDERR_FILENO);
   packed_levels levels = {0};
-  if (encode_on_gpu(a, packed)) {
-    shader_levels(a, scene, packed->frame.samples_per_pixel, &levels, &opts.level_curve);
+  if (encode_on_gpu(a, packed) && shader_levels(a, scene, packed->frame.samples_per_pixel, &levels, &opts.level_curve))
     opts.levels = &levels;
-  }
   rc_status st = rc_gpu_renderer_create(ctx, packed, &opts, &r, &rs->gpu);
   if (st == RC_OK && certified && a->certified_rerender == RERENDER_GPU) {
     /* The re-render's renderer: the f64 module, no certificates, records on (they carry the

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # 8-bit RGB PNGs are written through libpng alone (host/image/png_write.c, linked into the
 # binary) unless VKRAYCAST_PNG_WRITER=oiio asks for OpenImageIO's writer: both make the
-# same file, byte for byte, for every way the renderer writes one: the shader's levels under
+# same file, byte for byte (but for gAMA above a gamma of 10, below), for every way the
+# renderer writes one: the shader's levels under
 # each curve and exposure, rounded or truncated; floats turned into levels on the host (a
 # render with AOVs, the CPU backend); an image merged from a sharded render's parts; a
 # compare heat map (one whole-image write). A render to a PNG loads no
@@ -42,6 +43,22 @@ done
 both "a merged image (EXR parts)" merge "$work/part0.exr" "$work/part1.exr" -o "$work/@W@.a merged image (EXR parts).png" \
   --quiet
 both "a heat map" compare "$work/png.linear.png" "$work/png.srgb.png" --diff "$work/@W@.a heat map.png"
+
+# Above a gamma of 10 OpenImageIO 2.4 records gAMA as 1.0 (100000), whatever the curve;
+# this writer records the curve's own, 1/gamma (2000 for 50). Every other byte is the same.
+why=ok
+for w in png oiio; do
+  VKRAYCAST_PNG_WRITER=$w "$bin" render "$scenes/shadows.json" "${size[@]}" --gamma 50 -o "$work/$w.steep.png" \
+    2>"$work/err" || because "$w: exit $?: $(head -c 200 "$work/err")"
+done
+gama() { od -An -tu4 --endian=big -j41 -N4 "$1" | tr -d ' '; }
+[[ $(head -c 41 "$work/png.steep.png" | tail -c 4) == gAMA ]] || because "no gAMA after IHDR"
+[[ $(gama "$work/png.steep.png") == 2000 ]] || because "gAMA $(gama "$work/png.steep.png"), expected 2000"
+[[ $(gama "$work/oiio.steep.png") == 100000 ]] || because "OpenImageIO's gAMA $(gama "$work/oiio.steep.png")"
+for off in $(cmp -l "$work/png.steep.png" "$work/oiio.steep.png" | awk '{print $1}'); do
+  ((off >= 42 && off <= 49)) || { because "byte $off differs"; break; }
+done
+check "gamma 50: the true gAMA, every other byte OpenImageIO's" "$why"
 
 # What the writer is for: a render to a PNG loads no OpenImageIO; a forced writer loads it.
 loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
