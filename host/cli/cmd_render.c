@@ -741,22 +741,32 @@ static void report_object(const rc_scene *s, size_t o, const char *what) {
 /* A sample that ran out of the GPU's loop budget on its own (a ray through a pile of
  * overlapping objects): the object the shader was testing, with its place in the scene
  * file, what exceeded the budget, and the way out. Nothing has been written. */
-static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, const char *device) {
-  char work[160], plan[120] = "", what[900];
+static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, uint32_t spp, const char *device) {
+  char work[300], plan[120] = "", what[1100];
   if (g->plan.budget != g->loop_budget)
     snprintf(plan, sizeof plan, " for a budget of %u (--plan-budget)", g->plan.budget);
+  /* Light passes count a pixel's progress in lights, in a float: gpu_plan.c plans none
+   * where the samples' lights are more than it holds exactly, and that is the way out. */
+  const bool uncountable = s->light_count && (uint64_t)spp * s->light_count > (1u << 24);
   if (g->lights_per_pass)
     snprintf(work, sizeof work, "the rays of one sample shading a single light of its %zu", s->light_count);
+  else if (uncountable)
+    snprintf(work, sizeof work,
+             "one sample (%zu lights, all shaded in one dispatch: %u samples x %zu lights is more than the "
+             "16,777,216 a pixel can count in light passes)",
+             s->light_count, spp, s->light_count);
   else
     snprintf(work, sizeof work, "one sample (%zu lights%s)", s->light_count,
              s->light_count ? ", all shaded in one dispatch as planned" : "");
   snprintf(what, sizeof what,
            "%s through pixel (%u, %u) %s %s needed more than the shader loop budget of %u iterations on %s (planned "
-           "at about %llu per sample%s; %u pixels ran out: objects piled up along a ray, or --accel none); refusing to "
-           "write a wrong image: --backend cpu renders it",
+           "at about %llu per sample%s; %u pixels ran out: %s); refusing to write a wrong image: --backend cpu renders "
+           "it",
            g->budget_object == UINT32_MAX ? "in the sample" : "a ray", g->budget_x, g->budget_y,
            g->budget_object == UINT32_MAX ? "" : "was testing this object when", work, g->loop_budget, device,
-           (unsigned long long)g->plan.steps_per_sample, plan, g->budget_pixels);
+           (unsigned long long)g->plan.steps_per_sample, plan, g->budget_pixels,
+           uncountable && !g->lights_per_pass ? "use fewer samples per pixel or lights, so that the lights go in passes"
+                                              : "objects piled up along a ray, or --accel none");
   report_object(s, g->budget_object, what);
 }
 
@@ -1001,7 +1011,8 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
       part_settings(a, scene, rs.backend, rs.precision);
       snprintf(a->part.device, sizeof a->part.device, "%s (%s)", rs.device, driver);
       if (st == RC_OK) st = render_frames(a, ctx, scene, &packed, &rs, &out);
-      if (rs.gpu.budget_refused) report_loop_budget(scene, &rs.gpu, ctx->props.deviceName);
+      if (rs.gpu.budget_refused)
+        report_loop_budget(scene, &rs.gpu, packed.frame.samples_per_pixel, ctx->props.deviceName);
       if (rs.gpu.crossing_object != UINT32_MAX)
         report_crossings(scene, rs.gpu.crossing_object, rs.gpu.crossing_x, rs.gpu.crossing_y);
     }

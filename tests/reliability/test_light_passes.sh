@@ -5,7 +5,8 @@
 # the GPU's image and decisions must pass compare's gpu-vs-cpu preset (the shadow bits of the
 # first 24 lights included, gathered over passes smaller than 24), the stats must show the
 # passes, and in f64 the GPU must trace exactly the CPU's shadow and reflection rays (a pass
-# re-traces a sample's rays but counts them once).
+# re-traces a sample's rays but counts them once). Where a pixel cannot count the passes
+# (samples x lights over 2^24), the refusal says so.
 # Usage: test_light_passes.sh VKRAYCAST SCENES_DIR WORKDIR
 set -uo pipefail
 bin=$1 scenes=$2 work=$3
@@ -99,5 +100,20 @@ done
 per=$(json_num lights_per_pass "$work/f64.gpu.json")
 [[ -n $per && $per -gt 0 && $per -lt 900 ]] || because "lights_per_pass $per"
 check "f64: the GPU in passes traces the CPU's rays exactly" "$why"
+
+# A pixel counts its progress in lights in a float, exact to 2^24: 1024 samples of 17,000
+# lights cannot go in passes. The sample then runs out of the loop budget in one dispatch,
+# and the refusal says why and what to change, not "objects piled up along a ray".
+lights shadows.json 17000 11 "$work/17k.json"
+why=ok
+"$bin" render "$work/17k.json" --width 2 --height 2 --spp 1024 -o "$work/17k.exr" --quiet 2>"$work/err"
+rc=$?
+[[ $rc == 2 ]] || because "exit status $rc"
+grep -q "1024 samples x 17000 lights is more than the 16,777,216 a pixel can count in light passes" "$work/err" ||
+  because "stderr: $(head -c 400 "$work/err")"
+grep -q "use fewer samples per pixel or lights" "$work/err" || because "no way out named"
+! grep -q "piled up" "$work/err" || because "blames a pile of objects"
+[[ ! -e $work/17k.exr ]] || because "an image was written"
+check "too many samples x lights to pass: refused, the reason named" "$why"
 
 finish
