@@ -87,7 +87,7 @@ static const rc_image_api *module(char *err, size_t err_len) {
  * of two EXRs, and a render to an EXR, cost. Tried first for a name ending in .exr; an EXR
  * this reader cannot read (or a missing module) goes to OpenImageIO as before, so errors
  * keep its messages. VKRAYCAST_EXR_READER=oiio reads, and VKRAYCAST_EXR_WRITER=oiio writes,
- * every EXR through OpenImageIO (ctest exr_module compares the two). */
+ * every EXR through OpenImageIO (ctests exr_reader and exr_writer compare the two). */
 static const rc_image_api *exr_api;
 static pthread_once_t exr_once = PTHREAD_ONCE_INIT;
 
@@ -125,7 +125,8 @@ static const rc_image_api *png_writer(const char *path, int channels, const char
   return c && strcmp(c, "oiio") == 0 ? NULL : rc_png_writer_api();
 }
 
-/* A reader or writer from either module: the table that opened it travels with it. */
+/* A reader or writer from any of the tables (OpenImageIO's, OpenEXR's, the PNG writer's): the
+ * table that opened it travels with it. */
 struct rc_image_reader {
   const rc_image_api *m;
   rc_image_reader *inner;

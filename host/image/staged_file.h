@@ -1,8 +1,9 @@
 /* staged_file.h: the transaction every image and file the renderer writes goes through,
- * shared by both image modules (image_io.cpp for OpenImageIO's formats, exr_write.cpp for
- * OpenEXR's): the bytes go to a temporary in the target's folder, and only a complete,
- * fsynced file is renamed over the target, so an existing file is never left half
- * overwritten and no signal leaves a temporary behind where O_TMPFILE is available. */
+ * shared by its three writers (image_io.cpp for OpenImageIO's formats, exr_write.cpp for
+ * OpenEXR's, png_write.c for PNGs; each linked copy counts its own temporary names): the
+ * bytes go to a temporary in the target's folder, and only a complete, fsynced file is
+ * renamed over the target, so an existing file is never left half overwritten and no
+ * signal leaves a temporary behind where O_TMPFILE is available. */
 #ifndef RC_STAGED_FILE_H
 #define RC_STAGED_FILE_H
 
