@@ -745,9 +745,9 @@ static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, uint32_
   char work[300], plan[120] = "", what[1100];
   if (g->plan.budget != g->loop_budget)
     snprintf(plan, sizeof plan, " for a budget of %u (--plan-budget)", g->plan.budget);
-  /* Light passes count a pixel's progress in lights, in a float: gpu_plan.c plans none
-   * where the samples' lights are more than it holds exactly, and that is the way out. */
-  const bool uncountable = s->light_count && (uint64_t)spp * s->light_count > (1u << 24);
+  /* The plan put a sample over the budget in one dispatch because its passes could not be
+   * counted (gpu_plan.h): fewer samples or lights are the way out, not fewer objects. */
+  const bool uncountable = g->plan.uncountable;
   if (g->lights_per_pass)
     snprintf(work, sizeof work, "the rays of one sample shading a single light of its %zu", s->light_count);
   else if (uncountable)
@@ -765,8 +765,8 @@ static void report_loop_budget(const rc_scene *s, const rc_gpu_stats *g, uint32_
            g->budget_object == UINT32_MAX ? "in the sample" : "a ray", g->budget_x, g->budget_y,
            g->budget_object == UINT32_MAX ? "" : "was testing this object when", work, g->loop_budget, device,
            (unsigned long long)g->plan.steps_per_sample, plan, g->budget_pixels,
-           uncountable && !g->lights_per_pass ? "use fewer samples per pixel or lights, so that the lights go in passes"
-                                              : "objects piled up along a ray, or --accel none");
+           uncountable ? "use fewer samples per pixel or lights, so that the lights go in passes"
+                       : "objects piled up along a ray, or --accel none");
   report_object(s, g->budget_object, what);
 }
 

@@ -34,6 +34,7 @@ uint64_t rc_gpu_plan_steps_per_sample(const packed_frame *f) {
 rc_status rc_gpu_plan_make(const packed_frame *f, uint32_t bvh_depth, uint32_t budget, rc_gpu_plan *plan) {
   plan->budget = budget;
   plan->light_pass = 0;
+  plan->uncountable = false;
   /* Through the BVH: its boxes and leaves, then every infinite plane, one step each (a
    * plane's test has no loop: rc_bvh.glsl, test_planes). */
   uint64_t objects = (uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count;
@@ -53,11 +54,13 @@ rc_status rc_gpu_plan_make(const packed_frame *f, uint32_t bvh_depth, uint32_t b
   plan->batch_samples = 1;
   uint64_t path = pass_steps(f, ray, 0), per_light = pass_steps(f, ray, 1) - path;
   uint64_t units = (uint64_t)f->samples_per_pixel * f->light_count;
-  bool countable = f->light_count > 0 && units <= (1u << 24);
+  bool countable = f->light_count > 0 && units <= RC_LIGHT_PASS_UNITS;
   if (bvh_depth) {
     /* The BVH's estimate is loose: a pass starts with every light and halves where the
-     * shader finds it over the budget (gpu_render.c, render_tile). */
+     * shader finds it over the budget (gpu_render.c, render_tile). Where the passes cannot
+     * be counted the sample is tried whole, and a refusal names the count (cmd_render.c). */
     plan->light_pass = countable ? f->light_count : 0;
+    plan->uncountable = f->light_count > 0 && !countable;
     return RC_OK;
   }
   uint64_t lights = budget > path ? (budget - path) / per_light : 0;

@@ -16,7 +16,12 @@ typedef struct rc_gpu_plan {
   uint32_t light_pass;       /* 0: a sample's lights in one dispatch (accum.a counts samples);
                               * else lights per pass to start with (accum.a counts lights) */
   uint32_t budget;           /* the budget the plan was made for */
+  bool uncountable;          /* a sample over the budget whose lights still go in one dispatch:
+                              * samples x lights is more than a pixel's progress counts */
 } rc_gpu_plan;
+
+/* Light passes count a pixel's progress in lights in a float (accum.a), exact to 2^24. */
+#define RC_LIGHT_PASS_UNITS (1u << 24)
 
 /* Worst-case loop steps of one sample by brute force, with N the objects' steps (1 per
  * sphere or triangle; a quadric's clipped pieces and scan; a composite's count from the
