@@ -29,10 +29,6 @@
 
 namespace {
 
-void set_error(char *err, size_t len, const char *what) {
-  if (err && len) std::snprintf(err, len, "%s", what);
-}
-
 /* OpenImageIO's order of an EXR's channels (its OpenEXR reader sorts them so): by layer,
  * the name before the last '.', the unlayered first; within a layer R, G, B, A in that
  * order, then the rest in the file's order, which OpenEXR keeps sorted by name. */

@@ -34,10 +34,6 @@
 
 namespace {
 
-void set_error(char *err, size_t len, const std::string &what) {
-  if (err && len) std::snprintf(err, len, "%s", what.c_str());
-}
-
 std::string errno_text(const char *what, int e) { return std::string(what) + ": " + std::strerror(e); }
 
 /* Writes to the temporary's FILE*, noting the first failed write or seek; OpenEXR goes on
@@ -119,6 +115,21 @@ void discard(rc_image_writer *w) {
   rc_staged_discard(&w->staged);
 }
 
+/* Runs `step`, a call into OpenEXR: 0, or -1 with the reason if it threw or a write failed. */
+template <class Step> int checked(rc_image_writer *w, Step step, char *err, size_t err_len) {
+  try {
+    step();
+  } catch (const std::exception &e) {
+    set_error(err, err_len, failure(w, e.what()));
+    return -1;
+  }
+  if (w->stream->error) {
+    set_error(err, err_len, failure(w, ""));
+    return -1;
+  }
+  return 0;
+}
+
 rc_image_writer *writer_open(const char *path, int width, int height, int channels, const char *const *names,
                              rc_encoding, bool, const rc_image_meta *meta, int meta_count, char *err,
                              size_t err_len) {
@@ -140,9 +151,8 @@ rc_image_writer *writer_open(const char *path, int width, int height, int channe
     w->width = width, w->height = height;
     if (rc_staged_open(&w->staged, path, err, err_len) != 0) return nullptr;
     w->stream = std::make_unique<checked_stream>(w->staged.file, path);
-    w->out = std::make_unique<Imf::OutputFile>(*w->stream, header);
-    if (w->stream->error) {
-      set_error(err, err_len, failure(w.get(), ""));
+    // The header is written here.
+    if (checked(w.get(), [&] { w->out = std::make_unique<Imf::OutputFile>(*w->stream, header); }, err, err_len) != 0) {
       discard(w.get());
       return nullptr;
     }
@@ -152,21 +162,6 @@ rc_image_writer *writer_open(const char *path, int width, int height, int channe
     discard(w.get());
     return nullptr;
   }
-}
-
-/* Runs `step`, a call into OpenEXR: 0, or -1 with the reason if it threw or a write failed. */
-template <class Step> int checked(rc_image_writer *w, Step step, char *err, size_t err_len) {
-  try {
-    step();
-  } catch (const std::exception &e) {
-    set_error(err, err_len, failure(w, e.what()));
-    return -1;
-  }
-  if (w->stream->error) {
-    set_error(err, err_len, failure(w, ""));
-    return -1;
-  }
-  return 0;
 }
 
 int writer_rows(rc_image_writer *w, int rows, const float *pixels, char *err, size_t err_len) {

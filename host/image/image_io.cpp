@@ -2,6 +2,7 @@
 // error stops at this boundary and comes back as text.
 #include "image/image_io.h"
 #include "image/levels8.h"
+#include "image/png_writer.h"
 #include "image/staged_file.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -30,10 +31,6 @@ namespace {
 void set_error(char *err, size_t len, const std::string &msg) {
   if (err && len) std::snprintf(err, len, "%s", msg.c_str());
 }
-
-// zlib's level and libpng's PNG_FILTER_SUB (png.h; OIIO passes "png:filter" through).
-const int png_compression_level = 5;
-const int png_filter_sub = 0x10;
 
 bool is_float_format(const std::string &format) {
   return format == "openexr" || format == "hdr" || format == "tiff" || format == "fits";
@@ -176,12 +173,9 @@ extern "C" rc_image_writer *rc_image_writer_open(const char *path, int width, in
     spec.attribute("oiio:ColorSpace", w->fp ? std::string("Linear") : color_space(enc));
     spec.attribute("Software", "vkraycast");
     if (format == "png") {
-      // libpng's default adaptive filtering at zlib level 6 took 27.5 ms to encode the
-      // showcase; the Sub filter alone at level 5 writes files no larger than 1 % above
-      // the default's (93.9 against 96.3 KB there; shadows and transforms measured too)
-      // in 35-40 % of the time (docs/performance.md, "Writing the image").
-      spec.attribute("png:compressionLevel", png_compression_level);
-      spec.attribute("png:filter", png_filter_sub);
+      // png_writer.h says why these.
+      spec.attribute("png:compressionLevel", RC_PNG_ZLIB_LEVEL);
+      spec.attribute("png:filter", RC_PNG_FILTER_SUB);
     }
     for (int i = 0; i < meta_count; i++) spec.attribute(meta[i].name, meta[i].value);
     w->width = width, w->height = height, w->channels = channels;

@@ -101,14 +101,22 @@ static const rc_image_api *exr_loaded(void) {
   return exr_api;
 }
 
+/* Whether `path` ends in `ext` (".exr"), in any case. */
+static bool has_suffix(const char *path, const char *ext) {
+  size_t n = strlen(path), k = strlen(ext);
+  return n >= k && strcasecmp(path + n - k, ext) == 0;
+}
+
+/* Whether the environment variable `choice` asks for OpenImageIO. */
+static bool oiio_chosen(const char *choice) {
+  const char *c = getenv(choice);
+  return c && strcmp(c, "oiio") == 0;
+}
+
 /* The OpenEXR module for `path`, or NULL: not an .exr name, the module missing, or
  * OpenImageIO chosen by the variable `choice`. */
 static const rc_image_api *exr_module(const char *path, const char *choice) {
-  size_t n = strlen(path);
-  if (n < 4 || strcasecmp(path + n - 4, ".exr") != 0) return NULL;
-  const char *c = getenv(choice);
-  if (c && strcmp(c, "oiio") == 0) return NULL;
-  return exr_loaded();
+  return has_suffix(path, ".exr") && !oiio_chosen(choice) ? exr_loaded() : NULL;
 }
 
 #define EXR_READER "VKRAYCAST_EXR_READER"
@@ -119,10 +127,8 @@ static const rc_image_api *exr_module(const char *path, const char *choice) {
  * by VKRAYCAST_PNG_WRITER=oiio. channels 3 and names NULL where only the name is known
  * (can_write, stores_levels): every PNG the renderer writes is one. */
 static const rc_image_api *png_writer(const char *path, int channels, const char *const *names) {
-  size_t n = strlen(path);
-  if (n < 4 || strcasecmp(path + n - 4, ".png") != 0 || channels != 3 || names) return NULL;
-  const char *c = getenv("VKRAYCAST_PNG_WRITER");
-  return c && strcmp(c, "oiio") == 0 ? NULL : rc_png_writer_api();
+  bool mine = has_suffix(path, ".png") && channels == 3 && !names && !oiio_chosen("VKRAYCAST_PNG_WRITER");
+  return mine ? rc_png_writer_api() : NULL;
 }
 
 /* A reader or writer from any of the tables (OpenImageIO's, OpenEXR's, the PNG writer's): the

@@ -5,7 +5,7 @@
  * call, byte for byte (ctest png_writer): the same chunks in the same order (gAMA, and sRGB
  * and cHRM for sRGB, as its colour space attribute asks; oFFs at 0, 0; tEXt for
  * oiio:ColorSpace, Software and the caller's attributes), the same levels (levels8.h), and
- * the same deflate stream (zlib level 5 with libpng's Sub filter, image_io.cpp says why).
+ * the same deflate stream (zlib level 5 with libpng's Sub filter, png_writer.h says why).
  * image_load.c sends it what OpenImageIO's writer would write as 3 channels of 8 bits;
  * anything else (alpha, named channels) stays OpenImageIO's. */
 #include "image/image_module.h"
@@ -22,9 +22,7 @@
 #include <strings.h>
 #include <zlib.h>
 
-/* zlib's level and the row filter of image_io.cpp's PNGs (performance.md, "Writing the
- * image"). */
-enum { PNG_LEVEL = 5 };
+_Static_assert(RC_PNG_FILTER_SUB == PNG_FILTER_SUB, "png_writer.h names libpng's Sub filter");
 
 typedef struct png_writer {
   rc_staged staged;
@@ -128,9 +126,9 @@ static rc_image_writer *writer_open(const char *path, int width, int height, int
     return NULL;
   }
   png_set_write_fn(w->png, w, on_write, on_flush);
-  png_set_compression_level(w->png, PNG_LEVEL);
+  png_set_compression_level(w->png, RC_PNG_ZLIB_LEVEL);
   png_set_compression_strategy(w->png, Z_DEFAULT_STRATEGY);
-  png_set_filter(w->png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+  png_set_filter(w->png, PNG_FILTER_TYPE_BASE, RC_PNG_FILTER_SUB);
   png_set_IHDR(w->png, w->info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   colour_space(w->png, w->info, enc, space, sizeof space);
