@@ -116,6 +116,9 @@ uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count
 #endif
 #if RC_PATCHES
 #include "rc_patch.glsl"
+#if RC_CERTIFY
+#include "rc_certify_patch.glsl"
+#endif
 #endif
 #include "rc_intersect.glsl"
 #include "rc_bvh.glsl"

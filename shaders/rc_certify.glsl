@@ -11,15 +11,17 @@
 // between its origin and unit direction and the reference's, and each bound below adds what
 // that perturbation can change (first order, as pbrt's running error bounds: Pharr, Jakob &
 // Humphreys, PBR 4th ed. §6.8; Higham, Accuracy and Stability of Numerical Algorithms §3.1,
-// gamma(n) = n u / (1 - n u)). Tests this file has no bound for (composites, patches, the
-// fast formulas) leave their sample
-// uncertified whenever a ray tests them: the host re-renders it, so the image stays exact.
+// gamma(n) = n u / (1 - n u)). Composites and patches have their own files
+// (rc_certify_csg.glsl, rc_certify_patch.glsl); tests no file bounds (the fast formulas) leave
+// their sample uncertified whenever a ray tests them: the host re-renders it, so the image
+// stays exact.
 
 bool cert_ok = true;          // every decision of this sample so far is certified
 real cert_eo = 0.0;           // |o - o_ref| of the ray being traced
 real cert_ed = 0.0;           // |d - d_ref|
 real cert_t_err = 0.0;        // the error bound of the root the last test took
 real cert_bary_err = 0.0;     // and of its barycentrics (triangles)
+real cert_off_err = 0.0;      // how far its point may lie off either precision's ray (patches)
 real cert_beyond = real(RC_T_FAR);  // the lowest t - bound of roots found past the nearest hit
 bool cert_any = false;        // the query is a shadow ray's (any hit up to t_max)
 real cert_t_max_err = 0.0;    // the error bound of that t_max

@@ -13,6 +13,7 @@ struct hit_record {
   uint part;   // quadric or composite: the csg_code of the surface hit (rc_quadric.glsl)
   real err;    // with certify: the error bound of t (rc_certify.glsl)
   real bary_err; // and of the barycentrics
+  real off_err;  // and how far the point may lie off the rays (patches: rc_certify_patch.glsl)
 };
 
 // The first root of a sphere in (0, t_max]: the entry (side -1, the ray comes from
@@ -177,6 +178,7 @@ void consider_hit(uint object, real t, real side, rvec3 bary, uint part, inout h
     if (certify) {
       h.err = cert_t_err;
       h.bary_err = cert_bary_err;
+      h.off_err = cert_off_err;
     }
 #endif
   }
@@ -193,6 +195,7 @@ hit_record no_hit() {
   h.part = 0u;
   h.err = 0.0;
   h.bary_err = 0.0;
+  h.off_err = 0.0;
   return h;
 }
 
@@ -224,6 +227,18 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
   cert_ed = ed;
 }
 
+// The surface a hit on `object` lies on: a patch piece's is its patch's, named by its first
+// piece (the pieces of a patch are one surface, and a spawned ray leaves all of them).
+uint cert_surface_object(uint object) {
+#if RC_PATCHES
+  if (has_kind(RC_KIND_PATCHES) && object >= first_quadric_object && object < first_csg_object) {
+    packed_quadric q = load_quadric(object - first_quadric_object);
+    if ((q.flags & RC_QUADRIC_PATCH) != 0u) return first_quadric_object + q.mesh_end;
+  }
+#endif
+  return object;
+}
+
 // Where an object's test begins: its decisions are judged apart from the path's so far (a
 // shadow ray's blocker by its own test's, cert_hit_ok, for cert_blocked), and a spawned
 // ray's root on the object it leaves is cert_root's to drop (cert_self). Returns the path's
@@ -231,7 +246,7 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
 bool cert_test_begin(uint object) {
   bool ok = cert_ok;
   cert_ok = true;
-  cert_self = spawned_ray && object == cert_spawn_object && offset_strategy == RC_OFFSET_ERROR_BOUND;
+  cert_self = spawned_ray && offset_strategy == RC_OFFSET_ERROR_BOUND && cert_surface_object(object) == cert_spawn_object;
   return ok;
 }
 
@@ -265,6 +280,12 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
       cert_quadric(q, o, d, t_max);
       return;
     }
+#if RC_PATCHES
+    if (has_kind(RC_KIND_PATCHES) && kind == RC_HIT_QUADRIC && (q.flags & RC_QUADRIC_PATCH) != 0u) {
+      cert_patch(q, o, d, t_max);
+      return;
+    }
+#endif
 #endif
     cert_fail();
   }

@@ -76,13 +76,112 @@ patch_net load_patch_net(uint first, rvec3 o, rvec3 a, rvec3 b, rvec3 c) {
   return n;
 }
 
+// The ray as the meet of two planes (Kajiya): unit normals a and b = a x d, a perpendicular
+// to d. Unit by a division by sqrt, not normalize (whose inverse square root a driver may
+// approximate): the planes are the same on both backends.
+void patch_planes(rvec3 d, out rvec3 a, out rvec3 b) {
+  rvec3 w = (abs(d.x) > abs(d.y) && abs(d.x) > abs(d.z)) ? rvec3(d.y, -d.x, 0.0) : rvec3(0.0, d.z, -d.y);
+  precise real len = sqrt(dot(w, w));
+  precise rvec3 pa = w / len;
+  precise rvec3 pb = cross(pa, d);
+  a = pa;
+  b = pb;
+}
+
+// A piece's square [u0, u1] x [v0, v1] of its patch's parameters, and the square a converged
+// point must lie in to be a hit: the piece grown by RC_PATCH_DOMAIN_MARGIN of its width, or
+// by RC_PATCH_EDGE_MARGIN at the patch's own edges.
+struct patch_domain {
+  real u0; real u1; real v0; real v1;
+  real lo_u; real hi_u; real lo_v; real hi_v;
+};
+
+patch_domain patch_domain_of(packed_quadric q) {
+  patch_domain m;
+  m.u0 = real(q.diag.x);
+  m.u1 = real(q.diag.y);
+  m.v0 = real(q.off.x);
+  m.v1 = real(q.off.y);
+  precise real mu = real(RC_PATCH_DOMAIN_MARGIN) * (m.u1 - m.u0);
+  precise real mv = real(RC_PATCH_DOMAIN_MARGIN) * (m.v1 - m.v0);
+  real edge = real(RC_PATCH_EDGE_MARGIN);
+  m.lo_u = (m.u0 == 0.0) ? -edge : m.u0 - mu;
+  m.hi_u = (m.u1 == 1.0) ? 1.0 + edge : m.u1 + mu;
+  m.lo_v = (m.v0 == 0.0) ? -edge : m.v0 - mv;
+  m.hi_v = (m.v1 == 1.0) ? 1.0 + edge : m.v1 + mv;
+  return m;
+}
+
+// Where Newton's run ended: (u, v), the residual |F.x| + |F.y| there, whether it converged and
+// whether it stayed near the piece, and the weights at (u, v).
+struct patch_run {
+  real u; real v; real residual;
+  bool converged; bool nearby;
+  rvec4 bu; rvec4 bv;
+};
+
+// One Newton step from (u, v), F and its Jacobian there in fa and fb (net_eval's value and
+// slopes), by Cramer's rule: false where the Jacobian is singular.
+bool newton_step(rvec4 fa, rvec4 fb, inout real u, inout real v) {
+  precise real det = fa.y * fb.z - fa.z * fb.y;
+  if (det == 0.0) return false;
+  precise real du = (fa.x * fb.z - fa.z * fb.x) / det;
+  precise real dv = (fa.y * fb.x - fa.x * fb.y) / det;
+  precise real nu = u - du;
+  precise real nv = v - dv;
+  u = nu;
+  v = nv;
+  return true;
+}
+
+// Newton's method on F(u, v) = (a.(S - o), b.(S - o)), a and b the ray's planes, from the
+// piece's centre: it stops when |F.x| + |F.y| is within RC_PATCH_TOLERANCE_ULPS ulps of the
+// net's scale (at the last step RC_PATCH_LAST_TOLERANCE of it), when its Jacobian is
+// singular, or when (u, v) leaves the piece by more than the piece's width.
+patch_run patch_newton(patch_domain m, patch_net n) {
+  precise real tol = real(RC_PATCH_TOLERANCE_ULPS) * RC_UNIT_ROUNDOFF * n.scale;
+  precise real last_tol = real(RC_PATCH_LAST_TOLERANCE) * n.scale;
+  precise real wu = m.u1 - m.u0;
+  precise real wv = m.v1 - m.v0;
+  patch_run r;
+  r.u = 0.5 * (m.u0 + m.u1);
+  r.v = 0.5 * (m.v0 + m.v1);
+  r.bu = bernstein(r.u);
+  r.bv = bernstein(r.v);
+  r.residual = real(RC_T_FAR);
+  r.converged = false;
+  r.nearby = true;
+  for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
+    if (!budget_step()) break;
+    r.bu = bernstein(r.u);
+    r.bv = bernstein(r.v);
+    rvec4 su = bernstein_slope(r.u);
+    rvec4 sv = bernstein_slope(r.v);
+    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
+    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
+    r.residual = abs(fa.x) + abs(fb.x);
+    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
+    if (r.residual <= tol || (last && r.residual <= last_tol)) {
+      r.converged = true;
+      break;
+    }
+    if (last) break;
+    if (!newton_step(fa, fb, r.u, r.v)) break;
+    r.nearby = r.u >= m.u0 - wu && r.u <= m.u1 + wu && r.v >= m.v0 - wv && r.v <= m.v1 + wv;
+    if (!r.nearby) break;
+  }
+  return r;
+}
+
+// t = d.(S - o) at the run's end (the net's third coordinate is along d).
+real patch_depth(patch_run r, patch_net n) {
+  rvec4 along = rvec4(weigh(r.bu, n.c0), weigh(r.bu, n.c1), weigh(r.bu, n.c2), weigh(r.bu, n.c3));
+  precise real t = weigh(r.bv, along);
+  return t;
+}
+
 // The ray against a patch piece: t of the converged point in (0, t_max], with (u, v, 0),
-// else RC_T_FAR. Newton's method on F(u, v) = (a.(S - o), b.(S - o)), a and b unit
-// normals of two planes through the ray, stops when |F.x| + |F.y| is within
-// RC_PATCH_TOLERANCE_ULPS ulps of the net's scale (at the last step RC_PATCH_LAST_TOLERANCE
-// of it), when its Jacobian is singular, or when (u, v) leaves the piece by more than the
-// piece's width. Only a converged point inside the piece (within RC_PATCH_DOMAIN_MARGIN of
-// its width, RC_PATCH_EDGE_MARGIN at the patch's own edges) is a hit: never a point off
+// else RC_T_FAR. Only a converged point inside the piece's domain is a hit: never a point off
 // the ray or off the patch. A run that ends still inside the piece, near the ray, and
 // unconverged is counted (patch_stalls) and taken as a miss.
 real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max, out rvec3 uv) {
@@ -91,76 +190,41 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
   uint a_in, a_out;
   box_span(rvec3(q.lo), rvec3(q.hi), o - rvec3(q.center), d, b_in, b_out, a_in, a_out);
   if (b_in > b_out || b_out < 0.0 || b_in > t_max * real(RC_BOX_NEAR_SCALE)) return real(RC_T_FAR);
-  // Unit by a division by sqrt, not normalize (whose inverse square root a driver may
-  // approximate): the planes are the same on both backends.
-  rvec3 w = (abs(d.x) > abs(d.y) && abs(d.x) > abs(d.z)) ? rvec3(d.y, -d.x, 0.0) : rvec3(0.0, d.z, -d.y);
-  precise real len = sqrt(dot(w, w));
-  precise rvec3 a = w / len;
-  precise rvec3 b = cross(a, d);
+  rvec3 a, b;
+  patch_planes(d, a, b);
   patch_net n = load_patch_net(q.mesh_root, o, a, b, d);
-  precise real tol = real(RC_PATCH_TOLERANCE_ULPS) * RC_UNIT_ROUNDOFF * n.scale;
-  precise real last_tol = real(RC_PATCH_LAST_TOLERANCE) * n.scale;
-  real u0 = real(q.diag.x);
-  real u1 = real(q.diag.y);
-  real v0 = real(q.off.x);
-  real v1 = real(q.off.y);
-  precise real wu = u1 - u0;
-  precise real wv = v1 - v0;
-  precise real u = 0.5 * (u0 + u1);
-  precise real v = 0.5 * (v0 + v1);
-  precise real mu = real(RC_PATCH_DOMAIN_MARGIN) * wu;
-  precise real mv = real(RC_PATCH_DOMAIN_MARGIN) * wv;
-  real edge = real(RC_PATCH_EDGE_MARGIN);
-  real lo_u = (u0 == 0.0) ? -edge : u0 - mu;
-  real hi_u = (u1 == 1.0) ? 1.0 + edge : u1 + mu;
-  real lo_v = (v0 == 0.0) ? -edge : v0 - mv;
-  real hi_v = (v1 == 1.0) ? 1.0 + edge : v1 + mv;
-  rvec4 bu = bernstein(u);
-  rvec4 bv = bernstein(v);
-  real residual = real(RC_T_FAR);
-  bool converged = false;
-  bool nearby = true;
-  for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
-    if (!budget_step()) break;
-    bu = bernstein(u);
-    bv = bernstein(v);
-    rvec4 su = bernstein_slope(u);
-    rvec4 sv = bernstein_slope(v);
-    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
-    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
-    residual = abs(fa.x) + abs(fb.x);
-    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
-    if (residual <= tol || (last && residual <= last_tol)) {
-      converged = true;
-      break;
-    }
-    if (last) break;
-    precise real det = fa.y * fb.z - fa.z * fb.y;
-    if (det == 0.0) break;
-    precise real du = (fa.x * fb.z - fa.z * fb.x) / det;
-    precise real dv = (fa.y * fb.x - fa.x * fb.y) / det;
-    u = u - du;
-    v = v - dv;
-    nearby = u >= u0 - wu && u <= u1 + wu && v >= v0 - wv && v <= v1 + wv;
-    if (!nearby) break;
-  }
-  bool in_piece = u >= lo_u && u <= hi_u && v >= lo_v && v <= hi_v;
-  if (!converged) {
+  patch_domain m = patch_domain_of(q);
+  patch_run r = patch_newton(m, n);
+  bool in_piece = r.u >= m.lo_u && r.u <= m.hi_u && r.v >= m.lo_v && r.v <= m.hi_v;
+  if (!r.converged) {
     // Near the ray (within a 64th of the piece's box) and inside the piece: a run that
     // Newton's steps did not settle, where a hit may be.
     precise rvec3 extent = rvec3(q.hi) - rvec3(q.lo);
-    if (in_piece && nearby && residual <= max3_abs(extent) * 0.015625) {
+    if (in_piece && r.nearby && r.residual <= max3_abs(extent) * 0.015625) {
       patch_stalls++;
       if (patch_stall_piece == 0u) patch_stall_piece = 1u + index;
     }
     return real(RC_T_FAR);
   }
   if (!in_piece) return real(RC_T_FAR);
-  rvec4 along = rvec4(weigh(bu, n.c0), weigh(bu, n.c1), weigh(bu, n.c2), weigh(bu, n.c3));
-  precise real t = weigh(bv, along);
+  real t = patch_depth(r, n);
   if (t <= 0.0 || t > t_max) return real(RC_T_FAR);
-  uv = rvec3(u, v, 0.0);
+  uv = rvec3(r.u, r.v, 0.0);
   return t;
+}
+
+// The patch in the packed space at (u, v): each coordinate's value, slopes along u and v and
+// mixed slope (net_eval's), and the net (its scale bounds their rounding).
+patch_net patch_eval(packed_quadric q, rvec3 uv, out rvec4 fx, out rvec4 fy, out rvec4 fz) {
+  patch_net n = load_patch_net(q.mesh_root, rvec3(0.0), rvec3(1.0, 0.0, 0.0), rvec3(0.0, 1.0, 0.0), rvec3(0.0, 0.0, 1.0));
+  rvec4 bu = bernstein(uv.x);
+  rvec4 su = bernstein_slope(uv.x);
+  rvec4 bv = bernstein(uv.y);
+  rvec4 sv = bernstein_slope(uv.y);
+  fx = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
+  fy = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
+  fz = net_eval(n.c0, n.c1, n.c2, n.c3, bu, su, bv, sv);
+  return n;
 }
 
 // The patch point at (u, v) in the packed space, its rounding-error bound, and the normal
@@ -169,14 +233,8 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
 // the other parameter: dS/du ~ (v - v_edge) d2S/dudv, so d2S/dudv stands in for it, turned
 // to point into the patch from that edge; the same for dS/dv.
 rvec3 patch_surface(packed_quadric q, rvec3 uv, out rvec3 p, out rvec3 p_error) {
-  patch_net n = load_patch_net(q.mesh_root, rvec3(0.0), rvec3(1.0, 0.0, 0.0), rvec3(0.0, 1.0, 0.0), rvec3(0.0, 0.0, 1.0));
-  rvec4 bu = bernstein(uv.x);
-  rvec4 su = bernstein_slope(uv.x);
-  rvec4 bv = bernstein(uv.y);
-  rvec4 sv = bernstein_slope(uv.y);
-  rvec4 fx = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
-  rvec4 fy = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
-  rvec4 fz = net_eval(n.c0, n.c1, n.c2, n.c3, bu, su, bv, sv);
+  rvec4 fx, fy, fz;
+  patch_net n = patch_eval(q, uv, fx, fy, fz);
   p = rvec3(fx.x, fy.x, fz.x);
   // Two weighings of 4 terms with weights summing to 1 (plus the weights' own rounding):
   // within gamma(16) of the net's largest coordinate, doubled for headroom.

@@ -237,6 +237,15 @@ bool cert_point_on_ray(hit_record h, uint transform) {
 // |A| / sigma_min(A) of it, sigma_min(A) >= 2 |det A| / |A|_F^2. The side the normal is
 // flipped to is a decision on n.d.
 void cert_surface(rvec3 d, hit_record h, surface sf) {
+#if RC_PATCHES
+  if (has_kind(RC_KIND_PATCHES) && h.kind == RC_HIT_QUADRIC) {
+    packed_quadric q = load_quadric(h.part >> RC_CSG_CODE_LEAF_SHIFT);
+    if ((q.flags & RC_QUADRIC_PATCH) != 0u) {
+      cert_patch_surface(q, d, h.bary, h.bary_err, h.off_err, h.t, sf.ng, sf.p_error);
+      return;
+    }
+  }
+#endif
   uint transform = (has_kind(RC_KIND_SPHERE_TRANSFORMS) && h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform
                                                                                     : RC_NO_TRANSFORM;
   bool along_ray = h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG || transform != RC_NO_TRANSFORM;

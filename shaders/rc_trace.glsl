@@ -50,7 +50,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
 #if RC_CERTIFY
     if (certify) cert_surface(d, h, sf);
     real ed_in = cert_ed;
-    if (certify) cert_spawn_object = h.object;
+    if (certify) cert_spawn_object = cert_surface_object(h.object);
 #endif
     if (aov_recording) aov_record.normal = vec3(sf.n);
     color += weight * shade_phong(sf, d);

@@ -8,7 +8,7 @@
 _Thread_local bool ref_cert_ok = true, ref_cert_any, ref_cert_self, ref_cert_hit_ok, ref_cert_blocked_later,
     ref_cert_blocker_certain;
 _Thread_local uint32_t ref_cert_spawn_object = 0xffffffffu;
-_Thread_local real ref_cert_eo, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_beyond = (real)RC_T_FAR,
+_Thread_local real ref_cert_eo, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_off_err, ref_cert_beyond = (real)RC_T_FAR,
     ref_cert_t_max_err, ref_cert_ep, ref_cert_en;
 
 real REF(cert_factor)(const ref_scene *sc) {

@@ -141,6 +141,7 @@ void REF(consider_hit)(const ref_scene *sc, uint32_t object, real t, real side, 
     if (sc->frame->certify) {
       h->err = ref_cert_t_err;
       h->bary_err = ref_cert_bary_err;
+      h->off_err = ref_cert_off_err;
     }
   }
 }
@@ -156,6 +157,7 @@ ref_hit REF(no_hit)(void) {
   h.part = 0u;
   h.err = 0;
   h.bary_err = 0;
+  h.off_err = 0;
   return h;
 }
 
@@ -183,10 +185,20 @@ void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, re
   ref_cert_ed = ed;
 }
 
+uint32_t REF(cert_surface_object)(const ref_scene *sc, uint32_t object) {
+  uint32_t first_quadric = sc->frame->sphere_count + sc->frame->triangle_count;
+  if (object >= first_quadric && object < first_quadric + sc->frame->quadric_count) {
+    const packed_quadric *q = &sc->quadrics[object - first_quadric];
+    if ((q->flags & RC_QUADRIC_PATCH) != 0) return first_quadric + q->mesh_end;
+  }
+  return object;
+}
+
 bool REF(cert_test_begin)(const ref_scene *sc, uint32_t object) {
   bool ok = ref_cert_ok;
   ref_cert_ok = true;
-  ref_cert_self = ref_spawned_ray && object == ref_cert_spawn_object && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND;
+  ref_cert_self = ref_spawned_ray && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND &&
+                  REF(cert_surface_object)(sc, object) == ref_cert_spawn_object;
   return ok;
 }
 
@@ -217,6 +229,10 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
     }
     if (kind == RC_HIT_QUADRIC && (q->flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0) {
       REF(cert_quadric)(sc, q, o, d, t_max);
+      return;
+    }
+    if (kind == RC_HIT_QUADRIC && (q->flags & RC_QUADRIC_PATCH) != 0) {
+      REF(cert_patch)(sc, q, o, d, t_max);
       return;
     }
     REF(cert_fail)();

@@ -30,7 +30,7 @@ extern _Thread_local bool ref_spawned_ray;
 extern _Thread_local uint32_t ref_crossing_blame;
 
 #define REF_DECLARE_INTERSECT(S, R, V)                                                          \
-  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; uint32_t part; R err, bary_err; } ref_hit_##S; \
+  typedef struct ref_hit_##S { R t; uint32_t kind, index, object; V bary; R side; uint32_t part; R err, bary_err, off_err; } ref_hit_##S; \
   typedef struct ref_shear_##S { int k[3]; V s; } ref_shear_##S;                                \
   R ref_gamma_bound_##S(R n);                                                                   \
   R ref_first_root_##S(R t_near, R t_exit, R t_max, R *side);                                   \
@@ -67,6 +67,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
   bool ref_cert_blocker_ends_##S(void);                                                         \
+  uint32_t ref_cert_surface_object_##S(const ref_scene *sc, uint32_t object);                   \
   bool ref_cert_test_begin_##S(const ref_scene *sc, uint32_t object);                            \
   void ref_cert_test_end_##S(bool ok);                                                          \
   void ref_cert_object_tests_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \
@@ -75,7 +76,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
       ref_cert_blocked_later_##S, ref_cert_blocker_certain_##S;                                 \
   extern _Thread_local uint32_t ref_cert_spawn_object_##S;                                      \
   extern _Thread_local R ref_cert_eo_##S, ref_cert_ed_##S, ref_cert_t_err_##S, ref_cert_bary_err_##S, \
-      ref_cert_beyond_##S, ref_cert_t_max_err_##S, ref_cert_ep_##S, ref_cert_en_##S;            \
+      ref_cert_off_err_##S, ref_cert_beyond_##S, ref_cert_t_max_err_##S, ref_cert_ep_##S, ref_cert_en_##S;            \
   R ref_cert_factor_##S(const ref_scene *sc);                                                   \
   void ref_cert_require_##S(const ref_scene *sc, R margin, R bound);                            \
   void ref_cert_fail_##S(void);                                                                 \
@@ -169,12 +170,16 @@ extern _Thread_local uint32_t ref_crossing_blame;
   V ref_quadric_normal_##S(const packed_quadric *q, uint32_t code, V p, V d);                      \
   V ref_mesh_normal_##S(packed_triangle tri, uint32_t code, V d);
 
-/* ref_patch.c, the twin of rc_patch.glsl: the two functions the rest of the reference calls.
+/* ref_patch.c, the twin of rc_patch.glsl, and ref_certify_patch.c, of rc_certify_patch.glsl: the
+ * functions the rest of the reference calls.
  * ref_patch_stalls, ref_patch_stall_piece: the shader's patch_stalls, patch_stall_piece. */
 extern _Thread_local uint32_t ref_patch_stalls, ref_patch_stall_piece;
 #define REF_DECLARE_PATCH(S, R, V)                                                              \
   R ref_intersect_patch_##S(const ref_scene *sc, uint32_t index, const packed_quadric *q, V o, V d, R t_max, V *uv); \
-  V ref_patch_surface_##S(const ref_scene *sc, const packed_quadric *q, V uv, V *p, V *p_error);
+  V ref_patch_surface_##S(const ref_scene *sc, const packed_quadric *q, V uv, V *p, V *p_error);           \
+  void ref_cert_patch_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);                 \
+  void ref_cert_patch_surface_##S(const ref_scene *sc, const packed_quadric *q, V d, V uv, R bary_err, \
+                                  R off_err, R t, V ng, V p_error);
 REF_DECLARE_PATCH(d, double, dvec3)
 REF_DECLARE_PATCH(f, float, vec3)
 

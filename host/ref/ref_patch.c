@@ -3,26 +3,11 @@
 #include "ref/ref_shader.h"
 
 #include "ref/ref_real.h"
+#include "ref/ref_patch.h"
 
 #if REF_F64 /* one definition for both builds */
 _Thread_local uint32_t ref_patch_stalls, ref_patch_stall_piece;
 #endif
-
-/* rc_patch.glsl's struct patch_net. */
-typedef struct {
-  rvec4 a0, a1, a2, a3;
-  rvec4 b0, b1, b2, b3;
-  rvec4 c0, c1, c2, c3;
-  real scale;
-} patch_net;
-
-rvec4 REF(bernstein)(real t);
-rvec4 REF(bernstein_slope)(real t);
-real REF(weigh)(rvec4 w, rvec4 c);
-rvec4 REF(net_eval)(rvec4 r0, rvec4 r1, rvec4 r2, rvec4 r3, rvec4 bu, rvec4 su, rvec4 bv, rvec4 sv);
-void REF(net_row)(const ref_scene *sc, uint32_t first, rvec3 o, rvec3 a, rvec3 b, rvec3 c, rvec4 *ra, rvec4 *rb,
-                  rvec4 *rc, real *scale);
-patch_net REF(load_patch_net)(const ref_scene *sc, uint32_t first, rvec3 o, rvec3 a, rvec3 b, rvec3 c);
 
 static rvec3 v3(vec3 a) { return rvec3_from(a); }
 
@@ -74,6 +59,83 @@ patch_net REF(load_patch_net)(const ref_scene *sc, uint32_t first, rvec3 o, rvec
   return n;
 }
 
+void REF(patch_planes)(rvec3 d, rvec3 *a, rvec3 *b) {
+  rvec3 w = (R_ABS(d.x) > R_ABS(d.y) && R_ABS(d.x) > R_ABS(d.z)) ? RV(make)(d.y, -d.x, 0) : RV(make)(0, d.z, -d.y);
+  real len = R_SQRT(RV(dot)(w, w));
+  rvec3 pa = RV(divs)(w, len);
+  rvec3 pb = RV(cross)(pa, d);
+  *a = pa;
+  *b = pb;
+}
+
+patch_domain REF(patch_domain_of)(const packed_quadric *q) {
+  patch_domain m;
+  m.u0 = (real)q->diag.x;
+  m.u1 = (real)q->diag.y;
+  m.v0 = (real)q->off.x;
+  m.v1 = (real)q->off.y;
+  real mu = (real)RC_PATCH_DOMAIN_MARGIN * (m.u1 - m.u0);
+  real mv = (real)RC_PATCH_DOMAIN_MARGIN * (m.v1 - m.v0);
+  real edge = (real)RC_PATCH_EDGE_MARGIN;
+  m.lo_u = (m.u0 == 0) ? -edge : m.u0 - mu;
+  m.hi_u = (m.u1 == 1) ? 1 + edge : m.u1 + mu;
+  m.lo_v = (m.v0 == 0) ? -edge : m.v0 - mv;
+  m.hi_v = (m.v1 == 1) ? 1 + edge : m.v1 + mv;
+  return m;
+}
+
+bool REF(newton_step)(rvec4 fa, rvec4 fb, real *u, real *v) {
+  real det = fa.y * fb.z - fa.z * fb.y;
+  if (det == 0) return false;
+  real du = (fa.x * fb.z - fa.z * fb.x) / det;
+  real dv = (fa.y * fb.x - fa.x * fb.y) / det;
+  real nu = *u - du;
+  real nv = *v - dv;
+  *u = nu;
+  *v = nv;
+  return true;
+}
+
+patch_run REF(patch_newton)(patch_domain m, patch_net n) {
+  real tol = (real)RC_PATCH_TOLERANCE_ULPS * RC_UNIT_ROUNDOFF * n.scale;
+  real last_tol = (real)RC_PATCH_LAST_TOLERANCE * n.scale;
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  patch_run r;
+  r.u = (real)0.5 * (m.u0 + m.u1);
+  r.v = (real)0.5 * (m.v0 + m.v1);
+  r.bu = REF(bernstein)(r.u);
+  r.bv = REF(bernstein)(r.v);
+  r.residual = (real)RC_T_FAR;
+  r.converged = false;
+  r.nearby = true;
+  for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
+    ref_work++;
+    r.bu = REF(bernstein)(r.u);
+    r.bv = REF(bernstein)(r.v);
+    rvec4 su = REF(bernstein_slope)(r.u);
+    rvec4 sv = REF(bernstein_slope)(r.v);
+    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
+    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
+    r.residual = R_ABS(fa.x) + R_ABS(fb.x);
+    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
+    if (r.residual <= tol || (last && r.residual <= last_tol)) {
+      r.converged = true;
+      break;
+    }
+    if (last) break;
+    if (!REF(newton_step)(fa, fb, &r.u, &r.v)) break;
+    r.nearby = r.u >= m.u0 - wu && r.u <= m.u1 + wu && r.v >= m.v0 - wv && r.v <= m.v1 + wv;
+    if (!r.nearby) break;
+  }
+  return r;
+}
+
+real REF(patch_depth)(patch_run r, patch_net n) {
+  rvec4 along = {REF(weigh)(r.bu, n.c0), REF(weigh)(r.bu, n.c1), REF(weigh)(r.bu, n.c2), REF(weigh)(r.bu, n.c3)};
+  return REF(weigh)(r.bv, along);
+}
+
 real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *q, rvec3 o, rvec3 d, real t_max,
                           rvec3 *uv) {
   const real far = (real)RC_T_FAR;
@@ -82,84 +144,43 @@ real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quad
   uint32_t a_in, a_out;
   REF(box_span)(v3(q->lo), v3(q->hi), RV(sub)(o, v3(q->center)), d, &b_in, &b_out, &a_in, &a_out);
   if (b_in > b_out || b_out < 0 || b_in > t_max * (real)RC_BOX_NEAR_SCALE) return far;
-  rvec3 w = (R_ABS(d.x) > R_ABS(d.y) && R_ABS(d.x) > R_ABS(d.z)) ? RV(make)(d.y, -d.x, 0) : RV(make)(0, d.z, -d.y);
-  real len = R_SQRT(RV(dot)(w, w));
-  rvec3 a = RV(divs)(w, len);
-  rvec3 b = RV(cross)(a, d);
+  rvec3 a, b;
+  REF(patch_planes)(d, &a, &b);
   patch_net n = REF(load_patch_net)(sc, q->mesh_root, o, a, b, d);
-  real tol = (real)RC_PATCH_TOLERANCE_ULPS * RC_UNIT_ROUNDOFF * n.scale;
-  real last_tol = (real)RC_PATCH_LAST_TOLERANCE * n.scale;
-  real u0 = (real)q->diag.x;
-  real u1 = (real)q->diag.y;
-  real v0 = (real)q->off.x;
-  real v1 = (real)q->off.y;
-  real wu = u1 - u0;
-  real wv = v1 - v0;
-  real u = (real)0.5 * (u0 + u1);
-  real v = (real)0.5 * (v0 + v1);
-  real mu = (real)RC_PATCH_DOMAIN_MARGIN * wu;
-  real mv = (real)RC_PATCH_DOMAIN_MARGIN * wv;
-  real edge = (real)RC_PATCH_EDGE_MARGIN;
-  real lo_u = (u0 == 0) ? -edge : u0 - mu;
-  real hi_u = (u1 == 1) ? 1 + edge : u1 + mu;
-  real lo_v = (v0 == 0) ? -edge : v0 - mv;
-  real hi_v = (v1 == 1) ? 1 + edge : v1 + mv;
-  rvec4 bu = REF(bernstein)(u);
-  rvec4 bv = REF(bernstein)(v);
-  real residual = far;
-  bool converged = false;
-  bool nearby = true;
-  for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
-    ref_work++;
-    bu = REF(bernstein)(u);
-    bv = REF(bernstein)(v);
-    rvec4 su = REF(bernstein_slope)(u);
-    rvec4 sv = REF(bernstein_slope)(v);
-    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
-    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
-    residual = R_ABS(fa.x) + R_ABS(fb.x);
-    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
-    if (residual <= tol || (last && residual <= last_tol)) {
-      converged = true;
-      break;
-    }
-    if (last) break;
-    real det = fa.y * fb.z - fa.z * fb.y;
-    if (det == 0) break;
-    real du = (fa.x * fb.z - fa.z * fb.x) / det;
-    real dv = (fa.y * fb.x - fa.x * fb.y) / det;
-    u = u - du;
-    v = v - dv;
-    nearby = u >= u0 - wu && u <= u1 + wu && v >= v0 - wv && v <= v1 + wv;
-    if (!nearby) break;
-  }
-  bool in_piece = u >= lo_u && u <= hi_u && v >= lo_v && v <= hi_v;
-  if (!converged) {
+  patch_domain m = REF(patch_domain_of)(q);
+  patch_run r = REF(patch_newton)(m, n);
+  bool in_piece = r.u >= m.lo_u && r.u <= m.hi_u && r.v >= m.lo_v && r.v <= m.hi_v;
+  if (!r.converged) {
     rvec3 extent = RV(sub)(v3(q->hi), v3(q->lo));
-    if (in_piece && nearby && residual <= REF(max3_abs)(extent) * (real)0.015625) {
+    if (in_piece && r.nearby && r.residual <= REF(max3_abs)(extent) * (real)0.015625) {
       ref_patch_stalls++;
       if (ref_patch_stall_piece == 0) ref_patch_stall_piece = 1u + index;
     }
     return far;
   }
   if (!in_piece) return far;
-  rvec4 along = {REF(weigh)(bu, n.c0), REF(weigh)(bu, n.c1), REF(weigh)(bu, n.c2), REF(weigh)(bu, n.c3)};
-  real t = REF(weigh)(bv, along);
+  real t = REF(patch_depth)(r, n);
   if (t <= 0 || t > t_max) return far;
-  *uv = RV(make)(u, v, 0);
+  *uv = RV(make)(r.u, r.v, 0);
   return t;
 }
 
-rvec3 REF(patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 uv, rvec3 *p, rvec3 *p_error) {
+patch_net REF(patch_eval)(const ref_scene *sc, const packed_quadric *q, rvec3 uv, rvec4 *fx, rvec4 *fy, rvec4 *fz) {
   patch_net n = REF(load_patch_net)(sc, q->mesh_root, RV(make)(0, 0, 0), RV(make)(1, 0, 0), RV(make)(0, 1, 0),
                                     RV(make)(0, 0, 1));
   rvec4 bu = REF(bernstein)(uv.x);
   rvec4 su = REF(bernstein_slope)(uv.x);
   rvec4 bv = REF(bernstein)(uv.y);
   rvec4 sv = REF(bernstein_slope)(uv.y);
-  rvec4 fx = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
-  rvec4 fy = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
-  rvec4 fz = REF(net_eval)(n.c0, n.c1, n.c2, n.c3, bu, su, bv, sv);
+  *fx = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
+  *fy = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
+  *fz = REF(net_eval)(n.c0, n.c1, n.c2, n.c3, bu, su, bv, sv);
+  return n;
+}
+
+rvec3 REF(patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 uv, rvec3 *p, rvec3 *p_error) {
+  rvec4 fx, fy, fz;
+  patch_net n = REF(patch_eval)(sc, q, uv, &fx, &fy, &fz);
   *p = RV(make)(fx.x, fy.x, fz.x);
   real e = REF(gamma_bound)(32) * n.scale;
   *p_error = RV(make)(e, e, e);

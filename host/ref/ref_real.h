@@ -46,6 +46,7 @@ static inline vec3 vec3_from(rvec3 a) { return a; }
 #define ref_cert_ed REF(cert_ed)
 #define ref_cert_t_err REF(cert_t_err)
 #define ref_cert_bary_err REF(cert_bary_err)
+#define ref_cert_off_err REF(cert_off_err)
 #define ref_cert_beyond REF(cert_beyond)
 #define ref_cert_t_max_err REF(cert_t_max_err)
 #define ref_cert_ep REF(cert_ep)

@@ -176,6 +176,13 @@ bool REF(cert_point_on_ray)(const ref_scene *sc, const ref_hit *h, uint32_t tran
 }
 
 void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref_surface *sf) {
+  if (h->kind == RC_HIT_QUADRIC) {
+    const packed_quadric *q = &sc->quadrics[h->part >> RC_CSG_CODE_LEAF_SHIFT];
+    if ((q->flags & RC_QUADRIC_PATCH) != 0) {
+      REF(cert_patch_surface)(sc, q, d, h->bary, h->bary_err, h->off_err, h->t, sf->ng, sf->p_error);
+      return;
+    }
+  }
   uint32_t transform = (h->kind == RC_HIT_SPHERE) ? sc->spheres[h->index].transform : RC_NO_TRANSFORM;
   bool along_ray = h->kind == RC_HIT_QUADRIC || h->kind == RC_HIT_CSG || transform != RC_NO_TRANSFORM;
   real ep_round = 2 * RV(length)(sf->p_error) + (along_ray ? h->err : 0);

@@ -42,7 +42,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
     if (sc->frame->certify) REF(cert_surface)(sc, d, &h, &sf);
     real ed_in = ref_cert_ed;
-    if (sc->frame->certify) ref_cert_spawn_object = h.object;
+    if (sc->frame->certify) ref_cert_spawn_object = REF(cert_surface_object)(sc, h.object);
     if (ref_aov_recording) ref_aov_record.normal = vec3_from(sf.n);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
     ref_aov_recording = false;

@@ -1,0 +1,305 @@
+/* ref_certify_patch.c: mirrors shaders/rc_certify_patch.glsl function by function (the shader
+ * has the reasoning: Kantorovich's theorem for the reference's Newton run, a separating line
+ * for a certain miss). GLSL's vector arithmetic on rows of the net is written out per
+ * component here. */
+#include "ref/ref_shader.h"
+
+#include "ref/ref_real.h"
+#include "ref/ref_patch.h"
+
+/* rc_certify_patch.glsl's struct patch_bounds. */
+typedef struct {
+  real su, sv;
+  real suu, suv, svv;
+  real weight;
+} patch_bounds;
+
+/* GLSL's rvec4 arithmetic on rows of the net. */
+static rvec4 r4_sub(rvec4 a, rvec4 b) { return (rvec4){a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w}; }
+static rvec4 r4_second(rvec4 a, rvec4 b, rvec4 c) {
+  return (rvec4){c.x - 2 * b.x + a.x, c.y - 2 * b.y + a.y, c.z - 2 * b.z + a.z, c.w - 2 * b.w + a.w};
+}
+
+real REF(max_sq3)(rvec3 a, rvec3 b, rvec3 c) {
+  rvec3 s = {a.x * a.x + b.x * b.x + c.x * c.x, a.y * a.y + b.y * b.y + c.y * c.y, a.z * a.z + b.z * b.z + c.z * c.z};
+  return rmax(rmax(s.x, s.y), s.z);
+}
+
+real REF(max_sq4)(rvec4 a, rvec4 b, rvec4 c) {
+  rvec4 s = {a.x * a.x + b.x * b.x + c.x * c.x, a.y * a.y + b.y * b.y + c.y * c.y, a.z * a.z + b.z * b.z + c.z * c.z,
+             a.w * a.w + b.w * b.w + c.w * c.w};
+  return rmax(rmax(s.x, s.y), rmax(s.z, s.w));
+}
+
+real REF(max_sq2)(real ax, real ay, real bx, real by, real cx, real cy) {
+  real sx = ax * ax + bx * bx + cx * cx;
+  real sy = ay * ay + by * by + cy * cy;
+  return rmax(sx, sy);
+}
+
+void REF(row_differences)(rvec4 a, rvec4 b, rvec4 c, real *du, real *duu) {
+  *du = rmax(*du, REF(max_sq3)(RV(make)(a.y - a.x, a.z - a.y, a.w - a.z), RV(make)(b.y - b.x, b.z - b.y, b.w - b.z),
+                               RV(make)(c.y - c.x, c.z - c.y, c.w - c.z)));
+  *duu = rmax(*duu, REF(max_sq2)(a.z - 2 * a.y + a.x, a.w - 2 * a.z + a.y, b.z - 2 * b.y + b.x, b.w - 2 * b.z + b.y,
+                                 c.z - 2 * c.y + c.x, c.w - 2 * c.z + c.y));
+}
+
+patch_bounds REF(cert_patch_bounds)(patch_net n, real lo_u, real hi_u, real lo_v, real hi_v) {
+  real ku = 1 + 2 * rmax(0, rmax(-lo_u, hi_u - 1));
+  real kv = 1 + 2 * rmax(0, rmax(-lo_v, hi_v - 1));
+  real du = 0;
+  real duu = 0;
+  REF(row_differences)(n.a0, n.b0, n.c0, &du, &duu);
+  REF(row_differences)(n.a1, n.b1, n.c1, &du, &duu);
+  REF(row_differences)(n.a2, n.b2, n.c2, &du, &duu);
+  REF(row_differences)(n.a3, n.b3, n.c3, &du, &duu);
+  real dv = rmax(rmax(REF(max_sq4)(r4_sub(n.a1, n.a0), r4_sub(n.b1, n.b0), r4_sub(n.c1, n.c0)),
+                      REF(max_sq4)(r4_sub(n.a2, n.a1), r4_sub(n.b2, n.b1), r4_sub(n.c2, n.c1))),
+                 REF(max_sq4)(r4_sub(n.a3, n.a2), r4_sub(n.b3, n.b2), r4_sub(n.c3, n.c2)));
+  real dvv = rmax(REF(max_sq4)(r4_second(n.a0, n.a1, n.a2), r4_second(n.b0, n.b1, n.b2), r4_second(n.c0, n.c1, n.c2)),
+                  REF(max_sq4)(r4_second(n.a1, n.a2, n.a3), r4_second(n.b1, n.b2, n.b3), r4_second(n.c1, n.c2, n.c3)));
+  real duv = 0;
+  real unused = 0;
+  REF(row_differences)(r4_sub(n.a1, n.a0), r4_sub(n.b1, n.b0), r4_sub(n.c1, n.c0), &duv, &unused);
+  REF(row_differences)(r4_sub(n.a2, n.a1), r4_sub(n.b2, n.b1), r4_sub(n.c2, n.c1), &duv, &unused);
+  REF(row_differences)(r4_sub(n.a3, n.a2), r4_sub(n.b3, n.b2), r4_sub(n.c3, n.c2), &duv, &unused);
+  real e = 12 * REF(gamma_bound)(4) * n.scale;
+  real grow = 1 + REF(gamma_bound)(16);
+  patch_bounds pb;
+  pb.su = 3 * ku * ku * kv * kv * kv * (R_SQRT(du) + e) * grow;
+  pb.sv = 3 * ku * ku * ku * kv * kv * (R_SQRT(dv) + e) * grow;
+  pb.suu = 6 * ku * kv * kv * kv * (R_SQRT(duu) + e) * grow;
+  pb.svv = 6 * ku * ku * ku * kv * (R_SQRT(dvv) + e) * grow;
+  pb.suv = 9 * ku * ku * kv * kv * (R_SQRT(duv) + e) * grow;
+  pb.weight = ku * ku * ku * kv * kv * kv * grow;
+  return pb;
+}
+
+real REF(bernstein_mass)(real u, real x) {
+  real s = R_ABS(1 - u) + R_ABS(u) + 2 * x;
+  return s * s * s * (1 + REF(gamma_bound)(4));
+}
+
+real REF(net_rounding)(patch_net n, real lateral) {
+  return (real)1.5 * (REF(gamma_bound)(5) * (real)1.7320508075688772 * n.scale + REF(gamma_bound)(17) * lateral);
+}
+
+static real max4_abs(rvec4 a) { return rmax(rmax(R_ABS(a.x), R_ABS(a.y)), rmax(R_ABS(a.z), R_ABS(a.w))); }
+
+real REF(net_lateral)(patch_net n) {
+  return rmax(rmax(rmax(max4_abs(n.a0), max4_abs(n.a1)), rmax(max4_abs(n.a2), max4_abs(n.a3))),
+              rmax(rmax(max4_abs(n.b0), max4_abs(n.b1)), rmax(max4_abs(n.b2), max4_abs(n.b3))));
+}
+
+real REF(inverse_norm)(real jf, real det) {
+  real f2 = jf * jf;
+  if (!(R_ABS(det) > f2 * REF(gamma_bound)(8))) return 0;
+  real root = R_SQRT(rmax(f2 * f2 - 4 * det * det, 0));
+  return R_SQRT((f2 + root) / (2 * det * det)) * (1 + REF(gamma_bound)(16));
+}
+
+real REF(patch_settles)(real eta, real hk, real lip, uint32_t m) {
+  real step = eta;
+  real shrink = 2 * hk;
+  for (uint32_t j = 1; j < m && j < 4u; j++) {
+    step *= (real)0.5 * shrink;
+    shrink *= shrink;
+  }
+  return (real)0.5 * lip * step * step;
+}
+
+uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, real slopes, real lip, real *u, real *v,
+                             real *rad, real *off) {
+  real k = REF(cert_factor)(sc);
+  real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  real tol = (real)RC_PATCH_TOLERANCE_ULPS * RC_UNIT_ROUNDOFF * n.scale;
+  real last_tol = (real)RC_PATCH_LAST_TOLERANCE * n.scale;
+  real tol_ref = k * (real)RC_PATCH_TOLERANCE_ULPS * (real)1.1102230246251565e-16 * (n.scale + ref_cert_eo) * 2;
+  real last_ref = k * (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) * (1 + REF(gamma_bound)(2));
+  real last_ref_low = (real)RC_PATCH_LAST_TOLERANCE * (n.scale - k * ref_cert_eo) * (1 - REF(gamma_bound)(2));
+  real e_dom = REF(gamma_bound)(8);
+  *u = (real)0.5 * (m.u0 + m.u1);
+  *v = (real)0.5 * (m.v0 + m.v1);
+  *rad = 0;
+  *off = 0;
+  real delta = k * REF(gamma_bound)(2) * (R_ABS(*u) + R_ABS(*v));
+  bool anchored = false;
+  real unique = 0;
+  real anchor_u = *u;
+  real anchor_v = *v;
+  for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
+    rvec4 bu = REF(bernstein)(*u);
+    rvec4 bv = REF(bernstein)(*v);
+    rvec4 su = REF(bernstein_slope)(*u);
+    rvec4 sv = REF(bernstein_slope)(*v);
+    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
+    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
+    real residual = R_ABS(fa.x) + R_ABS(fb.x);
+    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
+    bool converged = residual <= tol || (last && residual <= last_tol);
+    real f = R_SQRT(fa.x * fa.x + fb.x * fb.x);
+    real jf = R_SQRT(fa.y * fa.y + fa.z * fa.z + fb.y * fb.y + fb.z * fb.z);
+    real mass = REF(bernstein_mass)(*u, delta) * REF(bernstein_mass)(*v, delta);
+    real e_f = k * (rounding * mass + ref_cert_eo + (ref_cert_ed + REF(gamma_bound)(10)) * (real)1.7320508075688772 * mass * n.scale);
+    real e_j = k * (12 * rounding * mass + (ref_cert_ed + REF(gamma_bound)(10)) * slopes);
+    real spread = e_f + (jf + e_j) * delta + (real)0.5 * lip * delta * delta;
+    real b_c = REF(inverse_norm)(jf, fa.y * fb.z - fa.z * fb.y);
+    real e_k = e_j + lip * delta;
+    if (!anchored) {
+      if (!(b_c > 0 && b_c * e_k < (real)0.5)) return 0;
+      real beta = b_c / (1 - b_c * e_k);
+      if (converged || !(f - spread > (last ? last_ref : tol_ref))) {
+        real g = f + spread;
+        real eta = beta * g;
+        real hk = beta * lip * eta;
+        real r0 = 2 * eta / (1 + R_SQRT(rmax(1 - 2 * hk, 0)));
+        bool stops = last ? (real)1.4142135623730951 * g < last_ref_low
+                          : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
+        real stay = rmin(rmin(*u - (m.u0 - wu), m.u1 + wu - *u), rmin(*v - (m.v0 - wv), m.v1 + wv - *v));
+        real beta_x = b_c / (1 - b_c * e_j);
+        real h_x = beta_x * lip * beta_x * (f + e_f);
+        unique = (h_x <= (real)0.5) ? (1 + R_SQRT(1 - 2 * h_x)) / rmax(beta_x * lip, RC_SMALLEST_NORMAL) : 0;
+        if (!(hk <= (real)0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) return 0;
+        *off = rmax(tol_ref, last ? (real)1.4142135623730951 * g : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
+        anchored = true;
+        anchor_u = *u;
+        anchor_v = *v;
+      }
+    }
+    if (converged) {
+      if (!(b_c * e_j < (real)0.5)) return 0;
+      real beta_f = b_c / (1 - b_c * e_j);
+      real eta_f = beta_f * (f + e_f);
+      real h_f = beta_f * lip * eta_f;
+      real r0_f = 2 * eta_f / (1 + R_SQRT(rmax(1 - 2 * h_f, 0)));
+      if (!(h_f <= (real)0.25 &&
+            R_SQRT((*u - anchor_u) * (*u - anchor_u) + (*v - anchor_v) * (*v - anchor_v)) + r0_f < unique))
+        return 0;
+      *rad = r0_f + 4 * beta_f * *off;
+      *off += residual;
+      return 2;
+    }
+    if (last) return anchored ? 0 : 1;
+    real u_was = *u;
+    real v_was = *v;
+    if (!REF(newton_step)(fa, fb, u, v)) return 0;
+    if (anchored) {
+      if (!(*u >= m.u0 - wu && *u <= m.u1 + wu && *v >= m.v0 - wv && *v <= m.v1 + wv)) return 0;
+      continue;
+    }
+    real beta = b_c / (1 - b_c * e_k);
+    real step = R_SQRT((*u - u_was) * (*u - u_was) + (*v - v_was) * (*v - v_was));
+    real lam = beta * lip * beta * (f + spread);
+    delta = k * (lam * delta + beta * (e_f + e_j * step) + REF(gamma_bound)(16) * step +
+                 REF(gamma_bound)(2) * (R_ABS(*u) + R_ABS(*v) + step));
+    real stay = rmin(rmin(*u - (m.u0 - wu), m.u1 + wu - *u), rmin(*v - (m.v0 - wv), m.v1 + wv - *v));
+    if (stay > delta + e_dom) continue;
+    return (-stay > delta + e_dom) ? 1 : 0;
+  }
+  return 0;
+}
+
+void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
+  real b_in, b_out;
+  uint32_t a_in, a_out;
+  REF(box_span)(rvec3_from(q->lo), rvec3_from(q->hi), RV(sub)(o, rvec3_from(q->center)), d, &b_in, &b_out, &a_in,
+                &a_out);
+  if (b_in > b_out || b_out < 0 || b_in > t_max * (real)RC_BOX_NEAR_SCALE) return;
+  rvec3 a, b;
+  REF(patch_planes)(d, &a, &b);
+  patch_net n = REF(load_patch_net)(sc, q->mesh_root, o, a, b, d);
+  patch_domain m = REF(patch_domain_of)(q);
+  real k = REF(cert_factor)(sc);
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  patch_bounds pb = REF(cert_patch_bounds)(n, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
+  real reach = (real)1.7320508075688772 * pb.weight * n.scale;
+  real lip = k * (pb.suu + 2 * pb.suv + pb.svv) * (1 + ref_cert_ed + REF(gamma_bound)(10));
+  real u, v, rad, off;
+  uint32_t run = REF(cert_patch_run)(sc, m, n, pb.su + pb.sv, lip, &u, &v, &rad, &off);
+  real e_dom = REF(gamma_bound)(8);
+  if (run == 2) {
+    bool inside = u - rad - m.lo_u > e_dom && m.hi_u - u - rad > e_dom && v - rad - m.lo_v > e_dom &&
+                  m.hi_v - v - rad > e_dom;
+    bool outside = m.lo_u - u - rad > e_dom || u - rad - m.hi_u > e_dom || m.lo_v - v - rad > e_dom ||
+                   v - rad - m.hi_v > e_dom;
+    if (outside) return;
+    if (!inside) {
+      REF(cert_fail)();
+      return;
+    }
+    patch_run r;
+    r.bu = REF(bernstein)(u);
+    r.bv = REF(bernstein)(v);
+    real t = REF(patch_depth)(r, n);
+    real e_t = k * (ref_cert_eo + ref_cert_ed * reach + (pb.su + pb.sv) * rad +
+                    REF(gamma_bound)(40) * REF(bernstein_mass)(u, rad) * REF(bernstein_mass)(v, rad) * n.scale);
+    ref_cert_bary_err = rad;
+    ref_cert_off_err = off;
+    REF(cert_root)(sc, t, e_t, t_max, t > 0);
+    return;
+  }
+  if (run == 1) return;
+  real uc = (real)0.5 * (m.u0 + m.u1);
+  real vc = (real)0.5 * (m.v0 + m.v1);
+  rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, REF(bernstein)(uc), REF(bernstein_slope)(uc), REF(bernstein)(vc),
+                           REF(bernstein_slope)(vc));
+  rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, REF(bernstein)(uc), REF(bernstein_slope)(uc), REF(bernstein)(vc),
+                           REF(bernstein_slope)(vc));
+  real f0 = R_SQRT(fa.x * fa.x + fb.x * fb.x);
+  if (!(f0 > 0)) {
+    REF(cert_fail)();
+    return;
+  }
+  real mass = rmax(REF(bernstein_mass)(m.lo_u, 0), REF(bernstein_mass)(m.hi_u, 0)) *
+              rmax(REF(bernstein_mass)(m.lo_v, 0), REF(bernstein_mass)(m.hi_v, 0));
+  real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
+  real e_f = k * (rounding * mass + ref_cert_eo + (ref_cert_ed + REF(gamma_bound)(10)) * reach);
+  real e_j = k * (12 * rounding * mass + (ref_cert_ed + REF(gamma_bound)(10)) * (pb.su + pb.sv));
+  real du = rmax(uc - m.lo_u, m.hi_u - uc) + e_dom;
+  real dv = rmax(vc - m.lo_v, m.hi_v - vc) + e_dom;
+  real wx = fa.x / f0;
+  real wy = fb.x / f0;
+  real along = R_ABS(wx * fa.y + wy * fb.y) * du + R_ABS(wx * fa.z + wy * fb.z) * dv;
+  real curve = (real)0.5 * (pb.suu * du * du + 2 * pb.suv * du * dv + pb.svv * dv * dv) *
+               (1 + ref_cert_ed + REF(gamma_bound)(10));
+  real slack = k * (curve + e_f + e_j * R_SQRT(du * du + dv * dv) + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo));
+  if (!(f0 * (1 - REF(gamma_bound)(8)) - along * (1 + REF(gamma_bound)(8)) > slack)) REF(cert_fail)();
+}
+
+void REF(cert_patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 d, rvec3 uv, real bary_err,
+                             real off_err, real t, rvec3 ng, rvec3 p_error) {
+  rvec4 fx, fy, fz;
+  patch_net n = REF(patch_eval)(sc, q, uv, &fx, &fy, &fz);
+  patch_domain m = REF(patch_domain_of)(q);
+  patch_bounds pb = REF(cert_patch_bounds)(n, m.lo_u, m.hi_u, m.lo_v, m.hi_v);
+  real k = REF(cert_factor)(sc);
+  rvec3 pu = RV(make)(fx.y, fy.y, fz.y);
+  rvec3 pv = RV(make)(fx.z, fy.z, fz.z);
+  real cosine = R_ABS(RV(dot)(ng, d));
+  real e_cos = ref_cert_ed + REF(gamma_bound)(12);
+  real moved = ref_cert_eo + t * ref_cert_ed + off_err;
+  real along = rmin(2 * moved / rmax(cosine - e_cos, RC_SMALLEST_NORMAL), (pb.su + pb.sv) * bary_err);
+  real guu = RV(dot)(pu, pu);
+  real guv = RV(dot)(pu, pv);
+  real gvv = RV(dot)(pv, pv);
+  real gdet = guu * gvv - guv * guv;
+  real tr = guu + gvv;
+  real sigma2 = 2 * gdet / (tr + R_SQRT(rmax(tr * tr - 4 * gdet, 0))) * (1 - REF(gamma_bound)(16));
+  real moved_uv = (sigma2 > 0) ? rmin(bary_err, along / R_SQRT(sigma2)) : bary_err;
+  real e_d = 12 * REF(gamma_bound)(40) * pb.weight * n.scale;
+  real e_u = k * ((pb.suu + pb.suv) * moved_uv + e_d);
+  real e_v = k * ((pb.suv + pb.svv) * moved_uv + e_d);
+  real lu = R_SQRT(guu);
+  real lv = R_SQRT(gvv);
+  real limit = (real)9.5367431640625e-07 * (real)1.0001;
+  if (!(lu - e_u > limit * (lv + e_v) && lv - e_v > limit * (lu + e_u))) REF(cert_fail)();
+  rvec3 g = RV(cross)(pu, pv);
+  real e_g = k * (e_u * pb.sv + pb.su * e_v + REF(gamma_bound)(4) * lu * lv);
+  real en = REF(gamma_bound)(12) + REF(cert_turn_of)(e_g, RV(length)(g));
+  REF(cert_require)(sc, cosine, e_cos + en);
+  ref_cert_ep = k * along + 2 * RV(length)(p_error);
+  ref_cert_en = en;
+}

@@ -1,0 +1,385 @@
+// rc_certify_patch.glsl: certified decisions of Bezier patch pieces (intersect_patch;
+// docs/numerics.md §10). A patch has no closed-form root whose error a bound could follow:
+// both precisions run Newton's method from the piece's centre, and the question is where the
+// reference's run ends. Kantorovich's theorem answers it (Ortega & Rheinboldt, "Iterative
+// Solution of Nonlinear Equations in Several Variables", 12.6.2; in the affine-invariant form
+// of Deuflhard, "Newton Methods for Nonlinear Problems", 2.1): with beta >= |J(x0)^-1|,
+// eta >= |J(x0)^-1 F(x0)| and L a Lipschitz constant of J on the ball B(x0, r0),
+// h = beta L eta <= 1/2 makes Newton's iterates from x0 stay in that ball, r0 =
+// 2 eta / (1 + sqrt(1 - 2 h)), and converge to its one root x*. The reference's F is not this
+// one: its ray's two planes are other planes through another ray. But Newton's iterates do
+// not change when F is turned by a constant rotation, and turned, the reference's F is this
+// F (computed exactly) plus what the ray's move (cert_eo, cert_ed) and the rounding change:
+// those are the bounds e_f and e_j on F and J below. So where h <= 1/4 (the rest of the way
+// to 1/2 covers f64's own rounding of its steps), the reference's run converges to x*, within
+// its 12 steps, and never gives up. Where this precision's run converged at x_f, x* is near:
+// F(x) = A (x - x*) with |J(x0)^-1 A - I| <= beta L max(|x - x0|, |x* - x0|) = kappa, so
+// |x - x*| <= beta |F(x)| / (1 - kappa); the same holds for the reference's accepted point.
+// The hit or miss is then the domain's decision on a point known within that radius, and t
+// a root whose bound follows. Where Newton's theorem does not hold (no root near, or a ray
+// that grazes the piece), a miss is still certain where every point of the domain's surface
+// lies farther from the reference's ray than its acceptance: a first-order bound from the
+// piece's centre along the direction of F there (a separating line in the ray's plane).
+
+// Bounds over a square of a patch's parameters: the largest first and second derivatives of
+// S there (in scene units per unit of u or v), and the largest sum of the Bernstein weights'
+// magnitudes.
+struct patch_bounds {
+  real su; real sv;
+  real suu; real suv; real svv;
+  real weight;
+};
+
+// The largest squared length of the vectors (a[i], b[i], c[i]) of three coordinates.
+real max_sq3(rvec3 a, rvec3 b, rvec3 c) {
+  precise rvec3 s = a * a + b * b + c * c;
+  return select_max(select_max(s.x, s.y), s.z);
+}
+
+real max_sq4(rvec4 a, rvec4 b, rvec4 c) {
+  precise rvec4 s = a * a + b * b + c * c;
+  return select_max(select_max(s.x, s.y), select_max(s.z, s.w));
+}
+
+real max_sq2(rvec2 a, rvec2 b, rvec2 c) {
+  precise rvec2 s = a * a + b * b + c * c;
+  return select_max(s.x, s.y);
+}
+
+// The net's differences along u of one row (three coordinates): first and second.
+void row_differences(rvec4 a, rvec4 b, rvec4 c, inout real du, inout real duu) {
+  du = select_max(du, max_sq3(a.yzw - a.xyz, b.yzw - b.xyz, c.yzw - c.xyz));
+  duu = select_max(duu, max_sq2(a.zw - 2.0 * a.yz + a.xy, b.zw - 2.0 * b.yz + b.xy, c.zw - 2.0 * c.yz + c.xy));
+}
+
+// S = sum B_j(v) B_i(u) P_ij, so dS/du = 3 sum B_j(v) B2_i(u) (P_i+1,j - P_ij), d2S/du2 = 6 sum
+// B_j(v) B1_i(u) (second differences), d2S/dudv = 9 sum B2_j(v) B2_i(u) (mixed differences):
+// each at most its weights' magnitudes' sum times the largest difference. On [0, 1] a degree-n
+// Bernstein basis sums to 1 and is positive; a square that reaches x outside [0, 1] has
+// (|1 - u| + |u|)^n = (1 + 2 x)^n. The net's coordinates (net_row) round by gamma(4) of
+// sqrt(3) scale each, so a difference of up to four of them, in three coordinates, by
+// 12 gamma(4) scale; the bounds' own rounding is gamma(16) of them.
+patch_bounds cert_patch_bounds(patch_net n, real lo_u, real hi_u, real lo_v, real hi_v) {
+  real ku = 1.0 + 2.0 * select_max(0.0, select_max(-lo_u, hi_u - 1.0));
+  real kv = 1.0 + 2.0 * select_max(0.0, select_max(-lo_v, hi_v - 1.0));
+  real du = 0.0;
+  real duu = 0.0;
+  row_differences(n.a0, n.b0, n.c0, du, duu);
+  row_differences(n.a1, n.b1, n.c1, du, duu);
+  row_differences(n.a2, n.b2, n.c2, du, duu);
+  row_differences(n.a3, n.b3, n.c3, du, duu);
+  real dv = select_max(select_max(max_sq4(n.a1 - n.a0, n.b1 - n.b0, n.c1 - n.c0),
+                                  max_sq4(n.a2 - n.a1, n.b2 - n.b1, n.c2 - n.c1)),
+                       max_sq4(n.a3 - n.a2, n.b3 - n.b2, n.c3 - n.c2));
+  real dvv = select_max(max_sq4(n.a2 - 2.0 * n.a1 + n.a0, n.b2 - 2.0 * n.b1 + n.b0, n.c2 - 2.0 * n.c1 + n.c0),
+                        max_sq4(n.a3 - 2.0 * n.a2 + n.a1, n.b3 - 2.0 * n.b2 + n.b1, n.c3 - 2.0 * n.c2 + n.c1));
+  real duv = 0.0;
+  real unused = 0.0;
+  row_differences(n.a1 - n.a0, n.b1 - n.b0, n.c1 - n.c0, duv, unused);
+  row_differences(n.a2 - n.a1, n.b2 - n.b1, n.c2 - n.c1, duv, unused);
+  row_differences(n.a3 - n.a2, n.b3 - n.b2, n.c3 - n.c2, duv, unused);
+  real e = 12.0 * gamma_bound(4.0) * n.scale;
+  real grow = 1.0 + gamma_bound(16.0);
+  patch_bounds pb;
+  pb.su = 3.0 * ku * ku * kv * kv * kv * (sqrt(du) + e) * grow;
+  pb.sv = 3.0 * ku * ku * ku * kv * kv * (sqrt(dv) + e) * grow;
+  pb.suu = 6.0 * ku * kv * kv * kv * (sqrt(duu) + e) * grow;
+  pb.svv = 6.0 * ku * ku * ku * kv * (sqrt(dvv) + e) * grow;
+  pb.suv = 9.0 * ku * ku * kv * kv * (sqrt(duv) + e) * grow;
+  pb.weight = ku * ku * ku * kv * kv * kv * grow;
+  return pb;
+}
+
+// The sum of the magnitudes of a cubic Bernstein basis at u, grown by x: (|1 - u| + |u| +
+// 2 x)^3, 1 on [0, 1] (where x = 0). A weighing of values within s rounds within gamma of
+// that times s.
+real bernstein_mass(real u, real x) {
+  precise real s = abs(1.0 - u) + abs(u) + 2.0 * x;
+  return s * s * s * (1.0 + gamma_bound(4.0));
+}
+
+// The rounding of a weighing of the net's a and b coordinates at a point where the weights'
+// magnitudes sum to mass (per unit scale): each coordinate, a dot product of P - o (whose
+// components are within scale) with a unit vector, rounds within gamma(4) sqrt(3) scale; two
+// weighings of four with rounded weights add gamma(16) of the coordinates' largest
+// magnitude. The sum, for F's two components (sqrt(2) < 1.5) or J's four slopes, whose weights'
+// magnitudes sum to 6 of a value's (Frobenius: 2 x 6).
+real net_rounding(patch_net n, real lateral) {
+  return 1.5 * (gamma_bound(5.0) * 1.7320508075688772 * n.scale + gamma_bound(17.0) * lateral);
+}
+
+// The largest magnitude of the net's a and b coordinates: the patch's extent across the ray.
+real net_lateral(patch_net n) {
+  rvec4 m = max(max(max(abs(n.a0), abs(n.a1)), max(abs(n.a2), abs(n.a3))),
+                max(max(abs(n.b0), abs(n.b1)), max(abs(n.b2), abs(n.b3))));
+  return select_max(select_max(m.x, m.y), select_max(m.z, m.w));
+}
+
+// |J^-1| for a 2 x 2 matrix J: 1 / sigma_min, sigma_min^2 = 2 det^2 / (|J|_F^2 + sqrt(|J|_F^4 -
+// 4 det^2)), grown by its rounding; 0 where J is singular within its rounding.
+real inverse_norm(real jf, real det) {
+  real f2 = jf * jf;
+  if (!(abs(det) > f2 * gamma_bound(8.0))) return 0.0;
+  real root = sqrt(select_max(f2 * f2 - 4.0 * det * det, 0.0));
+  return sqrt((f2 + root) / (2.0 * det * det)) * (1.0 + gamma_bound(16.0));
+}
+
+// A bound on the residual |G| after m >= 1 Newton steps from a point where Kantorovich's h
+// holds (h <= 1/4): the steps shrink as |x_k+1 - x_k| <= (2 h)^(2^k - 1) eta / 2^k (Ortega &
+// Rheinboldt 12.6.2), and one step leaves |G| <= L |step|^2 / 2. Four steps are counted at most.
+real patch_settles(real eta, real hk, real lip, uint m) {
+  real step = eta;
+  real shrink = 2.0 * hk;
+  for (uint j = 1u; j < m && j < 4u; j++) {
+    step *= 0.5 * shrink;
+    shrink *= shrink;
+  }
+  return 0.5 * lip * step * step;
+}
+
+// Where the reference's run ends, against this one's (patch_newton's steps, taken again). G,
+// the reference's F turned into this ray's planes, is within e_f of F and its Jacobian within
+// e_j of J (on a ball of radius delta, within e_j + L delta): the rounding of this run's
+// weighings, where the weights' magnitudes sum to bernstein_mass, and the ray's move, which
+// shifts F by eo + ed |S - o| and turns J's columns by ed (this ray's planes are unit and
+// perpendicular within gamma(10)). The reference's run starts at the same centre and stays
+// within delta_k of this one's point x_k: the Newton map N(x) = x - J^-1 G moves by at most
+// beta L |J^-1 G| times a move of x (its derivative is J^-1 (dJ) J^-1 G), and at x_k differs
+// from this run's computed step by beta (e_f + e_j |step|) plus the step's rounding, so
+// delta_k+1 = beta L beta |G| delta_k + that. Its check that it stays near the piece must go as
+// this one's: both stay, or both leave (both miss). At each step where the reference's
+// residual, at least |F| - e_f - (|J| + e_j) delta - L delta^2 / 2, lies certainly above its
+// criterion, it goes on; at the first where it may not (or where this run converged), it is
+// within delta of x_k and from there, by Kantorovich's theorem (Ortega & Rheinboldt,
+// "Iterative Solution of Nonlinear Equations in Several Variables", 12.6.2), either stops or
+// takes steps that stay within r0 = 2 eta / (1 + sqrt(1 - 2 h)) of it (eta = beta |G|,
+// h = beta L eta <= 1/4: the rest of the way to 1/2 covers its own rounding) and, one step
+// on, lie under its last criterion. This run must then converge too, and the reference's
+// point lies within delta + r0 of x_k. Where this run stops unconverged at its last step
+// and the reference's residual is certainly above its last criterion, both miss. Returns 0
+// where the reference's run may end otherwise than this one's, 1 where both certainly miss,
+// 2 where both converged: (u, v) this run's point, rad the distance within which the
+// reference's lies, off the sum of the two points' distances from their rays.
+uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out real u, out real v, out real rad,
+                    out real off) {
+  real k = cert_factor();
+  real rounding = net_rounding(n, net_lateral(n));
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  precise real tol = real(RC_PATCH_TOLERANCE_ULPS) * RC_UNIT_ROUNDOFF * n.scale;
+  precise real last_tol = real(RC_PATCH_LAST_TOLERANCE) * n.scale;
+  // The reference's criteria: f64's unit roundoff, and its scale, within eo of this one's.
+  real tol_ref = k * real(RC_PATCH_TOLERANCE_ULPS) * 1.1102230246251565e-16 * (n.scale + cert_eo) * 2.0;
+  real last_ref = k * real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) * (1.0 + gamma_bound(2.0));
+  real last_ref_low = real(RC_PATCH_LAST_TOLERANCE) * (n.scale - k * cert_eo) * (1.0 - gamma_bound(2.0));
+  real e_dom = gamma_bound(8.0);
+  u = 0.5 * (m.u0 + m.u1);
+  v = 0.5 * (m.v0 + m.v1);
+  rad = 0.0;
+  off = 0.0;
+  real delta = k * gamma_bound(2.0) * (abs(u) + abs(v));
+  bool anchored = false;
+  real unique = 0.0;
+  real anchor_u = u;
+  real anchor_v = v;
+  for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
+    if (!budget_step()) return 0u;
+    rvec4 bu = bernstein(u);
+    rvec4 bv = bernstein(v);
+    rvec4 su = bernstein_slope(u);
+    rvec4 sv = bernstein_slope(v);
+    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
+    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
+    real residual = abs(fa.x) + abs(fb.x);
+    bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
+    bool converged = residual <= tol || (last && residual <= last_tol);
+    real f = length(rvec2(fa.x, fb.x));
+    real jf = length(rvec4(fa.y, fa.z, fb.y, fb.z));
+    real mass = bernstein_mass(u, delta) * bernstein_mass(v, delta);
+    real e_f = k * (rounding * mass + cert_eo + (cert_ed + gamma_bound(10.0)) * 1.7320508075688772 * mass * n.scale);
+    real e_j = k * (12.0 * rounding * mass + (cert_ed + gamma_bound(10.0)) * slopes);
+    real spread = e_f + (jf + e_j) * delta + 0.5 * lip * delta * delta;
+    // Through an error E, |(J + E)^-1| <= beta / (1 - beta |E|).
+    real b_c = inverse_norm(jf, fa.y * fb.z - fa.z * fb.y);
+    real e_k = e_j + lip * delta;
+    if (!anchored) {
+      if (!(b_c > 0.0 && b_c * e_k < 0.5)) return 0u;
+      real beta = b_c / (1.0 - b_c * e_k);
+      if (converged || !(f - spread > (last ? last_ref : tol_ref))) {
+        real g = f + spread;
+        real eta = beta * g;
+        real hk = beta * lip * eta;
+        real r0 = 2.0 * eta / (1.0 + sqrt(select_max(1.0 - 2.0 * hk, 0.0)));
+        bool stops = last ? 1.4142135623730951 * g < last_ref_low : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
+        real stay = select_min(select_min(u - (m.u0 - wu), m.u1 + wu - u), select_min(v - (m.v0 - wv), m.v1 + wv - v));
+        // The root the reference's run converges to, within delta + r0 of x, is G's root
+        // near x itself: the one in Kantorovich's ball about x (G within e_f of F there),
+        // unique within (1 + sqrt(1 - 2 h)) / (beta L).
+        real beta_x = b_c / (1.0 - b_c * e_j);
+        real h_x = beta_x * lip * beta_x * (f + e_f);
+        unique = (h_x <= 0.5) ? (1.0 + sqrt(1.0 - 2.0 * h_x)) / select_max(beta_x * lip, RC_SMALLEST_NORMAL) : 0.0;
+        if (!(hk <= 0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) return 0u;
+        // The reference's residual where it stops: under its criterion, or at its last step
+        // under what the steps left settle it to.
+        off = select_max(tol_ref, last ? 1.4142135623730951 * g : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
+        anchored = true;
+        anchor_u = u;
+        anchor_v = v;
+      }
+    }
+    if (converged) {
+      // This run's point and the reference's about that root x*: x_f within r0 of it
+      // (Kantorovich about x_f), the reference's within 2 beta* |G| of it, beta* <= 2 beta_f
+      // where h <= 1/4.
+      if (!(b_c * e_j < 0.5)) return 0u;
+      real beta_f = b_c / (1.0 - b_c * e_j);
+      real eta_f = beta_f * (f + e_f);
+      real h_f = beta_f * lip * eta_f;
+      real r0_f = 2.0 * eta_f / (1.0 + sqrt(select_max(1.0 - 2.0 * h_f, 0.0)));
+      if (!(h_f <= 0.25 && length(rvec2(u - anchor_u, v - anchor_v)) + r0_f < unique)) return 0u;
+      rad = r0_f + 4.0 * beta_f * off;
+      off += residual;
+      return 2u;
+    }
+    if (last) return anchored ? 0u : 1u;
+    real u_was = u;
+    real v_was = v;
+    if (!newton_step(fa, fb, u, v)) return 0u;
+    if (anchored) {
+      // This run must converge as the reference's does: leaving, it would miss.
+      if (!(u >= m.u0 - wu && u <= m.u1 + wu && v >= m.v0 - wv && v <= m.v1 + wv)) return 0u;
+      continue;
+    }
+    real beta = b_c / (1.0 - b_c * e_k);
+    real step = length(rvec2(u - u_was, v - v_was));
+    real lam = beta * lip * beta * (f + spread);
+    delta = k * (lam * delta + beta * (e_f + e_j * step) + gamma_bound(16.0) * step +
+                 gamma_bound(2.0) * (abs(u) + abs(v) + step));
+    real stay = select_min(select_min(u - (m.u0 - wu), m.u1 + wu - u), select_min(v - (m.v0 - wv), m.v1 + wv - v));
+    if (stay > delta + e_dom) continue;
+    return (-stay > delta + e_dom) ? 1u : 0u;
+  }
+  return 0u;
+}
+
+// The decisions of intersect_patch: a hit or a miss, and the hit's t against 0 and t_max.
+void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
+  real b_in, b_out;
+  uint a_in, a_out;
+  box_span(rvec3(q.lo), rvec3(q.hi), o - rvec3(q.center), d, b_in, b_out, a_in, a_out);
+  // A box this ray misses is taken as missed by the reference's too, as a BVH node's.
+  if (b_in > b_out || b_out < 0.0 || b_in > t_max * real(RC_BOX_NEAR_SCALE)) return;
+  rvec3 a, b;
+  patch_planes(d, a, b);
+  patch_net n = load_patch_net(q.mesh_root, o, a, b, d);
+  patch_domain m = patch_domain_of(q);
+  real k = cert_factor();
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  // Where a run may go before it gives up: the piece grown by its width on every side.
+  patch_bounds pb = cert_patch_bounds(n, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
+  // |S - o| there: the net's points are within sqrt(3) scale of o.
+  real reach = 1.7320508075688772 * pb.weight * n.scale;
+  // J's Lipschitz constant: |J(x) - J(y)| <= (|S_uu| + 2 |S_uv| + |S_vv|) |x - y|.
+  real lip = k * (pb.suu + 2.0 * pb.suv + pb.svv) * (1.0 + cert_ed + gamma_bound(10.0));
+  real u, v, rad, off;
+  uint run = cert_patch_run(m, n, pb.su + pb.sv, lip, u, v, rad, off);
+  real e_dom = gamma_bound(8.0);
+  if (run == 2u) {
+    bool inside = u - rad - m.lo_u > e_dom && m.hi_u - u - rad > e_dom && v - rad - m.lo_v > e_dom &&
+                  m.hi_v - v - rad > e_dom;
+    bool outside = m.lo_u - u - rad > e_dom || u - rad - m.hi_u > e_dom || m.lo_v - v - rad > e_dom ||
+                   v - rad - m.hi_v > e_dom;
+    if (outside) return;
+    if (!inside) {
+      cert_fail();
+      return;
+    }
+    // t = d.(S - o): S moves by |S_u| + |S_v| times rad, d and o by the ray's move.
+    patch_run r;
+    r.bu = bernstein(u);
+    r.bv = bernstein(v);
+    real t = patch_depth(r, n);
+    real e_t = k * (cert_eo + cert_ed * reach + (pb.su + pb.sv) * rad +
+                    gamma_bound(40.0) * bernstein_mass(u, rad) * bernstein_mass(v, rad) * n.scale);
+    cert_bary_err = rad;
+    cert_off_err = off;
+    cert_root(t, e_t, t_max, t > 0.0);
+    return;
+  }
+  if (run == 1u) return;
+  // No point of the domain's surface within the reference's acceptance of its ray: along
+  // w = F(x0) / |F(x0)|, w.F(x) >= w.F(x0) - |w.J_u| |du| - |w.J_v| |dv| - (second order).
+  // (This run did not converge, or not certainly as the reference's: where this bound holds
+  // it cannot have converged in the domain either.)
+  real uc = 0.5 * (m.u0 + m.u1);
+  real vc = 0.5 * (m.v0 + m.v1);
+  rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, bernstein(uc), bernstein_slope(uc), bernstein(vc), bernstein_slope(vc));
+  rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, bernstein(uc), bernstein_slope(uc), bernstein(vc), bernstein_slope(vc));
+  real f0 = length(rvec2(fa.x, fb.x));
+  if (!(f0 > 0.0)) {
+    cert_fail();
+    return;
+  }
+  // The bounds over the domain, which reaches at most its margin outside [0, 1].
+  real mass = select_max(bernstein_mass(m.lo_u, 0.0), bernstein_mass(m.hi_u, 0.0)) *
+              select_max(bernstein_mass(m.lo_v, 0.0), bernstein_mass(m.hi_v, 0.0));
+  real rounding = net_rounding(n, net_lateral(n));
+  real e_f = k * (rounding * mass + cert_eo + (cert_ed + gamma_bound(10.0)) * reach);
+  real e_j = k * (12.0 * rounding * mass + (cert_ed + gamma_bound(10.0)) * (pb.su + pb.sv));
+  real du = select_max(uc - m.lo_u, m.hi_u - uc) + e_dom;
+  real dv = select_max(vc - m.lo_v, m.hi_v - vc) + e_dom;
+  rvec2 w = rvec2(fa.x, fb.x) / f0;
+  real along = abs(w.x * fa.y + w.y * fb.y) * du + abs(w.x * fa.z + w.y * fb.z) * dv;
+  real curve = 0.5 * (pb.suu * du * du + 2.0 * pb.suv * du * dv + pb.svv * dv * dv) * (1.0 + cert_ed + gamma_bound(10.0));
+  real slack = k * (curve + e_f + e_j * length(rvec2(du, dv)) + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo));
+  if (!(f0 * (1.0 - gamma_bound(8.0)) - along * (1.0 + gamma_bound(8.0)) > slack)) cert_fail();
+}
+
+// A patch hit's point and normal (cert_surface). Each precision's point is a surface point
+// within its residual of its ray (off_err bounds the sum: cert_patch_run), so the two lie
+// within that plus the rays' move (eo + t ed) over the cosine of the exact meet, along the
+// surface (first order, as the other kinds' points), plus the rounding of S;
+// cert_patch bounds the reference's (u, v) within bary_err of this one's too, and the point
+// moves by at most (|S_u| + |S_v|) bary_err: the smaller bound holds. A move e of the point is
+// a move of (u, v) of at most e / sigma_min([S_u S_v]) (first order again), so the derivatives
+// move by |S_uu| + |S_uv| (and |S_uv| + |S_vv|) times the smaller of that and bary_err, and the
+// normal g = S_u x S_v by |dS_u| |S_v| + |S_u| |dS_v| plus the cross product's rounding. Where
+// one derivative is within its move of 2^-20 of the other, whether patch_surface stands the
+// mixed derivative in for it is uncertain: not bounded.
+void cert_patch_surface(packed_quadric q, rvec3 d, rvec3 uv, real bary_err, real off_err, real t, rvec3 ng,
+                        rvec3 p_error) {
+  rvec4 fx, fy, fz;
+  patch_net n = patch_eval(q, uv, fx, fy, fz);
+  patch_domain m = patch_domain_of(q);
+  patch_bounds pb = cert_patch_bounds(n, m.lo_u, m.hi_u, m.lo_v, m.hi_v);
+  real k = cert_factor();
+  rvec3 pu = rvec3(fx.y, fy.y, fz.y);
+  rvec3 pv = rvec3(fx.z, fy.z, fz.z);
+  real cosine = abs(dot(ng, d));
+  real e_cos = cert_ed + gamma_bound(12.0);
+  real moved = cert_eo + t * cert_ed + off_err;
+  real along = select_min(2.0 * moved / select_max(cosine - e_cos, RC_SMALLEST_NORMAL), (pb.su + pb.sv) * bary_err);
+  // sigma_min^2 of [S_u S_v]: 2 det / (tr + sqrt(tr^2 - 4 det)) of its Gram matrix.
+  real guu = dot(pu, pu);
+  real guv = dot(pu, pv);
+  real gvv = dot(pv, pv);
+  real gdet = guu * gvv - guv * guv;
+  real tr = guu + gvv;
+  real sigma2 = 2.0 * gdet / (tr + sqrt(select_max(tr * tr - 4.0 * gdet, 0.0))) * (1.0 - gamma_bound(16.0));
+  real moved_uv = (sigma2 > 0.0) ? select_min(bary_err, along / sqrt(sigma2)) : bary_err;
+  real e_d = 12.0 * gamma_bound(40.0) * pb.weight * n.scale;
+  real e_u = k * ((pb.suu + pb.suv) * moved_uv + e_d);
+  real e_v = k * ((pb.suv + pb.svv) * moved_uv + e_d);
+  real lu = sqrt(guu);
+  real lv = sqrt(gvv);
+  real limit = 9.5367431640625e-07 * 1.0001;
+  if (!(lu - e_u > limit * (lv + e_v) && lv - e_v > limit * (lu + e_u))) cert_fail();
+  rvec3 g = cross(pu, pv);
+  real e_g = k * (e_u * pb.sv + pb.su * e_v + gamma_bound(4.0) * lu * lv);
+  real en = gamma_bound(12.0) + cert_turn_of(e_g, length(g));
+  // The side the normal is flipped to (surface_at) is a decision on n.d.
+  cert_require(cosine, e_cos + en);
+  cert_ep = k * along + 2.0 * length(p_error);
+  cert_en = en;
+}
