@@ -160,8 +160,7 @@ real patch_settles(real eta, real hk, real lip, uint m) {
 // where the reference's run may end otherwise than this one's, 1 where both certainly miss,
 // 2 where both converged: (u, v) this run's point, rad the distance within which the
 // reference's lies, off the sum of the two points' distances from their rays.
-uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out real u, out real v, out real rad,
-                    out real off) {
+uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patch_run r, out real rad, out real off) {
   real k = cert_factor();
   real rounding = net_rounding(n, net_lateral(n));
   real wu = m.u1 - m.u0;
@@ -173,97 +172,110 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out real
   real last_ref = k * real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) * (1.0 + gamma_bound(2.0));
   real last_ref_low = real(RC_PATCH_LAST_TOLERANCE) * (n.scale - k * cert_eo) * (1.0 - gamma_bound(2.0));
   real e_dom = gamma_bound(8.0);
-  u = 0.5 * (m.u0 + m.u1);
-  v = 0.5 * (m.v0 + m.v1);
+  // patch_newton's run, step for step (intersect_patch takes it: cert_patch_index).
+  r.u = 0.5 * (m.u0 + m.u1);
+  r.v = 0.5 * (m.v0 + m.v1);
+  r.bu = bernstein(r.u);
+  r.bv = bernstein(r.v);
+  r.residual = real(RC_T_FAR);
+  r.converged = false;
+  r.nearby = true;
   rad = 0.0;
   off = 0.0;
-  real delta = k * gamma_bound(2.0) * (abs(u) + abs(v));
+  // 3 while the reference's end is not yet known.
+  uint verdict = 3u;
+  real delta = k * gamma_bound(2.0) * (abs(r.u) + abs(r.v));
   bool anchored = false;
   real unique = 0.0;
-  real anchor_u = u;
-  real anchor_v = v;
+  real anchor_u = r.u;
+  real anchor_v = r.v;
   for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
-    if (!budget_step()) return 0u;
-    rvec4 bu = bernstein(u);
-    rvec4 bv = bernstein(v);
-    rvec4 su = bernstein_slope(u);
-    rvec4 sv = bernstein_slope(v);
-    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
-    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
-    real residual = abs(fa.x) + abs(fb.x);
+    if (!budget_step()) break;
+    r.bu = bernstein(r.u);
+    r.bv = bernstein(r.v);
+    rvec4 su = bernstein_slope(r.u);
+    rvec4 sv = bernstein_slope(r.v);
+    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
+    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
+    r.residual = abs(fa.x) + abs(fb.x);
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
-    bool converged = residual <= tol || (last && residual <= last_tol);
+    bool converged = r.residual <= tol || (last && r.residual <= last_tol);
     real f = length(rvec2(fa.x, fb.x));
     real jf = length(rvec4(fa.y, fa.z, fb.y, fb.z));
-    real mass = bernstein_mass(u, delta) * bernstein_mass(v, delta);
+    real mass = bernstein_mass(r.u, delta) * bernstein_mass(r.v, delta);
     real e_f = k * (rounding * mass + cert_eo + (cert_ed + gamma_bound(10.0)) * 1.7320508075688772 * mass * n.scale);
     real e_j = k * (12.0 * rounding * mass + (cert_ed + gamma_bound(10.0)) * slopes);
     real spread = e_f + (jf + e_j) * delta + 0.5 * lip * delta * delta;
     // Through an error E, |(J + E)^-1| <= beta / (1 - beta |E|).
     real b_c = inverse_norm(jf, fa.y * fb.z - fa.z * fb.y);
     real e_k = e_j + lip * delta;
-    if (!anchored) {
-      if (!(b_c > 0.0 && b_c * e_k < 0.5)) return 0u;
-      real beta = b_c / (1.0 - b_c * e_k);
-      if (converged || !(f - spread > (last ? last_ref : tol_ref))) {
-        real g = f + spread;
-        real eta = beta * g;
-        real hk = beta * lip * eta;
-        real r0 = 2.0 * eta / (1.0 + sqrt(select_max(1.0 - 2.0 * hk, 0.0)));
-        bool stops = last ? 1.4142135623730951 * g < last_ref_low : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
-        real stay = select_min(select_min(u - (m.u0 - wu), m.u1 + wu - u), select_min(v - (m.v0 - wv), m.v1 + wv - v));
-        // The root the reference's run converges to, within delta + r0 of x, is G's root
-        // near x itself: the one in Kantorovich's ball about x (G within e_f of F there),
-        // unique within (1 + sqrt(1 - 2 h)) / (beta L).
-        real beta_x = b_c / (1.0 - b_c * e_j);
-        real h_x = beta_x * lip * beta_x * (f + e_f);
-        unique = (h_x <= 0.5) ? (1.0 + sqrt(1.0 - 2.0 * h_x)) / select_max(beta_x * lip, RC_SMALLEST_NORMAL) : 0.0;
-        if (!(hk <= 0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) return 0u;
-        // The reference's residual where it stops: under its criterion, or at its last step
-        // under what the steps left settle it to.
-        off = select_max(tol_ref, last ? 1.4142135623730951 * g : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
-        anchored = true;
-        anchor_u = u;
-        anchor_v = v;
-      }
+    real beta = (b_c * e_k < 0.5) ? b_c / (1.0 - b_c * e_k) : 0.0;
+    if (verdict == 3u && !anchored && !(b_c > 0.0 && b_c * e_k < 0.5)) verdict = 0u;
+    if (verdict == 3u && !anchored && (converged || !(f - spread > (last ? last_ref : tol_ref)))) {
+      real g = f + spread;
+      real eta = beta * g;
+      real hk = beta * lip * eta;
+      real r0 = 2.0 * eta / (1.0 + sqrt(select_max(1.0 - 2.0 * hk, 0.0)));
+      bool stops = last ? 1.4142135623730951 * g < last_ref_low : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
+      real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
+      // The root the reference's run converges to, within delta + r0 of x, is G's root
+      // near x itself: the one in Kantorovich's ball about x (G within e_f of F there),
+      // unique within (1 + sqrt(1 - 2 h)) / (beta L).
+      real beta_x = b_c / (1.0 - b_c * e_j);
+      real h_x = beta_x * lip * beta_x * (f + e_f);
+      unique = (h_x <= 0.5) ? (1.0 + sqrt(1.0 - 2.0 * h_x)) / select_max(beta_x * lip, RC_SMALLEST_NORMAL) : 0.0;
+      if (!(hk <= 0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) verdict = 0u;
+      // The reference's residual where it stops: under its criterion, or at its last step
+      // under what the steps left settle it to.
+      off = select_max(tol_ref, last ? 1.4142135623730951 * g : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
+      anchored = true;
+      anchor_u = r.u;
+      anchor_v = r.v;
     }
-    if (converged) {
+    if (verdict == 3u && converged) {
       // This run's point and the reference's about that root x*: x_f within r0 of it
       // (Kantorovich about x_f), the reference's within 2 beta* |G| of it, beta* <= 2 beta_f
       // where h <= 1/4.
-      if (!(b_c * e_j < 0.5)) return 0u;
-      real beta_f = b_c / (1.0 - b_c * e_j);
+      real beta_f = (b_c * e_j < 0.5) ? b_c / (1.0 - b_c * e_j) : 0.0;
       real eta_f = beta_f * (f + e_f);
       real h_f = beta_f * lip * eta_f;
       real r0_f = 2.0 * eta_f / (1.0 + sqrt(select_max(1.0 - 2.0 * h_f, 0.0)));
-      if (!(h_f <= 0.25 && length(rvec2(u - anchor_u, v - anchor_v)) + r0_f < unique)) return 0u;
+      bool near = b_c * e_j < 0.5 && h_f <= 0.25 && length(rvec2(r.u - anchor_u, r.v - anchor_v)) + r0_f < unique;
       rad = r0_f + 4.0 * beta_f * off;
-      off += residual;
-      return 2u;
+      off += r.residual;
+      verdict = near ? 2u : 0u;
     }
-    if (last) return anchored ? 0u : 1u;
-    real u_was = u;
-    real v_was = v;
-    if (!newton_step(fa, fb, u, v)) return 0u;
-    if (anchored) {
-      // This run must converge as the reference's does: leaving, it would miss.
-      if (!(u >= m.u0 - wu && u <= m.u1 + wu && v >= m.v0 - wv && v <= m.v1 + wv)) return 0u;
-      continue;
+    if (verdict == 3u && last) verdict = anchored ? 0u : 1u;
+    if (converged) {
+      r.converged = true;
+      break;
     }
-    real beta = b_c / (1.0 - b_c * e_k);
-    real step = length(rvec2(u - u_was, v - v_was));
-    real lam = beta * lip * beta * (f + spread);
-    delta = k * (lam * delta + beta * (e_f + e_j * step) + gamma_bound(16.0) * step +
-                 gamma_bound(2.0) * (abs(u) + abs(v) + step));
-    real stay = select_min(select_min(u - (m.u0 - wu), m.u1 + wu - u), select_min(v - (m.v0 - wv), m.v1 + wv - v));
-    if (stay > delta + e_dom) continue;
-    return (-stay > delta + e_dom) ? 1u : 0u;
+    if (last) break;
+    real u_was = r.u;
+    real v_was = r.v;
+    if (!newton_step(fa, fb, r.u, r.v)) {
+      if (verdict == 3u) verdict = 0u;
+      break;
+    }
+    r.nearby = r.u >= m.u0 - wu && r.u <= m.u1 + wu && r.v >= m.v0 - wv && r.v <= m.v1 + wv;
+    // Anchored, this run must converge as the reference's does: leaving, it would miss.
+    if (verdict == 3u && anchored && !r.nearby) verdict = 0u;
+    if (verdict == 3u && !anchored) {
+      real step = length(rvec2(r.u - u_was, r.v - v_was));
+      real lam = beta * lip * beta * (f + spread);
+      delta = k * (lam * delta + beta * (e_f + e_j * step) + gamma_bound(16.0) * step +
+                   gamma_bound(2.0) * (abs(r.u) + abs(r.v) + step));
+      real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
+      if (!(stay > delta + e_dom)) verdict = (-stay > delta + e_dom) ? 1u : 0u;
+    }
+    if (!r.nearby) break;
   }
-  return 0u;
+  return (verdict == 3u) ? 0u : verdict;
 }
 
 // The decisions of intersect_patch: a hit or a miss, and the hit's t against 0 and t_max.
-void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
+void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
+  cert_patch_index = 0xffffffffu;
   real b_in, b_out;
   uint a_in, a_out;
   box_span(rvec3(q.lo), rvec3(q.hi), o - rvec3(q.center), d, b_in, b_out, a_in, a_out);
@@ -282,8 +294,15 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real reach = 1.7320508075688772 * pb.weight * n.scale;
   // J's Lipschitz constant: |J(x) - J(y)| <= (|S_uu| + 2 |S_uv| + |S_vv|) |x - y|.
   real lip = k * (pb.suu + 2.0 * pb.suv + pb.svv) * (1.0 + cert_ed + gamma_bound(10.0));
-  real u, v, rad, off;
-  uint run = cert_patch_run(m, n, pb.su + pb.sv, lip, u, v, rad, off);
+  patch_run r;
+  real rad, off;
+  uint run = cert_patch_run(m, n, pb.su + pb.sv, lip, r, rad, off);
+  // The test that follows (intersect_patch, the same ray) takes this run.
+  cert_patch_index = index;
+  cert_patch_r = r;
+  cert_patch_t = patch_depth(r, n);
+  real u = r.u;
+  real v = r.v;
   real e_dom = gamma_bound(8.0);
   if (run == 2u) {
     bool inside = u - rad - m.lo_u > e_dom && m.hi_u - u - rad > e_dom && v - rad - m.lo_v > e_dom &&
@@ -296,10 +315,7 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
       return;
     }
     // t = d.(S - o): S moves by |S_u| + |S_v| times rad, d and o by the ray's move.
-    patch_run r;
-    r.bu = bernstein(u);
-    r.bv = bernstein(v);
-    real t = patch_depth(r, n);
+    real t = cert_patch_t;
     real e_t = k * (cert_eo + cert_ed * reach + (pb.su + pb.sv) * rad +
                     gamma_bound(40.0) * bernstein_mass(u, rad) * bernstein_mass(v, rad) * n.scale);
     cert_bary_err = rad;

@@ -282,7 +282,7 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
     }
 #if RC_PATCHES
     if (has_kind(RC_KIND_PATCHES) && kind == RC_HIT_QUADRIC && (q.flags & RC_QUADRIC_PATCH) != 0u) {
-      cert_patch(q, o, d, t_max);
+      cert_patch(index, q, o, d, t_max);
       return;
     }
 #endif

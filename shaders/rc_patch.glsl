@@ -134,6 +134,14 @@ bool newton_step(rvec4 fa, rvec4 fb, inout real u, inout real v) {
   return true;
 }
 
+#if RC_CERTIFY
+// The run cert_patch (rc_certify_patch.glsl) took on the piece it certified last, with its t:
+// intersect_patch, called next with the same ray, takes it instead of running it again.
+uint cert_patch_index = 0xffffffffu;
+patch_run cert_patch_r;
+real cert_patch_t = 0.0;
+#endif
+
 // Newton's method on F(u, v) = (a.(S - o), b.(S - o)), a and b the ray's planes, from the
 // piece's centre: it stops when |F.x| + |F.y| is within RC_PATCH_TOLERANCE_ULPS ulps of the
 // net's scale (at the last step RC_PATCH_LAST_TOLERANCE of it), when its Jacobian is
@@ -190,11 +198,22 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
   uint a_in, a_out;
   box_span(rvec3(q.lo), rvec3(q.hi), o - rvec3(q.center), d, b_in, b_out, a_in, a_out);
   if (b_in > b_out || b_out < 0.0 || b_in > t_max * real(RC_BOX_NEAR_SCALE)) return real(RC_T_FAR);
-  rvec3 a, b;
-  patch_planes(d, a, b);
-  patch_net n = load_patch_net(q.mesh_root, o, a, b, d);
   patch_domain m = patch_domain_of(q);
-  patch_run r = patch_newton(m, n);
+  patch_run r;
+  real t;
+#if RC_CERTIFY
+  if (certify && cert_patch_index == index) {
+    r = cert_patch_r;
+    t = cert_patch_t;
+  } else
+#endif
+  {
+    rvec3 a, b;
+    patch_planes(d, a, b);
+    patch_net n = load_patch_net(q.mesh_root, o, a, b, d);
+    r = patch_newton(m, n);
+    t = patch_depth(r, n);
+  }
   bool in_piece = r.u >= m.lo_u && r.u <= m.hi_u && r.v >= m.lo_v && r.v <= m.hi_v;
   if (!r.converged) {
     // Near the ray (within a 64th of the piece's box) and inside the piece: a run that
@@ -207,7 +226,6 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
     return real(RC_T_FAR);
   }
   if (!in_piece) return real(RC_T_FAR);
-  real t = patch_depth(r, n);
   if (t <= 0.0 || t > t_max) return real(RC_T_FAR);
   uv = rvec3(r.u, r.v, 0.0);
   return t;

@@ -9,7 +9,7 @@ static uint64_t pass_steps(const packed_frame *f, uint64_t ray, uint64_t lights)
 
 /* Loop steps of one ray against one object, at most: 1 for a sphere or triangle; a
  * quadric's two clipped pieces and its first-end scan, or, in a scene with patches, a
- * piece's Newton steps (twice where certified); a composite's count from the loader (its program, pieces, merges,
+ * piece's Newton steps; a composite's count from the loader (its program, pieces, merges,
  * copies and scan, from its tree's interval bounds), twice where it is certified. */
 static uint64_t object_steps(const packed_frame *f) {
   uint64_t csg = f->csg_count ? f->csg_max_steps : 0;
@@ -17,10 +17,9 @@ static uint64_t object_steps(const packed_frame *f) {
    * (rc_certify_csg.glsl), whose loops step the same budget. */
   if (f->certify != RC_CERTIFY_OFF) csg *= 2;
   uint64_t quadric = f->quadric_count ? 1 + 2 + 4 : 1;
-  /* A piece's Newton steps, twice where certified: its certificate reruns them
-   * (rc_certify_patch.glsl). */
-  uint64_t newton = f->certify != RC_CERTIFY_OFF ? 2 * RC_PATCH_NEWTON_STEPS : RC_PATCH_NEWTON_STEPS;
-  if (f->patch_count && quadric < 1 + newton) quadric = 1 + newton;
+  /* Certified, a piece's certificate runs its Newton steps and the test takes that run
+   * (rc_certify_patch.glsl): once either way. */
+  if (f->patch_count && quadric < 1 + RC_PATCH_NEWTON_STEPS) quadric = 1 + RC_PATCH_NEWTON_STEPS;
   return csg > quadric ? csg : quadric;
 }
 

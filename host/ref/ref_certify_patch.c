@@ -108,7 +108,7 @@ real REF(patch_settles)(real eta, real hk, real lip, uint32_t m) {
   return (real)0.5 * lip * step * step;
 }
 
-uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, real slopes, real lip, real *u, real *v,
+uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, real slopes, real lip, patch_run *r,
                              real *rad, real *off) {
   real k = REF(cert_factor)(sc);
   real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
@@ -120,88 +120,99 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
   real last_ref = k * (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) * (1 + REF(gamma_bound)(2));
   real last_ref_low = (real)RC_PATCH_LAST_TOLERANCE * (n.scale - k * ref_cert_eo) * (1 - REF(gamma_bound)(2));
   real e_dom = REF(gamma_bound)(8);
-  *u = (real)0.5 * (m.u0 + m.u1);
-  *v = (real)0.5 * (m.v0 + m.v1);
+  r->u = (real)0.5 * (m.u0 + m.u1);
+  r->v = (real)0.5 * (m.v0 + m.v1);
+  r->bu = REF(bernstein)(r->u);
+  r->bv = REF(bernstein)(r->v);
+  r->residual = (real)RC_T_FAR;
+  r->converged = false;
+  r->nearby = true;
   *rad = 0;
   *off = 0;
-  real delta = k * REF(gamma_bound)(2) * (R_ABS(*u) + R_ABS(*v));
+  uint32_t verdict = 3;
+  real delta = k * REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v));
   bool anchored = false;
   real unique = 0;
-  real anchor_u = *u;
-  real anchor_v = *v;
+  real anchor_u = r->u;
+  real anchor_v = r->v;
   for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
-    rvec4 bu = REF(bernstein)(*u);
-    rvec4 bv = REF(bernstein)(*v);
-    rvec4 su = REF(bernstein_slope)(*u);
-    rvec4 sv = REF(bernstein_slope)(*v);
-    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, bu, su, bv, sv);
-    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, bu, su, bv, sv);
-    real residual = R_ABS(fa.x) + R_ABS(fb.x);
+    ref_work++;
+    r->bu = REF(bernstein)(r->u);
+    r->bv = REF(bernstein)(r->v);
+    rvec4 su = REF(bernstein_slope)(r->u);
+    rvec4 sv = REF(bernstein_slope)(r->v);
+    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, r->bu, su, r->bv, sv);
+    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, r->bu, su, r->bv, sv);
+    r->residual = R_ABS(fa.x) + R_ABS(fb.x);
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
-    bool converged = residual <= tol || (last && residual <= last_tol);
+    bool converged = r->residual <= tol || (last && r->residual <= last_tol);
     real f = R_SQRT(fa.x * fa.x + fb.x * fb.x);
     real jf = R_SQRT(fa.y * fa.y + fa.z * fa.z + fb.y * fb.y + fb.z * fb.z);
-    real mass = REF(bernstein_mass)(*u, delta) * REF(bernstein_mass)(*v, delta);
+    real mass = REF(bernstein_mass)(r->u, delta) * REF(bernstein_mass)(r->v, delta);
     real e_f = k * (rounding * mass + ref_cert_eo + (ref_cert_ed + REF(gamma_bound)(10)) * (real)1.7320508075688772 * mass * n.scale);
     real e_j = k * (12 * rounding * mass + (ref_cert_ed + REF(gamma_bound)(10)) * slopes);
     real spread = e_f + (jf + e_j) * delta + (real)0.5 * lip * delta * delta;
     real b_c = REF(inverse_norm)(jf, fa.y * fb.z - fa.z * fb.y);
     real e_k = e_j + lip * delta;
-    if (!anchored) {
-      if (!(b_c > 0 && b_c * e_k < (real)0.5)) return 0;
-      real beta = b_c / (1 - b_c * e_k);
-      if (converged || !(f - spread > (last ? last_ref : tol_ref))) {
-        real g = f + spread;
-        real eta = beta * g;
-        real hk = beta * lip * eta;
-        real r0 = 2 * eta / (1 + R_SQRT(rmax(1 - 2 * hk, 0)));
-        bool stops = last ? (real)1.4142135623730951 * g < last_ref_low
-                          : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
-        real stay = rmin(rmin(*u - (m.u0 - wu), m.u1 + wu - *u), rmin(*v - (m.v0 - wv), m.v1 + wv - *v));
-        real beta_x = b_c / (1 - b_c * e_j);
-        real h_x = beta_x * lip * beta_x * (f + e_f);
-        unique = (h_x <= (real)0.5) ? (1 + R_SQRT(1 - 2 * h_x)) / rmax(beta_x * lip, RC_SMALLEST_NORMAL) : 0;
-        if (!(hk <= (real)0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) return 0;
-        *off = rmax(tol_ref, last ? (real)1.4142135623730951 * g : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
-        anchored = true;
-        anchor_u = *u;
-        anchor_v = *v;
-      }
+    real beta = (b_c * e_k < (real)0.5) ? b_c / (1 - b_c * e_k) : 0;
+    if (verdict == 3 && !anchored && !(b_c > 0 && b_c * e_k < (real)0.5)) verdict = 0;
+    if (verdict == 3 && !anchored && (converged || !(f - spread > (last ? last_ref : tol_ref)))) {
+      real g = f + spread;
+      real eta = beta * g;
+      real hk = beta * lip * eta;
+      real r0 = 2 * eta / (1 + R_SQRT(rmax(1 - 2 * hk, 0)));
+      bool stops = last ? (real)1.4142135623730951 * g < last_ref_low
+                        : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
+      real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
+      real beta_x = b_c / (1 - b_c * e_j);
+      real h_x = beta_x * lip * beta_x * (f + e_f);
+      unique = (h_x <= (real)0.5) ? (1 + R_SQRT(1 - 2 * h_x)) / rmax(beta_x * lip, RC_SMALLEST_NORMAL) : 0;
+      if (!(hk <= (real)0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) verdict = 0;
+      *off = rmax(tol_ref, last ? (real)1.4142135623730951 * g : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
+      anchored = true;
+      anchor_u = r->u;
+      anchor_v = r->v;
     }
-    if (converged) {
-      if (!(b_c * e_j < (real)0.5)) return 0;
-      real beta_f = b_c / (1 - b_c * e_j);
+    if (verdict == 3 && converged) {
+      real beta_f = (b_c * e_j < (real)0.5) ? b_c / (1 - b_c * e_j) : 0;
       real eta_f = beta_f * (f + e_f);
       real h_f = beta_f * lip * eta_f;
       real r0_f = 2 * eta_f / (1 + R_SQRT(rmax(1 - 2 * h_f, 0)));
-      if (!(h_f <= (real)0.25 &&
-            R_SQRT((*u - anchor_u) * (*u - anchor_u) + (*v - anchor_v) * (*v - anchor_v)) + r0_f < unique))
-        return 0;
+      bool near = b_c * e_j < (real)0.5 && h_f <= (real)0.25 &&
+                  R_SQRT((r->u - anchor_u) * (r->u - anchor_u) + (r->v - anchor_v) * (r->v - anchor_v)) + r0_f < unique;
       *rad = r0_f + 4 * beta_f * *off;
-      *off += residual;
-      return 2;
+      *off += r->residual;
+      verdict = near ? 2 : 0;
     }
-    if (last) return anchored ? 0 : 1;
-    real u_was = *u;
-    real v_was = *v;
-    if (!REF(newton_step)(fa, fb, u, v)) return 0;
-    if (anchored) {
-      if (!(*u >= m.u0 - wu && *u <= m.u1 + wu && *v >= m.v0 - wv && *v <= m.v1 + wv)) return 0;
-      continue;
+    if (verdict == 3 && last) verdict = anchored ? 0 : 1;
+    if (converged) {
+      r->converged = true;
+      break;
     }
-    real beta = b_c / (1 - b_c * e_k);
-    real step = R_SQRT((*u - u_was) * (*u - u_was) + (*v - v_was) * (*v - v_was));
-    real lam = beta * lip * beta * (f + spread);
-    delta = k * (lam * delta + beta * (e_f + e_j * step) + REF(gamma_bound)(16) * step +
-                 REF(gamma_bound)(2) * (R_ABS(*u) + R_ABS(*v) + step));
-    real stay = rmin(rmin(*u - (m.u0 - wu), m.u1 + wu - *u), rmin(*v - (m.v0 - wv), m.v1 + wv - *v));
-    if (stay > delta + e_dom) continue;
-    return (-stay > delta + e_dom) ? 1 : 0;
+    if (last) break;
+    real u_was = r->u;
+    real v_was = r->v;
+    if (!REF(newton_step)(fa, fb, &r->u, &r->v)) {
+      if (verdict == 3) verdict = 0;
+      break;
+    }
+    r->nearby = r->u >= m.u0 - wu && r->u <= m.u1 + wu && r->v >= m.v0 - wv && r->v <= m.v1 + wv;
+    if (verdict == 3 && anchored && !r->nearby) verdict = 0;
+    if (verdict == 3 && !anchored) {
+      real step = R_SQRT((r->u - u_was) * (r->u - u_was) + (r->v - v_was) * (r->v - v_was));
+      real lam = beta * lip * beta * (f + spread);
+      delta = k * (lam * delta + beta * (e_f + e_j * step) + REF(gamma_bound)(16) * step +
+                   REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v) + step));
+      real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
+      if (!(stay > delta + e_dom)) verdict = (-stay > delta + e_dom) ? 1 : 0;
+    }
+    if (!r->nearby) break;
   }
-  return 0;
+  return (verdict == 3) ? 0 : verdict;
 }
 
-void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
+void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
+  ref_cert_patch_index = 0xffffffffu;
   real b_in, b_out;
   uint32_t a_in, a_out;
   REF(box_span)(rvec3_from(q->lo), rvec3_from(q->hi), RV(sub)(o, rvec3_from(q->center)), d, &b_in, &b_out, &a_in,
@@ -217,8 +228,14 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   patch_bounds pb = REF(cert_patch_bounds)(n, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
   real reach = (real)1.7320508075688772 * pb.weight * n.scale;
   real lip = k * (pb.suu + 2 * pb.suv + pb.svv) * (1 + ref_cert_ed + REF(gamma_bound)(10));
-  real u, v, rad, off;
-  uint32_t run = REF(cert_patch_run)(sc, m, n, pb.su + pb.sv, lip, &u, &v, &rad, &off);
+  patch_run r;
+  real rad, off;
+  uint32_t run = REF(cert_patch_run)(sc, m, n, pb.su + pb.sv, lip, &r, &rad, &off);
+  ref_cert_patch_index = index;
+  ref_cert_patch_r = r;
+  ref_cert_patch_t = REF(patch_depth)(r, n);
+  real u = r.u;
+  real v = r.v;
   real e_dom = REF(gamma_bound)(8);
   if (run == 2) {
     bool inside = u - rad - m.lo_u > e_dom && m.hi_u - u - rad > e_dom && v - rad - m.lo_v > e_dom &&
@@ -230,10 +247,7 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
       REF(cert_fail)();
       return;
     }
-    patch_run r;
-    r.bu = REF(bernstein)(u);
-    r.bv = REF(bernstein)(v);
-    real t = REF(patch_depth)(r, n);
+    real t = ref_cert_patch_t;
     real e_t = k * (ref_cert_eo + ref_cert_ed * reach + (pb.su + pb.sv) * rad +
                     REF(gamma_bound)(40) * REF(bernstein_mass)(u, rad) * REF(bernstein_mass)(v, rad) * n.scale);
     ref_cert_bary_err = rad;

@@ -232,7 +232,7 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
       return;
     }
     if (kind == RC_HIT_QUADRIC && (q->flags & RC_QUADRIC_PATCH) != 0) {
-      REF(cert_patch)(sc, q, o, d, t_max);
+      REF(cert_patch)(sc, index, q, o, d, t_max);
       return;
     }
     REF(cert_fail)();

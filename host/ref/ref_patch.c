@@ -9,6 +9,11 @@
 _Thread_local uint32_t ref_patch_stalls, ref_patch_stall_piece;
 #endif
 
+/* rc_patch.glsl's cache of the run cert_patch took last (ref_patch.h). */
+_Thread_local uint32_t ref_cert_patch_index = 0xffffffffu;
+_Thread_local patch_run ref_cert_patch_r;
+_Thread_local real ref_cert_patch_t;
+
 static rvec3 v3(vec3 a) { return rvec3_from(a); }
 
 /* The shader's accessor of the texel array (rc_scene_access.glsl). */
@@ -144,11 +149,19 @@ real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quad
   uint32_t a_in, a_out;
   REF(box_span)(v3(q->lo), v3(q->hi), RV(sub)(o, v3(q->center)), d, &b_in, &b_out, &a_in, &a_out);
   if (b_in > b_out || b_out < 0 || b_in > t_max * (real)RC_BOX_NEAR_SCALE) return far;
-  rvec3 a, b;
-  REF(patch_planes)(d, &a, &b);
-  patch_net n = REF(load_patch_net)(sc, q->mesh_root, o, a, b, d);
   patch_domain m = REF(patch_domain_of)(q);
-  patch_run r = REF(patch_newton)(m, n);
+  patch_run r;
+  real t;
+  if (sc->frame->certify && ref_cert_patch_index == index) {
+    r = ref_cert_patch_r;
+    t = ref_cert_patch_t;
+  } else {
+    rvec3 a, b;
+    REF(patch_planes)(d, &a, &b);
+    patch_net n = REF(load_patch_net)(sc, q->mesh_root, o, a, b, d);
+    r = REF(patch_newton)(m, n);
+    t = REF(patch_depth)(r, n);
+  }
   bool in_piece = r.u >= m.lo_u && r.u <= m.hi_u && r.v >= m.lo_v && r.v <= m.hi_v;
   if (!r.converged) {
     rvec3 extent = RV(sub)(v3(q->hi), v3(q->lo));
@@ -159,7 +172,6 @@ real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quad
     return far;
   }
   if (!in_piece) return far;
-  real t = REF(patch_depth)(r, n);
   if (t <= 0 || t > t_max) return far;
   *uv = RV(make)(r.u, r.v, 0);
   return t;
