@@ -191,13 +191,8 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
   real anchor_v = r.v;
   for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
     if (!budget_step()) break;
-    r.bu = bernstein(r.u);
-    r.bv = bernstein(r.v);
-    rvec4 su = bernstein_slope(r.u);
-    rvec4 sv = bernstein_slope(r.v);
-    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
-    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
-    r.residual = abs(fa.x) + abs(fb.x);
+    rvec4 fa, fb;
+    patch_evaluate(n, r, fa, fb);
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
     bool converged = r.residual <= tol || (last && r.residual <= last_tol);
     real f = length(rvec2(fa.x, fb.x));

@@ -120,6 +120,18 @@ struct patch_run {
   rvec4 bu; rvec4 bv;
 };
 
+// F and its Jacobian at the run's point (net_eval's value and slopes of the a and b
+// coordinates), and |F.x| + |F.y|; the run keeps the weights (patch_depth's).
+void patch_evaluate(patch_net n, inout patch_run r, out rvec4 fa, out rvec4 fb) {
+  r.bu = bernstein(r.u);
+  r.bv = bernstein(r.v);
+  rvec4 su = bernstein_slope(r.u);
+  rvec4 sv = bernstein_slope(r.v);
+  fa = net_eval(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
+  fb = net_eval(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
+  r.residual = abs(fa.x) + abs(fb.x);
+}
+
 // One Newton step from (u, v), F and its Jacobian there in fa and fb (net_eval's value and
 // slopes), by Cramer's rule: false where the Jacobian is singular.
 bool newton_step(rvec4 fa, rvec4 fb, inout real u, inout real v) {
@@ -161,13 +173,8 @@ patch_run patch_newton(patch_domain m, patch_net n) {
   r.nearby = true;
   for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
     if (!budget_step()) break;
-    r.bu = bernstein(r.u);
-    r.bv = bernstein(r.v);
-    rvec4 su = bernstein_slope(r.u);
-    rvec4 sv = bernstein_slope(r.v);
-    rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
-    rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
-    r.residual = abs(fa.x) + abs(fb.x);
+    rvec4 fa, fb;
+    patch_evaluate(n, r, fa, fb);
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
     if (r.residual <= tol || (last && r.residual <= last_tol)) {
       r.converged = true;

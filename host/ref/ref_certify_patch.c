@@ -137,13 +137,8 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
   real anchor_v = r->v;
   for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
     ref_work++;
-    r->bu = REF(bernstein)(r->u);
-    r->bv = REF(bernstein)(r->v);
-    rvec4 su = REF(bernstein_slope)(r->u);
-    rvec4 sv = REF(bernstein_slope)(r->v);
-    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, r->bu, su, r->bv, sv);
-    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, r->bu, su, r->bv, sv);
-    r->residual = R_ABS(fa.x) + R_ABS(fb.x);
+    rvec4 fa, fb;
+    REF(patch_evaluate)(n, r, &fa, &fb);
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
     bool converged = r->residual <= tol || (last && r->residual <= last_tol);
     real f = R_SQRT(fa.x * fa.x + fb.x * fb.x);

@@ -89,6 +89,16 @@ patch_domain REF(patch_domain_of)(const packed_quadric *q) {
   return m;
 }
 
+void REF(patch_evaluate)(patch_net n, patch_run *r, rvec4 *fa, rvec4 *fb) {
+  r->bu = REF(bernstein)(r->u);
+  r->bv = REF(bernstein)(r->v);
+  rvec4 su = REF(bernstein_slope)(r->u);
+  rvec4 sv = REF(bernstein_slope)(r->v);
+  *fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, r->bu, su, r->bv, sv);
+  *fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, r->bu, su, r->bv, sv);
+  r->residual = R_ABS(fa->x) + R_ABS(fb->x);
+}
+
 bool REF(newton_step)(rvec4 fa, rvec4 fb, real *u, real *v) {
   real det = fa.y * fb.z - fa.z * fb.y;
   if (det == 0) return false;
@@ -116,13 +126,8 @@ patch_run REF(patch_newton)(patch_domain m, patch_net n) {
   r.nearby = true;
   for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
     ref_work++;
-    r.bu = REF(bernstein)(r.u);
-    r.bv = REF(bernstein)(r.v);
-    rvec4 su = REF(bernstein_slope)(r.u);
-    rvec4 sv = REF(bernstein_slope)(r.v);
-    rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, r.bu, su, r.bv, sv);
-    rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, r.bu, su, r.bv, sv);
-    r.residual = R_ABS(fa.x) + R_ABS(fb.x);
+    rvec4 fa, fb;
+    REF(patch_evaluate)(n, &r, &fa, &fb);
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
     if (r.residual <= tol || (last && r.residual <= last_tol)) {
       r.converged = true;
