@@ -17,7 +17,8 @@
 // stays exact.
 
 bool cert_ok = true;          // every decision of this sample so far is certified
-real cert_eo = 0.0;           // |o - o_ref| of the ray being traced
+real cert_eo = 0.0;           // |o - o_ref| of the ray being traced, across it (and along it: cert_et)
+real cert_et = 0.0;           // |o - o_ref| along it, where the ray's lines are known closer (mirror planes)
 real cert_ed = 0.0;           // |d - d_ref|
 real cert_t_err = 0.0;        // the error bound of the root the last test took
 real cert_bary_err = 0.0;     // and of its barycentrics (triangles)
@@ -78,6 +79,7 @@ void cert_camera(vec2 raster) {
   real err = gamma_bound(3.0) * mag + eus + evs;
   cert_ok = true;
   cert_spawn_object = 0xffffffffu;
+  cert_et = 0.0;
   if (c.projection == RC_PROJECTION_PERSPECTIVE) {
     real len = length(-real(c.focal) * rvec3(c.w) + us * rvec3(c.u) + vs * rvec3(c.v));
     cert_eo = 0.0;
@@ -89,7 +91,8 @@ void cert_camera(vec2 raster) {
 }
 
 // A test whose hit or miss is uncertain, but whose root, if the reference finds one, lies in
-// [lo, hi] (bounds already widened by cert_factor): that decision cannot change the query's
+// [lo, hi] (bounds already widened by cert_factor; cert_et more against 0 and t_max, as in
+// cert_root_within): that decision cannot change the query's
 // answer where the interval is behind the origin, past a shadow ray's t_max, or past the
 // nearest hit (cert_beyond, which cert_closest checks). Where this precision took the root
 // (`taken`), it can.
@@ -98,9 +101,9 @@ void cert_maybe(real lo, real hi, real t_max, bool taken) {
     cert_fail();
     return;
   }
-  if (hi < 0.0) return;
+  if (hi + cert_factor() * cert_et < 0.0) return;
   if (cert_any) {
-    if (!(lo - t_max > cert_factor() * cert_t_max_err)) cert_fail();
+    if (!(lo - t_max > cert_factor() * (cert_t_max_err + cert_et))) cert_fail();
     return;
   }
   cert_beyond = select_min(cert_beyond, lo);
@@ -112,16 +115,18 @@ void cert_maybe(real lo, real hi, real t_max, bool taken) {
 // offset the reference's origin is off that surface by more than its own error too (pbrt's
 // OffsetRayOrigin), so it drops the root as well. In a closest-hit query t_max is the nearest
 // hit so far: a root past it is remembered (cert_beyond) for cert_closest. True when taken.
-// The reference's root lies in [t - e_down, t + e_up] (cert_root_within); a root whose
-// bounds are the same both ways is cert_root's.
+// The reference's root lies in [t - e_down, t + e_up] (cert_root_within), and further by its
+// origin's shift along the ray (cert_et) where it is compared with 0 or t_max, not with the
+// other roots of the same ray, which shift alike; a root whose bounds are the same both ways
+// is cert_root's.
 bool cert_root_within(real t, real e_down, real e_up, real t_max, bool ahead) {
   if (!ahead && cert_self) return false;
   real k = cert_factor();
-  if (!(ahead ? t > k * e_down : -t > k * e_up)) cert_ok = false;
+  if (!(ahead ? t > k * (e_down + cert_et) : -t > k * (e_up + cert_et))) cert_ok = false;
   if (!ahead) return false;
   bool within = t <= t_max;
-  if (cert_any && !(within ? t_max - t > k * (e_up + cert_t_max_err) : t - t_max > k * (e_down + cert_t_max_err)))
-    cert_ok = false;
+  real e_max = cert_t_max_err + cert_et;
+  if (cert_any && !(within ? t_max - t > k * (e_up + e_max) : t - t_max > k * (e_down + e_max))) cert_ok = false;
   if (!within) {
     cert_beyond = select_min(cert_beyond, t - k * e_down);
     return false;

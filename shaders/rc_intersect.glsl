@@ -261,6 +261,8 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
   if (kind == RC_HIT_SPHERE) {
     cert_sphere(o, d, load_sphere(index), t_max);
   } else if (kind == RC_HIT_TRIANGLE) {
+    // The watertight test's sheared x and y do not change when the origin moves along the
+    // ray, and its t moves by as much: cert_eo (across) alone, and cert_et where t meets 0.
     packed_triangle tri = load_triangle(index);
     uint side = RC_SIDE_FRONT;
     if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) side = cert_triangle_side(tri, d);
@@ -295,7 +297,11 @@ void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) 
 // the kinds rc_certify.glsl bounds, none of the others.
 void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   bool ok = cert_test_begin(object);
+  // The other kinds' bounds take the origin's move in any direction: along the ray too.
+  real eo = cert_eo;
+  if (object < first_triangle_object || object >= first_quadric_object) cert_eo += cert_et;
   cert_object_tests(object, o, d, sh, t_max);
+  cert_eo = eo;
   cert_test_end(ok);
 }
 
@@ -305,7 +311,10 @@ void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
 // all: with the bounded quadrics' it cost room.json's certified frame 1.5x (commit message).
 void cert_plane_object(uint object, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   bool ok = cert_test_begin(object);
+  real eo = cert_eo;
+  cert_eo += cert_et;
   cert_plane(q, o, d, t_max);
+  cert_eo = eo;
   cert_test_end(ok);
 }
 #endif

@@ -249,7 +249,9 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
   uint transform = (has_kind(RC_KIND_SPHERE_TRANSFORMS) && h.kind == RC_HIT_SPHERE) ? load_sphere(h.index).transform
                                                                                     : RC_NO_TRANSFORM;
   bool along_ray = h.kind == RC_HIT_QUADRIC || h.kind == RC_HIT_CSG || transform != RC_NO_TRANSFORM;
-  real ep_round = 2.0 * length(sf.p_error) + (along_ray ? h.err : 0.0);
+  // (A point o + t d moves by t's bound and by the origin's shift along the ray, which t's
+  // bound, taken against the other roots, leaves out: cert_et.)
+  real ep_round = 2.0 * length(sf.p_error) + (along_ray ? h.err + cert_factor() * cert_et : 0.0);
   real cosine = abs(dot(sf.ng, d));
   real e_cos = cert_ed + gamma_bound(12.0);
   cert_require(cosine, e_cos);
@@ -294,8 +296,8 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
   cert_en = en;
 }
 
-// The perturbation of a spawned ray's origin (spawn_origin): the point's, the two offsets'
-// difference, and the rounding. The epsilon offset lies along the geometric normal, which turns
+// The perturbation of a spawned ray's origin (spawn_origin) beyond its point's: the two
+// offsets' difference, and the rounding. The epsilon offset lies along the geometric normal, which turns
 // by at most cert_en (ng is n, or a triangle's face normal whose only error is rounding). The
 // error-bound offset is the point's error bound along ng and an ulp; the reference's is f64's,
 // whose p_error is the same magnitudes times f64's gamma, 2^-29 of ours, so it is at most
@@ -303,14 +305,18 @@ void cert_surface(rvec3 d, hit_record h, surface sf) {
 // one's length and that. The ulp offset moves a coordinate near 0 by a fixed amount in either
 // precision, so it keeps the bound of twice this one's length. The t-min strategy's origin is
 // the point; its start, epsilon along the ray, is cert_t_min_start's.
-real cert_origin(surface sf, rvec3 origin) {
+real cert_offset(surface sf, rvec3 origin) {
   real off = length(origin - sf.p);
   real moved = (offset_strategy == RC_OFFSET_EPSILON) ? cert_en * off
                : (offset_strategy == RC_OFFSET_ERROR_BOUND)
                    ? off + real(1.4901161193847656e-8) * (length(sf.p_error) + length(sf.p) + cert_ep + off)
                    : 2.0 * off;
-  return cert_ep + moved + gamma_bound(2.0) * (length(origin) + off);
+  return moved + gamma_bound(2.0) * (length(origin) + off);
 }
+
+// The point's move and the offsets' (cert_offset: how far the two origins' moves off their
+// points differ).
+real cert_origin(surface sf, rvec3 origin) { return cert_ep + cert_offset(sf, origin); }
 
 // The t-min strategy's start origin + epsilon d (t_min_start), for a direction ed from the
 // reference's: the offset turns by epsilon ed and rounds with the sum, whose terms are at most
@@ -328,6 +334,7 @@ real cert_t_min_start(real eo, real ed, rvec3 origin) {
 // (and t_min_end's rounding).
 void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
   real eo = cert_origin(sf, origin);
+  cert_et = 0.0;
   if (light.type == RC_LIGHT_POINT) {
     real r = length(rvec3(light.position) - sf.p);
     real dist = length(rvec3(light.position) - origin);
@@ -354,11 +361,51 @@ void cert_shadow(packed_light light, surface sf, rvec3 origin, real n_dot_l) {
 // second term is at most 2 dn + 6 eta. The reflection rounds by about gamma(9) (a dot
 // product, two products, a difference). normalize turns r by cert_turn of the sum, r_ref
 // being a unit vector.
-// The origin passed is the start: for the t-min strategy, the point moved along r.
-void cert_reflect(surface sf, rvec3 origin, real ed_in) {
+// The origin passed is the start: for the t-min strategy, the point moved along r. Off a
+// plane mirror (`across` >= 0, cert_mirror_across) the two rays' lines are closer than their
+// origins: across them the origins differ by `across` and the offsets' difference, and along
+// them by the origins' whole bound (cert_et), which moves only where t meets 0; the shift
+// along the reference's direction rather than this one adds et ed.
+void cert_reflect(surface sf, rvec3 origin, real ed_in, real across) {
   cert_ed = cert_turn(ed_in * (1.0 + gamma_bound(32.0)) + 2.0 * cert_en + gamma_bound(58.0));
   bool moved = offset_strategy == RC_OFFSET_T_MIN;
   cert_eo = cert_t_min_start(cert_origin(sf, moved ? sf.p : origin), cert_ed, origin);
+  cert_et = 0.0;
+  if (across < 0.0) return;
+  cert_et = cert_eo;
+  cert_eo = across + cert_offset(sf, origin) + 2.0 * cert_et * cert_ed;
+}
+
+// A plane mirror (docs/numerics.md §10): reflection in the mirror's plane is an isometry that
+// maps each precision's incident line onto its reflected line, so at s along the reflected
+// rays the two lines are as far apart as the incident ones at t + s along theirs, eo +
+// (t + s) ed, where the exact reflections start; this point (the reflected ray's start before
+// its offset) lies off this incident line by |(p - o) x d| and off the plane by |n.(p - q)|,
+// whose mirror image moves it by twice that. Returns the lines' distance at the point, or -1
+// where the mirror is not a plane both precisions reflect in alike: a plane, or a triangle with
+// its face normal (not with vertex normals, not a composite's face, not under t-min, whose
+// origin is the point moved along the ray). eo and ed are the incident ray's.
+real cert_mirror_across(hit_record h, surface sf, rvec3 o, rvec3 d, real eo, real ed) {
+  bool planar = false;
+  rvec3 q = rvec3(0.0);
+  if (h.kind == RC_HIT_TRIANGLE) {
+    packed_triangle tri = load_triangle(h.index);
+    planar = !has_kind(RC_KIND_VERTEX_NORMALS) || tri.normals == RC_NO_NORMALS;
+    q = rvec3(tri.v0);
+  }
+#if RC_QUADRICS
+  if (h.kind == RC_HIT_QUADRIC) {
+    packed_quadric pq = load_quadric(h.index);
+    planar = (pq.flags & RC_QUADRIC_UNBOUNDED) != 0u;
+    q = rvec3(pq.center);
+  }
+#endif
+  if (!planar || offset_strategy == RC_OFFSET_T_MIN) return -1.0;
+  precise rvec3 w = sf.p - o;
+  precise rvec3 off_plane = sf.p - q;
+  real line = length(cross(w, d)) + gamma_bound(8.0) * length(w);
+  real plane = abs(dot(sf.ng, off_plane)) + gamma_bound(6.0) * (length(sf.p) + length(q));
+  return eo + h.t * ed + line + 2.0 * plane;
 }
 #endif
 

@@ -50,6 +50,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
 #if RC_CERTIFY
     if (certify) cert_surface(d, h, sf);
     real ed_in = cert_ed;
+    real across = certify ? cert_mirror_across(h, sf, o, d, cert_eo, cert_ed) : -1.0;
     if (certify) cert_spawn_object = cert_surface_object(h.object);
 #endif
     if (aov_recording) aov_record.normal = vec3(sf.n);
@@ -63,7 +64,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     o = t_min_start(o, d);
     nodes = uvec2(0u, frame.bvh_node_count);  // the eye buffer is for primary rays
 #if RC_CERTIFY
-    if (certify) cert_reflect(sf, o, ed_in);
+    if (certify) cert_reflect(sf, o, ed_in, across);
 #endif
     if (light_pass_begin() == 0u) reflection_rays++;
   }

@@ -8,7 +8,7 @@
 _Thread_local bool ref_cert_ok = true, ref_cert_any, ref_cert_self, ref_cert_hit_ok, ref_cert_blocked_later,
     ref_cert_blocker_certain;
 _Thread_local uint32_t ref_cert_spawn_object = 0xffffffffu;
-_Thread_local real ref_cert_eo, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_off_err, ref_cert_beyond = (real)RC_T_FAR,
+_Thread_local real ref_cert_eo, ref_cert_et, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_off_err, ref_cert_beyond = (real)RC_T_FAR,
     ref_cert_t_max_err, ref_cert_ep, ref_cert_en;
 
 real REF(cert_factor)(const ref_scene *sc) {
@@ -36,6 +36,7 @@ void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {
   real err = REF(gamma_bound)(3) * mag + eus + evs;
   ref_cert_ok = true;
   ref_cert_spawn_object = 0xffffffffu;
+  ref_cert_et = 0;
   if (c->projection == RC_PROJECTION_PERSPECTIVE) {
     real len = RV(length)(RV(add)(RV(add)(RV(scale)(rvec3_from(c->w), -(real)c->focal), RV(scale)(rvec3_from(c->u), us)),
                                   RV(scale)(rvec3_from(c->v), vs)));
@@ -52,9 +53,9 @@ void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool tak
     REF(cert_fail)();
     return;
   }
-  if (hi < 0) return;
+  if (hi + REF(cert_factor)(sc) * ref_cert_et < 0) return;
   if (ref_cert_any) {
-    if (!(lo - t_max > REF(cert_factor)(sc) * ref_cert_t_max_err)) REF(cert_fail)();
+    if (!(lo - t_max > REF(cert_factor)(sc) * (ref_cert_t_max_err + ref_cert_et))) REF(cert_fail)();
     return;
   }
   ref_cert_beyond = rmin(ref_cert_beyond, lo);
@@ -63,11 +64,11 @@ void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool tak
 bool REF(cert_root_within)(const ref_scene *sc, real t, real e_down, real e_up, real t_max, bool ahead) {
   if (!ahead && ref_cert_self) return false;
   real k = REF(cert_factor)(sc);
-  if (!(ahead ? t > k * e_down : -t > k * e_up)) ref_cert_ok = false;
+  if (!(ahead ? t > k * (e_down + ref_cert_et) : -t > k * (e_up + ref_cert_et))) ref_cert_ok = false;
   if (!ahead) return false;
   bool within = t <= t_max;
-  if (ref_cert_any && !(within ? t_max - t > k * (e_up + ref_cert_t_max_err) : t - t_max > k * (e_down + ref_cert_t_max_err)))
-    ref_cert_ok = false;
+  real e_max = ref_cert_t_max_err + ref_cert_et;
+  if (ref_cert_any && !(within ? t_max - t > k * (e_up + e_max) : t - t_max > k * (e_down + e_max))) ref_cert_ok = false;
   if (!within) {
     ref_cert_beyond = rmin(ref_cert_beyond, t - k * e_down);
     return false;

@@ -241,13 +241,20 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
 
 void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
   bool ok = REF(cert_test_begin)(sc, object);
+  real eo = ref_cert_eo;
+  uint32_t first_triangle = sc->frame->sphere_count, first_quadric = first_triangle + sc->frame->triangle_count;
+  if (object < first_triangle || object >= first_quadric) ref_cert_eo += ref_cert_et;
   REF(cert_object_tests)(sc, object, o, d, sh, t_max);
+  ref_cert_eo = eo;
   REF(cert_test_end)(ok);
 }
 
 void REF(cert_plane_object)(const ref_scene *sc, uint32_t object, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   bool ok = REF(cert_test_begin)(sc, object);
+  real eo = ref_cert_eo;
+  ref_cert_eo += ref_cert_et;
   REF(cert_plane)(sc, q, o, d, t_max);
+  ref_cert_eo = eo;
   REF(cert_test_end)(ok);
 }
 

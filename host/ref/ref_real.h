@@ -44,6 +44,7 @@ static inline vec3 vec3_from(rvec3 a) { return a; }
 #define ref_cert_spawn_object REF(cert_spawn_object)
 #define ref_cert_eo REF(cert_eo)
 #define ref_cert_ed REF(cert_ed)
+#define ref_cert_et REF(cert_et)
 #define ref_cert_t_err REF(cert_t_err)
 #define ref_cert_bary_err REF(cert_bary_err)
 #define ref_cert_off_err REF(cert_off_err)

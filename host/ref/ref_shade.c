@@ -185,7 +185,7 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
   }
   uint32_t transform = (h->kind == RC_HIT_SPHERE) ? sc->spheres[h->index].transform : RC_NO_TRANSFORM;
   bool along_ray = h->kind == RC_HIT_QUADRIC || h->kind == RC_HIT_CSG || transform != RC_NO_TRANSFORM;
-  real ep_round = 2 * RV(length)(sf->p_error) + (along_ray ? h->err : 0);
+  real ep_round = 2 * RV(length)(sf->p_error) + (along_ray ? h->err + REF(cert_factor)(sc) * ref_cert_et : 0);
   real cosine = R_ABS(RV(dot)(sf->ng, d));
   real e_cos = ref_cert_ed + REF(gamma_bound)(12);
   REF(cert_require)(sc, cosine, e_cos);
@@ -226,13 +226,17 @@ void REF(cert_surface)(const ref_scene *sc, rvec3 d, const ref_hit *h, const ref
   ref_cert_en = en;
 }
 
-real REF(cert_origin)(const ref_scene *sc, const ref_surface *sf, rvec3 origin) {
+real REF(cert_offset)(const ref_scene *sc, const ref_surface *sf, rvec3 origin) {
   real off = RV(length)(RV(sub)(origin, sf->p));
   real moved = (sc->frame->offset_strategy == RC_OFFSET_EPSILON) ? (ref_cert_en) * off
                : (sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND)
                    ? off + (real)1.4901161193847656e-8 * (RV(length)(sf->p_error) + RV(length)(sf->p) + ref_cert_ep + off)
                    : 2 * off;
-  return ref_cert_ep + moved + REF(gamma_bound)(2) * (RV(length)(origin) + off);
+  return moved + REF(gamma_bound)(2) * (RV(length)(origin) + off);
+}
+
+real REF(cert_origin)(const ref_scene *sc, const ref_surface *sf, rvec3 origin) {
+  return ref_cert_ep + REF(cert_offset)(sc, sf, origin);
 }
 
 real REF(cert_t_min_start)(const ref_scene *sc, real eo, real ed, rvec3 origin) {
@@ -243,6 +247,7 @@ real REF(cert_t_min_start)(const ref_scene *sc, real eo, real ed, rvec3 origin) 
 
 void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface *sf, rvec3 origin, real n_dot_l) {
   real eo = REF(cert_origin)(sc, sf, origin);
+  ref_cert_et = 0;
   if (light.type == RC_LIGHT_POINT) {
     real r = RV(length)(RV(sub)(rvec3_from(light.position), sf->p));
     real dist = RV(length)(RV(sub)(rvec3_from(light.position), origin));
@@ -260,10 +265,36 @@ void REF(cert_shadow)(const ref_scene *sc, packed_light light, const ref_surface
   }
 }
 
-void REF(cert_reflect)(const ref_scene *sc, const ref_surface *sf, rvec3 origin, real ed_in) {
+void REF(cert_reflect)(const ref_scene *sc, const ref_surface *sf, rvec3 origin, real ed_in, real across) {
   ref_cert_ed = REF(cert_turn)(ed_in * (1 + REF(gamma_bound)(32)) + 2 * ref_cert_en + REF(gamma_bound)(58));
   bool moved = sc->frame->offset_strategy == RC_OFFSET_T_MIN;
   ref_cert_eo = REF(cert_t_min_start)(sc, REF(cert_origin)(sc, sf, moved ? sf->p : origin), ref_cert_ed, origin);
+  ref_cert_et = 0;
+  if (across < 0) return;
+  ref_cert_et = ref_cert_eo;
+  ref_cert_eo = across + REF(cert_offset)(sc, sf, origin) + 2 * (ref_cert_et) * ref_cert_ed;
+}
+
+real REF(cert_mirror_across)(const ref_scene *sc, const ref_hit *h, const ref_surface *sf, rvec3 o, rvec3 d, real eo,
+                             real ed) {
+  bool planar = false;
+  rvec3 q = RV(make)(0, 0, 0);
+  if (h->kind == RC_HIT_TRIANGLE) {
+    packed_triangle tri = sc->triangles[h->index];
+    planar = tri.normals == RC_NO_NORMALS;
+    q = rvec3_from(tri.v0);
+  }
+  if (h->kind == RC_HIT_QUADRIC) {
+    const packed_quadric *pq = &sc->quadrics[h->index];
+    planar = (pq->flags & RC_QUADRIC_UNBOUNDED) != 0;
+    q = rvec3_from(pq->center);
+  }
+  if (!planar || sc->frame->offset_strategy == RC_OFFSET_T_MIN) return -1;
+  rvec3 w = RV(sub)(sf->p, o);
+  rvec3 off_plane = RV(sub)(sf->p, q);
+  real line = RV(length)(RV(cross)(w, d)) + REF(gamma_bound)(8) * RV(length)(w);
+  real plane = R_ABS(RV(dot)(sf->ng, off_plane)) + REF(gamma_bound)(6) * (RV(length)(sf->p) + RV(length)(q));
+  return eo + h->t * ed + line + 2 * plane;
 }
 
 /* The integer of a real's width, for the Wächter-Binder ulp offset. */

@@ -51,10 +51,12 @@ extern _Thread_local packed_aov ref_aov_record;
   void ref_cert_camera_##S(const ref_scene *sc, ref_vec2 raster);                               \
   bool ref_cert_point_on_ray_##S(const ref_scene *sc, const ref_hit_##S *h, uint32_t transform); \
   void ref_cert_surface_##S(const ref_scene *sc, V d, const ref_hit_##S *h, const ref_surface_##S *sf); \
+  R ref_cert_offset_##S(const ref_scene *sc, const ref_surface_##S *sf, V origin);              \
   R ref_cert_origin_##S(const ref_scene *sc, const ref_surface_##S *sf, V origin);              \
   R ref_cert_t_min_start_##S(const ref_scene *sc, R eo, R ed, V origin);                        \
   void ref_cert_shadow_##S(const ref_scene *sc, packed_light light, const ref_surface_##S *sf, V origin, R n_dot_l); \
-  void ref_cert_reflect_##S(const ref_scene *sc, const ref_surface_##S *sf, V origin, R ed_in);
+  void ref_cert_reflect_##S(const ref_scene *sc, const ref_surface_##S *sf, V origin, R ed_in, R across); \
+  R ref_cert_mirror_across_##S(const ref_scene *sc, const ref_hit_##S *h, const ref_surface_##S *sf, V o, V d, R eo, R ed);
 
 REF_DECLARE_SHADER(d, double, dvec3)
 REF_DECLARE_SHADER(f, float, vec3)

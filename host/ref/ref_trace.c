@@ -42,6 +42,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
     if (sc->frame->certify) REF(cert_surface)(sc, d, &h, &sf);
     real ed_in = ref_cert_ed;
+    real across = sc->frame->certify ? REF(cert_mirror_across)(sc, &h, &sf, o, d, ref_cert_eo, ref_cert_ed) : -1;
     if (sc->frame->certify) ref_cert_spawn_object = REF(cert_surface_object)(sc, h.object);
     if (ref_aov_recording) ref_aov_record.normal = vec3_from(sf.n);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
@@ -53,7 +54,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     d = RV(normalize)(RV(reflect)(d, sf.n));
     o = REF(t_min_start)(sc, o, d);
     first = 0, end = sc->frame->bvh_node_count; /* the eye buffer is for primary rays */
-    if (sc->frame->certify) REF(cert_reflect)(sc, &sf, o, ed_in);
+    if (sc->frame->certify) REF(cert_reflect)(sc, &sf, o, ed_in, across);
     ref_reflection_rays++;
   }
   return color;
