@@ -91,13 +91,13 @@ json.dump({"version": 1, "image": {"width": 160, "height": 120, "samples_per_pix
 PY
 
 # Bezier patches (docs/numerics.md §10: Newton's run followed, Kantorovich's theorem): the
-# course's teapot at a third of its pixels, and the teapot at a thousandth of its size 40
+# course's teapot at a ninth of its pixels, and the teapot at a thousandth of its size 40
 # units away, where f32 makes other decisions than f64 (tests/patches).
 python3 - "$scenes" "$work" <<'PY'
 import json, os, sys
 scenes, work = sys.argv[1:]
 s = json.load(open(os.path.join(scenes, "teapot.json")))
-s["image"].update(width=240, height=180)
+s["image"].update(width=160, height=120)
 for m in s["materials"].values():
     if "texture" in m: m["texture"] = os.path.join(scenes, m["texture"])
 for o in s["objects"]:
