@@ -173,13 +173,7 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
   real last_ref_low = real(RC_PATCH_LAST_TOLERANCE) * (n.scale - k * cert_eo) * (1.0 - gamma_bound(2.0));
   real e_dom = gamma_bound(8.0);
   // patch_newton's run, step for step (intersect_patch takes it: cert_patch_index).
-  r.u = 0.5 * (m.u0 + m.u1);
-  r.v = 0.5 * (m.v0 + m.v1);
-  r.bu = bernstein(r.u);
-  r.bv = bernstein(r.v);
-  r.residual = real(RC_T_FAR);
-  r.converged = false;
-  r.nearby = true;
+  r = patch_start(m);
   rad = 0.0;
   off = 0.0;
   // 3 while the reference's end is not yet known.
@@ -323,10 +317,11 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   // w = F(x0) / |F(x0)|, w.F(x) >= w.F(x0) - |w.J_u| |du| - |w.J_v| |dv| - (second order).
   // (This run did not converge, or not certainly as the reference's: where this bound holds
   // it cannot have converged in the domain either.)
-  real uc = 0.5 * (m.u0 + m.u1);
-  real vc = 0.5 * (m.v0 + m.v1);
-  rvec4 fa = net_eval(n.a0, n.a1, n.a2, n.a3, bernstein(uc), bernstein_slope(uc), bernstein(vc), bernstein_slope(vc));
-  rvec4 fb = net_eval(n.b0, n.b1, n.b2, n.b3, bernstein(uc), bernstein_slope(uc), bernstein(vc), bernstein_slope(vc));
+  patch_run centre = patch_start(m);
+  real uc = centre.u;
+  real vc = centre.v;
+  rvec4 fa, fb;
+  patch_evaluate(n, centre, fa, fb);
   real f0 = length(rvec2(fa.x, fb.x));
   if (!(f0 > 0.0)) {
     cert_fail();

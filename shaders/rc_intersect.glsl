@@ -199,6 +199,20 @@ hit_record no_hit() {
   return h;
 }
 
+// The surface a hit on `object` lies on: a patch piece's is its patch's, named by its first
+// piece (the pieces of a patch are one surface: the AOV names it so, and a spawned ray
+// leaves all of them).
+uint surface_object(uint object) {
+#if RC_PATCHES
+  uint index;
+  if (has_kind(RC_KIND_PATCHES) && object_kind(object, index) == RC_HIT_QUADRIC) {
+    packed_quadric q = load_quadric(index);
+    if ((q.flags & RC_QUADRIC_PATCH) != 0u) return first_quadric_object + q.mesh_end;
+  }
+#endif
+  return object;
+}
+
 #if RC_CERTIFY
 // A sphere's decisions (intersect_any_sphere). A transformed one is tested in object space, along d_obj = A d normalized, and t = t_obj / |d_obj|: the ray's
 // perturbation goes there as |A| do and |A| dd over |d_obj|, with gamma(4) of the terms of
@@ -227,18 +241,6 @@ void cert_sphere(rvec3 o, rvec3 d, packed_sphere s, real t_max) {
   cert_ed = ed;
 }
 
-// The surface a hit on `object` lies on: a patch piece's is its patch's, named by its first
-// piece (the pieces of a patch are one surface, and a spawned ray leaves all of them).
-uint cert_surface_object(uint object) {
-#if RC_PATCHES
-  if (has_kind(RC_KIND_PATCHES) && object >= first_quadric_object && object < first_csg_object) {
-    packed_quadric q = load_quadric(object - first_quadric_object);
-    if ((q.flags & RC_QUADRIC_PATCH) != 0u) return first_quadric_object + q.mesh_end;
-  }
-#endif
-  return object;
-}
-
 // Where an object's test begins: its decisions are judged apart from the path's so far (a
 // shadow ray's blocker by its own test's, cert_hit_ok, for cert_blocked), and a spawned
 // ray's root on the object it leaves is cert_root's to drop (cert_self). Returns the path's
@@ -246,7 +248,7 @@ uint cert_surface_object(uint object) {
 bool cert_test_begin(uint object) {
   bool ok = cert_ok;
   cert_ok = true;
-  cert_self = spawned_ray && offset_strategy == RC_OFFSET_ERROR_BOUND && cert_surface_object(object) == cert_spawn_object;
+  cert_self = spawned_ray && offset_strategy == RC_OFFSET_ERROR_BOUND && surface_object(object) == cert_spawn_object;
   return ok;
 }
 
@@ -299,7 +301,8 @@ void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   bool ok = cert_test_begin(object);
   // The other kinds' bounds take the origin's move in any direction: along the ray too.
   real eo = cert_eo;
-  if (object < first_triangle_object || object >= first_quadric_object) cert_eo += cert_et;
+  uint index;
+  if (object_kind(object, index) != RC_HIT_TRIANGLE) cert_eo += cert_et;
   cert_object_tests(object, o, d, sh, t_max);
   cert_eo = eo;
   cert_test_end(ok);

@@ -120,6 +120,19 @@ struct patch_run {
   rvec4 bu; rvec4 bv;
 };
 
+// A run at the piece's centre, where Newton's method starts.
+patch_run patch_start(patch_domain m) {
+  patch_run r;
+  r.u = 0.5 * (m.u0 + m.u1);
+  r.v = 0.5 * (m.v0 + m.v1);
+  r.bu = bernstein(r.u);
+  r.bv = bernstein(r.v);
+  r.residual = real(RC_T_FAR);
+  r.converged = false;
+  r.nearby = true;
+  return r;
+}
+
 // F and its Jacobian at the run's point (net_eval's value and slopes of the a and b
 // coordinates), and |F.x| + |F.y|; the run keeps the weights (patch_depth's).
 void patch_evaluate(patch_net n, inout patch_run r, out rvec4 fa, out rvec4 fb) {
@@ -163,14 +176,7 @@ patch_run patch_newton(patch_domain m, patch_net n) {
   precise real last_tol = real(RC_PATCH_LAST_TOLERANCE) * n.scale;
   precise real wu = m.u1 - m.u0;
   precise real wv = m.v1 - m.v0;
-  patch_run r;
-  r.u = 0.5 * (m.u0 + m.u1);
-  r.v = 0.5 * (m.v0 + m.v1);
-  r.bu = bernstein(r.u);
-  r.bv = bernstein(r.v);
-  r.residual = real(RC_T_FAR);
-  r.converged = false;
-  r.nearby = true;
+  patch_run r = patch_start(m);
   for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
     if (!budget_step()) break;
     rvec4 fa, fb;

@@ -3,14 +3,7 @@
 
 // Starts the AOV record at the primary hit of sample 0.
 void aov_begin(hit_record h) {
-  uint object = h.object;
-#if RC_PATCHES
-  if (has_kind(RC_KIND_PATCHES) && h.kind == RC_HIT_QUADRIC) {
-    // A patch's pieces are one surface: the record names the patch by its first piece.
-    packed_quadric q = load_quadric(h.index);
-    if ((q.flags & RC_QUADRIC_PATCH) != 0u) object = first_quadric_object + q.mesh_end;
-  }
-#endif
+  uint object = surface_object(h.object);
   aov_record.hit = (h.kind == RC_HIT_NONE) ? 0.0 : 1.0;
   aov_record.object = (h.kind == RC_HIT_NONE) ? -1.0 : float(object);
   aov_record.t = (h.kind == RC_HIT_NONE) ? 0.0 : float(h.t);
@@ -51,7 +44,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     if (certify) cert_surface(d, h, sf);
     real ed_in = cert_ed;
     real across = certify ? cert_mirror_across(h, sf, o, d, cert_eo, cert_ed) : -1.0;
-    if (certify) cert_spawn_object = cert_surface_object(h.object);
+    if (certify) cert_spawn_object = surface_object(h.object);
 #endif
     if (aov_recording) aov_record.normal = vec3(sf.n);
     color += weight * shade_phong(sf, d);

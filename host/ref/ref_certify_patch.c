@@ -120,13 +120,7 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
   real last_ref = k * (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) * (1 + REF(gamma_bound)(2));
   real last_ref_low = (real)RC_PATCH_LAST_TOLERANCE * (n.scale - k * ref_cert_eo) * (1 - REF(gamma_bound)(2));
   real e_dom = REF(gamma_bound)(8);
-  r->u = (real)0.5 * (m.u0 + m.u1);
-  r->v = (real)0.5 * (m.v0 + m.v1);
-  r->bu = REF(bernstein)(r->u);
-  r->bv = REF(bernstein)(r->v);
-  r->residual = (real)RC_T_FAR;
-  r->converged = false;
-  r->nearby = true;
+  *r = REF(patch_start)(m);
   *rad = 0;
   *off = 0;
   uint32_t verdict = 3;
@@ -251,12 +245,11 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
     return;
   }
   if (run == 1) return;
-  real uc = (real)0.5 * (m.u0 + m.u1);
-  real vc = (real)0.5 * (m.v0 + m.v1);
-  rvec4 fa = REF(net_eval)(n.a0, n.a1, n.a2, n.a3, REF(bernstein)(uc), REF(bernstein_slope)(uc), REF(bernstein)(vc),
-                           REF(bernstein_slope)(vc));
-  rvec4 fb = REF(net_eval)(n.b0, n.b1, n.b2, n.b3, REF(bernstein)(uc), REF(bernstein_slope)(uc), REF(bernstein)(vc),
-                           REF(bernstein_slope)(vc));
+  patch_run centre = REF(patch_start)(m);
+  real uc = centre.u;
+  real vc = centre.v;
+  rvec4 fa, fb;
+  REF(patch_evaluate)(n, &centre, &fa, &fb);
   real f0 = R_SQRT(fa.x * fa.x + fb.x * fb.x);
   if (!(f0 > 0)) {
     REF(cert_fail)();

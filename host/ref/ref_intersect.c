@@ -161,6 +161,15 @@ ref_hit REF(no_hit)(void) {
   return h;
 }
 
+uint32_t REF(surface_object)(const ref_scene *sc, uint32_t object) {
+  uint32_t index;
+  if (REF(object_kind)(sc, object, &index) == RC_HIT_QUADRIC) {
+    const packed_quadric *q = &sc->quadrics[index];
+    if ((q->flags & RC_QUADRIC_PATCH) != 0) return sc->frame->sphere_count + sc->frame->triangle_count + q->mesh_end;
+  }
+  return object;
+}
+
 void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, real t_max) {
   if (sc->frame->sphere_formula != RC_SPHERE_GEOMETRIC) {
     REF(cert_fail)();
@@ -185,20 +194,11 @@ void REF(cert_sphere)(const ref_scene *sc, rvec3 o, rvec3 d, packed_sphere s, re
   ref_cert_ed = ed;
 }
 
-uint32_t REF(cert_surface_object)(const ref_scene *sc, uint32_t object) {
-  uint32_t first_quadric = sc->frame->sphere_count + sc->frame->triangle_count;
-  if (object >= first_quadric && object < first_quadric + sc->frame->quadric_count) {
-    const packed_quadric *q = &sc->quadrics[object - first_quadric];
-    if ((q->flags & RC_QUADRIC_PATCH) != 0) return first_quadric + q->mesh_end;
-  }
-  return object;
-}
-
 bool REF(cert_test_begin)(const ref_scene *sc, uint32_t object) {
   bool ok = ref_cert_ok;
   ref_cert_ok = true;
   ref_cert_self = ref_spawned_ray && sc->frame->offset_strategy == RC_OFFSET_ERROR_BOUND &&
-                  REF(cert_surface_object)(sc, object) == ref_cert_spawn_object;
+                  REF(surface_object)(sc, object) == ref_cert_spawn_object;
   return ok;
 }
 
@@ -242,8 +242,8 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3
 void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
   bool ok = REF(cert_test_begin)(sc, object);
   real eo = ref_cert_eo;
-  uint32_t first_triangle = sc->frame->sphere_count, first_quadric = first_triangle + sc->frame->triangle_count;
-  if (object < first_triangle || object >= first_quadric) ref_cert_eo += ref_cert_et;
+  uint32_t index;
+  if (REF(object_kind)(sc, object, &index) != RC_HIT_TRIANGLE) ref_cert_eo += ref_cert_et;
   REF(cert_object_tests)(sc, object, o, d, sh, t_max);
   ref_cert_eo = eo;
   REF(cert_test_end)(ok);

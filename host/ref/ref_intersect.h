@@ -56,6 +56,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_triangle_facing_##S(packed_triangle tri, V d);                                          \
   bool ref_triangle_faces_ray_##S(packed_triangle tri, V d);                                      \
   uint32_t ref_object_kind_##S(const ref_scene *sc, uint32_t object, uint32_t *index);           \
+  uint32_t ref_surface_object_##S(const ref_scene *sc, uint32_t object);                        \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max,  \
                              R *side, V *bary, uint32_t *part);                                 \
   void ref_consider_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, uint32_t part, ref_hit_##S *h); \
@@ -67,7 +68,6 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
   bool ref_cert_blocker_ends_##S(void);                                                         \
-  uint32_t ref_cert_surface_object_##S(const ref_scene *sc, uint32_t object);                   \
   bool ref_cert_test_begin_##S(const ref_scene *sc, uint32_t object);                            \
   void ref_cert_test_end_##S(bool ok);                                                          \
   void ref_cert_object_tests_##S(const ref_scene *sc, uint32_t object, V o, V d, const ref_shear_##S *sh, R t_max); \

@@ -89,6 +89,18 @@ patch_domain REF(patch_domain_of)(const packed_quadric *q) {
   return m;
 }
 
+patch_run REF(patch_start)(patch_domain m) {
+  patch_run r;
+  r.u = (real)0.5 * (m.u0 + m.u1);
+  r.v = (real)0.5 * (m.v0 + m.v1);
+  r.bu = REF(bernstein)(r.u);
+  r.bv = REF(bernstein)(r.v);
+  r.residual = (real)RC_T_FAR;
+  r.converged = false;
+  r.nearby = true;
+  return r;
+}
+
 void REF(patch_evaluate)(patch_net n, patch_run *r, rvec4 *fa, rvec4 *fb) {
   r->bu = REF(bernstein)(r->u);
   r->bv = REF(bernstein)(r->v);
@@ -116,14 +128,7 @@ patch_run REF(patch_newton)(patch_domain m, patch_net n) {
   real last_tol = (real)RC_PATCH_LAST_TOLERANCE * n.scale;
   real wu = m.u1 - m.u0;
   real wv = m.v1 - m.v0;
-  patch_run r;
-  r.u = (real)0.5 * (m.u0 + m.u1);
-  r.v = (real)0.5 * (m.v0 + m.v1);
-  r.bu = REF(bernstein)(r.u);
-  r.bv = REF(bernstein)(r.v);
-  r.residual = (real)RC_T_FAR;
-  r.converged = false;
-  r.nearby = true;
+  patch_run r = REF(patch_start)(m);
   for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
     ref_work++;
     rvec4 fa, fb;

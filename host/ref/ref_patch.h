@@ -41,6 +41,7 @@ void REF(net_row)(const ref_scene *sc, uint32_t first, rvec3 o, rvec3 a, rvec3 b
 patch_net REF(load_patch_net)(const ref_scene *sc, uint32_t first, rvec3 o, rvec3 a, rvec3 b, rvec3 c);
 void REF(patch_planes)(rvec3 d, rvec3 *a, rvec3 *b);
 patch_domain REF(patch_domain_of)(const packed_quadric *q);
+patch_run REF(patch_start)(patch_domain m);
 void REF(patch_evaluate)(patch_net n, patch_run *r, rvec4 *fa, rvec4 *fb);
 bool REF(newton_step)(rvec4 fa, rvec4 fb, real *u, real *v);
 patch_run REF(patch_newton)(patch_domain m, patch_net n);

@@ -4,11 +4,7 @@
 
 
 void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
-  uint32_t object = h->object;
-  if (h->kind == RC_HIT_QUADRIC) {
-    const packed_quadric *q = &sc->quadrics[h->index];
-    if ((q->flags & RC_QUADRIC_PATCH) != 0) object = sc->frame->sphere_count + sc->frame->triangle_count + q->mesh_end;
-  }
+  uint32_t object = REF(surface_object)(sc, h->object);
   ref_aov_record.hit = (h->kind == RC_HIT_NONE) ? 0.0f : 1.0f;
   ref_aov_record.object = (h->kind == RC_HIT_NONE) ? -1.0f : (float)object;
   ref_aov_record.t = (h->kind == RC_HIT_NONE) ? 0.0f : (float)h->t;
@@ -43,7 +39,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     if (sc->frame->certify) REF(cert_surface)(sc, d, &h, &sf);
     real ed_in = ref_cert_ed;
     real across = sc->frame->certify ? REF(cert_mirror_across)(sc, &h, &sf, o, d, ref_cert_eo, ref_cert_ed) : -1;
-    if (sc->frame->certify) ref_cert_spawn_object = REF(cert_surface_object)(sc, h.object);
+    if (sc->frame->certify) ref_cert_spawn_object = REF(surface_object)(sc, h.object);
     if (ref_aov_recording) ref_aov_record.normal = vec3_from(sf.n);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
     ref_aov_recording = false;
