@@ -132,7 +132,11 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   r->one_sided_triangles = scene->one_sided_triangle_count > 0;
   r->textures = scene->texture_count > 0;
   r->patches = scene->frame.patch_count > 0;
+  /* The shader's budget is the device's, or a smaller --plan-budget: the BVH's light passes
+   * halve where the shader runs out, so a test can make them on a device without
+   * llvmpipe's cap too. A larger --plan-budget misleads only the plan. */
   r->budget = rc_gpu_loop_budget(ctx->llvmpipe, ctx->subgroup_size);
+  if (opts->plan_budget && opts->plan_budget < r->budget) r->budget = opts->plan_budget;
   r->tile_budget_ms = resolve_tile_budget(ctx, opts->tile_budget_ms);
   stats->tile_budget_ms = r->tile_budget_ms;
   stats->loop_budget = r->budget;
