@@ -5,8 +5,9 @@
 # assimp, OpenEXR, cJSON...), glslangValidator and spirv-val, Debian's spider OBJ for the
 # user-like room, and Debian 12's libvulkan1 and libglvnd packages in .gl/ (the device
 # tool's recipe). tools/gpu_device.sh unpacks it there. OpenImageIO stays behind: its
-# libraries and theirs are 355 MB, over the 64 MiB a call may carry, so there PNG and JPEG
-# files cannot be read (textures, and tests that read PNGs); writing PNG and all EXR work.
+# libraries and theirs are 355 MB, over the 64 MiB a call may carry, so there JPEGs, PNGs
+# with alpha and the other formats cannot be read or written; PNGs without alpha (read and
+# written by the binary) and EXRs (vkraycast-exr.so) work, and so do textured scenes.
 #   tools/gpu_bundle.sh            then carry ".gpu" and ".gl" and run tools/gpu_device.sh
 # Env: ICD (/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json), DEVICE (NVIDIA).
 set -euo pipefail

@@ -1,9 +1,10 @@
 /* image_load.c: image_io.h for the vkraycast binary, forwarding to vkraycast-image.so,
  * loaded on the first call (image_module.h says why), reading and writing .exr files
- * through vkraycast-exr.so first (below, exr_module) and writing .png files through the
- * binary's own libpng writer (png_writer). The modules are looked for beside the binary
- * (/proc/self/exe), where the build puts them. */
+ * through vkraycast-exr.so first (below, exr_module), and reading and writing .png files
+ * through the binary's own libpng reader and writer (png_read.c, png_writer). The modules
+ * are looked for beside the binary (/proc/self/exe), where the build puts them. */
 #include "image/image_module.h"
+#include "image/png_reader.h"
 #include "image/png_writer.h"
 
 #include <dlfcn.h>
@@ -206,9 +207,20 @@ rc_image_writer *rc_file_writer_open(const char *path, const void *bytes, size_t
 
 const char *rc_image_writer_temp_path(const rc_image_writer *w) { return w->m->writer_temp_path(w->inner); }
 
+/* The reader for `path` tried before OpenImageIO: OpenEXR's for .exr names, the binary's
+ * libpng reader for .png names (PNGs without alpha: png_read.c), or NULL. A file it does
+ * not take goes to OpenImageIO, whose messages errors keep. VKRAYCAST_EXR_READER=oiio and
+ * VKRAYCAST_PNG_READER=oiio read through OpenImageIO (ctests exr_reader and png_reader
+ * compare the two). */
+static const rc_image_api *first_reader(const char *path) {
+  const rc_image_api *x = exr_module(path, EXR_READER);
+  if (!x && has_suffix(path, ".png") && !oiio_chosen("VKRAYCAST_PNG_READER")) x = rc_png_reader_api();
+  return x;
+}
+
 int rc_image_read_named(const char *path, int *width, int *height, int *channels, float **pixels, char (*names)[32],
                         int max_names, int *name_count, char *err, size_t err_len) {
-  const rc_image_api *x = exr_module(path, EXR_READER);
+  const rc_image_api *x = first_reader(path);
   if (x && x->read_named(path, width, height, channels, pixels, names, max_names, name_count, NULL, 0) == 0) return 0;
   const rc_image_api *m = module(err, err_len);
   return m ? m->read_named(path, width, height, channels, pixels, names, max_names, name_count, err, err_len) : -1;
@@ -249,7 +261,7 @@ rc_image_reader *rc_image_reader_open(const char *path, int *width, int *height,
     snprintf(err, err_len, "out of memory");
     return NULL;
   }
-  r->m = exr_module(path, EXR_READER);
+  r->m = first_reader(path);
   r->inner = r->m ? r->m->reader_open(path, width, height, channels, float32, NULL, 0) : NULL;
   if (!r->inner) {
     r->m = module(err, err_len);
