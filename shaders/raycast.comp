@@ -177,6 +177,7 @@ void main() {
   uint uncertified = 0u;  // samples (or light passes) of this dispatch not certified (rc_certify.glsl)
   vec3 certified_sum = vec3(0.0);  // the certified samples' colours so far (packed_aov)
   uint uncertified_mask = 0u;
+  uvec3 uncertified_at = uvec3(0u);  // ... by where their first uncertified decision lies (cert_note)
   bool trace_all = true;  // false: trace only the samples in trace_mask
   uint trace_mask = 0u;
   packed_aov mark;
@@ -211,7 +212,10 @@ void main() {
         pass_end_light = min(pass_first_light + push.light_pass, lights);
         sum.rgb += vec3(trace_sample(pixel, s));
 #if RC_CERTIFY
-        if (!cert_ok) uncertified++;
+        if (!cert_ok) {
+          uncertified++;
+          uncertified_at[cert_stage - 1u]++;
+        }
 #endif
         target = s * lights + pass_end_light;
         // The first sample's record gathers its shadow bits over the passes.
@@ -234,6 +238,7 @@ void main() {
 #if RC_CERTIFY
         if (!cert_ok) {
           uncertified++;
+          uncertified_at[cert_stage - 1u]++;
           if (s < 32u) uncertified_mask |= 1u << s;
         } else {
           certified_sum += c;
@@ -285,5 +290,8 @@ void main() {
   if (patch_stalls != 0u) atomicAdd(status.patch_unconverged, patch_stalls);
 #endif
   if (reflection_rays != 0u) atomicAdd(status.reflection_rays, reflection_rays);
+  if (uncertified_at.x != 0u) atomicAdd(status.uncertified_hit, uncertified_at.x);
+  if (uncertified_at.y != 0u) atomicAdd(status.uncertified_shadow, uncertified_at.y);
+  if (uncertified_at.z != 0u) atomicAdd(status.uncertified_bounce, uncertified_at.z);
   if (budget_steps != 0u) atomicMax(status.max_steps, budget_steps);
 }

@@ -17,6 +17,7 @@
 // stays exact.
 
 bool cert_ok = true;          // every decision of this sample so far is certified
+uint cert_stage = 0u;         // where its first uncertified decision lies (RC_UNCERTIFIED_*); 0: none
 real cert_eo = 0.0;           // |o - o_ref| of the ray being traced, across it (and along it: cert_et)
 real cert_et = 0.0;           // |o - o_ref| along it, where the ray's lines are known closer (mirror planes)
 real cert_ed = 0.0;           // |d - d_ref|
@@ -64,6 +65,12 @@ real cert_turn_of(real e, real len) { return (len > e) ? cert_turn(e / (len - e)
 // A decision this file cannot bound.
 void cert_fail() { cert_ok = false; }
 
+// Called after each part of the path (rc_trace.glsl): names it as where the sample's first
+// uncertified decision lies, if one lies there (the statistics' breakdown).
+void cert_note(uint stage) {
+  if (!cert_ok && cert_stage == 0u) cert_stage = stage;
+}
+
 // The primary ray's perturbation (rc_camera.glsl): the window coordinates us, vs carry
 // gamma(4) of |left| + |right| + |us|; the perspective direction -f w + us u + vs v carries
 // gamma(3) of its terms' magnitudes (|u| = |v| = |w| = 1) plus those errors, and turns by
@@ -78,6 +85,7 @@ void cert_camera(vec2 raster) {
   real mag = abs(real(c.focal)) + abs(us) + abs(vs);
   real err = gamma_bound(3.0) * mag + eus + evs;
   cert_ok = true;
+  cert_stage = 0u;
   cert_spawn_object = 0xffffffffu;
   cert_et = 0.0;
   if (c.projection == RC_PROJECTION_PERSPECTIVE) {

@@ -455,7 +455,21 @@ struct packed_status {
   uint patch_unconverged_pixel;
   uint max_steps;         /* the most loop-budget steps one invocation took in the dispatch: what
                              the host sizes the next batch by (gpu_render.c, grow_batch) */
+  /* Certified mode: the samples (or light passes) left uncertified, by where on the path the
+   * first uncertified decision lies (RC_UNCERTIFIED_HIT, _SHADOW, _BOUNCE). */
+  uint uncertified_hit;
+  uint uncertified_shadow;
+  uint uncertified_bounce;
+  uint pad0;
 };
+
+/* Where a sample's first uncertified decision lies (rc_certify.glsl, cert_note): at the
+ * primary ray's hit or miss (the object, which of two is nearer, the surface point), at one
+ * of the primary hit's shadow rays, or anywhere along a mirror bounce (its hit and its
+ * shadow rays). render --stats-json reports the three counts. */
+#define RC_UNCERTIFIED_HIT 1u
+#define RC_UNCERTIFIED_SHADOW 2u
+#define RC_UNCERTIFIED_BOUNCE 3u
 
 /* How the shader encodes a complete pixel's sum of samples into the output file's 8-bit
  * levels (RC_SPEC_LEVELS, render --gpu-encode; host/image/levels8.h). sum_threshold[k] is
@@ -619,7 +633,9 @@ RC_ASSERT_LAYOUT(packed_status, shadow_rays, 8);      RC_ASSERT_LAYOUT(packed_st
 RC_ASSERT_LAYOUT(packed_status, exhausted_object, 16); RC_ASSERT_LAYOUT(packed_status, exhausted_pixel, 20);
 RC_ASSERT_LAYOUT(packed_status, crossing_object, 24); RC_ASSERT_LAYOUT(packed_status, crossing_pixel, 28);
 RC_ASSERT_LAYOUT(packed_status, patch_unconverged, 32); RC_ASSERT_LAYOUT(packed_status, patch_unconverged_pixel, 40);
-RC_ASSERT_SIZE(packed_status, 48);
+RC_ASSERT_LAYOUT(packed_status, max_steps, 44);     RC_ASSERT_LAYOUT(packed_status, uncertified_hit, 48);
+RC_ASSERT_LAYOUT(packed_status, uncertified_shadow, 52); RC_ASSERT_LAYOUT(packed_status, uncertified_bounce, 56);
+RC_ASSERT_SIZE(packed_status, 64);
 
 RC_ASSERT_LAYOUT(packed_levels, value_scale, 0); RC_ASSERT_LAYOUT(packed_levels, inv_gamma, 4);
 RC_ASSERT_LAYOUT(packed_levels, bias, 8);

@@ -33,6 +33,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     hit_record h;
     spawned_ray = depth > 0u;
     bool hit = closest_hit(o, d, nodes, h);
+#if RC_CERTIFY
+    if (certify) cert_note(depth == 0u ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
+#endif
     aov_recording = aov_enabled && s == 0u && depth == 0u;
     if (aov_recording) aov_begin(h);
     if (!hit) {
@@ -42,12 +45,16 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     surface sf = surface_at(o, d, h);
 #if RC_CERTIFY
     if (certify) cert_surface(d, h, sf);
+    if (certify) cert_note(depth == 0u ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
     real ed_in = cert_ed;
     real across = certify ? cert_mirror_across(h, sf, o, d, cert_eo, cert_ed) : -1.0;
     if (certify) cert_spawn_object = surface_object(h.object);
 #endif
     if (aov_recording) aov_record.normal = vec3(sf.n);
     color += weight * shade_phong(sf, d);
+#if RC_CERTIFY
+    if (certify) cert_note(depth == 0u ? RC_UNCERTIFIED_SHADOW : RC_UNCERTIFIED_BOUNCE);
+#endif
     aov_recording = false;
     rvec3 mirror = rvec3(load_material(sf.material).mirror);
     if (depth == scene_reflection_depth() || mirror == rvec3(0.0)) break;
@@ -61,5 +68,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
 #endif
     if (light_pass_begin() == 0u) reflection_rays++;
   }
+#if RC_CERTIFY
+  // What the last bounce's set-up (cert_reflect) left uncertified, if nothing before did.
+  if (certify) cert_note(RC_UNCERTIFIED_BOUNCE);
+#endif
   return color;
 }

@@ -595,6 +595,7 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
     rs->patch_stall_object = rs->gpu.patch_stall_object;
     rs->patch_stall_x = rs->gpu.patch_stall_x, rs->patch_stall_y = rs->gpu.patch_stall_y;
     rs->samples_uncertified = sink.stats.samples_uncertified;
+    memcpy(rs->uncertified_at, rs->gpu.uncertified_at, sizeof rs->uncertified_at);
     rs->pixels_rerendered = sink.stats.pixels_rerendered;
     rs->samples_rerendered = sink.stats.samples_rerendered;
     rs->rerender_ms = sink.stats.rerender_ms;
@@ -654,6 +655,7 @@ static rc_status render_frames_cpu(const render_args *a, const rc_scene *scene, 
     rs->threads = last_stats.threads;
     rs->simd8_efficiency = last_stats.vector_steps ? (double)last_stats.lane_steps / last_stats.vector_steps : 1;
     rs->samples_uncertified = last_stats.samples_uncertified;
+    memcpy(rs->uncertified_at, last_stats.uncertified_at, sizeof rs->uncertified_at);
     rs->pixels_rerendered = last_stats.pixels_rerendered;
     rs->samples_rerendered = last_stats.samples_rerendered;
     rs->rerender_ms = last_stats.rerender_ms;

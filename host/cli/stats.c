@@ -57,8 +57,10 @@ void rc_stats_print(const rc_render_stats *s) {
             "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
             s->bvh.build_ms, s->bvh.repeats);
   if (s->rerender && strcmp(s->rerender, "off") != 0)
-    fprintf(stderr, "vkraycast: certified: %llu samples uncertified; %llu samples of %llu pixels rendered again in "
-            "f64 (%s), %.1f ms\n", (unsigned long long)s->samples_uncertified,
+    fprintf(stderr, "vkraycast: certified: %llu samples uncertified (first at the primary hit %llu, its shadow rays "
+            "%llu, a mirror bounce %llu); %llu samples of %llu pixels rendered again in f64 (%s), %.1f ms\n",
+            (unsigned long long)s->samples_uncertified, (unsigned long long)s->uncertified_at[0],
+            (unsigned long long)s->uncertified_at[1], (unsigned long long)s->uncertified_at[2],
             (unsigned long long)s->samples_rerendered, (unsigned long long)s->pixels_rerendered, s->rerender,
             s->rerender_ms);
   if (s->light_buffers.lights)
@@ -139,6 +141,9 @@ static const stats_field bvh_fields[] = {
     FIELD("bvh_depth", F_U32, bvh.depth),
     FIELD("bvh_repeats_left_out", F_U32, bvh.repeats),
     FIELD("samples_uncertified", F_U64, samples_uncertified),
+    FIELD("samples_uncertified_hit", F_U64, uncertified_at[0]),
+    FIELD("samples_uncertified_shadow", F_U64, uncertified_at[1]),
+    FIELD("samples_uncertified_bounce", F_U64, uncertified_at[2]),
     FIELD("pixels_rerendered", F_U64, pixels_rerendered),
     FIELD("samples_rerendered", F_U64, samples_rerendered),
     FIELD("rerender", F_STRING, rerender),

@@ -48,6 +48,9 @@ typedef struct rc_render_stats {
    * where its record cannot name them: base/certified_marks.h), and the wall time of
    * those re-renders. */
   uint64_t samples_uncertified, pixels_rerendered, samples_rerendered;
+  /* samples_uncertified by where on its path a sample's first uncertified decision lies:
+   * the primary hit, its shadow rays, the mirror bounces (RC_UNCERTIFIED_*). */
+  uint64_t uncertified_at[3];
   const char *rerender;
   double rerender_ms;
 } rc_render_stats;

@@ -481,6 +481,9 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     if (r->tile_budget_ms > 0 && ms > r->tile_budget_ms) stats->over_budget++;
     stats->shadow_rays += status.shadow_rays;
     stats->reflection_rays += status.reflection_rays;
+    stats->uncertified_at[0] += status.uncertified_hit;
+    stats->uncertified_at[1] += status.uncertified_shadow;
+    stats->uncertified_at[2] += status.uncertified_bounce;
     if (status.patch_unconverged && stats->patch_stalls == 0) {
       stats->patch_stall_object = status.patch_unconverged_object ? status.patch_unconverged_object - 1 : 0;
       status_pixel(r, status.patch_unconverged_pixel, &stats->patch_stall_x, &stats->patch_stall_y);
@@ -526,6 +529,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {
   stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
+  memset(stats->uncertified_at, 0, sizeof stats->uncertified_at);
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
   stats->crossing_object = UINT32_MAX;
   stats->patch_stalls = 0;

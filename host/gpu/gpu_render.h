@@ -55,6 +55,7 @@ typedef struct rc_gpu_stats {
    * accumulated sums, 16 bytes a pixel, or its 8-bit levels, 4, and AOV records, 32). */
   uint64_t upload_bytes, readback_bytes;
   uint64_t shadow_rays, reflection_rays;
+  uint64_t uncertified_at[3]; /* as rc_ref_stats.uncertified_at (ref_render.h), from the f32 pass */
   uint32_t dispatches, tiles;
   double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
   double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */

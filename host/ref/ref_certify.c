@@ -7,7 +7,7 @@
 
 _Thread_local bool ref_cert_ok = true, ref_cert_any, ref_cert_self, ref_cert_hit_ok, ref_cert_blocked_later,
     ref_cert_blocker_certain;
-_Thread_local uint32_t ref_cert_spawn_object = 0xffffffffu;
+_Thread_local uint32_t ref_cert_spawn_object = 0xffffffffu, ref_cert_stage;
 _Thread_local real ref_cert_eo, ref_cert_et, ref_cert_ed, ref_cert_t_err, ref_cert_bary_err, ref_cert_off_err, ref_cert_beyond = (real)RC_T_FAR,
     ref_cert_t_max_err, ref_cert_ep, ref_cert_en;
 
@@ -26,6 +26,10 @@ real REF(cert_turn_of)(real e, real len) { return (len > e) ? REF(cert_turn)(e /
 
 void REF(cert_fail)(void) { ref_cert_ok = false; }
 
+void REF(cert_note)(uint32_t stage) {
+  if (!ref_cert_ok && ref_cert_stage == 0) ref_cert_stage = stage;
+}
+
 void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {
   const packed_camera *c = &sc->frame->camera;
   real us = (real)c->left + ((real)c->right - (real)c->left) * (real)raster.x / (real)c->width;
@@ -35,6 +39,7 @@ void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {
   real mag = R_ABS((real)c->focal) + R_ABS(us) + R_ABS(vs);
   real err = REF(gamma_bound)(3) * mag + eus + evs;
   ref_cert_ok = true;
+  ref_cert_stage = 0;
   ref_cert_spawn_object = 0xffffffffu;
   ref_cert_et = 0;
   if (c->projection == RC_PROJECTION_PERSPECTIVE) {

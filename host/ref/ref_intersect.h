@@ -74,12 +74,13 @@ extern _Thread_local uint32_t ref_crossing_blame;
   /* ref_certify.c, the twin of rc_certify.glsl, and its per-thread state. */                    \
   extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S, ref_cert_hit_ok_##S, \
       ref_cert_blocked_later_##S, ref_cert_blocker_certain_##S;                                 \
-  extern _Thread_local uint32_t ref_cert_spawn_object_##S;                                      \
+  extern _Thread_local uint32_t ref_cert_spawn_object_##S, ref_cert_stage_##S;                  \
   extern _Thread_local R ref_cert_eo_##S, ref_cert_et_##S, ref_cert_ed_##S, ref_cert_t_err_##S, ref_cert_bary_err_##S, \
       ref_cert_off_err_##S, ref_cert_beyond_##S, ref_cert_t_max_err_##S, ref_cert_ep_##S, ref_cert_en_##S;            \
   R ref_cert_factor_##S(const ref_scene *sc);                                                   \
   void ref_cert_require_##S(const ref_scene *sc, R margin, R bound);                            \
   void ref_cert_fail_##S(void);                                                                 \
+  void ref_cert_note_##S(uint32_t stage);                                                       \
   R ref_cert_turn_##S(R x);                                                                     \
   R ref_cert_turn_of_##S(R e, R len);                                                           \
   bool ref_cert_root_within_##S(const ref_scene *sc, R t, R e_down, R e_up, R t_max, bool ahead); \

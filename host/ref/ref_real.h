@@ -42,6 +42,7 @@ static inline vec3 vec3_from(rvec3 a) { return a; }
 #define ref_cert_any REF(cert_any)
 #define ref_cert_self REF(cert_self)
 #define ref_cert_spawn_object REF(cert_spawn_object)
+#define ref_cert_stage REF(cert_stage)
 #define ref_cert_eo REF(cert_eo)
 #define ref_cert_ed REF(cert_ed)
 #define ref_cert_et REF(cert_et)

@@ -27,6 +27,7 @@ typedef struct {
   ref_scene scene;
   bool only_uncertified; /* rc_ref_rerender: the pixels whose aov counts uncertified samples */
   atomic_uint_fast64_t samples_uncertified;
+  atomic_uint_fast64_t uncertified_at[3]; /* by RC_UNCERTIFIED_HIT, _SHADOW, _BOUNCE */
   const packed_frame *frame;
   bool f64;
   float *rgb;
@@ -83,6 +84,7 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
       if (!j->frame->certify) continue;
       if (!ref_cert_ok_f) {
         uncertified++;
+        atomic_fetch_add(&j->uncertified_at[ref_cert_stage_f - 1], 1);
         if (s < 32) uncertified_mask |= 1u << s;
       } else {
         certified_sum = rcm_add_f(certified_sum, c);
@@ -200,6 +202,7 @@ static ref_scene scene_of(const rc_packed_scene *p) {
 /* The job's pixels on opts->threads threads; its counters start at 0 here. */
 static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
   atomic_init(&j->samples_uncertified, 0);
+  for (int k = 0; k < 3; k++) atomic_init(&j->uncertified_at[k], 0);
   atomic_init(&j->next_row, 0);
   atomic_init(&j->shadow_rays, 0);
   atomic_init(&j->reflection_rays, 0);
@@ -234,6 +237,7 @@ static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
   stats->shadow_rays += atomic_load(&j->shadow_rays);
   stats->reflection_rays += atomic_load(&j->reflection_rays);
   stats->samples_uncertified += atomic_load(&j->samples_uncertified);
+  for (int k = 0; k < 3; k++) stats->uncertified_at[k] += atomic_load(&j->uncertified_at[k]);
   uint64_t stalls = atomic_load(&j->patch_stalls);
   if (stalls && stats->patch_stalls == 0) {
     stats->patch_stall_object = atomic_load(&j->patch_stall_object) - 1;

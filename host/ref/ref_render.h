@@ -35,6 +35,9 @@ typedef struct rc_ref_stats {
   /* --precision certified (frame.certify, rc_certify.glsl): the f32 pass's samples whose
    * decisions were not all certified; rc_ref_rerender's pixels and wall time. */
   uint64_t samples_uncertified, pixels_rerendered, samples_rerendered;
+  /* samples_uncertified by where their first uncertified decision lies (RC_UNCERTIFIED_HIT,
+   * _SHADOW, _BOUNCE, in that order). */
+  uint64_t uncertified_at[3];
   double rerender_ms;
   /* A model of what SIMD lanes lose (issue 48): the loop steps of every sample (lane_steps),
    * and the steps of vectors of 8 neighbouring pixels of a row that run each sample until

@@ -29,6 +29,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     ref_hit h;
     ref_spawned_ray = depth > 0;
     bool hit = REF(closest_hit)(sc, o, d, first, end, &h);
+    if (sc->frame->certify) REF(cert_note)(depth == 0 ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
     ref_aov_recording = ref_aov_enabled && s == 0 && depth == 0;
     if (ref_aov_recording) REF(aov_begin)(sc, &h);
     if (!hit) {
@@ -37,11 +38,13 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     }
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
     if (sc->frame->certify) REF(cert_surface)(sc, d, &h, &sf);
+    if (sc->frame->certify) REF(cert_note)(depth == 0 ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
     real ed_in = ref_cert_ed;
     real across = sc->frame->certify ? REF(cert_mirror_across)(sc, &h, &sf, o, d, ref_cert_eo, ref_cert_ed) : -1;
     if (sc->frame->certify) ref_cert_spawn_object = REF(surface_object)(sc, h.object);
     if (ref_aov_recording) ref_aov_record.normal = vec3_from(sf.n);
     color = RV(add)(color, RV(mul)(weight, REF(shade_phong)(sc, &sf, d)));
+    if (sc->frame->certify) REF(cert_note)(depth == 0 ? RC_UNCERTIFIED_SHADOW : RC_UNCERTIFIED_BOUNCE);
     ref_aov_recording = false;
     rvec3 mirror = rvec3_from(sc->materials[sf.material].mirror);
     if (depth == sc->frame->reflection_depth || RV(eq)(mirror, RV(make)(0, 0, 0))) break;
@@ -53,5 +56,6 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     if (sc->frame->certify) REF(cert_reflect)(sc, &sf, o, ed_in, across);
     ref_reflection_rays++;
   }
+  if (sc->frame->certify) REF(cert_note)(RC_UNCERTIFIED_BOUNCE);
   return color;
 }

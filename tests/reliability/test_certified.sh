@@ -164,6 +164,20 @@ for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$sc
   [[ $crdec == 0 ]] || because "CPU re-rendered: $crdec pixels decide otherwise than f64"
   crer=$(json_num pixels_rerendered "$work/$n.ccr.json")
   [[ $crer == "$cunc" ]] || because "CPU: re-rendered $crer pixels, $cunc have uncertified samples"
+  # Where each uncertified sample's first uncertified decision lies (cert_note): the three
+  # counts add up to the uncertified samples, on the GPU and on its twin, and without a
+  # reflected ray none lies on a bounce.
+  for r in cr ccr; do
+    j=$work/$n.$r.json
+    at=$(($(json_num samples_uncertified_hit "$j") + $(json_num samples_uncertified_shadow "$j") +
+      $(json_num samples_uncertified_bounce "$j")))
+    [[ $at == "$(json_num samples_uncertified "$j")" ]] ||
+      because "$r: hit, shadow and bounce add up to $at, not the $(json_num samples_uncertified "$j") uncertified"
+    [[ $(json_num rays_reflection "$j") != 0 || $(json_num samples_uncertified_bounce "$j") == 0 ]] ||
+      because "$r: $(json_num samples_uncertified_bounce "$j") uncertified on a bounce without reflected rays"
+  done
+  at="$(json_num samples_uncertified_hit "$work/$n.cr.json")/$(json_num samples_uncertified_shadow "$work/$n.cr.json")"
+  at+="/$(json_num samples_uncertified_bounce "$work/$n.cr.json")"
   read -r grunc _ grdec _ < <(counts "$work/$n.gr.aov.exr" "$work/$n.ref.aov.exr")
   if [[ $grdec != 0 ]]; then
     # The GPU's f64 is another f64: where its own decisions differ from the reference's, the
@@ -187,7 +201,7 @@ for s in "$scenes/mesh.json" "$scenes/showcase.json" "$scenes/shadows.json" "$sc
   [[ $(json_str device_type "$work/$n.cr.json") == cpu ]] && want=cpu
   [[ $(json_str rerender "$work/$n.gr.json") == gpu && $(json_str rerender "$work/$n.cr.json") == "$want" ]] ||
     because "re-rendered by $(json_str rerender "$work/$n.gr.json") (asked: gpu) and $(json_str rerender "$work/$n.cr.json") (the default on a $(json_str device_type "$work/$n.cr.json") device: $want)"
-  echo "$n: f32 differs on $plain pixels; uncertified pixels GPU $unc, CPU $cunc; band $band; zero bound: $zbad broken, $zband in the band"
+  echo "$n: f32 differs on $plain pixels; uncertified pixels GPU $unc, CPU $cunc (samples first at the hit/shadow/bounce $at); band $band; zero bound: $zbad broken, $zband in the band"
   check "$n" "$why"
 done
 # A pixel's re-render adds its uncertified samples, traced in f64, to the f32 sum of its

@@ -148,6 +148,10 @@ int main(void) {
   OFF("status.patch_unconverged_object", packed_status, patch_unconverged_object);
   OFF("status.patch_unconverged_pixel", packed_status, patch_unconverged_pixel);
   OFF("status.max_steps", packed_status, max_steps);
+  OFF("status.uncertified_hit", packed_status, uncertified_hit);
+  OFF("status.uncertified_shadow", packed_status, uncertified_shadow);
+  OFF("status.uncertified_bounce", packed_status, uncertified_bounce);
+  OFF("status.pad0", packed_status, pad0);
   printf("Status size %zu\n", sizeof(packed_status));
 
   OFF("level_table.value_scale", packed_levels, value_scale);
