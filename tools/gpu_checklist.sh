@@ -131,7 +131,9 @@ for s in showcase mesh; do
       --repeat 3 --quiet --stats-json "$j" || line+=" $rr: FAILED"
     line+=" $rr: rerender_ms $(num rerender_ms "$j"), render_wall_ms $(num render_wall_ms "$j"),"
   done
-  say "  - $s certified, samples_uncertified $(num samples_uncertified "$out/cert_${s}_gpu.json"):$line"
+  j=$out/cert_${s}_gpu.json
+  say "  - $s certified, samples_uncertified $(num samples_uncertified "$j") (first at the hit/shadow/bounce \
+$(num samples_uncertified_hit "$j")/$(num samples_uncertified_shadow "$j")/$(num samples_uncertified_bounce "$j")):$line"
 done
 rm -f "$out/cert.exr"
 verdict "10. certified re-render" "$([[ -n $(num rerender_ms "$out/cert_mesh_gpu.json") ]] && echo 1)" \
