@@ -27,12 +27,12 @@ same() {
 }
 
 # `bytes NAME PIXELS PER_PIXEL MODE`: readback_bytes of NAME's MODE run is PIXELS x
-# PER_PIXEL plus each dispatch's status record (48 bytes).
+# PER_PIXEL plus each dispatch's status record (64 bytes: packed_status, shaders/rc_shared.h).
 bytes() {
   local why=ok f=$work/$1.$4.json
   local got=$(json_num readback_bytes "$f") d=$(json_num dispatches "$f")
-  local want=$(($2 * $3 + 48 * d))
-  [[ $got == "$want" ]] || because "readback_bytes $got, expected $2 x $3 + 48 x $d = $want"
+  local want=$(($2 * $3 + 64 * d))
+  [[ $got == "$want" ]] || because "readback_bytes $got, expected $2 x $3 + 64 x $d = $want"
   check "$1 ($4): $3 bytes a pixel read back" "$why"
 }
 
