@@ -38,14 +38,15 @@ if [[ $parts == *checklist* ]]; then
   el checklist
   rm -rf /tmp/chk
   ROUNDS=3 FRAMES=5 VKRAYCAST=$bin timeout "${T_CHK:-180}" tools/gpu_checklist.sh /tmp/chk scenes/showcase.json \
-    scenes/mesh.json scenes/csg.json scenes/room.json /tmp/chk/user_room/user_room.json >"$out/checklist.out" 2>&1
+    scenes/mesh.json scenes/csg.json scenes/room.json scenes/teapot.json /tmp/chk/user_room/user_room.json \
+    >"$out/checklist.out" 2>&1
   el "checklist: exit $?"
   (cd /tmp/chk && tar -czf "$out/checklist.tgz" --exclude='*.png' --exclude='*.exr' --exclude=cache .)
 fi
 if [[ $parts == *certified* ]]; then
   el certified
   ROUNDS=3 FRAMES=3 timeout "${T_CERT:-100}" tools/bench_certified.sh "$bin" scenes/showcase.json scenes/mesh.json \
-    scenes/room.json >"$out/certified.md" 2>&1
+    scenes/room.json scenes/teapot.json >"$out/certified.md" 2>&1
   el "certified: exit $?"
 fi
 if [[ $parts == *ctest* ]]; then
