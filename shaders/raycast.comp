@@ -174,10 +174,11 @@ void main() {
   uint target = 0u;     // the pixel's progress after this dispatch
   uint total = 0u;      // ... when it is complete
   bool aov_write = false;
-  uint uncertified = 0u;  // samples (or light passes) of this dispatch not certified (rc_certify.glsl)
+  // Samples (or light passes) of this dispatch not certified (rc_certify.glsl), by where their
+  // first uncertified decision lies (cert_note: the hit, a shadow ray, a bounce).
+  uvec3 uncertified_at = uvec3(0u);
   vec3 certified_sum = vec3(0.0);  // the certified samples' colours so far (packed_aov)
   uint uncertified_mask = 0u;
-  uvec3 uncertified_at = uvec3(0u);  // ... by where their first uncertified decision lies (cert_note)
   bool trace_all = true;  // false: trace only the samples in trace_mask
   uint trace_mask = 0u;
   packed_aov mark;
@@ -212,10 +213,7 @@ void main() {
         pass_end_light = min(pass_first_light + push.light_pass, lights);
         sum.rgb += vec3(trace_sample(pixel, s));
 #if RC_CERTIFY
-        if (!cert_ok) {
-          uncertified++;
-          uncertified_at[cert_stage - 1u]++;
-        }
+        if (!cert_ok) uncertified_at[cert_stage - 1u]++;
 #endif
         target = s * lights + pass_end_light;
         // The first sample's record gathers its shadow bits over the passes.
@@ -237,7 +235,6 @@ void main() {
         sum.rgb += c;
 #if RC_CERTIFY
         if (!cert_ok) {
-          uncertified++;
           uncertified_at[cert_stage - 1u]++;
           if (s < 32u) uncertified_mask |= 1u << s;
         } else {
@@ -280,7 +277,7 @@ void main() {
   // The count and the bits gather over the pixel's dispatches: its first wrote the
   // record, with none. The sum runs on, in sample order, as the colour's does.
   if (certify) {
-    aov[slot].uncertified += float(uncertified);
+    aov[slot].uncertified += float(uncertified_at.x + uncertified_at.y + uncertified_at.z);
     aov[slot].uncertified_mask |= uncertified_mask;
     aov[slot].certified_sum = certified_sum;
   }

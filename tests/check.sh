@@ -34,6 +34,8 @@ expect_refusal() {
 # `same_pixels A B`: the two images' pixels equal bit for bit, by $bin's compare: no
 # channel (AOV channels included) differs by more than 0.
 same_pixels() { "$bin" compare "$1" "$2" --fail 0 --hardfail 0 >/dev/null 2>&1; }
+# `loads_oiio COMMAND...`: how often COMMAND loads OpenImageIO's library (0: never).
+loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 finish() {
   echo "$passed passed, $failed failed"
   ((failed == 0))

@@ -55,7 +55,7 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
   /* rc_ref_rerender: the f32 pass's record marks what to render again. */
   const packed_aov *mark = j->only_uncertified ? &j->aov[index] : NULL;
   if (mark && !(mark->uncertified > 0)) return;
-  uint32_t uncertified = 0, uncertified_mask = 0;
+  uint32_t uncertified_at[3] = {0, 0, 0}, uncertified_mask = 0; /* by cert_note's stage */
   vec3 certified_sum = {0, 0, 0};
   bool traced_first = true;
   if (j->f64) {
@@ -83,8 +83,7 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
       sample_steps[s] = (uint32_t)(ref_work - w);
       if (!j->frame->certify) continue;
       if (!ref_cert_ok_f) {
-        uncertified++;
-        atomic_fetch_add(&j->uncertified_at[ref_cert_stage_f - 1], 1);
+        uncertified_at[ref_cert_stage_f - 1]++;
         if (s < 32) uncertified_mask |= 1u << s;
       } else {
         certified_sum = rcm_add_f(certified_sum, c);
@@ -96,10 +95,13 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
    * reference's decisions); the marks stay either way. */
   packed_aov rec = traced_first ? ref_aov_record : *mark;
   if (j->frame->certify) {
+    uint32_t uncertified = uncertified_at[0] + uncertified_at[1] + uncertified_at[2];
     rec.uncertified = (float)uncertified;
     rec.uncertified_mask = uncertified_mask;
     rec.certified_sum = certified_sum;
     atomic_fetch_add(&j->samples_uncertified, uncertified);
+    for (int k = 0; k < 3; k++)
+      if (uncertified_at[k]) atomic_fetch_add(&j->uncertified_at[k], uncertified_at[k]);
   }
   if (mark) rc_aov_keep_marks(&rec, mark);
   if (j->aov) j->aov[index] = rec;

@@ -174,7 +174,6 @@ check "an EXR holds the linear value whatever the 8-bit encoding" "$([[ $? == 0 
 # vkraycast-exr.so); and a binary whose module is missing says so and exits 3 where it needs
 # it, and still writes a PNG.
 # (By its soname, or by its path where image_load.c loads the module's libraries first.)
-loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 sed 's/"radius": *[0-9.]*/"radius": -1/' "$S" >"$work/bad_radius.json"
 check "--version, --help and a refused command line do not load OpenImageIO" \
   "$(n=$(( $(loads_oiio "$bin" --version) + $(loads_oiio "$bin" render --help) +

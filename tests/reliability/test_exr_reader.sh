@@ -54,7 +54,6 @@ same_pixels "$work/merged_exr.aov.exr" "$work/merged_oiio.aov.exr" || because "t
 check "merge: the same image through either reader" "$why"
 
 # What the fast reader is for: no OpenImageIO in a compare of EXRs; a forced one loads it.
-loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 why=ok
 n=$(loads_oiio "$bin" compare "$work/gpu.aov.exr" "$work/ref.aov.exr")
 [[ $n == 0 ]] || because "compare of two EXRs loaded OpenImageIO ($n)"

@@ -60,7 +60,6 @@ check "the attributes and channel names are there" "$why"
 
 # What the writer is for: a render to EXRs, and prepare, load no OpenImageIO; a forced
 # writer loads it.
-loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 why=ok
 n=$(loads_oiio "$bin" render "$scenes/mesh.json" "${size[@]}" -o "$work/x.exr" --aov "$work/x.aov.exr")
 [[ $n == 0 ]] || because "a render to EXRs loaded OpenImageIO ($n)"

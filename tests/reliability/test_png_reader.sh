@@ -111,7 +111,6 @@ grep -q "exit 2" "$work/png.err" || because "$(cat "$work/png.err")"
 check "a damaged PNG: OpenImageIO's refusal" "$why"
 
 # What the reader is for: no OpenImageIO to compare two PNGs or to render a textured scene.
-loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 why=ok
 n=$(loads_oiio "$bin" compare "$work/rgb8.png" "$work/render.png")
 [[ $n == 0 ]] || because "compare of two PNGs loaded OpenImageIO ($n)"

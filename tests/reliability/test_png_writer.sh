@@ -61,7 +61,6 @@ done
 check "gamma 50: the true gAMA, every other byte OpenImageIO's" "$why"
 
 # What the writer is for: a render to a PNG loads no OpenImageIO; a forced writer loads it.
-loads_oiio() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -cE 'file=(/[^ ]*/)?libOpenImageIO\.so' || true; }
 why=ok
 n=$(loads_oiio "$bin" render "$scenes/mesh.json" "${size[@]}" -o "$work/x.png")
 [[ $n == 0 ]] || because "a render to a PNG loaded OpenImageIO ($n)"
