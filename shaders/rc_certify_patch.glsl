@@ -124,17 +124,18 @@ real inverse_norm(real jf, real det) {
   return sqrt((f2 + root) / (2.0 * det * det)) * (1.0 + gamma_bound(16.0));
 }
 
-// A bound on the residual |G| after m >= 1 Newton steps from a point where Kantorovich's h
-// holds (h <= 1/4): the steps shrink as |x_k+1 - x_k| <= (2 h)^(2^k - 1) eta / 2^k (Ortega &
-// Rheinboldt 12.6.2), and one step leaves |G| <= L |step|^2 / 2. Four steps are counted at most.
-real patch_settles(real eta, real hk, real lip, uint m) {
-  real step = eta;
-  real shrink = 2.0 * hk;
-  for (uint j = 1u; j < m && j < 4u; j++) {
-    step *= 0.5 * shrink;
-    shrink *= shrink;
+// Where the reference's run settles about G's root x*, from within e of it: with |J(x*)^-1| <=
+// beta and theta = beta L e <= 1/2, a Newton step lands within beta L e^2 / (2 (1 - beta L e))
+// of x* (the local convergence of Newton's method: Dennis & Schnabel, "Numerical Methods for
+// Unconstrained Optimization and Nonlinear Equations", 5.2.1), so the distance halves at least
+// and then squares, plus the step's own rounding in f64: e64 (beta times G's rounding) and
+// 64 u64 of the step (its J and its solve) times |J(x*)| beta. After m steps (six counted at
+// most: more only shrink it), |G| <= (|J(x*)| + L e / 2) e.
+real patch_settles(real e, real beta, real lip, real jx, real e64, uint m) {
+  for (uint j = 0u; j < m && j < 6u; j++) {
+    e = beta * lip * e * e / (2.0 * (1.0 - beta * lip * e)) + e64 + 64.0 * 1.1102230246251565e-16 * beta * jx * e;
   }
-  return 0.5 * lip * step * step;
+  return (jx + 0.5 * lip * e) * e;
 }
 
 // Where the reference's run ends, against this one's (patch_newton's steps, taken again). G,
@@ -149,13 +150,20 @@ real patch_settles(real eta, real hk, real lip, uint m) {
 // delta_k+1 = beta L beta |G| delta_k + that. Its check that it stays near the piece must go as
 // this one's: both stay, or both leave (both miss). At each step where the reference's
 // residual, at least |F| - e_f - (|J| + e_j) delta - L delta^2 / 2, lies certainly above its
-// criterion, it goes on; at the first where it may not (or where this run converged), it is
-// within delta of x_k and from there, by Kantorovich's theorem (Ortega & Rheinboldt,
-// "Iterative Solution of Nonlinear Equations in Several Variables", 12.6.2), either stops or
-// takes steps that stay within r0 = 2 eta / (1 + sqrt(1 - 2 h)) of it (eta = beta |G|,
-// h = beta L eta <= 1/4: the rest of the way to 1/2 covers its own rounding) and, one step
-// on, lie under its last criterion. This run must then converge too, and the reference's
-// point lies within delta + r0 of x_k. Where this run stops unconverged at its last step
+// criterion, it goes on; at the first where it may not (or where this run converged), the
+// anchor, it is within delta_a of this run's x_a, and from there the certificate waits for
+// this run's end. Where this run converges at x_f, Kantorovich's theorem about x_f (Ortega &
+// Rheinboldt, "Iterative Solution of Nonlinear Equations in Several Variables", 12.6.2:
+// eta = beta |G|, h = beta L eta <= 1/4) puts G's root x* within r0 = 2 eta / (1 + sqrt(1 -
+// 2 h)) of x_f, where |J(x*)^-1| <= beta* = beta / (1 - beta L r0). The reference's point at
+// the anchor is within rho = delta_a + |x_a - x_f| + r0 of x*, and where beta* L rho <= 1/2
+// Newton's method converges from there (patch_settles): each of its later points lies nearer
+// x*, so within rho + r0 of x_f, and it either stops at its criterion or settles under its last
+// one by its last step. Kantorovich's theorem about the reference's own point would ask
+// beta^2 L |G| <= 1/4 there, |G| up to |J| delta_a: the condition number |J| beta times more,
+// which at a silhouette's grazing rays is 10-60. This run must converge in the piece's
+// neighbourhood too: leaving it, or ending unconverged, it fails. Where this run stops
+// unconverged at its last step
 // and the reference's residual is certainly above its last criterion, both miss. Returns 0
 // where the reference's run may end otherwise than this one's, 1 where both certainly miss,
 // 2 where both converged: (u, v) this run's point, rad the distance within which the
@@ -179,8 +187,13 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
   // 3 while the reference's end is not yet known.
   uint verdict = 3u;
   real delta = k * gamma_bound(2.0) * (abs(r.u) + abs(r.v));
+  // The anchor: this run's point, the reference's distance from it, its steps left and its
+  // residual's bound there.
   bool anchored = false;
-  real unique = 0.0;
+  bool anchor_last = false;
+  uint anchor_steps = 0u;
+  real anchor_delta = 0.0;
+  real anchor_g = 0.0;
   real anchor_u = r.u;
   real anchor_v = r.v;
   for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
@@ -199,40 +212,39 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
     real b_c = inverse_norm(jf, fa.y * fb.z - fa.z * fb.y);
     real e_k = e_j + lip * delta;
     real beta = (b_c * e_k < 0.5) ? b_c / (1.0 - b_c * e_k) : 0.0;
-    if (verdict == 3u && !anchored && !(b_c > 0.0 && b_c * e_k < 0.5)) verdict = 0u;
     if (verdict == 3u && !anchored && (converged || !(f - spread > (last ? last_ref : tol_ref)))) {
-      real g = f + spread;
-      real eta = beta * g;
-      real hk = beta * lip * eta;
-      real r0 = 2.0 * eta / (1.0 + sqrt(select_max(1.0 - 2.0 * hk, 0.0)));
-      bool stops = last ? 1.4142135623730951 * g < last_ref_low : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
-      real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
-      // The root the reference's run converges to, within delta + r0 of x, is G's root
-      // near x itself: the one in Kantorovich's ball about x (G within e_f of F there),
-      // unique within (1 + sqrt(1 - 2 h)) / (beta L).
-      real beta_x = b_c / (1.0 - b_c * e_j);
-      real h_x = beta_x * lip * beta_x * (f + e_f);
-      unique = (h_x <= 0.5) ? (1.0 + sqrt(1.0 - 2.0 * h_x)) / select_max(beta_x * lip, RC_SMALLEST_NORMAL) : 0.0;
-      if (!(hk <= 0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) verdict = 0u;
-      // The reference's residual where it stops: under its criterion, or at its last step
-      // under what the steps left settle it to.
-      off = select_max(tol_ref, last ? 1.4142135623730951 * g : patch_settles(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
       anchored = true;
+      anchor_last = last;
+      anchor_steps = RC_PATCH_NEWTON_STEPS - 1u - i;
+      anchor_delta = delta;
+      anchor_g = f + spread;
       anchor_u = r.u;
       anchor_v = r.v;
+    } else if (verdict == 3u && !anchored && !(b_c > 0.0 && b_c * e_k < 0.5)) {
+      verdict = 0u;
     }
     if (verdict == 3u && converged) {
-      // This run's point and the reference's about that root x*: x_f within r0 of it
-      // (Kantorovich about x_f), the reference's within 2 beta* |G| of it, beta* <= 2 beta_f
-      // where h <= 1/4.
       real beta_f = (b_c * e_j < 0.5) ? b_c / (1.0 - b_c * e_j) : 0.0;
       real eta_f = beta_f * (f + e_f);
       real h_f = beta_f * lip * eta_f;
       real r0_f = 2.0 * eta_f / (1.0 + sqrt(select_max(1.0 - 2.0 * h_f, 0.0)));
-      bool near = b_c * e_j < 0.5 && h_f <= 0.25 && length(rvec2(r.u - anchor_u, r.v - anchor_v)) + r0_f < unique;
+      real beta_s = (beta_f * lip * r0_f < 0.5) ? beta_f / (1.0 - beta_f * lip * r0_f) : 0.0;
+      real rho = anchor_delta + length(rvec2(r.u - anchor_u, r.v - anchor_v)) + r0_f;
+      // The reference's rounding of G: this precision's, scaled to f64's unit roundoff.
+      real e64 = beta_s * (2.0 * rounding * mass * (1.1102230246251565e-16 / RC_UNIT_ROUNDOFF) +
+                           4.0 * 1.1102230246251565e-16 * (abs(r.u) + abs(r.v) + rho));
+      real settled = patch_settles(rho, beta_s, lip, jf + e_j + lip * r0_f, e64, anchor_steps);
+      // At the last step the reference stops where its residual is under its last criterion.
+      bool stops = anchor_last ? 1.4142135623730951 * anchor_g < last_ref_low : settled < last_ref_low;
+      real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
+      bool sure = beta_f > 0.0 && h_f <= 0.25 && beta_s > 0.0 && beta_s * lip * rho <= 0.5 && stops &&
+                  stay > r0_f + rho + e_dom;
+      // The reference's residual where it stops bounds its point's distance from x*: within
+      // 2 beta* of it, beta* <= 2 beta_f.
+      off = select_max(tol_ref, anchor_last ? 1.4142135623730951 * anchor_g : settled);
       rad = r0_f + 4.0 * beta_f * off;
       off += r.residual;
-      verdict = near ? 2u : 0u;
+      verdict = sure ? 2u : 0u;
     }
     if (verdict == 3u && last) verdict = anchored ? 0u : 1u;
     if (converged) {
@@ -260,6 +272,36 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
     if (!r.nearby) break;
   }
   return (verdict == 3u) ? 0u : verdict;
+}
+
+// A cubic's Bernstein coefficients on [s, t]: its blossom at (s, s, s), (s, s, t), (s, t, t) and
+// (t, t, t), de Casteljau's steps at s and at t (Ramshaw, "Blossoms are polar forms", 1989).
+rvec4 cubic_on(rvec4 c, real s, real t) {
+  rvec3 ls = c.xyz + s * (c.yzw - c.xyz);
+  rvec3 lt = c.xyz + t * (c.yzw - c.xyz);
+  rvec2 lss = ls.xy + s * (ls.yz - ls.xy);
+  rvec2 lst = ls.xy + t * (ls.yz - ls.xy);
+  rvec2 ltt = lt.xy + t * (lt.yz - lt.xy);
+  return rvec4(lss.x + s * (lss.y - lss.x), lss.x + t * (lss.y - lss.x), lst.x + t * (lst.y - lst.x),
+               ltt.x + t * (ltt.y - ltt.x));
+}
+
+real min4(rvec4 c) { return select_min(select_min(c.x, c.y), select_min(c.z, c.w)); }
+
+// The least of the Bezier coefficients of w.F (F's two coordinates weighed by w) on the square
+// [lo_u, hi_u] x [lo_v, hi_v]: w.F is at least that everywhere on it (the convex hull property
+// of the Bernstein basis), so a positive least is a line that separates the piece's surface
+// from the ray.
+real hull_low(patch_net n, rvec2 w, real lo_u, real hi_u, real lo_v, real hi_v) {
+  rvec4 r0 = cubic_on(w.x * n.a0 + w.y * n.b0, lo_u, hi_u);
+  rvec4 r1 = cubic_on(w.x * n.a1 + w.y * n.b1, lo_u, hi_u);
+  rvec4 r2 = cubic_on(w.x * n.a2 + w.y * n.b2, lo_u, hi_u);
+  rvec4 r3 = cubic_on(w.x * n.a3 + w.y * n.b3, lo_u, hi_u);
+  real c0 = min4(cubic_on(rvec4(r0.x, r1.x, r2.x, r3.x), lo_v, hi_v));
+  real c1 = min4(cubic_on(rvec4(r0.y, r1.y, r2.y, r3.y), lo_v, hi_v));
+  real c2 = min4(cubic_on(rvec4(r0.z, r1.z, r2.z, r3.z), lo_v, hi_v));
+  real c3 = min4(cubic_on(rvec4(r0.w, r1.w, r2.w, r3.w), lo_v, hi_v));
+  return select_min(select_min(c0, c1), select_min(c2, c3));
 }
 
 // The decisions of intersect_patch: a hit or a miss, and the hit's t against 0 and t_max.
@@ -339,7 +381,27 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real along = abs(w.x * fa.y + w.y * fb.y) * du + abs(w.x * fa.z + w.y * fb.z) * dv;
   real curve = 0.5 * (pb.suu * du * du + 2.0 * pb.suv * du * dv + pb.svv * dv * dv) * (1.0 + cert_ed + gamma_bound(10.0));
   real slack = k * (curve + e_f + e_j * length(rvec2(du, dv)) + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo));
-  if (!(f0 * (1.0 - gamma_bound(8.0)) - along * (1.0 + gamma_bound(8.0)) > slack)) cert_fail();
+  if (f0 * (1.0 - gamma_bound(8.0)) - along * (1.0 + gamma_bound(8.0)) > slack) return;
+  // Else the same line against the hull of the piece's own Bezier net (hull_low), where the
+  // second-order term above takes the whole patch's second differences at their largest.
+  // The net's coordinates round within rounding (F's); w.F's coefficients, at most 1.5
+  // lateral, within gamma(2) of that, and the subdivision's three de Casteljau levels a side
+  // within gamma(24) of it, where the weights' magnitudes sum to mass_hull: w.F is at least
+  // the least less those. The
+  // reference accepts no point where |G| (at least w.F less e_f) is above its last criterion
+  // plus its own rounding, within rounding (f64's is less).
+  real lateral = net_lateral(n);
+  real lo_u = m.lo_u - e_dom;
+  real hi_u = m.hi_u + e_dom;
+  real lo_v = m.lo_v - e_dom;
+  real hi_v = m.hi_v + e_dom;
+  real low = hull_low(n, w, lo_u, hi_u, lo_v, hi_v);
+  real mass_hull = select_max(bernstein_mass(lo_u, 0.0), bernstein_mass(hi_u, 0.0)) *
+                   select_max(bernstein_mass(lo_v, 0.0), bernstein_mass(hi_v, 0.0));
+  real e_hull = gamma_bound(26.0) * mass_hull * 1.5 * lateral * (1.0 + gamma_bound(2.0));
+  real slack_hull = k * (e_f + rounding * mass + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) *
+                         (1.0 + gamma_bound(2.0))) * (1.0 + gamma_bound(8.0));
+  if (!(low - e_hull > slack_hull)) cert_fail();
 }
 
 // A patch hit's point and normal (cert_surface). Each precision's point is a surface point

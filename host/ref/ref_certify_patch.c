@@ -98,14 +98,10 @@ real REF(inverse_norm)(real jf, real det) {
   return R_SQRT((f2 + root) / (2 * det * det)) * (1 + REF(gamma_bound)(16));
 }
 
-real REF(patch_settles)(real eta, real hk, real lip, uint32_t m) {
-  real step = eta;
-  real shrink = 2 * hk;
-  for (uint32_t j = 1; j < m && j < 4u; j++) {
-    step *= (real)0.5 * shrink;
-    shrink *= shrink;
-  }
-  return (real)0.5 * lip * step * step;
+real REF(patch_settles)(real e, real beta, real lip, real jx, real e64, uint32_t m) {
+  for (uint32_t j = 0; j < m && j < 6u; j++)
+    e = beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 + 64 * (real)1.1102230246251565e-16 * beta * jx * e;
+  return (jx + (real)0.5 * lip * e) * e;
 }
 
 uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, real slopes, real lip, patch_run *r,
@@ -126,7 +122,10 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
   uint32_t verdict = 3;
   real delta = k * REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v));
   bool anchored = false;
-  real unique = 0;
+  bool anchor_last = false;
+  uint32_t anchor_steps = 0;
+  real anchor_delta = 0;
+  real anchor_g = 0;
   real anchor_u = r->u;
   real anchor_v = r->v;
   for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
@@ -144,34 +143,35 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
     real b_c = REF(inverse_norm)(jf, fa.y * fb.z - fa.z * fb.y);
     real e_k = e_j + lip * delta;
     real beta = (b_c * e_k < (real)0.5) ? b_c / (1 - b_c * e_k) : 0;
-    if (verdict == 3 && !anchored && !(b_c > 0 && b_c * e_k < (real)0.5)) verdict = 0;
     if (verdict == 3 && !anchored && (converged || !(f - spread > (last ? last_ref : tol_ref)))) {
-      real g = f + spread;
-      real eta = beta * g;
-      real hk = beta * lip * eta;
-      real r0 = 2 * eta / (1 + R_SQRT(rmax(1 - 2 * hk, 0)));
-      bool stops = last ? (real)1.4142135623730951 * g < last_ref_low
-                        : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i) < last_ref_low;
-      real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
-      real beta_x = b_c / (1 - b_c * e_j);
-      real h_x = beta_x * lip * beta_x * (f + e_f);
-      unique = (h_x <= (real)0.5) ? (1 + R_SQRT(1 - 2 * h_x)) / rmax(beta_x * lip, RC_SMALLEST_NORMAL) : 0;
-      if (!(hk <= (real)0.25 && stops && stay > delta + r0 + e_dom && delta + r0 < unique)) verdict = 0;
-      *off = rmax(tol_ref, last ? (real)1.4142135623730951 * g : REF(patch_settles)(eta, hk, lip, RC_PATCH_NEWTON_STEPS - 1u - i));
       anchored = true;
+      anchor_last = last;
+      anchor_steps = RC_PATCH_NEWTON_STEPS - 1u - i;
+      anchor_delta = delta;
+      anchor_g = f + spread;
       anchor_u = r->u;
       anchor_v = r->v;
+    } else if (verdict == 3 && !anchored && !(b_c > 0 && b_c * e_k < (real)0.5)) {
+      verdict = 0;
     }
     if (verdict == 3 && converged) {
       real beta_f = (b_c * e_j < (real)0.5) ? b_c / (1 - b_c * e_j) : 0;
       real eta_f = beta_f * (f + e_f);
       real h_f = beta_f * lip * eta_f;
       real r0_f = 2 * eta_f / (1 + R_SQRT(rmax(1 - 2 * h_f, 0)));
-      bool near = b_c * e_j < (real)0.5 && h_f <= (real)0.25 &&
-                  R_SQRT((r->u - anchor_u) * (r->u - anchor_u) + (r->v - anchor_v) * (r->v - anchor_v)) + r0_f < unique;
+      real beta_s = (beta_f * lip * r0_f < (real)0.5) ? beta_f / (1 - beta_f * lip * r0_f) : 0;
+      real rho = anchor_delta + R_SQRT((r->u - anchor_u) * (r->u - anchor_u) + (r->v - anchor_v) * (r->v - anchor_v)) + r0_f;
+      real e64 = beta_s * (2 * rounding * mass * (real)(1.1102230246251565e-16 / RC_UNIT_ROUNDOFF) +
+                           4 * (real)1.1102230246251565e-16 * (R_ABS(r->u) + R_ABS(r->v) + rho));
+      real settled = REF(patch_settles)(rho, beta_s, lip, jf + e_j + lip * r0_f, e64, anchor_steps);
+      bool stops = anchor_last ? (real)1.4142135623730951 * anchor_g < last_ref_low : settled < last_ref_low;
+      real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
+      bool sure = beta_f > 0 && h_f <= (real)0.25 && beta_s > 0 && beta_s * lip * rho <= (real)0.5 && stops &&
+                  stay > r0_f + rho + e_dom;
+      *off = rmax(tol_ref, anchor_last ? (real)1.4142135623730951 * anchor_g : settled);
       *rad = r0_f + 4 * beta_f * *off;
       *off += r->residual;
-      verdict = near ? 2 : 0;
+      verdict = sure ? 2 : 0;
     }
     if (verdict == 3 && last) verdict = anchored ? 0 : 1;
     if (converged) {
@@ -198,6 +198,33 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
     if (!r->nearby) break;
   }
   return (verdict == 3) ? 0 : verdict;
+}
+
+rvec4 REF(cubic_on)(rvec4 c, real s, real t) {
+  real ls0 = c.x + s * (c.y - c.x), ls1 = c.y + s * (c.z - c.y), ls2 = c.z + s * (c.w - c.z);
+  real lt0 = c.x + t * (c.y - c.x), lt1 = c.y + t * (c.z - c.y), lt2 = c.z + t * (c.w - c.z);
+  real lss0 = ls0 + s * (ls1 - ls0), lss1 = ls1 + s * (ls2 - ls1);
+  real lst0 = ls0 + t * (ls1 - ls0), lst1 = ls1 + t * (ls2 - ls1);
+  real ltt0 = lt0 + t * (lt1 - lt0), ltt1 = lt1 + t * (lt2 - lt1);
+  return (rvec4){lss0 + s * (lss1 - lss0), lss0 + t * (lss1 - lss0), lst0 + t * (lst1 - lst0), ltt0 + t * (ltt1 - ltt0)};
+}
+
+real REF(min4)(rvec4 c) { return rmin(rmin(c.x, c.y), rmin(c.z, c.w)); }
+
+static rvec4 weigh_rows(real wx, rvec4 a, real wy, rvec4 b) {
+  return (rvec4){wx * a.x + wy * b.x, wx * a.y + wy * b.y, wx * a.z + wy * b.z, wx * a.w + wy * b.w};
+}
+
+real REF(hull_low)(patch_net n, real wx, real wy, real lo_u, real hi_u, real lo_v, real hi_v) {
+  rvec4 r0 = REF(cubic_on)(weigh_rows(wx, n.a0, wy, n.b0), lo_u, hi_u);
+  rvec4 r1 = REF(cubic_on)(weigh_rows(wx, n.a1, wy, n.b1), lo_u, hi_u);
+  rvec4 r2 = REF(cubic_on)(weigh_rows(wx, n.a2, wy, n.b2), lo_u, hi_u);
+  rvec4 r3 = REF(cubic_on)(weigh_rows(wx, n.a3, wy, n.b3), lo_u, hi_u);
+  real c0 = REF(min4)(REF(cubic_on)((rvec4){r0.x, r1.x, r2.x, r3.x}, lo_v, hi_v));
+  real c1 = REF(min4)(REF(cubic_on)((rvec4){r0.y, r1.y, r2.y, r3.y}, lo_v, hi_v));
+  real c2 = REF(min4)(REF(cubic_on)((rvec4){r0.z, r1.z, r2.z, r3.z}, lo_v, hi_v));
+  real c3 = REF(min4)(REF(cubic_on)((rvec4){r0.w, r1.w, r2.w, r3.w}, lo_v, hi_v));
+  return rmin(rmin(c0, c1), rmin(c2, c3));
 }
 
 void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
@@ -268,7 +295,19 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
   real curve = (real)0.5 * (pb.suu * du * du + 2 * pb.suv * du * dv + pb.svv * dv * dv) *
                (1 + ref_cert_ed + REF(gamma_bound)(10));
   real slack = k * (curve + e_f + e_j * R_SQRT(du * du + dv * dv) + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo));
-  if (!(f0 * (1 - REF(gamma_bound)(8)) - along * (1 + REF(gamma_bound)(8)) > slack)) REF(cert_fail)();
+  if (f0 * (1 - REF(gamma_bound)(8)) - along * (1 + REF(gamma_bound)(8)) > slack) return;
+  real lateral = REF(net_lateral)(n);
+  real lo_u = m.lo_u - e_dom;
+  real hi_u = m.hi_u + e_dom;
+  real lo_v = m.lo_v - e_dom;
+  real hi_v = m.hi_v + e_dom;
+  real low = REF(hull_low)(n, wx, wy, lo_u, hi_u, lo_v, hi_v);
+  real mass_hull = rmax(REF(bernstein_mass)(lo_u, 0), REF(bernstein_mass)(hi_u, 0)) *
+                   rmax(REF(bernstein_mass)(lo_v, 0), REF(bernstein_mass)(hi_v, 0));
+  real e_hull = REF(gamma_bound)(26) * mass_hull * (real)1.5 * lateral * (1 + REF(gamma_bound)(2));
+  real slack_hull = k * (e_f + rounding * mass + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) *
+                         (1 + REF(gamma_bound)(2))) * (1 + REF(gamma_bound)(8));
+  if (!(low - e_hull > slack_hull)) REF(cert_fail)();
 }
 
 void REF(cert_patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 d, rvec3 uv, real bary_err,
