@@ -82,18 +82,20 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
   if (!budget_take(n)) return false;
   for (uint i = 0u; i < n; i++) csg_e[base + i] = -1.0;
   uint node = q.mesh_root;
+  // A box this ray's line misses but the reference's may meet is walked too, up to its skip
+  // link (miss_end): under it every triangle must be certainly missed.
+  uint miss_end = 0u;
   while (node < q.mesh_end) {
     if (!budget_step()) return false;
     packed_bvh_node b = load_bvh_node(node);
     if (!line_meets_box(rvec3(b.lo), rvec3(b.hi), o, d)) {
       real b_in, b_out, e_in, e_out;
       uint sure;
-      if (cert_box(rvec3(b.lo), rvec3(b.hi), o, d, ef, ev, b_in, b_out, e_in, e_out, sure) != 0u) {
-        cert_fail();
-        return false;
+      if (cert_box(rvec3(b.lo), rvec3(b.hi), o, d, ef, ev, b_in, b_out, e_in, e_out, sure) == 0u) {
+        node = b.skip;
+        continue;
       }
-      node = b.skip;
-      continue;
+      if (b.skip > miss_end) miss_end = b.skip;
     }
     if (b.leaf == 0u) {
       node++;
@@ -111,6 +113,10 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
         return false;
       }
       if (crossed == 0u) continue;
+      if (node < miss_end) {
+        cert_fail();
+        return false;
+      }
       if (crossed == 2u) cert_maybe(t - k * e, t + k * e, t_max, false);
       if (!budget_take(n)) return false;
       for (uint i = 0u; i < n; i++) {

@@ -64,17 +64,17 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
   rvec3 ev = RV(make)(ref_cert_ed, ref_cert_ed, ref_cert_ed);
   for (uint32_t i = 0; i < *n; i++) csg_e[base + i] = -1;
   uint32_t node = q->mesh_root;
+  uint32_t miss_end = 0;
   while (node < q->mesh_end) {
     const packed_bvh_node *b = &sc->bvh_nodes[node];
     if (!REF(line_meets_box)(rvec3_from(b->lo), rvec3_from(b->hi), o, d)) {
       real b_in, b_out, e_in, e_out;
       uint32_t sure;
-      if (REF(cert_box)(sc, rvec3_from(b->lo), rvec3_from(b->hi), o, d, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure) != 0) {
-        REF(cert_fail)();
-        return false;
+      if (REF(cert_box)(sc, rvec3_from(b->lo), rvec3_from(b->hi), o, d, ef, ev, &b_in, &b_out, &e_in, &e_out, &sure) == 0) {
+        node = b->skip;
+        continue;
       }
-      node = b->skip;
-      continue;
+      if (b->skip > miss_end) miss_end = b->skip;
     }
     if (b->leaf == 0) {
       node++;
@@ -91,6 +91,10 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
         return false;
       }
       if (crossed == 0) continue;
+      if (node < miss_end) {
+        REF(cert_fail)();
+        return false;
+      }
       if (crossed == 2) REF(cert_maybe)(sc, t - k * e, t + k * e, t_max, false);
       for (uint32_t i = 0; i < *n; i++) {
         if ((csg_code_of[base + i] >> RC_CSG_CODE_LEAF_SHIFT) == tri) csg_e[base + i] = e;
