@@ -92,7 +92,7 @@ done
 same=$(cmp -s "$out/frame_auto.png" "$out/frame_off.png" && echo 1)
 for enc in auto off; do
   j=$out/frame_$enc.json
-  say "  - \`--gpu-encode $enc\`: readback_bytes $(num readback_bytes "$j"), readback_ms $(num readback_ms "$j"), \
+  say "  - \`--gpu-encode $enc\`: readback_bytes $(num readback_bytes "$j"), readback_submits $(num readback_submits "$j"), readback_ms $(num readback_ms "$j"), \
 render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j"), write_ms $(num write_ms "$j"), \
 gpu_encoded $(num gpu_encoded "$j"), readback_cached $(num readback_cached "$j")"
 done

@@ -260,13 +260,27 @@ static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_b
   }
 }
 
+/* The tile's pixels (sums, or levels) and, where the frame has them, its AOV records, copied
+ * into their readback twins (staging) and made visible to the host. */
+static VkDeviceSize tile_pixel_bytes(const rc_gpu_renderer *r, uint32_t tw, uint32_t th) {
+  return (VkDeviceSize)tw * th * (r->opts.levels ? 4 : 16);
+}
+
+static void record_tile_readback(rc_gpu_renderer *r, uint32_t tw, uint32_t th) {
+  record_readback(r, pixel_buffer(r), pixel_readback(r), r->opts.levels ? LEVELS_OFFSET : 0, tile_pixel_bytes(r, tw, th));
+  if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, 0, (VkDeviceSize)tw * th * sizeof(packed_aov));
+}
+
 /* Workgroups along one side of a tile: the dispatch's size, which the row order
  * (push.row_stride) must be a permutation of. */
 static uint32_t group_count(uint32_t pixels, uint32_t local) { return (pixels + local - 1) / local; }
 
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
- * first batch), run the shader between two timestamps, and bring the status back. */
-static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool first, packed_status *status, double *ms) {
+ * first batch), run the shader between two timestamps, and bring the status back. Through
+ * staging, a dispatch that may be the tile's last (copy_tile) also copies the tile out in
+ * the same submit: a second submit and wait cost a queue round trip per tile. */
+static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool first, bool copy_tile,
+                          packed_status *status, double *ms) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   VkCommandBuffer cmd = r->cmd;
@@ -298,6 +312,8 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   vkCmdDispatch(cmd, group_count(push->tile_width, r->local_x), group_count(push->tile_height, r->local_y), 1);
   if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
   record_readback(r, &r->status, &r->status_readback, 0, sizeof(packed_status));
+  r->tile_copied = r->staging && copy_tile;
+  if (r->tile_copied) record_tile_readback(r, push->tile_width, push->tile_height);
   double t0 = rc_now_ms();
   st = submit(r);
   double wall = rc_now_ms() - t0;
@@ -370,18 +386,19 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
   double t0 = rc_now_ms();
   rc_status st = RC_OK;
   const bool levels = r->opts.levels != NULL;
-  const VkDeviceSize pixel_bytes = levels ? 4 : 16, bytes = (VkDeviceSize)tw * th * pixel_bytes;
+  const VkDeviceSize bytes = tile_pixel_bytes(r, tw, th);
   const VkDeviceSize offset = levels ? LEVELS_OFFSET : 0;
   const rc_buffer *pb = pixel_readback(r);
   /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
    * the status) already made the pixels and AOVs visible: no second submit, which costs a
-   * whole queue round trip on lavapipe. Staging copies them first. */
-  if (r->staging) {
+   * whole queue round trip on lavapipe. Staging copies them first, in the last dispatch's
+   * submit where it could (dispatch's copy_tile), else here. */
+  if (r->staging && !r->tile_copied) {
     st = begin(r);
     if (st != RC_OK) return st;
-    record_readback(r, pixel_buffer(r), pb, offset, bytes);
-    if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, 0, (VkDeviceSize)tw * th * sizeof(packed_aov));
+    record_tile_readback(r, tw, th);
     st = submit(r);
+    stats->readback_submits++;
   }
   const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, pb);
@@ -470,7 +487,9 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
   for (;;) {
     packed_status status;
     double ms = 0;
-    rc_status st = dispatch(r, &push, first, &status, &ms);
+    /* This batch completes every pixel unless it runs out (or traces one light pass). */
+    bool last = !r->light_passes && progress + push.batch_samples >= r->frame.samples_per_pixel;
+    rc_status st = dispatch(r, &push, first, last, &status, &ms);
     if (st != RC_OK) return st;
     first = false;
     stats->dispatches++;
@@ -530,7 +549,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->gpu_ms = stats->readback_ms = stats->max_dispatch_ms = 0;
   stats->shadow_rays = stats->reflection_rays = 0;
   memset(stats->uncertified_at, 0, sizeof stats->uncertified_at);
-  stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = 0;
+  stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = stats->readback_submits = 0;
   stats->crossing_object = UINT32_MAX;
   stats->patch_stalls = 0;
   stats->readback_bytes = 0;

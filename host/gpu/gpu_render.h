@@ -57,6 +57,10 @@ typedef struct rc_gpu_stats {
   uint64_t shadow_rays, reflection_rays;
   uint64_t uncertified_at[3]; /* as rc_ref_stats.uncertified_at (ref_render.h), from the f32 pass */
   uint32_t dispatches, tiles;
+  /* Submits made only to copy a tile out of device memory after its last dispatch (staging,
+   * where that dispatch could not copy it itself: light passes, or a batch grown past its
+   * plan); 0 where the host reads the buffers directly. */
+  uint32_t readback_submits;
   double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
   double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
   uint32_t over_budget;    /* dispatches longer than tile_budget_ms */

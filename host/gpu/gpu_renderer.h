@@ -54,6 +54,9 @@ struct rc_gpu_renderer {
   VkCommandBuffer cmd;
   VkFence fence;
   bool staging;
+  /* Staging: the last dispatch recorded also copied the tile's pixels (and AOV records) into
+   * the readback buffers, so that read_tile needs no submit of its own. */
+  bool tile_copied;
 };
 
 /* The binding of scene array i (rc_shared.h, RC_BINDING_*), in upload order. */

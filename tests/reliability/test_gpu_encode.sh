@@ -58,6 +58,23 @@ encoded steep_gamma auto false
 # Tiles of odd sizes, through staging buffers (the copy starts past the thresholds).
 same parallel_tiles "$scenes/parallel.json" png --tile 24 --staging --spp 3
 bytes parallel_tiles $((96 * 64)) 4 auto
+# `submits NAME MODE N`: N submits made only to copy tiles out (readback_submits). Through
+# staging, a tile's last dispatch copies it in its own submit, except in light passes.
+submits() {
+  local why=ok got=$(json_num readback_submits "$work/$1.$2.json")
+  [[ $got == "$3" ]] || because "readback_submits $got, expected $3"
+  check "$1 ($2): $3 submits to copy tiles out" "$why"
+}
+submits parallel_tiles auto 0
+submits parallel_tiles off 0
+# ... and the pixels so copied are those the host reads from mapped device memory.
+for m in auto off; do
+  why=ok
+  "$bin" render "$scenes/parallel.json" -o "$work/parallel_direct.$m.png" --width 96 --height 64 --quiet \
+    --gpu-encode $m --tile 24 --spp 3 2>"$work/err" || because "exit $?: $(head -c 300 "$work/err")"
+  cmp -s "$work/parallel_direct.$m.png" "$work/parallel_tiles.$m.png" || because "the files differ"
+  check "parallel_tiles ($m): staging's file is the direct one's" "$why"
+done
 same showcase_region "$scenes/showcase.json" png --region 10,7,90,51 --tile 32
 bytes showcase_region $((80 * 44)) 4 auto
 same mesh_jpeg "$scenes/mesh.json" jpg
@@ -77,6 +94,8 @@ why=ok
 per=$(json_num lights_per_pass "$work/light_passes.auto.json")
 [[ -n $per && $per -gt 0 && $per -lt 300 ]] || because "lights_per_pass $per: no passes"
 check "light_passes: rendered in passes" "$why"
+same light_passes_staging "$work/lights.json" png --width 32 --height 20 --plan-budget 900 --tile 8 --spp 2 --staging
+submits light_passes_staging auto $(json_num tiles "$work/light_passes_staging.auto.json")
 
 # Where the colours are needed as floats the shader does not encode.
 for m in exr aov certified; do
