@@ -384,12 +384,13 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   if (f0 * (1.0 - gamma_bound(8.0)) - along * (1.0 + gamma_bound(8.0)) > slack) return;
   // Else the same line against the hull of the piece's own Bezier net (hull_low), where the
   // second-order term above takes the whole patch's second differences at their largest.
-  // The net's coordinates round within rounding (F's); w.F's coefficients, at most 1.5
-  // lateral, within gamma(2) of that, and the subdivision's three de Casteljau levels a side
-  // within gamma(24) of it, where the weights' magnitudes sum to mass_hull: w.F is at least
-  // the least less those. The
-  // reference accepts no point where |G| (at least w.F less e_f) is above its last criterion
-  // plus its own rounding, within rounding (f64's is less).
+  // w.F's coefficients, at most 1.5 lateral, round within gamma(2) of that, and the
+  // subdivision's three de Casteljau levels a side within gamma(24) of it, where the
+  // weights' magnitudes sum to mass_hull: w.F of the net's rounded coordinates is at least
+  // the least less e_hull, and |F| at least that less their rounding (rounding mass_hull),
+  // over |w| <= 1 + gamma(8). The reference accepts no point where |G|, at least |F| less
+  // the ray's move (e_f) and less its own rounding (within this one's), is above its last
+  // criterion.
   real lateral = net_lateral(n);
   real lo_u = m.lo_u - e_dom;
   real hi_u = m.hi_u + e_dom;
@@ -399,7 +400,7 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real mass_hull = select_max(bernstein_mass(lo_u, 0.0), bernstein_mass(hi_u, 0.0)) *
                    select_max(bernstein_mass(lo_v, 0.0), bernstein_mass(hi_v, 0.0));
   real e_hull = gamma_bound(26.0) * mass_hull * 1.5 * lateral * (1.0 + gamma_bound(2.0));
-  real slack_hull = k * (e_f + rounding * mass + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) *
+  real slack_hull = k * (e_f + 2.0 * rounding * mass_hull + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) *
                          (1.0 + gamma_bound(2.0))) * (1.0 + gamma_bound(8.0));
   if (!(low - e_hull > slack_hull)) cert_fail();
 }

@@ -305,7 +305,7 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
   real mass_hull = rmax(REF(bernstein_mass)(lo_u, 0), REF(bernstein_mass)(hi_u, 0)) *
                    rmax(REF(bernstein_mass)(lo_v, 0), REF(bernstein_mass)(hi_v, 0));
   real e_hull = REF(gamma_bound)(26) * mass_hull * (real)1.5 * lateral * (1 + REF(gamma_bound)(2));
-  real slack_hull = k * (e_f + rounding * mass + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) *
+  real slack_hull = k * (e_f + 2 * rounding * mass_hull + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) *
                          (1 + REF(gamma_bound)(2))) * (1 + REF(gamma_bound)(8));
   if (!(low - e_hull > slack_hull)) REF(cert_fail)();
 }
