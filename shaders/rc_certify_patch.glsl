@@ -128,12 +128,14 @@ real inverse_norm(real jf, real det) {
 // beta and theta = beta L e <= 1/2, a Newton step lands within beta L e^2 / (2 (1 - beta L e))
 // of x* (the local convergence of Newton's method: Dennis & Schnabel, "Numerical Methods for
 // Unconstrained Optimization and Nonlinear Equations", 5.2.1), so the distance halves at least
-// and then squares, plus the step's own rounding in f64: e64 (beta times G's rounding) and
-// 64 u64 of the step (its J and its solve) times |J(x*)| beta. After m steps (six counted at
-// most: more only shrink it), |G| <= (|J(x*)| + L e / 2) e.
-real patch_settles(real e, real beta, real lip, real jx, real e64, uint m) {
+// and then squares, plus the step's own rounding in f64: e64 (beta times G's rounding, and
+// J's, 12 times that, over a step of at most 2 e), the solve's (10 u64 of the step times
+// |J(x*)| beta, counted as 64) and the point's (pos64). After m steps (six counted at most:
+// more only shrink it), |G| <= (|J(x*)| + L e / 2) e.
+real patch_settles(real e, real beta, real lip, real jx, real e64, real pos64, uint m) {
   for (uint j = 0u; j < m && j < 6u; j++) {
-    e = beta * lip * e * e / (2.0 * (1.0 - beta * lip * e)) + e64 + 64.0 * 1.1102230246251565e-16 * beta * jx * e;
+    e = beta * lip * e * e / (2.0 * (1.0 - beta * lip * e)) + e64 * (1.0 + 16.0 * e) + pos64 +
+        64.0 * 1.1102230246251565e-16 * beta * jx * e;
   }
   return (jx + 0.5 * lip * e) * e;
 }
@@ -231,11 +233,12 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
       real beta_s = (beta_f * lip * r0_f < 0.5) ? beta_f / (1.0 - beta_f * lip * r0_f) : 0.0;
       real rho = anchor_delta + length(rvec2(r.u - anchor_u, r.v - anchor_v)) + r0_f;
       // The reference's rounding of G: this precision's, scaled to f64's unit roundoff.
-      real e64 = beta_s * (2.0 * rounding * mass * (1.1102230246251565e-16 / RC_UNIT_ROUNDOFF) +
-                           4.0 * 1.1102230246251565e-16 * (abs(r.u) + abs(r.v) + rho));
-      real settled = patch_settles(rho, beta_s, lip, jf + e_j + lip * r0_f, e64, anchor_steps);
-      // At the last step the reference stops where its residual is under its last criterion.
-      bool stops = anchor_last ? 1.4142135623730951 * anchor_g < last_ref_low : settled < last_ref_low;
+      real r64 = 2.0 * rounding * mass * (1.1102230246251565e-16 / RC_UNIT_ROUNDOFF);
+      real pos64 = 4.0 * 1.1102230246251565e-16 * (abs(r.u) + abs(r.v) + rho);
+      real settled = patch_settles(rho, beta_s, lip, jf + e_j + lip * r0_f, beta_s * r64, pos64, anchor_steps);
+      // At the last step the reference stops where its residual, |G.x| + |G.y| as computed,
+      // is under its last criterion.
+      bool stops = (anchor_last ? anchor_g : settled) * 1.4142135623730951 + r64 < last_ref_low;
       real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
       bool sure = beta_f > 0.0 && h_f <= 0.25 && beta_s > 0.0 && beta_s * lip * rho <= 0.5 && stops &&
                   stay > r0_f + rho + e_dom;
@@ -384,13 +387,13 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   if (f0 * (1.0 - gamma_bound(8.0)) - along * (1.0 + gamma_bound(8.0)) > slack) return;
   // Else the same line against the hull of the piece's own Bezier net (hull_low), where the
   // second-order term above takes the whole patch's second differences at their largest.
-  // w.F's coefficients, at most 1.5 lateral, round within gamma(2) of that, and the
-  // subdivision's three de Casteljau levels a side within gamma(24) of it, where the
-  // weights' magnitudes sum to mass_hull: w.F of the net's rounded coordinates is at least
-  // the least less e_hull, and |F| at least that less their rounding (rounding mass_hull),
-  // over |w| <= 1 + gamma(8). The reference accepts no point where |G|, at least |F| less
-  // the ray's move (e_f) and less its own rounding (within this one's), is above its last
-  // criterion.
+  // w.F's coefficients, at most 1.5 lateral, round within gamma(2) of that; each step
+  // x + s (y - x) of the subdivision within 5 u of the largest value (|s| <= 1 + 2 e_dom),
+  // six levels, where the weights' magnitudes sum to mass_hull: gamma(40) of it in all. So
+  // w.F of the net's rounded coordinates is at least the least less e_hull, and |F| at
+  // least that less their rounding (rounding mass_hull), over |w| <= 1 + gamma(8). The
+  // reference accepts no point where |G|, at least |F| less the ray's move (e_f) and less
+  // its own rounding (within this one's), is above its last criterion.
   real lateral = net_lateral(n);
   real lo_u = m.lo_u - e_dom;
   real hi_u = m.hi_u + e_dom;
@@ -399,7 +402,7 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real low = hull_low(n, w, lo_u, hi_u, lo_v, hi_v);
   real mass_hull = select_max(bernstein_mass(lo_u, 0.0), bernstein_mass(hi_u, 0.0)) *
                    select_max(bernstein_mass(lo_v, 0.0), bernstein_mass(hi_v, 0.0));
-  real e_hull = gamma_bound(26.0) * mass_hull * 1.5 * lateral * (1.0 + gamma_bound(2.0));
+  real e_hull = gamma_bound(40.0) * mass_hull * 1.5 * lateral * (1.0 + gamma_bound(2.0));
   real slack_hull = k * (e_f + 2.0 * rounding * mass_hull + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) *
                          (1.0 + gamma_bound(2.0))) * (1.0 + gamma_bound(8.0));
   if (!(low - e_hull > slack_hull)) cert_fail();

@@ -98,9 +98,10 @@ real REF(inverse_norm)(real jf, real det) {
   return R_SQRT((f2 + root) / (2 * det * det)) * (1 + REF(gamma_bound)(16));
 }
 
-real REF(patch_settles)(real e, real beta, real lip, real jx, real e64, uint32_t m) {
+real REF(patch_settles)(real e, real beta, real lip, real jx, real e64, real pos64, uint32_t m) {
   for (uint32_t j = 0; j < m && j < 6u; j++)
-    e = beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 + 64 * (real)1.1102230246251565e-16 * beta * jx * e;
+    e = beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 * (1 + 16 * e) + pos64 +
+        64 * (real)1.1102230246251565e-16 * beta * jx * e;
   return (jx + (real)0.5 * lip * e) * e;
 }
 
@@ -161,10 +162,10 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
       real r0_f = 2 * eta_f / (1 + R_SQRT(rmax(1 - 2 * h_f, 0)));
       real beta_s = (beta_f * lip * r0_f < (real)0.5) ? beta_f / (1 - beta_f * lip * r0_f) : 0;
       real rho = anchor_delta + R_SQRT((r->u - anchor_u) * (r->u - anchor_u) + (r->v - anchor_v) * (r->v - anchor_v)) + r0_f;
-      real e64 = beta_s * (2 * rounding * mass * (real)(1.1102230246251565e-16 / RC_UNIT_ROUNDOFF) +
-                           4 * (real)1.1102230246251565e-16 * (R_ABS(r->u) + R_ABS(r->v) + rho));
-      real settled = REF(patch_settles)(rho, beta_s, lip, jf + e_j + lip * r0_f, e64, anchor_steps);
-      bool stops = anchor_last ? (real)1.4142135623730951 * anchor_g < last_ref_low : settled < last_ref_low;
+      real r64 = 2 * rounding * mass * (real)(1.1102230246251565e-16 / RC_UNIT_ROUNDOFF);
+      real pos64 = 4 * (real)1.1102230246251565e-16 * (R_ABS(r->u) + R_ABS(r->v) + rho);
+      real settled = REF(patch_settles)(rho, beta_s, lip, jf + e_j + lip * r0_f, beta_s * r64, pos64, anchor_steps);
+      bool stops = (anchor_last ? anchor_g : settled) * (real)1.4142135623730951 + r64 < last_ref_low;
       real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
       bool sure = beta_f > 0 && h_f <= (real)0.25 && beta_s > 0 && beta_s * lip * rho <= (real)0.5 && stops &&
                   stay > r0_f + rho + e_dom;
@@ -304,7 +305,7 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
   real low = REF(hull_low)(n, wx, wy, lo_u, hi_u, lo_v, hi_v);
   real mass_hull = rmax(REF(bernstein_mass)(lo_u, 0), REF(bernstein_mass)(hi_u, 0)) *
                    rmax(REF(bernstein_mass)(lo_v, 0), REF(bernstein_mass)(hi_v, 0));
-  real e_hull = REF(gamma_bound)(26) * mass_hull * (real)1.5 * lateral * (1 + REF(gamma_bound)(2));
+  real e_hull = REF(gamma_bound)(40) * mass_hull * (real)1.5 * lateral * (1 + REF(gamma_bound)(2));
   real slack_hull = k * (e_f + 2 * rounding * mass_hull + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) *
                          (1 + REF(gamma_bound)(2))) * (1 + REF(gamma_bound)(8));
   if (!(low - e_hull > slack_hull)) REF(cert_fail)();
