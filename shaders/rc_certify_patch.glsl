@@ -375,7 +375,8 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   // The bounds over the domain, which reaches at most its margin outside [0, 1].
   real mass = select_max(bernstein_mass(m.lo_u, 0.0), bernstein_mass(m.hi_u, 0.0)) *
               select_max(bernstein_mass(m.lo_v, 0.0), bernstein_mass(m.hi_v, 0.0));
-  real rounding = net_rounding(n, net_lateral(n));
+  real lateral = net_lateral(n);
+  real rounding = net_rounding(n, lateral);
   real e_f = k * (rounding * mass + cert_eo + (cert_ed + gamma_bound(10.0)) * reach);
   real e_j = k * (12.0 * rounding * mass + (cert_ed + gamma_bound(10.0)) * (pb.su + pb.sv));
   real du = select_max(uc - m.lo_u, m.hi_u - uc) + e_dom;
@@ -394,7 +395,6 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   // least that less their rounding (rounding mass_hull), over |w| <= 1 + gamma(8). The
   // reference accepts no point where |G|, at least |F| less the ray's move (e_f) and less
   // its own rounding (within this one's), is above its last criterion.
-  real lateral = net_lateral(n);
   real lo_u = m.lo_u - e_dom;
   real hi_u = m.hi_u + e_dom;
   real lo_v = m.lo_v - e_dom;

@@ -260,12 +260,13 @@ static void record_readback(rc_gpu_renderer *r, const rc_buffer *src, const rc_b
   }
 }
 
-/* The tile's pixels (sums, or levels) and, where the frame has them, its AOV records, copied
- * into their readback twins (staging) and made visible to the host. */
+/* A tile's pixels in bytes: its 8-bit levels (4 a pixel) or its sums (16). */
 static VkDeviceSize tile_pixel_bytes(const rc_gpu_renderer *r, uint32_t tw, uint32_t th) {
   return (VkDeviceSize)tw * th * (r->opts.levels ? 4 : 16);
 }
 
+/* The tile's pixels and, where the frame has them, its AOV records, copied into their
+ * readback twins (staging) and made visible to the host. */
 static void record_tile_readback(rc_gpu_renderer *r, uint32_t tw, uint32_t th) {
   record_readback(r, pixel_buffer(r), pixel_readback(r), r->opts.levels ? LEVELS_OFFSET : 0, tile_pixel_bytes(r, tw, th));
   if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, 0, (VkDeviceSize)tw * th * sizeof(packed_aov));

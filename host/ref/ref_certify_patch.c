@@ -285,7 +285,8 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
   }
   real mass = rmax(REF(bernstein_mass)(m.lo_u, 0), REF(bernstein_mass)(m.hi_u, 0)) *
               rmax(REF(bernstein_mass)(m.lo_v, 0), REF(bernstein_mass)(m.hi_v, 0));
-  real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
+  real lateral = REF(net_lateral)(n);
+  real rounding = REF(net_rounding)(n, lateral);
   real e_f = k * (rounding * mass + ref_cert_eo + (ref_cert_ed + REF(gamma_bound)(10)) * reach);
   real e_j = k * (12 * rounding * mass + (ref_cert_ed + REF(gamma_bound)(10)) * (pb.su + pb.sv));
   real du = rmax(uc - m.lo_u, m.hi_u - uc) + e_dom;
@@ -297,7 +298,6 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
                (1 + ref_cert_ed + REF(gamma_bound)(10));
   real slack = k * (curve + e_f + e_j * R_SQRT(du * du + dv * dv) + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo));
   if (f0 * (1 - REF(gamma_bound)(8)) - along * (1 + REF(gamma_bound)(8)) > slack) return;
-  real lateral = REF(net_lateral)(n);
   real lo_u = m.lo_u - e_dom;
   real hi_u = m.hi_u + e_dom;
   real lo_v = m.lo_v - e_dom;

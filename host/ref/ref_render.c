@@ -26,8 +26,8 @@ _Thread_local packed_aov ref_aov_record;
 typedef struct {
   ref_scene scene;
   bool only_uncertified; /* rc_ref_rerender: the pixels whose aov counts uncertified samples */
-  atomic_uint_fast64_t samples_uncertified;
-  atomic_uint_fast64_t uncertified_at[3]; /* by RC_UNCERTIFIED_HIT, _SHADOW, _BOUNCE */
+  /* The f32 pass's uncertified samples, by RC_UNCERTIFIED_HIT, _SHADOW, _BOUNCE. */
+  atomic_uint_fast64_t uncertified_at[3];
   const packed_frame *frame;
   bool f64;
   float *rgb;
@@ -95,11 +95,9 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
    * reference's decisions); the marks stay either way. */
   packed_aov rec = traced_first ? ref_aov_record : *mark;
   if (j->frame->certify) {
-    uint32_t uncertified = uncertified_at[0] + uncertified_at[1] + uncertified_at[2];
-    rec.uncertified = (float)uncertified;
+    rec.uncertified = (float)(uncertified_at[0] + uncertified_at[1] + uncertified_at[2]);
     rec.uncertified_mask = uncertified_mask;
     rec.certified_sum = certified_sum;
-    atomic_fetch_add(&j->samples_uncertified, uncertified);
     for (int k = 0; k < 3; k++)
       if (uncertified_at[k]) atomic_fetch_add(&j->uncertified_at[k], uncertified_at[k]);
   }
@@ -203,7 +201,6 @@ static ref_scene scene_of(const rc_packed_scene *p) {
 
 /* The job's pixels on opts->threads threads; its counters start at 0 here. */
 static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
-  atomic_init(&j->samples_uncertified, 0);
   for (int k = 0; k < 3; k++) atomic_init(&j->uncertified_at[k], 0);
   atomic_init(&j->next_row, 0);
   atomic_init(&j->shadow_rays, 0);
@@ -238,8 +235,11 @@ static rc_status run(job *j, const rc_ref_options *opts, rc_ref_stats *stats) {
   stats->threads = started ? started : 1;
   stats->shadow_rays += atomic_load(&j->shadow_rays);
   stats->reflection_rays += atomic_load(&j->reflection_rays);
-  stats->samples_uncertified += atomic_load(&j->samples_uncertified);
-  for (int k = 0; k < 3; k++) stats->uncertified_at[k] += atomic_load(&j->uncertified_at[k]);
+  for (int k = 0; k < 3; k++) {
+    uint64_t at = atomic_load(&j->uncertified_at[k]);
+    stats->uncertified_at[k] += at;
+    stats->samples_uncertified += at;
+  }
   uint64_t stalls = atomic_load(&j->patch_stalls);
   if (stalls && stats->patch_stalls == 0) {
     stats->patch_stall_object = atomic_load(&j->patch_stall_object) - 1;
