@@ -92,13 +92,21 @@ done
 same=$(cmp -s "$out/frame_auto.png" "$out/frame_off.png" && echo 1)
 for enc in auto off; do
   j=$out/frame_$enc.json
-  say "  - \`--gpu-encode $enc\`: readback_bytes $(num readback_bytes "$j"), readback_submits $(num readback_submits "$j"), readback_ms $(num readback_ms "$j"), \
+  say "  - \`--gpu-encode $enc\`: readback_bytes $(num readback_bytes "$j"), readback_submits $(num readback_submits "$j"), \
+readback_overlapped $(num readback_overlapped "$j") of $(num tiles "$j") tiles, readback_ms $(num readback_ms "$j"), \
 render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j"), write_ms $(num write_ms "$j"), \
 gpu_encoded $(num gpu_encoded "$j"), readback_cached $(num readback_cached "$j")"
 done
 cached=$(num readback_cached "$out/frame_auto.json")
 verdict "8. frame at 3840x2160" "$([[ $same == 1 && $cached == true ]] && echo 1)" \
   "PNGs $([[ $same == 1 ]] && echo identical || echo DIFFER), readback_cached $cached"
+# Tiles of 512: through staging the host reads each tile while the next one's dispatch runs.
+"$bin" render "$root/scenes/showcase.json" -o "$out/frame_tiles.png" --width 3840 --height 2160 --spp 1 \
+  --repeat 5 --quiet --tile 512 --stats-json "$out/frame_tiles.json"
+j=$out/frame_tiles.json
+say "  - \`--tile 512\`: staging $(num staging "$j"), readback_overlapped $(num readback_overlapped "$j") of $(num tiles "$j") tiles, \
+readback_ms $(num readback_ms "$j"), render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j")"
+cmp -s "$out/frame_tiles.png" "$out/frame_auto.png" || say "  - \`--tile 512\`: the PNG DIFFERS from the whole frame's"
 rm -f "$out"/frame_*.png
 
 # 9. Learned batches under the time budget, and the same image with a fixed plan.

@@ -182,6 +182,7 @@ static const stats_field gpu_fields[] = {
     FIELD("tiles", F_U32, gpu.tiles),
     FIELD("dispatches", F_U32, gpu.dispatches),
     FIELD("readback_submits", F_U32, gpu.readback_submits),
+    FIELD("readback_overlapped", F_U32, gpu.readback_overlapped),
     FIELD("tile_budget_ms", F_DOUBLE, gpu.tile_budget_ms),
     FIELD("max_dispatch_ms", F_DOUBLE, gpu.max_dispatch_ms),
     FIELD("dispatches_over_budget", F_U32, gpu.over_budget),

@@ -50,9 +50,20 @@ static double resolve_tile_budget(const rc_vk_ctx *ctx, double wanted_ms) {
  * their sums), and the one the host reads them from: the same where it is mapped, else
  * its staging twin. */
 static const rc_buffer *pixel_buffer(const rc_gpu_renderer *r) { return r->opts.levels ? &r->aov : &r->accum; }
-static const rc_buffer *pixel_readback(const rc_gpu_renderer *r) {
+static const rc_buffer *pixel_readback(const rc_gpu_renderer *r, uint32_t slot) {
   if (!r->staging) return pixel_buffer(r);
-  return r->opts.levels ? &r->aov_readback : &r->accum_readback;
+  return r->opts.levels ? &r->aov_readback[slot] : &r->accum_readback[slot];
+}
+
+/* The tile's readback buffers of one slot (staging), as large as the device buffers they
+ * copy. */
+static rc_status create_readback_slot(rc_gpu_renderer *r, uint32_t slot) {
+  rc_status st = rc_buffer_create(r->ctx, r->accum.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
+                                  &r->accum_readback[slot]);
+  if (st == RC_OK)
+    st = rc_buffer_create(r->ctx, r->aov.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
+                          &r->aov_readback[slot]);
+  return st;
 }
 
 /* The per-tile accumulation buffer and the status counters, with readback copies when
@@ -79,12 +90,10 @@ static rc_status create_outputs(rc_gpu_renderer *r) {
   r->staging = !rc_buffer_is_direct(&r->accum, r->opts.force_staging) ||
                !rc_buffer_is_direct(&r->status, r->opts.force_staging);
   if (r->staging) {
-    st = rc_buffer_create(ctx, accum_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->accum_readback);
+    st = create_readback_slot(r, 0);
     if (st == RC_OK)
       st = rc_buffer_create(ctx, sizeof(packed_status), VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK,
                             &r->status_readback);
-    if (st == RC_OK)
-      st = rc_buffer_create(ctx, aov_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, RC_MEM_READBACK, &r->aov_readback);
   }
   if (st == RC_OK && r->opts.levels)
     st = rc_buffer_upload(ctx, &r->aov, r->opts.levels, sizeof *r->opts.levels, r->opts.force_staging);
@@ -172,7 +181,7 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   stats->staging = r->staging || opts->force_staging;
   stats->encoded = opts->levels != NULL;
   if (st == RC_OK)
-    stats->readback_cached = (rc_mem_flags(ctx, &pixel_readback(r)->memory) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
+    stats->readback_cached = (rc_mem_flags(ctx, &pixel_readback(r, 0)->memory) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT) != 0;
   rc_mem_usage(ctx, &stats->memory_blocks, &stats->memory_bytes);
   if (st != RC_OK) {
     rc_gpu_renderer_destroy(r);
@@ -199,11 +208,13 @@ void rc_gpu_renderer_destroy(rc_gpu_renderer *r) {
   }
   rc_buffer_destroy(ctx, &r->frame_buf);
   rc_buffer_destroy(ctx, &r->accum);
-  rc_buffer_destroy(ctx, &r->accum_readback);
+  for (int i = 0; i < 2; i++) {
+    rc_buffer_destroy(ctx, &r->accum_readback[i]);
+    rc_buffer_destroy(ctx, &r->aov_readback[i]);
+  }
   rc_buffer_destroy(ctx, &r->status);
   rc_buffer_destroy(ctx, &r->status_readback);
   rc_buffer_destroy(ctx, &r->aov);
-  rc_buffer_destroy(ctx, &r->aov_readback);
   rc_buffer_destroy(ctx, &r->mask_upload);
   free(r->band_rgb);
   free(r->band_levels);
@@ -218,13 +229,18 @@ static void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags
   vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, NULL, 0, NULL);
 }
 
-static rc_status submit(rc_gpu_renderer *r) {
+/* Ends the recording and submits it; wait_submitted waits for it. */
+static rc_status submit_only(rc_gpu_renderer *r) {
   rc_vk_ctx *ctx = r->ctx;
   RC_VK_TRY(vkEndCommandBuffer(r->cmd));
   VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &r->cmd};
   RC_VK_TRY(vkResetFences(ctx->device, 1, &r->fence));
-  VkResult res = vkQueueSubmit(ctx->queue, 1, &si, r->fence);
-  if (res == VK_SUCCESS) res = vkWaitForFences(ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
+  RC_VK_TRY(vkQueueSubmit(ctx->queue, 1, &si, r->fence));
+  return RC_OK;
+}
+
+static rc_status wait_submitted(rc_gpu_renderer *r) {
+  VkResult res = vkWaitForFences(r->ctx->device, 1, &r->fence, VK_TRUE, UINT64_MAX);
   if (res == VK_SUCCESS && rc_fault("device-lost")) res = VK_ERROR_DEVICE_LOST;
   if (res == VK_ERROR_DEVICE_LOST) {
     rc_error("the Vulkan device was lost during rendering (a driver reset, often a dispatch that ran too "
@@ -233,6 +249,11 @@ static rc_status submit(rc_gpu_renderer *r) {
   }
   RC_VK_TRY(res);
   return RC_OK;
+}
+
+static rc_status submit(rc_gpu_renderer *r) {
+  rc_status st = submit_only(r);
+  return st == RC_OK ? wait_submitted(r) : st;
 }
 
 static rc_status begin(rc_gpu_renderer *r) {
@@ -268,20 +289,25 @@ static VkDeviceSize tile_pixel_bytes(const rc_gpu_renderer *r, uint32_t tw, uint
 /* The tile's pixels and, where the frame has them, its AOV records, copied into their
  * readback twins (staging) and made visible to the host. */
 static void record_tile_readback(rc_gpu_renderer *r, uint32_t tw, uint32_t th) {
-  record_readback(r, pixel_buffer(r), pixel_readback(r), r->opts.levels ? LEVELS_OFFSET : 0, tile_pixel_bytes(r, tw, th));
-  if (r->band_aov) record_readback(r, &r->aov, &r->aov_readback, 0, (VkDeviceSize)tw * th * sizeof(packed_aov));
+  record_readback(r, pixel_buffer(r), pixel_readback(r, r->slot), r->opts.levels ? LEVELS_OFFSET : 0,
+                  tile_pixel_bytes(r, tw, th));
+  if (r->band_aov)
+    record_readback(r, &r->aov, &r->aov_readback[r->slot], 0, (VkDeviceSize)tw * th * sizeof(packed_aov));
 }
 
 /* Workgroups along one side of a tile: the dispatch's size, which the row order
  * (push.row_stride) must be a permutation of. */
 static uint32_t group_count(uint32_t pixels, uint32_t local) { return (pixels + local - 1) / local; }
 
+static rc_status read_pending(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats *stats);
+
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
  * first batch), run the shader between two timestamps, and bring the status back. Through
  * staging, a dispatch that may be the tile's last (copy_tile) also copies the tile out in
- * the same submit: a second submit and wait cost a queue round trip per tile. */
+ * the same submit: a second submit and wait cost a queue round trip per tile. While it
+ * runs, the host reads the tile left pending before it. */
 static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool first, bool copy_tile,
-                          packed_status *status, double *ms) {
+                          packed_status *status, double *ms, rc_gpu_stats *stats) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   VkCommandBuffer cmd = r->cmd;
@@ -316,8 +342,16 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   r->tile_copied = r->staging && copy_tile;
   if (r->tile_copied) record_tile_readback(r, push->tile_width, push->tile_height);
   double t0 = rc_now_ms();
-  st = submit(r);
-  double wall = rc_now_ms() - t0;
+  st = submit_only(r);
+  /* The previous tile, copied out into the other slot, is read while this one runs. */
+  double read_ms = 0;
+  if (st == RC_OK && r->pending.valid) {
+    double r0 = rc_now_ms();
+    st = read_pending(r, true, stats);
+    read_ms = rc_now_ms() - r0;
+  }
+  if (st == RC_OK) st = wait_submitted(r);
+  double wall = rc_now_ms() - t0 - read_ms;
   if (st != RC_OK) return st;
   const rc_buffer *sb = r->staging ? &r->status_readback : &r->status;
   st = rc_buffer_invalidate(r->ctx, sb);
@@ -381,27 +415,30 @@ static void read_sums(rc_gpu_renderer *r, const float *acc, uint32_t bx, uint32_
 }
 
 /* The tile at column x0 of the current band into the band buffers: the pixels (their
- * levels, or their sums over the samples) and the AOV records, read where they lie (or
- * copied out through staging first). */
-static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_t th, rc_gpu_stats *stats) {
+ * levels, or their sums over the samples) and the AOV records, read where they lie, or
+ * through staging from readback slot `slot` (`copied`: the tile's last dispatch copied them
+ * there; else copied out first). */
+static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_t th, uint32_t slot, bool copied,
+                           rc_gpu_stats *stats) {
   double t0 = rc_now_ms();
   rc_status st = RC_OK;
   const bool levels = r->opts.levels != NULL;
   const VkDeviceSize bytes = tile_pixel_bytes(r, tw, th);
   const VkDeviceSize offset = levels ? LEVELS_OFFSET : 0;
-  const rc_buffer *pb = pixel_readback(r);
+  const rc_buffer *pb = pixel_readback(r, slot);
   /* Mapped directly, the last dispatch's global barrier to the host (record_readback of
    * the status) already made the pixels and AOVs visible: no second submit, which costs a
    * whole queue round trip on lavapipe. Staging copies them first, in the last dispatch's
    * submit where it could (dispatch's copy_tile), else here. */
-  if (r->staging && !r->tile_copied) {
+  if (r->staging && !copied) {
+    RC_ASSERT(slot == r->slot);
     st = begin(r);
     if (st != RC_OK) return st;
     record_tile_readback(r, tw, th);
     st = submit(r);
     stats->readback_submits++;
   }
-  const rc_buffer *vb = r->staging ? &r->aov_readback : &r->aov;
+  const rc_buffer *vb = r->staging ? &r->aov_readback[slot] : &r->aov;
   if (st == RC_OK) st = rc_buffer_invalidate(r->ctx, pb);
   if (st == RC_OK && r->band_aov) st = rc_buffer_invalidate(r->ctx, vb);
   if (st != RC_OK) return st;
@@ -419,6 +456,14 @@ static rc_status read_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t tw, uint32_
   stats->readback_bytes += bytes + (r->band_aov ? (uint64_t)tw * th * sizeof(packed_aov) : 0);
   stats->tiles++;
   return RC_OK;
+}
+
+/* Reads the tile left pending; `overlapped`: while a dispatch runs. */
+static rc_status read_pending(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats *stats) {
+  r->pending.valid = false;
+  if (overlapped) stats->readback_overlapped++;
+  else r->slot = r->pending.slot; /* nothing runs: the next copy may take the slot back */
+  return read_tile(r, r->pending.x0, r->pending.tw, r->pending.th, r->pending.slot, true, stats);
 }
 
 /* The plan's batch rests on a worst case (every ray to the deepest leaf, every bounce taken:
@@ -483,6 +528,11 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     rc_status st = put_mask(r, x0, y0, tw, th);
     if (st != RC_OK) return st;
   }
+  /* This tile's copy goes to the slot the pending one is not in. */
+  if (r->staging && !r->accum_readback[r->slot].buffer) {
+    rc_status st = create_readback_slot(r, r->slot);
+    if (st != RC_OK) return st;
+  }
   bool first = true;
   uint32_t progress = 0; /* samples every pixel of the tile has (not counted in light passes) */
   for (;;) {
@@ -490,7 +540,7 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     double ms = 0;
     /* This batch completes every pixel unless it runs out (or traces one light pass). */
     bool last = !r->light_passes && progress + push.batch_samples >= r->frame.samples_per_pixel;
-    rc_status st = dispatch(r, &push, first, last, &status, &ms);
+    rc_status st = dispatch(r, &push, first, last, &status, &ms, stats);
     if (st != RC_OK) return st;
     first = false;
     stats->dispatches++;
@@ -543,7 +593,14 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     }
     if (status.incomplete_pixels == 0) break;
   }
-  return read_tile(r, x0, tw, th, stats);
+  if (!r->tile_copied) return read_tile(r, x0, tw, th, r->slot, false, stats);
+  /* Copied out by its last dispatch: read while the next tile's first one runs, which on a
+   * GPU hides the host's pass over the tile behind the device's work (at the band's end,
+   * where the band needs it, at once). */
+  r->pending.valid = true;
+  r->pending.x0 = x0, r->pending.tw = tw, r->pending.th = th, r->pending.slot = r->slot;
+  r->slot ^= 1;
+  return RC_OK;
 }
 
 rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user, rc_gpu_stats *stats) {
@@ -551,6 +608,8 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->shadow_rays = stats->reflection_rays = 0;
   memset(stats->uncertified_at, 0, sizeof stats->uncertified_at);
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = stats->readback_submits = 0;
+  stats->readback_overlapped = 0;
+  r->pending.valid = false;
   stats->crossing_object = UINT32_MAX;
   stats->patch_stalls = 0;
   stats->readback_bytes = 0;
@@ -577,7 +636,8 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
                 100.0 * (double)done / total, stats->tiles, el, el * (double)(total - done) / (double)done);
       }
     }
-    rc_status st = band(y0, rows, r->band_rgb, r->band_levels, r->band_aov, user);
+    rc_status st = r->pending.valid ? read_pending(r, false, stats) : RC_OK;
+    if (st == RC_OK) st = band(y0, rows, r->band_rgb, r->band_levels, r->band_aov, user);
     if (st != RC_OK) return st;
     y0 += rows;
   }

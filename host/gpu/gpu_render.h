@@ -61,6 +61,9 @@ typedef struct rc_gpu_stats {
    * where that dispatch could not copy it itself: light passes, or a batch grown past its
    * plan); 0 where the host reads the buffers directly. */
   uint32_t readback_submits;
+  /* Tiles the host read out of their staging slot while the next tile's first dispatch ran
+   * on the device (the others: each band's last, and tiles read directly). */
+  uint32_t readback_overlapped;
   double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
   double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
   uint32_t over_budget;    /* dispatches longer than tile_budget_ms */

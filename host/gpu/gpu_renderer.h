@@ -31,11 +31,14 @@ struct rc_gpu_renderer {
   VkBufferView views[SCENE_ARRAYS];
   uint32_t local_x, local_y; /* workgroup shape (spec constants 0 and 1) */
   double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
-  rc_buffer accum, accum_readback;
+  /* Staging: two readback slots each, so that the host can read one tile out of one while
+   * the next tile's dispatch copies into the other (`pending`). The second is made when a
+   * band first has two tiles. */
+  rc_buffer accum, accum_readback[2];
   rc_buffer status, status_readback;
   /* The AOV records; with opts.levels the encoding and the tile's levels instead
    * (RC_BINDING_AOV); else a 32-byte placeholder. */
-  rc_buffer aov, aov_readback;
+  rc_buffer aov, aov_readback[2];
   float *band_rgb;             /* one band of rows on the host (NULL with opts.levels) */
   uint8_t *band_levels;        /* with opts.levels: the band as 8-bit levels, 3 a pixel */
   packed_aov *band_aov;
@@ -57,6 +60,13 @@ struct rc_gpu_renderer {
   /* Staging: the last dispatch recorded also copied the tile's pixels (and AOV records) into
    * the readback buffers, so that read_tile needs no submit of its own. */
   bool tile_copied;
+  uint32_t slot; /* the readback slot the next tile's copy goes to */
+  /* A tile copied out into its slot whose pixels the host has not read yet: read while the
+   * next tile's first dispatch runs on the device (render_tile), or at the band's end. */
+  struct {
+    bool valid;
+    uint32_t x0, tw, th, slot;
+  } pending;
 };
 
 /* The binding of scene array i (rc_shared.h, RC_BINDING_*), in upload order. */

@@ -67,12 +67,22 @@ submits() {
 }
 submits parallel_tiles auto 0
 submits parallel_tiles off 0
+# ... and the host reads each tile while the next one's dispatch runs, except each band's
+# last: 12 tiles of 24 x 24 in 3 bands of 4.
+for m in auto off; do
+  why=ok got=$(json_num readback_overlapped "$work/parallel_tiles.$m.json")
+  [[ $got == 9 ]] || because "readback_overlapped $got, expected 9"
+  check "parallel_tiles ($m): 9 of 12 tiles read while the next one renders" "$why"
+done
 # ... and the pixels so copied are those the host reads from mapped device memory.
 for m in auto off; do
   why=ok
   "$bin" render "$scenes/parallel.json" -o "$work/parallel_direct.$m.png" --width 96 --height 64 --quiet \
-    --gpu-encode $m --tile 24 --spp 3 2>"$work/err" || because "exit $?: $(head -c 300 "$work/err")"
+    --gpu-encode $m --tile 24 --spp 3 --stats-json "$work/parallel_direct.$m.json" 2>"$work/err" ||
+    because "exit $?: $(head -c 300 "$work/err")"
   cmp -s "$work/parallel_direct.$m.png" "$work/parallel_tiles.$m.png" || because "the files differ"
+  # Read where the shader wrote them, a tile must be read before the next dispatch clears it.
+  [[ $(json_num readback_overlapped "$work/parallel_direct.$m.json") == 0 ]] || because "readback_overlapped is not 0"
   check "parallel_tiles ($m): staging's file is the direct one's" "$why"
 done
 same showcase_region "$scenes/showcase.json" png --region 10,7,90,51 --tile 32
