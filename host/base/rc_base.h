@@ -61,9 +61,10 @@ double rc_now_ms(void);
 double rc_cpu_ms(void);
 
 /* calloc that reports failure with the size asked for; NULL on failure (callers return
- * RC_ERR_OUT_OF_MEMORY, exit status 3). Blocks of RC_HUGE_PAGE or more are backed by
- * transparent huge pages where the kernel offers them (rc_advise_huge) and are zeroed
- * here, so their first touch is one fault per 2 MiB, not one per 4 KiB page. */
+ * RC_ERR_OUT_OF_MEMORY, exit status 3). Blocks of half RC_HUGE_PAGE or more are rounded up
+ * to whole huge pages, backed by transparent huge pages where the kernel offers them
+ * (rc_advise_huge) and zeroed here, so their first touch is one fault per 2 MiB, not one
+ * per 4 KiB page. */
 void *rc_alloc(size_t count, size_t size, const char *what);
 
 /* Asks the kernel for transparent huge pages over the 2 MiB-aligned part of [p, p+size)
