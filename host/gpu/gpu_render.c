@@ -123,6 +123,29 @@ static rc_status create_commands(rc_gpu_renderer *r) {
 }
 
 
+static rc_status begin(rc_gpu_renderer *r);
+static rc_status submit(rc_gpu_renderer *r);
+
+/* One workgroup over an empty tile: no invocation is inside it, so nothing is read or
+ * written but the frame. A driver may make the shader's machine code at a pipeline's first
+ * dispatch rather than at its creation: Mesa's lavapipe does (LLVM's compile, or the load
+ * from Mesa's disk cache: 267-279 ms and 12-20 ms for highlights_phong,
+ * docs/performance.md). Where a time budget sizes the tiles, the planner's first
+ * measurement must be the shader's time, not the compiler's: from a cold cache that first
+ * dispatch had made mesh.json's frame at --tile-budget-ms 5 1,436 tiles instead of about
+ * 150, with a 337 ms dispatch. Without a budget (lavapipe's default) nothing is measured,
+ * and the extra dispatch would only cost its fixed few ms. */
+static rc_status warm_up(rc_gpu_renderer *r) {
+  rc_status st = begin(r);
+  if (st != RC_OK) return st;
+  packed_push push = {.row_stride = 1, .light_pass = r->light_pass};
+  vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
+  vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
+  vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+  vkCmdDispatch(r->cmd, 1, 1, 1);
+  return submit(r);
+}
+
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats) {
   *out = NULL;
@@ -174,9 +197,11 @@ rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, c
   double t2 = rc_now_ms();
   if (st == RC_OK) st = rc_gpu_create_descriptors(r);
   if (st == RC_OK) st = create_commands(r);
+  double t3 = rc_now_ms();
+  if (st == RC_OK && r->tile_budget_ms > 0) st = warm_up(r);
   stats->upload_ms = t1 - t0;
   stats->upload_bytes = r->upload_bytes;
-  stats->pipeline_ms = t2 - t1;
+  stats->pipeline_ms = (t2 - t1) + (rc_now_ms() - t3);
   stats->scene_buffers = r->opts.scene_buffers;
   stats->staging = r->staging || opts->force_staging;
   stats->encoded = opts->levels != NULL;
