@@ -101,7 +101,8 @@ void *rc_alloc(size_t count, size_t size, const char *what) {
     rc_error("out of memory: %s needs %zu bytes (injected fault)", what, count * size);
     return NULL;
   }
-  if (count != 0 && size > SIZE_MAX / count) {
+  /* With room to round up to whole huge pages below. */
+  if (count != 0 && size > (SIZE_MAX - RC_HUGE_PAGE) / count) {
     rc_error("out of memory: %s needs more than SIZE_MAX bytes", what);
     return NULL;
   }
