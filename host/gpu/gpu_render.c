@@ -125,6 +125,8 @@ static rc_status create_commands(rc_gpu_renderer *r) {
 
 static rc_status begin(rc_gpu_renderer *r);
 static rc_status submit(rc_gpu_renderer *r);
+static void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
+                    VkAccessFlags dst_access);
 
 /* One workgroup over an empty tile: no invocation is inside it, so nothing is read or
  * written but the frame. A driver may make the shader's machine code at a pipeline's first
@@ -139,6 +141,9 @@ static rc_status warm_up(rc_gpu_renderer *r) {
   rc_status st = begin(r);
   if (st != RC_OK) return st;
   packed_push push = {.row_stride = 1, .light_pass = r->light_pass};
+  /* The uploads before it (the frame is read), as dispatch() orders them. */
+  barrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT);
   vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
   vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
   vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
