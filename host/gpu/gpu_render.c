@@ -123,33 +123,7 @@ static rc_status create_commands(rc_gpu_renderer *r) {
 }
 
 
-static rc_status begin(rc_gpu_renderer *r);
-static rc_status submit(rc_gpu_renderer *r);
-static void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
-                    VkAccessFlags dst_access);
-
-/* One workgroup over an empty tile: no invocation is inside it, so nothing is read or
- * written but the frame. A driver may make the shader's machine code at a pipeline's first
- * dispatch rather than at its creation: Mesa's lavapipe does (LLVM's compile, or the load
- * from Mesa's disk cache: 267-279 ms and 12-20 ms for highlights_phong,
- * docs/performance.md). Where a time budget sizes the tiles, the planner's first
- * measurement must be the shader's time, not the compiler's: from a cold cache that first
- * dispatch had made mesh.json's frame at --tile-budget-ms 5 1,436 tiles instead of about
- * 150, with a 337 ms dispatch. Without a budget (lavapipe's default) nothing is measured,
- * and the extra dispatch would only cost its fixed few ms. */
-static rc_status warm_up(rc_gpu_renderer *r) {
-  rc_status st = begin(r);
-  if (st != RC_OK) return st;
-  packed_push push = {.row_stride = 1, .light_pass = r->light_pass};
-  /* The uploads before it (the frame is read), as dispatch() orders them. */
-  barrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT);
-  vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
-  vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
-  vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-  vkCmdDispatch(r->cmd, 1, 1, 1);
-  return submit(r);
-}
+static rc_status warm_up(rc_gpu_renderer *r);
 
 rc_status rc_gpu_renderer_create(rc_vk_ctx *ctx, const rc_packed_scene *scene, const rc_gpu_options *opts,
                                  rc_gpu_renderer **out, rc_gpu_stats *stats) {
@@ -329,6 +303,34 @@ static void record_tile_readback(rc_gpu_renderer *r, uint32_t tw, uint32_t th) {
  * (push.row_stride) must be a permutation of. */
 static uint32_t group_count(uint32_t pixels, uint32_t local) { return (pixels + local - 1) / local; }
 
+/* The shader over groups_x x groups_y workgroups, with its pipeline, set and push constants. */
+static void record_shader(rc_gpu_renderer *r, const packed_push *push, uint32_t groups_x, uint32_t groups_y) {
+  vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
+  vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
+  vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+  vkCmdDispatch(r->cmd, groups_x, groups_y, 1);
+}
+
+/* One workgroup over an empty tile: no invocation is inside it, so nothing is read or
+ * written but the frame. A driver may make the shader's machine code at a pipeline's first
+ * dispatch rather than at its creation: Mesa's lavapipe does (LLVM's compile, or the load
+ * from Mesa's disk cache: 267-279 ms and 12-20 ms for highlights_phong,
+ * docs/performance.md). Where a time budget sizes the tiles, the planner's first
+ * measurement must be the shader's time, not the compiler's: from a cold cache that first
+ * dispatch had made mesh.json's frame at --tile-budget-ms 5 1,436 tiles instead of about
+ * 150, with a 337 ms dispatch. Without a budget (lavapipe's default) nothing is measured,
+ * and the extra dispatch would only cost its fixed few ms. */
+static rc_status warm_up(rc_gpu_renderer *r) {
+  rc_status st = begin(r);
+  if (st != RC_OK) return st;
+  packed_push push = {.row_stride = 1, .light_pass = r->light_pass};
+  /* The uploads before it (the frame is read), as dispatch() orders them. */
+  barrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT);
+  record_shader(r, &push, 1, 1);
+  return submit(r);
+}
+
 static rc_status read_pending(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats *stats);
 
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
@@ -363,10 +365,7 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
     vkCmdResetQueryPool(cmd, r->queries, 0, 2);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r->queries, 0);
   }
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1, &r->set, 0, NULL);
-  vkCmdPushConstants(cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
-  vkCmdDispatch(cmd, group_count(push->tile_width, r->local_x), group_count(push->tile_height, r->local_y), 1);
+  record_shader(r, push, group_count(push->tile_width, r->local_x), group_count(push->tile_height, r->local_y));
   if (r->queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r->queries, 1);
   record_readback(r, &r->status, &r->status_readback, 0, sizeof(packed_status));
   r->tile_copied = r->staging && copy_tile;
