@@ -9,7 +9,9 @@
 # with alpha and the other formats cannot be read or written; PNGs without alpha (read and
 # written by the binary) and EXRs (vkraycast-exr.so) work, and so do textured scenes.
 #   tools/gpu_bundle.sh            then carry ".gpu" and ".gl" and run tools/gpu_device.sh
-# Env: ICD (/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json), DEVICE (NVIDIA).
+# Env: ICD (/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json), DEVICE (NVIDIA), BASE (a
+# commit: its binary and modules come along as build-gpu-base/, for gpu_device.sh's
+# before/after part on the same GPU).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 icd=${ICD:-/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json}
@@ -17,8 +19,19 @@ cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKRAYCAST_TEST_ICD="
   -DVKRAYCAST_TEST_DEVICE="${DEVICE:-NVIDIA}" >/dev/null
 cmake --build build-gpu -j"$(nproc)" >/dev/null
 stage=$(mktemp -d)
-trap 'rm -rf "$stage"' EXIT
+base_src=$stage.src
+trap 'rm -rf "$stage"; [[ -d $base_src ]] && git worktree remove --force "$base_src"' EXIT
 mkdir -p "$stage"/{lib,layer,models,bin} .gpu .gl
+base_bins=()
+if [[ -n ${BASE:-} ]]; then # the baseline: the binary and its modules, nothing to test
+  git worktree add -q --detach "$base_src" "$BASE"
+  cmake -S "$base_src" -B "$base_src/b" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build "$base_src/b" -j"$(nproc)" --target vkraycast vkraycast-exr >/dev/null
+  mkdir -p "$stage/build-gpu-base"
+  cp "$base_src"/b/vkraycast "$base_src"/b/vkraycast-exr.so "$stage/build-gpu-base/"
+  git -C "$base_src" rev-parse --short HEAD >"$stage/build-gpu-base/commit"
+  base_bins=("$base_src"/b/vkraycast "$base_src"/b/vkraycast-exr.so)
+fi
 # The build tree without objects and generated headers; ctest's paths name /work/main.
 tar -cf - --exclude=CMakeFiles --exclude='*.a' --exclude='*.spv.h' --exclude='*.o' --exclude=Testing build-gpu |
   tar -xf - -C "$stage"
@@ -28,7 +41,7 @@ if [[ -f build/Testing/Temporary/CTestCostData.txt ]]; then # longest tests firs
 fi
 layer=/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so
 bins=(build-gpu/vkraycast build-gpu/vkraycast-exr.so build-gpu/vkraycast-mesh-import build-gpu/gen_mesh "$layer"
-  /usr/bin/glslangValidator /usr/bin/spirv-val)
+  /usr/bin/glslangValidator /usr/bin/spirv-val "${base_bins[@]}")
 for f in "${bins[@]}"; do ldd "$f" | awk '$3 ~ /^\// {print $3}'; done | sort -u |
   grep -v -E '/(libc|libm|libpthread|libdl|librt|libstdc\+\+|libgcc_s|ld-linux-x86-64)\.so' |
   while read -r l; do cp -L "$l" "$stage/lib/"; done

@@ -5,7 +5,8 @@
 # limit so that everything ends inside one call, and leaves the reports in OUT (at most 8
 # files: the device tool's limit).
 #   OUT=$OUT tools/gpu_device.sh
-# Env: T_CHK (180), T_CERT (100), T_CTEST (180) seconds; PARTS ("checklist certified ctest");
+# Env: T_CHK (180), T_AB (90), T_CERT (100), T_CTEST (180) seconds; PARTS ("checklist ab
+# certified ctest"; ab runs where the bundle has a baseline, BASE=commit tools/gpu_bundle.sh);
 # CTEST_ARGS (added to ctest's).
 set -u
 root=$PWD out=${OUT:?set OUT}
@@ -13,9 +14,10 @@ t0=$(date +%s)
 el() { echo "[$(($(date +%s) - t0)) s] $*" | tee -a "$out/run.log"; }
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
-rm -rf /opt/vk build-gpu && mkdir -p /opt/vk
+rm -rf /opt/vk build-gpu build-gpu-base && mkdir -p /opt/vk
 tar -I "$root/.gpu/xz" -xf .gpu/bundle.tar.xz -C /opt/vk || { el "cannot unpack .gpu/bundle.tar.xz"; exit 1; }
 mv /opt/vk/build-gpu "$root/build-gpu"
+[[ -d /opt/vk/build-gpu-base ]] && mv /opt/vk/build-gpu-base "$root/build-gpu-base"
 # The build and its tests name /work/main.
 [[ -e /work/main ]] || { mkdir -p /work && ln -s "$root" /work/main; }
 # A library the machine has is the machine's.
@@ -33,7 +35,7 @@ export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd LD_LIBRARY_PATH=/opt/vk/lib:${
 { nvidia-smi -L; uname -r; nproc; grep PRETTY /etc/os-release; } >>"$out/run.log" 2>&1
 bin=$root/build-gpu/vkraycast
 "$bin" devices 2>&1 | tee -a "$out/run.log"
-parts=${PARTS:-checklist certified ctest}
+parts=${PARTS:-checklist ab certified ctest}
 if [[ $parts == *checklist* ]]; then
   el checklist
   rm -rf /tmp/chk
@@ -42,6 +44,16 @@ if [[ $parts == *checklist* ]]; then
     >"$out/checklist.out" 2>&1
   el "checklist: exit $?"
   (cd /tmp/chk && tar -czf "$out/checklist.tgz" --exclude='*.png' --exclude='*.exr' --exclude=cache .)
+fi
+if [[ $parts == *ab* && -x build-gpu-base/vkraycast ]]; then
+  # The frame at 3840 x 2160 against the baseline build, whole and in tiles (porting.md, item 8).
+  el "ab: A = $(cat build-gpu-base/commit), B = this build"
+  # shellcheck disable=SC2016
+  timeout "${T_AB:-90}" bash -c 'for tile in "" "--tile 512" "--tile 256"; do
+      ROUNDS=3 FRAMES=6 ARGS="--width 3840 --height 2160 --spp 1 $tile" \
+        tools/bench_ab.sh build-gpu-base/vkraycast "$1" scenes/showcase.json scenes/mesh.json; echo
+    done' _ "$bin" >"$out/ab.md" 2>&1
+  el "ab: exit $?"
 fi
 if [[ $parts == *certified* ]]; then
   el certified
@@ -56,4 +68,4 @@ if [[ $parts == *ctest* ]]; then
     >"$out/ctest.log" 2>&1)
   el "ctest: exit $?"
 fi
-el done
+el "done"
