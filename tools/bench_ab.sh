@@ -8,7 +8,8 @@
 # Usage: tools/bench_ab.sh BIN_A BIN_B [SCENE...]   (default: scenes/*.json)
 # Env: ROUNDS (5), FRAMES (3), ARGS (extra render options for both, e.g. "--width 320
 # --height 200"), ARGS_A and ARGS_B (for one side only: one binary against itself with
-# other options, e.g. ARGS_B="--tile 4096")
+# other options, e.g. ARGS_B="--tile 4096"), EXT (exr: the output's format; png for the
+# 8-bit encoding)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export VK_DRIVER_FILES=${VK_DRIVER_FILES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}
@@ -35,7 +36,7 @@ for s in "${scenes[@]}"; do
       bin=$a extra=${ARGS_A:-}
       [[ $which == B ]] && bin=$b extra=${ARGS_B:-}
       # shellcheck disable=SC2086
-      "$bin" render "$s" -o "$work/out.exr" --repeat "$frames" --quiet --allow-outside-paths ${ARGS:-} $extra --stats-json "$work/st.json"
+      "$bin" render "$s" -o "$work/out.${EXT:-exr}" --repeat "$frames" --quiet --allow-outside-paths ${ARGS:-} $extra --stats-json "$work/st.json"
       wall=$(num render_wall_ms "$work/st.json") first=$(num first_frame_ms "$work/st.json")
       # render_wall_ms is the median of frames 2..N (stats.h); the first frame is apart.
       echo "$wall $first $(num cpu_ms "$work/st.json") $(num dispatches "$work/st.json")" >>"$work/$which.txt"

@@ -5,7 +5,7 @@
 # limit so that everything ends inside one call, and leaves the reports in OUT (at most 8
 # files: the device tool's limit).
 #   OUT=$OUT tools/gpu_device.sh
-# Env: T_CHK (180), T_AB (90), T_CERT (100), T_CTEST (180) seconds; PARTS ("checklist ab
+# Env: T_CHK (180), T_AB (90), AB_ROUNDS (5), T_CERT (100), T_CTEST (180) seconds; PARTS ("checklist ab
 # certified ctest"; ab runs where the bundle has a baseline, BASE=commit tools/gpu_bundle.sh);
 # CTEST_ARGS (added to ctest's).
 set -u
@@ -48,9 +48,11 @@ fi
 if [[ $parts == *ab* && -x build-gpu-base/vkraycast ]]; then
   # The frame at 3840 x 2160 against the baseline build, whole and in tiles (porting.md, item 8).
   el "ab: A = $(cat build-gpu-base/commit), B = this build"
+  # PNG: the shader's 8-bit encoding. The baseline borrows this build's mesh importer.
   # shellcheck disable=SC2016
-  timeout "${T_AB:-90}" bash -c 'for tile in "" "--tile 512" "--tile 256"; do
-      ROUNDS=3 FRAMES=6 ARGS="--width 3840 --height 2160 --spp 1 $tile" \
+  VKRAYCAST_MESH_IMPORTER=$root/build-gpu/vkraycast-mesh-import EXT=png timeout "${T_AB:-90}" bash -c '
+    for tile in "" "--tile 1024" "--tile 512" "--tile 256"; do
+      ROUNDS=${AB_ROUNDS:-5} FRAMES=6 ARGS="--width 3840 --height 2160 --spp 1 $tile" \
         tools/bench_ab.sh build-gpu-base/vkraycast "$1" scenes/showcase.json scenes/mesh.json; echo
     done' _ "$bin" >"$out/ab.md" 2>&1
   el "ab: exit $?"
