@@ -60,7 +60,8 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     if (depth == scene_reflection_depth() || mirror == rvec3(0.0)) break;
     weight *= mirror;
     o = spawn_origin(sf);
-    d = normalize(reflect(d, sf.n));
+    precise rvec3 bounced = normalize(reflect(d, sf.n)); // unfused, as the CPU twin's (rc_camera.glsl)
+    d = bounced;
     o = t_min_start(o, d);
     nodes = uvec2(0u, frame.bvh_node_count);  // the eye buffer is for primary rays
 #if RC_CERTIFY

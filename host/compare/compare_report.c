@@ -81,9 +81,12 @@ static void print_notes(const rc_compare_report *rep, FILE *f) {
     bool known = rc_settings_value(rep->b->header.settings, "spp", spp, sizeof spp);
     fprintf(f,
             "  note: %llu of the %llu pixels over --fail %g make the same first-sample decisions in A and B.\n"
-            "        An AOV file records each pixel's first sample%s%s%s and first ray only; the difference\n"
-            "        comes from a later sample or a mirror bounce. Render both with --spp 1 and\n"
-            "        --reflection-depth 0 to see every decision of a pixel in its AOV.\n",
+            "        An AOV file records each pixel's first sample%s%s%s and first ray only; the\n"
+            "        difference comes from a later sample, a mirror bounce, or a texture lookup (not\n"
+            "        recorded) whose colour moves with the hit point's last bits: a texel edge under\n"
+            "        nearest filtering, a minified texture on a plane's horizon.\n"
+            "        Render both with --spp 1 and --reflection-depth 0 to see every decision of a\n"
+            "        pixel in its AOV.\n",
             (unsigned long long)rep->over_same_decisions, (unsigned long long)r->over, rep->limits->fail,
             known ? " (these renders have spp " : "", known ? spp : "", known ? ")" : "");
   }

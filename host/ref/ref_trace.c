@@ -50,7 +50,8 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     if (depth == sc->frame->reflection_depth || RV(eq)(mirror, RV(make)(0, 0, 0))) break;
     weight = RV(mul)(weight, mirror);
     o = REF(spawn_origin)(sc, &sf);
-    d = RV(normalize)(RV(reflect)(d, sf.n));
+    rvec3 bounced = RV(normalize)(RV(reflect)(d, sf.n)); /* `precise` in the shader: never fused */
+    d = bounced;
     o = REF(t_min_start)(sc, o, d);
     first = 0, end = sc->frame->bvh_node_count; /* the eye buffer is for primary rays */
     if (sc->frame->certify) REF(cert_reflect)(sc, &sf, o, ed_in, across);

@@ -226,6 +226,7 @@ TEST(first_sample_note) {
   CHECK_EQ_INT(run("compare %s/c.aov.exr %s/a.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
   CHECK(stdout_has("note: 1 of the 1 pixels over --fail 0.001 make the same first-sample decisions"));
   CHECK(stdout_has("Render both with --spp 1"));
+  CHECK(stdout_has("or a texture lookup (not\n        recorded)"));
   /* Where the decisions differ there is no such note. */
   CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 0.1 --decisions 9 > %s/out.txt", tmp, tmp, tmp), 1);
   CHECK(!stdout_has("note: "));
