@@ -5,9 +5,9 @@
 # limit so that everything ends inside one call, and leaves the reports in OUT (at most 8
 # files: the device tool's limit).
 #   OUT=$OUT tools/gpu_device.sh
-# Env: T_CHK (180), T_AB (90), AB_ROUNDS (5), T_CERT (100), T_CTEST (180) seconds; PARTS ("checklist ab
-# certified ctest"; ab runs where the bundle has a baseline, BASE=commit tools/gpu_bundle.sh);
-# CTEST_ARGS (added to ctest's).
+# Env: T_CHK (180), T_AB (90), T_CERT (100), T_CTEST (180) seconds; AB_ROUNDS (5); PARTS
+# ("checklist ab certified ctest"; ab runs where the bundle has a baseline: BASE=commit
+# tools/gpu_bundle.sh); CTEST_ARGS (added to ctest's).
 set -u
 root=$PWD out=${OUT:?set OUT}
 t0=$(date +%s)
