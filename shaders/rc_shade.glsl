@@ -512,6 +512,9 @@ bool light_at(packed_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 
 }
 
 // Texel (x, y) of texture t's image, the column and row wrapped (repeat) or clamped onto it.
+// texture_color passes -1 <= x <= w and -1 <= y <= h (its coordinates are wrapped to
+// [0, 1] first), so one period wraps them: a select, where `%` is an integer division that
+// llvmpipe scalarises, eight a vector (docs/performance.md, "Texels without division").
 rvec3 texel_at(packed_texture t, int x, int y) {
   int w = int(t.width);
   int hh = int(t.height);
@@ -519,8 +522,8 @@ rvec3 texel_at(packed_texture t, int x, int y) {
     x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
     y = y < 0 ? 0 : (y > hh - 1 ? hh - 1 : y);
   } else {
-    x = ((x % w) + w) % w;
-    y = ((y % hh) + hh) % hh;
+    x = x < 0 ? x + w : (x >= w ? x - w : x);
+    y = y < 0 ? y + hh : (y >= hh ? y - hh : y);
   }
   return rvec3(load_texel_rgb(t.texels + uint(y) * t.width + uint(x)));
 }

@@ -422,8 +422,8 @@ rvec3 REF(texel_at)(const ref_scene *sc, packed_texture t, int x, int y) {
     x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
     y = y < 0 ? 0 : (y > hh - 1 ? hh - 1 : y);
   } else {
-    x = ((x % w) + w) % w;
-    y = ((y % hh) + hh) % hh;
+    x = x < 0 ? x + w : (x >= w ? x - w : x);
+    y = y < 0 ? y + hh : (y >= hh ? y - hh : y);
   }
   return rvec3_from(load_texel_rgb(sc, t.texels + (uint32_t)y * t.width + (uint32_t)x));
 }
