@@ -46,7 +46,7 @@ if [[ $parts == *checklist* ]]; then
   (cd /tmp/chk && tar -czf "$out/checklist.tgz" --exclude='*.png' --exclude='*.exr' --exclude=cache .)
 fi
 if [[ $parts == *ab* && -x build-gpu-base/vkraycast ]]; then
-  # The frame at 3840 x 2160 against the baseline build, whole and in tiles (porting.md, item 8).
+  # The 3840 x 2160 frame against the baseline build, default tiling and smaller tiles (item 8).
   el "ab: A = $(cat build-gpu-base/commit), B = this build"
   # PNG: the shader's 8-bit encoding. The baseline borrows this build's mesh importer.
   # shellcheck disable=SC2016
