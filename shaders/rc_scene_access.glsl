@@ -175,6 +175,8 @@ packed_texture load_texture(uint first) {
 }
 
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
+// The first texel of mip level `level` of the texture at `first` (its header's table).
+uint load_texture_level(uint first, uint level) { return texel(scene_texels, first + 2u + (level >> 2u))[level & 3u]; }
 // A patch's control point (RC_QUADRIC_PATCH): texel i of the texel array.
 vec3 load_patch_point(uint i) { return uintBitsToFloat(texel(scene_texels, i).xyz); }
 
@@ -229,6 +231,7 @@ packed_texture load_texture(uint first) {
                         uintBitsToFloat(b.w));
 }
 vec3 load_texel_rgb(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
+uint load_texture_level(uint first, uint level) { return scene_texels[first + 2u + (level >> 2u)][level & 3u]; }
 vec3 load_patch_point(uint i) { return uintBitsToFloat(scene_texels[i].xyz); }
 packed_vertex_uvs load_vertex_uvs(uint first) {
   vec4 a = uintBitsToFloat(scene_texels[first]);

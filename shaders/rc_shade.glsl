@@ -11,7 +11,17 @@ struct surface {
   uint material;
   uint uv_kind;   // RC_UV_*: where its texture coordinates come from (surface_uv)
   rvec3 uv_at;    // a sphere's unit normal in its own frame; else (u, v, 0)
+  rvec3 uv_rate;  // how fast u and v change along the surface, per packed unit (texture_color)
+  real footprint; // the ray cone's width at the hit over |cos| of its incidence, packed units
 };
+
+// How fast a sphere's (u, v) change along its surface, at unit normal n on a sphere of
+// radius r: the longitude by 1 / (2 pi r rho) (rho = |n.xz|, the distance from the axis
+// over r, kept from 0 at the poles, where u spins), the latitude by 1 / (pi r).
+rvec3 sphere_uv_rate(rvec3 n, real r) {
+  real rho = select_max(sqrt(n.x * n.x + n.z * n.z), RL(0.0009765625));
+  return rvec3(RL(0.15915494309189535) / (r * rho), RL(0.3183098861837907) / r, 0.0);
+}
 
 #if RC_QUADRICS
 // A plane's texture coordinates (u, v, 0): the hit's frame coordinates from the packed
@@ -31,24 +41,36 @@ rvec3 plane_uv(packed_quadric q, rvec3 p) {
 // normalized point f / radii). An axial shape's side: u around frame z, 0.5 facing frame
 // -y and growing towards +x (a vertical shape's 0.5 faces +z, as a sphere's does), v up
 // the axis across the box, 0 at its base.
-uint quadric_uv(packed_quadric q, uint code, rvec3 p, out rvec3 uv_at) {
+// uv_rate: how fast they change per packed unit (surface.uv_rate): s's rate along each
+// frame axis is that axis's length (frame units per packed unit) over the box's side; an
+// ellipsoid's is a sphere's of its smallest radius; an axial shape's u turns by 1 / (2 pi
+// rho) at distance rho from its axis.
+uint quadric_uv(packed_quadric q, uint code, rvec3 p, out rvec3 uv_at, out rvec3 uv_rate) {
   uv_at = rvec3(0.0);
+  uv_rate = rvec3(0.0);
   uint kind = (q.flags >> RC_QUADRIC_UV_SHIFT) & 3u;
   // Compiled out where no material has a texture (the coordinates would go unused).
   if (!has_kind(RC_KIND_TEXTURES) || kind == RC_QUADRIC_UV_NONE) return RC_UV_NONE;
   precise rvec3 f = quadric_local(q, p - rvec3(q.center));
   precise rvec3 s = (f - rvec3(q.lo)) / (rvec3(q.hi) - rvec3(q.lo));
+  rvec3 axes = rvec3(length(rvec3(q.axis_x)), length(rvec3(q.axis_y)), length(rvec3(q.axis_z)));
+  rvec3 rate = axes / (rvec3(q.hi) - rvec3(q.lo));
   uint face = (code >> 2u) & 3u;
   if (face != 0u) {
     uv_at = (face == 1u) ? rvec3(s.y, s.z, 0.0) : ((face == 2u) ? rvec3(s.z, s.x, 0.0) : rvec3(s.x, s.y, 0.0));
+    uv_rate = (face == 1u) ? rvec3(rate.y, rate.z, 0.0) : ((face == 2u) ? rvec3(rate.z, rate.x, 0.0) : rvec3(rate.x, rate.y, 0.0));
     return RC_UV_GIVEN;
   }
   if (kind == RC_QUADRIC_UV_ELLIPSOID) {
+    rvec3 k = sqrt(rvec3(q.diag)) * axes;
     uv_at = normalize(f * sqrt(rvec3(q.diag)));
+    uv_rate = sphere_uv_rate(uv_at, 1.0 / select_max(select_max(k.x, k.y), k.z));
     return RC_UV_SPHERE;
   }
   if (kind == RC_QUADRIC_UV_AXIAL) {
     uv_at = rvec3(f.x, -f.y, s.z);
+    real rho = select_max(sqrt(f.x * f.x + f.y * f.y), RL(1e-30));
+    uv_rate = rvec3(RL(0.15915494309189535) * axes.x / rho, rate.z, 0.0);
     return RC_UV_AXIAL;
   }
   return RC_UV_NONE;
@@ -94,10 +116,22 @@ rvec3 triangle_uv(packed_vertex_uvs t, rvec3 b) {
   return rvec3(u, v, 0.0);
 }
 
+// How fast a triangle's (u, v) change along it: sqrt(its area in (u, v) over its area),
+// both directions alike (the ray cone's texel-to-surface ratio, Akenine-Moller et al.,
+// "Texture Level of Detail Strategies for Real-Time Ray Tracing", Ray Tracing Gems, 2019).
+rvec3 triangle_uv_rate(packed_vertex_uvs t, packed_triangle tri) {
+  real uv_area = abs((real(t.u1) - real(t.u0)) * (real(t.v2) - real(t.v0)) - (real(t.u2) - real(t.u0)) * (real(t.v1) - real(t.v0)));
+  real area = length(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
+  real rate = (area > 0.0) ? sqrt(uv_area / area) : 0.0;
+  return rvec3(rate, rate, 0.0);
+}
+
 surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   surface sf;
   sf.uv_kind = RC_UV_NONE;
   sf.uv_at = rvec3(0.0);
+  sf.uv_rate = rvec3(0.0);
+  sf.footprint = 0.0;
   rvec3 n;
   if (has_kind(RC_KIND_SPHERES) && h.kind == RC_HIT_SPHERE) {
     packed_sphere s = load_sphere(h.index);
@@ -127,6 +161,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     }
     sf.uv_kind = RC_UV_SPHERE;
     sf.uv_at = n;
+    sf.uv_rate = sphere_uv_rate(n, r);
     if ((!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) && sphere_formula == RC_SPHERE_GEOMETRIC) {
       precise rvec3 rn = r * n;
       sf.p = rvec3(s.center) + rn;
@@ -136,8 +171,10 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
       sf.p_error = gamma_bound(10.0) * (abs(rvec3(s.center)) + abs(rn));
     } else {
       if (has_kind(RC_KIND_SPHERE_TRANSFORMS) && s.transform != RC_NO_TRANSFORM) {
-        // Normals go back by the transpose of object_from_packed's linear part.
+        // Normals go back by the transpose of object_from_packed's linear part; its largest
+        // row stretches a packed step the most (an estimate of its norm).
         n = normalize(n.x * rvec3(m.row0.xyz) + n.y * rvec3(m.row1.xyz) + n.z * rvec3(m.row2.xyz));
+        sf.uv_rate = sf.uv_rate * select_max(select_max(length(rvec3(m.row0.xyz)), length(rvec3(m.row1.xyz))), length(rvec3(m.row2.xyz)));
       }
       precise rvec3 td = h.t * d;
       sf.p = o + td;
@@ -167,17 +204,22 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
         n = (dot(g, g) > 0.0) ? normalize(g) : -d;  // a net collapsed to a curve: no normal
         sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = h.bary;
+        // |g| = |dS/du x dS/dv|: a unit square of (u, v) covers |g| of surface.
+        real g_area = length(g);
+        real rate = (g_area > 0.0) ? 1.0 / sqrt(g_area) : 0.0;
+        sf.uv_rate = rvec3(rate, rate, 0.0);
       } else
 #endif
       {
         if (((h.part >> 2u) & 3u) == 0u) sf.p = quadric_refine(q, sf.p, sf.p_error);
         n = normalize(quadric_normal(q, h.part, sf.p, d));
-        sf.uv_kind = quadric_uv(q, h.part, sf.p, sf.uv_at);
+        sf.uv_kind = quadric_uv(q, h.part, sf.p, sf.uv_at, sf.uv_rate);
       }
       sf.material = q.material;
       if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
         sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = plane_uv(q, sf.p);
+        sf.uv_rate = rvec3(real(q.lo.z), real(q.lo.z), 0.0);
       }
     }
 #endif
@@ -192,8 +234,10 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     n = normalize(cross(rvec3(tri.v1) - rvec3(tri.v0), rvec3(tri.v2) - rvec3(tri.v0)));
     sf.material = tri.material;
     if (has_kind(RC_KIND_TEXTURES) && (tri.flags >> RC_TRIANGLE_UV_SHIFT) != 0u) {
+      packed_vertex_uvs uvs = load_vertex_uvs((tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u);
       sf.uv_kind = RC_UV_GIVEN;
-      sf.uv_at = triangle_uv(load_vertex_uvs((tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u), h.bary);
+      sf.uv_at = triangle_uv(uvs, h.bary);
+      sf.uv_rate = triangle_uv_rate(uvs, tri);
     }
     if (has_kind(RC_KIND_VERTEX_NORMALS) && tri.normals != RC_NO_NORMALS) {
       packed_vertex_normals vn = load_vertex_normals(tri.normals);
@@ -511,21 +555,20 @@ bool light_at(packed_light light, rvec3 p, rvec3 origin, out rvec3 l, out rvec3 
   return true;
 }
 
-// Texel (x, y) of texture t's image, the column and row wrapped (repeat) or clamped onto it.
-// texture_color passes -1 <= x <= w and -1 <= y <= h (its coordinates are wrapped to
-// [0, 1] first), so one period wraps them: a select, where `%` is an integer division that
-// llvmpipe scalarises, eight a vector (docs/performance.md, "Texels without division").
-rvec3 texel_at(packed_texture t, int x, int y) {
-  int w = int(t.width);
-  int hh = int(t.height);
-  if ((t.flags & RC_TEXTURE_CLAMP) != 0u) {
+// Texel (x, y) of a level of w x hh texels from `texels` on, the column and row wrapped
+// (repeat) or clamped (flags, packed_texture) onto it. level_color passes -1 <= x <= w and
+// -1 <= y <= hh (its coordinates are wrapped to [0, 1] first), so one period wraps them: a
+// select, where `%` is an integer division that llvmpipe scalarises, eight a vector
+// (docs/performance.md, "Texels without division").
+rvec3 texel_at(uint texels, uint flags, int w, int hh, int x, int y) {
+  if ((flags & RC_TEXTURE_CLAMP) != 0u) {
     x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
     y = y < 0 ? 0 : (y > hh - 1 ? hh - 1 : y);
   } else {
     x = x < 0 ? x + w : (x >= w ? x - w : x);
     y = y < 0 ? y + hh : (y >= hh ? y - hh : y);
   }
-  return rvec3(load_texel_rgb(t.texels + uint(y) * t.width + uint(x)));
+  return rvec3(load_texel_rgb(texels + uint(y) * uint(w) + uint(x)));
 }
 
 // a + (b - a) s: exactly a where b = a, so a constant texture gives exactly its colour.
@@ -534,11 +577,37 @@ rvec3 lerp_color(rvec3 a, rvec3 b, real s) {
   return c;
 }
 
-// The texture's colour at surface coordinates (u, v) (packed_texture): u' = u scale_u +
-// offset_u across the image, v' = v scale_v + offset_v up it; repeat takes the fraction,
-// clamp the nearest edge. In texel units x = u' W - 1/2, y = (1 - v') H - 1/2 put texel
-// centres on integers: nearest rounds, bilinear blends the four around (x, y).
-rvec3 texture_color(uint first, real u, real v) {
+// Mip level `level` of the texture at `first` (header t) at (uu, vv) in [0, 1]: u across
+// the image from its left edge, v up from its bottom edge. In texel units x = uu W - 1/2,
+// y = (1 - vv) H - 1/2 put texel centres on integers: nearest rounds, bilinear blends the
+// four around (x, y).
+rvec3 level_color(uint first, packed_texture t, uint level, real uu, real vv) {
+  int w = int(((t.width - 1u) >> level) + 1u);
+  int hh = int(((t.height - 1u) >> level) + 1u);
+  uint texels = (level == 0u) ? t.texels : load_texture_level(first, level);
+  precise real x = uu * real(w) - 0.5;
+  precise real y = (1.0 - vv) * real(hh) - 0.5;
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u) return texel_at(texels, t.flags, w, hh, int(floor(x + 0.5)), int(floor(y + 0.5)));
+  real x0 = floor(x);
+  real y0 = floor(y);
+  precise real fx = x - x0;
+  precise real fy = y - y0;
+  int ix = int(x0);
+  int iy = int(y0);
+  rvec3 top = lerp_color(texel_at(texels, t.flags, w, hh, ix, iy), texel_at(texels, t.flags, w, hh, ix + 1, iy), fx);
+  rvec3 bottom = lerp_color(texel_at(texels, t.flags, w, hh, ix, iy + 1), texel_at(texels, t.flags, w, hh, ix + 1, iy + 1), fx);
+  return lerp_color(top, bottom, fy);
+}
+
+// The texture's colour at surface coordinates (u, v) (packed_texture), where a ray cone's
+// footprint moves them by about fu and fv: u' = u scale_u + offset_u across the image, v' =
+// v scale_v + offset_v up it; repeat takes the fraction, clamp the nearest edge. A footprint
+// of n > 1 level-0 texels reads mip level log2 n, linear between the two levels around it
+// (a trilinear lookup; docs/scene-format.md, "Textures"): the mean of the texels it covers,
+// where a lookup of level 0 alone would alias, and would change with a hit point's last
+// bits. log2 n is taken linear within each octave, n = m 2^e with m in [1/2, 1) (frexp,
+// exact): both backends find the same level and weight, and the colour is continuous in n.
+rvec3 texture_color(uint first, real u, real v, real fu, real fv) {
   packed_texture t = load_texture(first);
   precise real uu = u * real(t.scale_u) + real(t.offset_u);
   precise real vv = v * real(t.scale_v) + real(t.offset_v);
@@ -551,18 +620,16 @@ rvec3 texture_color(uint first, real u, real v) {
   }
   if (!(uu >= 0.0 && uu <= 1.0)) uu = 0.0;  // NaN: a surface point at infinity
   if (!(vv >= 0.0 && vv <= 1.0)) vv = 0.0;
-  precise real x = uu * real(t.width) - 0.5;
-  precise real y = (1.0 - vv) * real(t.height) - 0.5;
-  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u) return texel_at(t, int(floor(x + 0.5)), int(floor(y + 0.5)));
-  real x0 = floor(x);
-  real y0 = floor(y);
-  precise real fx = x - x0;
-  precise real fy = y - y0;
-  int ix = int(x0);
-  int iy = int(y0);
-  rvec3 top = lerp_color(texel_at(t, ix, iy), texel_at(t, ix + 1, iy), fx);
-  rvec3 bottom = lerp_color(texel_at(t, ix, iy + 1), texel_at(t, ix + 1, iy + 1), fx);
-  return lerp_color(top, bottom, fy);
+  uint levels = t.flags >> RC_TEXTURE_LEVELS_SHIFT;
+  precise real n = select_max(fu * abs(real(t.scale_u)) * real(t.width), fv * abs(real(t.scale_v)) * real(t.height));
+  if (levels <= 1u || !(n > 1.0)) return level_color(first, t, 0u, uu, vv);  // magnified, or NaN
+  if (!(n < RL(1073741824.0))) return level_color(first, t, levels - 1u, uu, vv);  // past every level
+  int e;
+  real m = frexp(n, e);
+  uint level = uint(e - 1);
+  if (level >= levels - 1u) return level_color(first, t, levels - 1u, uu, vv);
+  precise real s = 2.0 * m - 1.0;
+  return lerp_color(level_color(first, t, level, uu, vv), level_color(first, t, level + 1u, uu, vv), s);
 }
 
 // atan2(y, x) in [-pi, pi] from +, *, / alone, so that the shader and the reference compute
@@ -612,7 +679,7 @@ rvec3 surface_texture(packed_material m, surface sf) {
   real u;
   real v;
   surface_uv(sf, u, v);
-  return texture_color(m.texture, u, v);
+  return texture_color(m.texture, u, v, sf.footprint * sf.uv_rate.x, sf.footprint * sf.uv_rate.y);
 }
 
 // What an unblocked light adds: Lambert diffuse plus the specular lobe, scaled by its

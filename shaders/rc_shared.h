@@ -219,6 +219,11 @@ struct packed_frame {
   uint light_buffers;     /* where the light buffers' table starts in the BVH's reference array
                              (RC_LIGHT_BUFFER_*); 0: the scene has none */
   uint certify;           /* RC_CERTIFY_*: certify each sample's decisions (--precision certified) */
+  /* A sample's ray cone (texture level of detail, rc_trace.glsl): its width at the camera
+   * (packed units; a parallel camera's pixel over sqrt(spp)) and its spread angle (radians;
+   * a perspective camera's pixel over sqrt(spp)). */
+  float cone_width;       float cone_spread;
+  uint pad_cone0;         uint pad_cone1;
 };
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
@@ -406,9 +411,12 @@ struct packed_material {
   vec3 emission; float pad3; /* added unshadowed, like the ambient term */
 };
 
-/* A texture in the texel array (RC_BINDING_TEXELS): this header (2 texels), and its
- * image: width x height texels from `texels` on, row 0 the image's top row, each RGBA f32
- * (A unused); materials that name one file share its image. The colour
+/* A texture in the texel array (RC_BINDING_TEXELS): this header (2 texels), the first
+ * texel of each mip level (RC_TEXTURE_MAX_LEVELS words in 4 texels; level 0 is `texels`),
+ * and its image: width x height texels from `texels` on, row 0 the image's top row, each
+ * RGBA f32 (A unused), then its levels: level k is ceil(width / 2^k) x ceil(height / 2^k)
+ * texels, each the mean of the 2 x 2 of level k - 1 under it (flags >> RC_TEXTURE_LEVELS_SHIFT
+ * levels in all, 1 without mip-mapping); materials that name one file share its image. The colour
  * at surface coordinates (u, v) is the image's at (u', v') = (u, v) * scale + offset, with
  * u' across the image from its left edge and v' up from its bottom edge, each texel a unit
  * square (docs/scene-format.md, "Textures"); nearest or bilinear, repeated or clamped at
@@ -421,7 +429,9 @@ struct packed_material {
 #define RC_UV_AXIAL 3u /* around an axis: (x, y, v), u from the angle of (x, y), v given (a cylinder's side) */
 #define RC_TEXTURE_BILINEAR 1u
 #define RC_TEXTURE_CLAMP 2u
-#define RC_TEXELS_PER_TEXTURE_HEADER 2
+#define RC_TEXTURE_LEVELS_SHIFT 4u /* flags >> this: the number of mip levels, 1 to 15 */
+#define RC_TEXTURE_MAX_LEVELS 16u
+#define RC_TEXELS_PER_TEXTURE_HEADER 6 /* the packed_texture, then the levels' first texels */
 struct packed_texture {
   uint width; uint height; uint flags; uint texels;
   float scale_u; float scale_v; float offset_u; float offset_v;
@@ -579,8 +589,9 @@ RC_ASSERT_LAYOUT(packed_frame, offset_strategy, 168); RC_ASSERT_LAYOUT(packed_fr
 RC_ASSERT_LAYOUT(packed_frame, quadric_count, 176); RC_ASSERT_LAYOUT(packed_frame, csg_count, 180);
 RC_ASSERT_LAYOUT(packed_frame, shadows, 184); RC_ASSERT_LAYOUT(packed_frame, csg_max_steps, 188);
 RC_ASSERT_LAYOUT(packed_frame, plane_count, 192); RC_ASSERT_LAYOUT(packed_frame, patch_count, 196);
-RC_ASSERT_LAYOUT(packed_frame, light_buffers, 200);
-RC_ASSERT_SIZE(packed_frame, 208);
+RC_ASSERT_LAYOUT(packed_frame, light_buffers, 200); RC_ASSERT_LAYOUT(packed_frame, certify, 204);
+RC_ASSERT_LAYOUT(packed_frame, cone_width, 208); RC_ASSERT_LAYOUT(packed_frame, cone_spread, 212);
+RC_ASSERT_SIZE(packed_frame, 224);
 RC_ASSERT_LAYOUT(packed_quadric, center, 0);   RC_ASSERT_LAYOUT(packed_quadric, material, 12);
 RC_ASSERT_LAYOUT(packed_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(packed_quadric, constant, 28);
 RC_ASSERT_LAYOUT(packed_quadric, axis_y, 32);  RC_ASSERT_LAYOUT(packed_quadric, flags, 44);
@@ -620,7 +631,7 @@ RC_ASSERT_LAYOUT(packed_material, specular, 32);
 RC_ASSERT_LAYOUT(packed_texture, width, 0);    RC_ASSERT_LAYOUT(packed_texture, flags, 8);
 RC_ASSERT_LAYOUT(packed_texture, texels, 12);
 RC_ASSERT_LAYOUT(packed_texture, scale_u, 16); RC_ASSERT_LAYOUT(packed_texture, offset_v, 28);
-RC_ASSERT_SIZE(packed_texture, 16 * RC_TEXELS_PER_TEXTURE_HEADER);
+RC_ASSERT_SIZE(packed_texture, 32); /* then the levels' table: RC_TEXELS_PER_TEXTURE_HEADER in all */
 RC_ASSERT_LAYOUT(packed_material, mirror, 48);   RC_ASSERT_LAYOUT(packed_material, emission, 64);
 RC_ASSERT_SIZE(packed_material, 16 * RC_TEXELS_PER_MATERIAL);
 

@@ -28,6 +28,12 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   rvec3 color = rvec3(0.0);
   rvec3 weight = rvec3(1.0);
   uvec2 nodes = eye_nodes(pixel);
+  // The sample's ray cone (Akenine-Moller et al., "Texture Level of Detail Strategies for
+  // Real-Time Ray Tracing", Ray Tracing Gems, 2019, ch. 20), for texture lookups: its width
+  // grows by the spread angle per unit of distance, and a mirror passes the cone on with
+  // its spread unchanged (a flat mirror's; a curved one's focusing is not modelled).
+  real cone_width = real(frame.cone_width);
+  real cone_spread = real(frame.cone_spread);
   for (uint depth = 0u; depth <= scene_reflection_depth(); depth++) {
     if (!budget_step()) break;
     hit_record h;
@@ -43,6 +49,8 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
       break;
     }
     surface sf = surface_at(o, d, h);
+    precise real width = cone_width + cone_spread * h.t;
+    sf.footprint = width / select_max(abs(dot(sf.ng, d)), RL(0.000001));
 #if RC_CERTIFY
     if (certify) cert_surface(d, h, sf);
     if (certify) cert_note(depth == 0u ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
@@ -59,6 +67,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     rvec3 mirror = rvec3(load_material(sf.material).mirror);
     if (depth == scene_reflection_depth() || mirror == rvec3(0.0)) break;
     weight *= mirror;
+    cone_width = width;
     o = spawn_origin(sf);
     precise rvec3 bounced = normalize(reflect(d, sf.n)); // unfused, as the CPU twin's (rc_camera.glsl)
     d = bounced;

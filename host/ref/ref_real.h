@@ -18,6 +18,7 @@ typedef dvec3 rvec3;
 #define R_SQRT sqrt
 #define R_ABS fabs
 #define R_FLOOR floor
+#define R_FREXP frexp
 #define RC_UNIT_ROUNDOFF 1.1102230246251565e-16
 #define RC_SMALLEST_NORMAL 2.2250738585072014e-308
 static inline rvec3 rvec3_from(vec3 a) { return rcm_to_d(a); }
@@ -31,6 +32,7 @@ typedef vec3 rvec3;
 #define R_SQRT sqrtf
 #define R_ABS fabsf
 #define R_FLOOR floorf
+#define R_FREXP frexpf
 #define RC_UNIT_ROUNDOFF 5.9604644775390625e-8f
 #define RC_SMALLEST_NORMAL 1.17549435e-38f
 static inline rvec3 rvec3_from(vec3 a) { return a; }

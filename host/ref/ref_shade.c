@@ -5,6 +5,11 @@
 #include "ref/ref_real.h"
 #include "ref/ref_shader.h"
 
+rvec3 REF(sphere_uv_rate)(rvec3 n, real r) {
+  real rho = rmax(R_SQRT(n.x * n.x + n.z * n.z), RL(0.0009765625));
+  return RV(make)(RL(0.15915494309189535) / (r * rho), RL(0.3183098861837907) / r, 0);
+}
+
 rvec3 REF(plane_uv)(const packed_quadric *q, rvec3 p) {
   rvec3 f = REF(quadric_local)(q, RV(sub)(p, rvec3_from(q->center)));
   real u = f.x * (real)q->lo.z + (real)q->lo.x;
@@ -12,24 +17,32 @@ rvec3 REF(plane_uv)(const packed_quadric *q, rvec3 p) {
   return RV(make)(u, v, 0);
 }
 
-uint32_t REF(quadric_uv)(const packed_quadric *q, uint32_t code, rvec3 p, rvec3 *uv_at) {
+uint32_t REF(quadric_uv)(const packed_quadric *q, uint32_t code, rvec3 p, rvec3 *uv_at, rvec3 *uv_rate) {
   *uv_at = RV(make)(0, 0, 0);
+  *uv_rate = RV(make)(0, 0, 0);
   uint32_t kind = (q->flags >> RC_QUADRIC_UV_SHIFT) & 3u;
   if (kind == RC_QUADRIC_UV_NONE) return RC_UV_NONE;
   rvec3 f = REF(quadric_local)(q, RV(sub)(p, rvec3_from(q->center)));
   rvec3 s = RV(div)(RV(sub)(f, rvec3_from(q->lo)), RV(sub)(rvec3_from(q->hi), rvec3_from(q->lo)));
+  rvec3 axes = RV(make)(RV(length)(rvec3_from(q->axis_x)), RV(length)(rvec3_from(q->axis_y)), RV(length)(rvec3_from(q->axis_z)));
+  rvec3 rate = RV(div)(axes, RV(sub)(rvec3_from(q->hi), rvec3_from(q->lo)));
   uint32_t face = (code >> 2u) & 3u;
   if (face != 0) {
     *uv_at = (face == 1u) ? RV(make)(s.y, s.z, 0) : ((face == 2u) ? RV(make)(s.z, s.x, 0) : RV(make)(s.x, s.y, 0));
+    *uv_rate = (face == 1u) ? RV(make)(rate.y, rate.z, 0) : ((face == 2u) ? RV(make)(rate.z, rate.x, 0) : RV(make)(rate.x, rate.y, 0));
     return RC_UV_GIVEN;
   }
   if (kind == RC_QUADRIC_UV_ELLIPSOID) {
     rvec3 D = rvec3_from(q->diag);
+    rvec3 k = RV(mul)(RV(make)(R_SQRT(D.x), R_SQRT(D.y), R_SQRT(D.z)), axes);
     *uv_at = RV(normalize)(RV(mul)(f, RV(make)(R_SQRT(D.x), R_SQRT(D.y), R_SQRT(D.z))));
+    *uv_rate = REF(sphere_uv_rate)(*uv_at, 1 / rmax(rmax(k.x, k.y), k.z));
     return RC_UV_SPHERE;
   }
   if (kind == RC_QUADRIC_UV_AXIAL) {
     *uv_at = RV(make)(f.x, -f.y, s.z);
+    real rho = rmax(R_SQRT(f.x * f.x + f.y * f.y), RL(1e-30));
+    *uv_rate = RV(make)(RL(0.15915494309189535) * axes.x / rho, rate.z, 0);
     return RC_UV_AXIAL;
   }
   return RC_UV_NONE;
@@ -68,10 +81,19 @@ rvec3 REF(triangle_uv)(packed_vertex_uvs t, rvec3 b) {
   return RV(make)(u, v, 0);
 }
 
+rvec3 REF(triangle_uv_rate)(packed_vertex_uvs t, packed_triangle tri) {
+  real uv_area = R_ABS(((real)t.u1 - (real)t.u0) * ((real)t.v2 - (real)t.v0) - ((real)t.u2 - (real)t.u0) * ((real)t.v1 - (real)t.v0));
+  real area = RV(length)(RV(cross)(RV(sub)(rvec3_from(tri.v1), rvec3_from(tri.v0)), RV(sub)(rvec3_from(tri.v2), rvec3_from(tri.v0))));
+  real rate = (area > 0) ? R_SQRT(uv_area / area) : 0;
+  return RV(make)(rate, rate, 0);
+}
+
 ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit *h) {
   ref_surface sf;
   sf.uv_kind = RC_UV_NONE;
   sf.uv_at = RV(make)(0, 0, 0);
+  sf.uv_rate = RV(make)(0, 0, 0);
+  sf.footprint = 0;
   rvec3 n;
   if (h->kind == RC_HIT_SPHERE) {
     packed_sphere s = sc->spheres[h->index];
@@ -99,14 +121,18 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     }
     sf.uv_kind = RC_UV_SPHERE;
     sf.uv_at = n;
+    sf.uv_rate = REF(sphere_uv_rate)(n, r);
     if (!m && !algebraic) {
       rvec3 rn = RV(scale)(n, r);
       sf.p = RV(add)(rvec3_from(s.center), rn);
       sf.p_error = RV(scale)(RV(add)(RV(abs)(rvec3_from(s.center)), RV(abs)(rn)), REF(gamma_bound)(10));
     } else {
-      if (m)
+      if (m) {
         n = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(rcm_xyz(m->row0)), n.x), RV(scale)(rvec3_from(rcm_xyz(m->row1)), n.y)),
                                   RV(scale)(rvec3_from(rcm_xyz(m->row2)), n.z)));
+        sf.uv_rate = RV(scale)(sf.uv_rate, rmax(rmax(RV(length)(rvec3_from(rcm_xyz(m->row0))), RV(length)(rvec3_from(rcm_xyz(m->row1)))),
+                                                RV(length)(rvec3_from(rcm_xyz(m->row2)))));
+      }
       rvec3 td = RV(scale)(d, h->t);
       sf.p = RV(add)(o, td);
       sf.p_error = RV(scale)(RV(add)(RV(abs)(o), RV(abs)(td)), REF(gamma_bound)(32));
@@ -128,15 +154,19 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
         n = (RV(dot)(g, g) > 0) ? RV(normalize)(g) : RV(neg)(d);
         sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = h->bary;
+        real g_area = RV(length)(g);
+        real rate = (g_area > 0) ? 1 / R_SQRT(g_area) : 0;
+        sf.uv_rate = RV(make)(rate, rate, 0);
       } else {
         if (((h->part >> 2u) & 3u) == 0) sf.p = REF(quadric_refine)(q, sf.p, &sf.p_error);
         n = RV(normalize)(REF(quadric_normal)(q, h->part, sf.p, d));
-        sf.uv_kind = REF(quadric_uv)(q, h->part, sf.p, &sf.uv_at);
+        sf.uv_kind = REF(quadric_uv)(q, h->part, sf.p, &sf.uv_at, &sf.uv_rate);
       }
       sf.material = q->material;
       if (q->flags & RC_QUADRIC_UNBOUNDED) {
         sf.uv_kind = RC_UV_GIVEN;
         sf.uv_at = REF(plane_uv)(q, sf.p);
+        sf.uv_rate = RV(make)((real)q->lo.z, (real)q->lo.z, 0);
       }
     }
   } else {
@@ -148,8 +178,10 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     n = RV(normalize)(RV(cross)(RV(sub)(v1, v0), RV(sub)(v2, v0)));
     sf.material = tri.material;
     if ((tri.flags >> RC_TRIANGLE_UV_SHIFT) != 0) {
+      packed_vertex_uvs uvs = load_vertex_uvs(sc, (tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u);
       sf.uv_kind = RC_UV_GIVEN;
-      sf.uv_at = REF(triangle_uv)(load_vertex_uvs(sc, (tri.flags >> RC_TRIANGLE_UV_SHIFT) - 1u), h->bary);
+      sf.uv_at = REF(triangle_uv)(uvs, h->bary);
+      sf.uv_rate = REF(triangle_uv_rate)(uvs, tri);
     }
     if (tri.normals != RC_NO_NORMALS) {
       const packed_vertex_normals *vn = &sc->normals[tri.normals];
@@ -415,22 +447,47 @@ static vec3 load_texel_rgb(const ref_scene *sc, uint32_t i) {
   return (vec3){sc->texels[i][0], sc->texels[i][1], sc->texels[i][2]};
 }
 
-rvec3 REF(texel_at)(const ref_scene *sc, packed_texture t, int x, int y) {
-  int w = (int)t.width;
-  int hh = (int)t.height;
-  if (t.flags & RC_TEXTURE_CLAMP) {
+static uint32_t load_texture_level(const ref_scene *sc, uint32_t first, uint32_t level) {
+  uint32_t at;
+  memcpy(&at, &sc->texels[first + 2u + (level >> 2u)][level & 3u], sizeof at);
+  return at;
+}
+
+rvec3 REF(texel_at)(const ref_scene *sc, uint32_t texels, uint32_t flags, int w, int hh, int x, int y) {
+  if (flags & RC_TEXTURE_CLAMP) {
     x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
     y = y < 0 ? 0 : (y > hh - 1 ? hh - 1 : y);
   } else {
     x = x < 0 ? x + w : (x >= w ? x - w : x);
     y = y < 0 ? y + hh : (y >= hh ? y - hh : y);
   }
-  return rvec3_from(load_texel_rgb(sc, t.texels + (uint32_t)y * t.width + (uint32_t)x));
+  return rvec3_from(load_texel_rgb(sc, texels + (uint32_t)y * (uint32_t)w + (uint32_t)x));
 }
 
 rvec3 REF(lerp_color)(rvec3 a, rvec3 b, real s) { return RV(add)(a, RV(scale)(RV(sub)(b, a), s)); }
 
-rvec3 REF(texture_color)(const ref_scene *sc, uint32_t first, real u, real v) {
+rvec3 REF(level_color)(const ref_scene *sc, uint32_t first, packed_texture t, uint32_t level, real uu, real vv) {
+  int w = (int)(((t.width - 1u) >> level) + 1u);
+  int hh = (int)(((t.height - 1u) >> level) + 1u);
+  uint32_t texels = (level == 0u) ? t.texels : load_texture_level(sc, first, level);
+  real x = uu * (real)w - (real)0.5;
+  real y = (1 - vv) * (real)hh - (real)0.5;
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0)
+    return REF(texel_at)(sc, texels, t.flags, w, hh, (int)R_FLOOR(x + (real)0.5), (int)R_FLOOR(y + (real)0.5));
+  real x0 = R_FLOOR(x);
+  real y0 = R_FLOOR(y);
+  real fx = x - x0;
+  real fy = y - y0;
+  int ix = (int)x0;
+  int iy = (int)y0;
+  rvec3 top = REF(lerp_color)(REF(texel_at)(sc, texels, t.flags, w, hh, ix, iy),
+                              REF(texel_at)(sc, texels, t.flags, w, hh, ix + 1, iy), fx);
+  rvec3 bottom = REF(lerp_color)(REF(texel_at)(sc, texels, t.flags, w, hh, ix, iy + 1),
+                                 REF(texel_at)(sc, texels, t.flags, w, hh, ix + 1, iy + 1), fx);
+  return REF(lerp_color)(top, bottom, fy);
+}
+
+rvec3 REF(texture_color)(const ref_scene *sc, uint32_t first, real u, real v, real fu, real fv) {
   packed_texture t = load_texture(sc, first);
   real uu = u * (real)t.scale_u + (real)t.offset_u;
   real vv = v * (real)t.scale_v + (real)t.offset_v;
@@ -443,20 +500,16 @@ rvec3 REF(texture_color)(const ref_scene *sc, uint32_t first, real u, real v) {
   }
   if (!(uu >= 0 && uu <= 1)) uu = 0;
   if (!(vv >= 0 && vv <= 1)) vv = 0;
-  real x = uu * (real)t.width - (real)0.5;
-  real y = (1 - vv) * (real)t.height - (real)0.5;
-  if ((t.flags & RC_TEXTURE_BILINEAR) == 0)
-    return REF(texel_at)(sc, t, (int)R_FLOOR(x + (real)0.5), (int)R_FLOOR(y + (real)0.5));
-  real x0 = R_FLOOR(x);
-  real y0 = R_FLOOR(y);
-  real fx = x - x0;
-  real fy = y - y0;
-  int ix = (int)x0;
-  int iy = (int)y0;
-  rvec3 top = REF(lerp_color)(REF(texel_at)(sc, t, ix, iy), REF(texel_at)(sc, t, ix + 1, iy), fx);
-  rvec3 bottom =
-      REF(lerp_color)(REF(texel_at)(sc, t, ix, iy + 1), REF(texel_at)(sc, t, ix + 1, iy + 1), fx);
-  return REF(lerp_color)(top, bottom, fy);
+  uint32_t levels = t.flags >> RC_TEXTURE_LEVELS_SHIFT;
+  real n = rmax(fu * R_ABS((real)t.scale_u) * (real)t.width, fv * R_ABS((real)t.scale_v) * (real)t.height);
+  if (levels <= 1u || !(n > 1)) return REF(level_color)(sc, first, t, 0u, uu, vv);
+  if (!(n < RL(1073741824.0))) return REF(level_color)(sc, first, t, levels - 1u, uu, vv);
+  int e;
+  real m = R_FREXP(n, &e);
+  uint32_t level = (uint32_t)(e - 1);
+  if (level >= levels - 1u) return REF(level_color)(sc, first, t, levels - 1u, uu, vv);
+  real s = 2 * m - 1;
+  return REF(lerp_color)(REF(level_color)(sc, first, t, level, uu, vv), REF(level_color)(sc, first, t, level + 1u, uu, vv), s);
 }
 
 real REF(atan2_poly)(real y, real x) {
@@ -496,7 +549,7 @@ rvec3 REF(surface_texture)(const ref_scene *sc, packed_material m, const ref_sur
   if (m.texture == RC_NO_TEXTURE || sf->uv_kind == RC_UV_NONE) return RV(make)(1, 1, 1);
   real u, v;
   REF(surface_uv)(sf, &u, &v);
-  return REF(texture_color)(sc, m.texture, u, v);
+  return REF(texture_color)(sc, m.texture, u, v, sf->footprint * sf->uv_rate.x, sf->footprint * sf->uv_rate.y);
 }
 
 rvec3 REF(light_contribution)(const ref_scene *sc, packed_material m, rvec3 kd, rvec3 n, rvec3 l, rvec3 v,

@@ -21,10 +21,12 @@ extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
 extern _Thread_local packed_aov ref_aov_record;
 
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
-  typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; uint32_t uv_kind; V uv_at; } ref_surface_##S; \
+  typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; uint32_t uv_kind; V uv_at, uv_rate; R footprint; } ref_surface_##S; \
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
   V ref_plane_uv_##S(const packed_quadric *q, V p);                                             \
-  uint32_t ref_quadric_uv_##S(const packed_quadric *q, uint32_t code, V p, V *uv_at);          \
+  uint32_t ref_quadric_uv_##S(const packed_quadric *q, uint32_t code, V p, V *uv_at, V *uv_rate); \
+  V ref_sphere_uv_rate_##S(V n, R r);                                                           \
+  V ref_triangle_uv_rate_##S(packed_vertex_uvs t, packed_triangle tri);                         \
   V ref_quadric_refine_##S(const packed_quadric *q, V p, V *p_error);                              \
   V ref_triangle_uv_##S(packed_vertex_uvs t, V b);                                              \
   ref_surface_##S ref_surface_at_##S(const ref_scene *sc, V o, V d, const ref_hit_##S *h);      \
@@ -38,9 +40,10 @@ extern _Thread_local packed_aov ref_aov_record;
   R ref_t_min_end_##S(const ref_scene *sc, R t_max);                                            \
   R ref_specular_term_##S(const ref_scene *sc, V n, V l, V v, float shininess);                 \
   bool ref_light_at_##S(packed_light light, V p, V origin, V *l, V *irradiance, V *to_light, R *shadow_t_max); \
-  V ref_texel_at_##S(const ref_scene *sc, packed_texture t, int x, int y);                   \
+  V ref_texel_at_##S(const ref_scene *sc, uint32_t texels, uint32_t flags, int w, int hh, int x, int y); \
   V ref_lerp_color_##S(V a, V b, R s);                                                          \
-  V ref_texture_color_##S(const ref_scene *sc, uint32_t first, R u, R v);                       \
+  V ref_level_color_##S(const ref_scene *sc, uint32_t first, packed_texture t, uint32_t level, R uu, R vv); \
+  V ref_texture_color_##S(const ref_scene *sc, uint32_t first, R u, R v, R fu, R fv);           \
   R ref_atan2_poly_##S(R y, R x);                                                               \
   void ref_surface_uv_##S(const ref_surface_##S *sf, R *u, R *v);                               \
   V ref_surface_texture_##S(const ref_scene *sc, packed_material m, const ref_surface_##S *sf); \

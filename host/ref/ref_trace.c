@@ -25,6 +25,8 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
   rvec3 weight = RV(make)(1, 1, 1);
   uint32_t first, end;
   REF(eye_nodes)(sc, px, py, &first, &end);
+  real cone_width = (real)sc->frame->cone_width;
+  real cone_spread = (real)sc->frame->cone_spread;
   for (uint32_t depth = 0; depth <= sc->frame->reflection_depth; depth++) {
     ref_hit h;
     ref_spawned_ray = depth > 0;
@@ -37,6 +39,8 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
       break;
     }
     ref_surface sf = REF(surface_at)(sc, o, d, &h);
+    real width = cone_width + cone_spread * h.t;
+    sf.footprint = width / rmax(R_ABS(RV(dot)(sf.ng, d)), RL(0.000001));
     if (sc->frame->certify) REF(cert_surface)(sc, d, &h, &sf);
     if (sc->frame->certify) REF(cert_note)(depth == 0 ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
     real ed_in = ref_cert_ed;
@@ -49,6 +53,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     rvec3 mirror = rvec3_from(sc->materials[sf.material].mirror);
     if (depth == sc->frame->reflection_depth || RV(eq)(mirror, RV(make)(0, 0, 0))) break;
     weight = RV(mul)(weight, mirror);
+    cone_width = width;
     o = REF(spawn_origin)(sc, &sf);
     rvec3 bounced = RV(normalize)(RV(reflect)(d, sf.n)); /* `precise` in the shader: never fused */
     d = bounced;

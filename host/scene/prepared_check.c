@@ -1,5 +1,7 @@
 #include "scene/prepared_check.h"
 
+#include "scene/texture_levels.h"
+
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -84,8 +86,15 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
     if (first > p->texel_count || p->texel_count - first < RC_TEXELS_PER_TEXTURE_HEADER)
       return say(why, cap, "material %u's texture begins past the %u texels", i, p->texel_count);
     memcpy(&h, &p->texels[4 * (size_t)first], sizeof h);
-    uint64_t end = (uint64_t)h.texels + (uint64_t)h.width * h.height;
-    if (h.width < 1 || h.height < 1 || h.flags > (RC_TEXTURE_BILINEAR | RC_TEXTURE_CLAMP) || end > p->texel_count)
+    uint32_t levels = h.flags >> RC_TEXTURE_LEVELS_SHIFT, level_first[RC_TEXTURE_MAX_LEVELS];
+    memcpy(level_first, &p->texels[4 * ((size_t)first + 2)], sizeof level_first);
+    bool fits = h.width >= 1 && h.height >= 1 && levels >= 1 && levels < RC_TEXTURE_MAX_LEVELS &&
+                (h.flags & ((1u << RC_TEXTURE_LEVELS_SHIFT) - 1u)) <= (RC_TEXTURE_BILINEAR | RC_TEXTURE_CLAMP) &&
+                levels <= rc_texture_level_count(h.width, h.height, true) && level_first[0] == h.texels;
+    for (uint32_t k = 0; fits && k < levels; k++)
+      fits = (uint64_t)level_first[k] + (uint64_t)rc_texture_level_side(h.width, k) * rc_texture_level_side(h.height, k) <=
+             p->texel_count;
+    if (!fits)
       return say(why, cap, "material %u's texture (%u x %u, flags %u) does not fit the %u texels", i, h.width,
                  h.height, h.flags, p->texel_count);
   }

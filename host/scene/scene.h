@@ -21,6 +21,7 @@ typedef struct rc_material_def {
 typedef struct rc_texture_def {
   char *path;            /* as opened: relative to the scene file's folder, joined */
   bool bilinear, clamp;  /* texture_filter, texture_wrap */
+  bool mipmap;           /* texture_mipmap: minified lookups read the mip levels (packed_texture) */
   double scale[2], offset[2];
   char where[512];       /* "FILE:LINE:COL: error: materials.NAME.texture", for messages */
   uint32_t width, height;

@@ -125,7 +125,8 @@ static rc_status parse_materials(jctx *c, const cJSON *root, rc_scene *s) {
     RC_TRY(js_expect_object(c, m));
     static const char *const allowed[] = {"ambient",        "diffuse",      "specular",      "shininess",
                                           "mirror",         "emission",     "texture",       "texture_filter",
-                                          "texture_wrap",   "texture_scale", "texture_offset", NULL};
+                                          "texture_wrap",   "texture_scale", "texture_offset", "texture_mipmap",
+                                          NULL};
     RC_TRY(js_check_members(c, m, allowed));
     rc_material_def *d = &s->materials[s->material_count];
     d->name = strdup(m->string);

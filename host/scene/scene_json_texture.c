@@ -33,7 +33,8 @@ rc_status js_parse_texture(jctx *c, const cJSON *m, rc_scene *s, uint32_t *slot)
   *slot = 0;
   const cJSON *f = cJSON_GetObjectItemCaseSensitive(m, "texture");
   if (!f) {
-    static const char *const options[] = {"texture_filter", "texture_wrap", "texture_scale", "texture_offset"};
+    static const char *const options[] = {"texture_filter", "texture_wrap", "texture_scale", "texture_offset",
+                                          "texture_mipmap"};
     for (size_t i = 0; i < sizeof options / sizeof *options; i++)
       if (cJSON_GetObjectItemCaseSensitive(m, options[i])) {
         js_push_key(c, options[i]);
@@ -49,6 +50,7 @@ rc_status js_parse_texture(jctx *c, const cJSON *m, rc_scene *s, uint32_t *slot)
   RC_TRY(js_get_enum(c, m, "texture_wrap", wraps, 0, &wrap));
   RC_TRY(get_pair(c, m, "texture_scale", 1.0, t.scale));
   RC_TRY(get_pair(c, m, "texture_offset", 0.0, t.offset));
+  RC_TRY(js_get_bool(c, m, "texture_mipmap", true, &t.mipmap));
   t.bilinear = filter == 0, t.clamp = wrap == 1;
   js_push_key(c, "texture");
   char path[4096], folder[4096];

@@ -2,6 +2,7 @@
 
 #include "math/rcm_mat3.h"
 #include "scene/name_table.h"
+#include "scene/texture_levels.h"
 
 #include <float.h>
 #include <math.h>
@@ -57,6 +58,14 @@ static double scene_size(const rc_scene *s, dvec3 origin) {
  * every product, quotient and square root of the renderers with it: the image is the
  * image of the unscaled arithmetic wherever that stayed in range (tests/rescale/). The
  * exponent stays within 60, where the light's attenuation constant c0 s^2 is still normal. */
+/* The mip levels stored for image i (rc_texture_def.image): all of them where a texture
+ * reading it is mip-mapped, else the image alone. */
+static uint32_t image_levels(const rc_scene *s, size_t i) {
+  bool mipmap = false;
+  for (size_t k = 0; k < s->texture_count; k++) mipmap |= s->textures[k].image == i && s->textures[k].mipmap;
+  return rc_texture_level_count(s->textures[i].width, s->textures[i].height, mipmap);
+}
+
 static double packing_scale(const rc_scene *s, dvec3 origin) {
   double size = scene_size(s, origin);
   if (!s->quality.rescale || size == 0 || (size >= 0x1p-20 && size < 0x1p20)) return 1;
@@ -89,6 +98,11 @@ static void pack_camera(const rc_scene *s, rc_packed_scene *p) {
   g->projection = c->projection;
   g->width = s->width;
   g->height = s->height;
+  /* A sample's ray cone (texture level of detail): one pixel's window over sqrt(spp), the
+   * side of a sample's share of it; an angle from a pinhole, a width from a parallel window. */
+  double per_sample = 2.0 * half_h / (double)s->height / sqrt((double)(s->samples_per_pixel ? s->samples_per_pixel : 1));
+  p->frame.cone_spread = c->projection == RC_PROJECTION_PERSPECTIVE ? (float)per_sample : 0.0f;
+  p->frame.cone_width = c->projection == RC_PROJECTION_PERSPECTIVE ? 0.0f : (float)per_sample;
 }
 
 static bool finite3(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
@@ -304,7 +318,9 @@ static bool alloc_arrays(const rc_scene *s, rc_packed_scene *p) {
   size_t texels = 0;
   for (size_t i = 0; i < s->texture_count; i++)
     texels += RC_TEXELS_PER_TEXTURE_HEADER +
-              (s->textures[i].image == i ? (size_t)s->textures[i].width * s->textures[i].height : 0);
+              (s->textures[i].image == i ? rc_texture_pyramid_texels(s->textures[i].width, s->textures[i].height,
+                                                                     image_levels(s, i))
+                                         : 0);
   /* Then the triangles' texture coordinates (RC_TRIANGLE_UV_SHIFT). */
   p->uv_first = (uint32_t)texels;
   for (size_t i = 0; i < s->triangle_count; i++) texels += s->triangles[i].has_uv ? RC_TEXELS_PER_VERTEX_UVS : 0;
@@ -378,33 +394,36 @@ static void pack_triangles(const rc_scene *s, rc_packed_scene *p) {
   }
 }
 
-/* Each texture's header (packed_texture), then its image unless an earlier texture named
- * the same file (rc_texture_def.image: the image is shared), in the scene's order; *first
- * gets where each header is. The images were read by the command (cli/textures.c). */
+/* Each texture's header (packed_texture and its levels' table), then its image and mip
+ * levels unless an earlier texture named the same file (rc_texture_def.image: the image is
+ * shared), in the scene's order; *first gets where each header is. The images were read by
+ * the command (cli/textures.c). */
 static void pack_textures(const rc_scene *s, rc_packed_scene *p, uint32_t *first) {
   uint32_t at = 0;
   for (size_t i = 0; i < s->texture_count; i++) {
     const rc_texture_def *t = &s->textures[i];
     first[i] = at;
     at += RC_TEXELS_PER_TEXTURE_HEADER;
-    /* An image shared with an earlier texture: that one's header says where it lies. */
+    uint32_t stored = image_levels(s, t->image), levels = t->mipmap ? stored : 1;
+    uint32_t level_first[RC_TEXTURE_MAX_LEVELS] = {0};
     packed_texture h = {.width = t->width, .height = t->height,
-                        .flags = (t->bilinear ? RC_TEXTURE_BILINEAR : 0u) | (t->clamp ? RC_TEXTURE_CLAMP : 0u),
+                        .flags = (t->bilinear ? RC_TEXTURE_BILINEAR : 0u) | (t->clamp ? RC_TEXTURE_CLAMP : 0u) |
+                                 levels << RC_TEXTURE_LEVELS_SHIFT,
                         .texels = at,
                         .scale_u = (float)t->scale[0], .scale_v = (float)t->scale[1],
                         .offset_u = (float)t->offset[0], .offset_v = (float)t->offset[1]};
-    if (t->image != i) {
+    if (t->image != i) { /* a shared image: the earlier texture's header says where it lies */
       packed_texture shared;
       memcpy(&shared, &p->texels[4 * (size_t)first[t->image]], sizeof shared);
       h.texels = shared.texels;
+      memcpy(level_first, &p->texels[4 * ((size_t)first[t->image] + 2)], sizeof level_first);
+    } else {
+      RC_ASSERT(t->rgb != NULL);
+      rc_texture_write_levels(t->rgb, t->width, t->height, stored, at, &p->texels[4 * (size_t)at], level_first);
+      at += (uint32_t)rc_texture_pyramid_texels(t->width, t->height, stored);
     }
     memcpy(&p->texels[4 * (size_t)first[i]], &h, sizeof h);
-    if (t->image != i) continue;
-    RC_ASSERT(t->rgb != NULL);
-    for (size_t k = 0; k < (size_t)t->width * t->height; k++, at++) {
-      const float rgba[4] = {t->rgb[3 * k], t->rgb[3 * k + 1], t->rgb[3 * k + 2], 1.0f};
-      memcpy(&p->texels[4 * (size_t)at], rgba, sizeof rgba);
-    }
+    memcpy(&p->texels[4 * ((size_t)first[i] + 2)], level_first, sizeof level_first);
   }
 }
 

@@ -12,7 +12,12 @@
 #   0.3, gives the same pixels;
 # - repeat against clamp, and the scale, at a pixel whose texel is known;
 # - a quad of two triangles with texture coordinates at its corners, as JSON triangles and
-#   as an OBJ mesh's vt: the texels the convention names, and the same pixels both ways.
+#   as an OBJ mesh's vt: the texels the convention names, and the same pixels both ways;
+# - a minified texture reads its mip levels: a checker of one-texel squares, whose levels
+#   past the first are all exactly grey, under a ray cone of 2 or more texels (a floor
+#   under a parallel camera; a floor to the horizon, a far sphere and a quad under a
+#   perspective one) gives exactly the untextured render at half the colour, and without
+#   mip-mapping it does not (it aliases).
 # Usage: test_textures.sh VKRAYCAST WORKDIR
 set -uo pipefail
 bin=$1 work=$2
@@ -189,5 +194,51 @@ for v in "${variants[@]}"; do
   "$bin" compare "$work/quad.exr" "$work/quad_obj.exr" --fail 0 --hardfail 0 >/dev/null 2>&1 ||
     because "the OBJ quad's vt give other pixels than the JSON quad's uvs"
   check "triangles' texture coordinates, JSON and OBJ, $v" "$why"
+done
+# 5. Mip levels. A 64 x 64 checker of one-texel squares: every 2 x 2 block is half white,
+# so every level past the first is 0.5 exactly, as is a blend of two of them. Ambient light
+# only (colour = texture x ambient), 1 sample a pixel, so a pixel's ray cone is one pixel;
+# nearest, as bilinear at a half-texel offset would make level 0 grey too.
+oiiotool --pattern checker:width=1:height=1:color1=0,0,0:color2=1,1,1 64x64 3 -d float -o "$work/fine.exr"
+mip_scene() { # FILE CAMERA MATERIAL OBJECTS
+  cat >"$1" <<EOF
+{ "image": { "width": 32, "height": 32, "samples_per_pixel": 1 },
+  "camera": $2,
+  "ambient_light": [1, 1, 1],
+  "materials": { "m": $3 },
+  "objects": [ $4 ] }
+EOF
+}
+# Straight down, parallel: a pixel is 0.125 units, 8 texels at 64 texels a unit: level 3.
+# Towards the horizon, perspective: the nearest floor pixel (about 2 units away, at 30
+# degrees) covers about 9 texels, farther ones more, up to the last level; the sphere (u
+# around it: 64 texels over 2 pi 0.2 units) at 8 units covers about 15, the quad (64
+# texels a unit) at 6 units about 12.
+down='{ "projection": "parallel", "eye": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "view_height": 4 }'
+horizon='{ "eye": [0, 1, 0], "look_at": [0, 0.7, -10], "fov_y_deg": 60 }'
+floor_obj='{ "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "m" }'
+far_objs="$floor_obj,
+    { \"type\": \"sphere\", \"center\": [-0.6, 0.5, -8], \"radius\": 0.2, \"material\": \"m\" },
+    { \"type\": \"triangle\", \"vertices\": [[0.5, 0.3, -6], [1.5, 0.3, -6], [1.5, 1.3, -6]], \"uvs\": [[0, 0], [1, 0], [1, 1]], \"material\": \"m\" }"
+for case in down horizon; do
+  camera=$down objs=$floor_obj
+  [[ $case == down ]] || camera=$horizon objs=$far_objs
+  mip_scene "$work/mip_$case.json" "$camera" '{ "ambient": [1, 1, 1], "texture": "fine.exr", "texture_filter": "nearest" }' "$objs"
+  mip_scene "$work/nomip_$case.json" "$camera" '{ "ambient": [1, 1, 1], "texture": "fine.exr", "texture_filter": "nearest", "texture_mipmap": false }' "$objs"
+  mip_scene "$work/grey_$case.json" "$camera" '{ "ambient": [0.5, 0.5, 0.5] }' "$objs"
+done
+for v in "${variants[@]}"; do
+  why=ok
+  for case in down horizon; do
+    for f in mip nomip grey; do
+      # shellcheck disable=SC2086
+      "$bin" render "$work/${f}_$case.json" $v --quiet -o "$work/${f}_$case.exr" || because "${f}_$case failed"
+    done
+    "$bin" compare "$work/mip_$case.exr" "$work/grey_$case.exr" --fail 0 --hardfail 0 >"$work/cmp" 2>&1 ||
+      because "$case: the mip-mapped checker is not grey: $(grep -m1 'max error' "$work/cmp")"
+    "$bin" compare "$work/nomip_$case.exr" "$work/grey_$case.exr" --fail 0.25 --hardfail 0.25 >/dev/null 2>&1 &&
+      because "$case: without mip-mapping the checker is grey too (no texel of level 0 read?)"
+  done
+  check "a minified checker reads its mip levels (grey), and aliases without them, $v" "$why"
 done
 finish

@@ -48,6 +48,10 @@ int main(void) {
   OFF("frame.patch_count", packed_frame, patch_count);
   OFF("frame.light_buffers", packed_frame, light_buffers);
   OFF("frame.certify", packed_frame, certify);
+  OFF("frame.cone_width", packed_frame, cone_width);
+  OFF("frame.cone_spread", packed_frame, cone_spread);
+  OFF("frame.pad_cone0", packed_frame, pad_cone0);
+  OFF("frame.pad_cone1", packed_frame, pad_cone1);
   printf("Frame size %zu\n", sizeof(packed_frame));
 
   OFF("scene_bvh_nodes.lo", packed_bvh_node, lo);

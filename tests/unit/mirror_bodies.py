@@ -72,7 +72,7 @@ SCENE_DATA = {v for k, v in GLSL_MAP.items() if k.startswith("load_")}
 # Reference spellings -> shader tokens.
 C_MAP = {"R_ABS": "abs", "R_SQRT": "sqrt", "fabs": "abs", "fabsf": "abs", "sqrtf": "sqrt", "powf": "pow",
          "fminf": "min", "fmaxf": "max", "fmin": "min", "fmax": "max", "floorf": "floor", "ceilf": "ceil", "R_FLOOR": "floor",
-         "rmin": "min", "rmax": "max", "rcm_eq_f": "=="}
+         "rmin": "min", "rmax": "max", "rcm_eq_f": "==", "R_FREXP": "frexp", "frexpf": "frexp"}
 # Vector operations of the C side (RV(op)(a, b)): the operator they stand for.
 RV_OPS = {"add": "+", "sub": "-", "mul": "*", "scale": "*", "div": "/", "divs": "/", "neg": "-", "dot": "dot", "eq": "==",
           "cross": "cross", "length": "length", "normalize": "normalize", "abs": "abs", "min": "min",
