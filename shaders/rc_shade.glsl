@@ -580,14 +580,18 @@ rvec3 lerp_color(rvec3 a, rvec3 b, real s) {
 // Mip level `level` of the texture at `first` (header t) at (uu, vv) in [0, 1]: u across
 // the image from its left edge, v up from its bottom edge. In texel units x = uu W - 1/2,
 // y = (1 - vv) H - 1/2 put texel centres on integers: nearest rounds, bilinear blends the
-// four around (x, y).
+// four around (x, y). Nearest is level 0's alone (a magnification filter, as OpenGL's mag
+// filter is): the levels past it are means, read bilinearly, so that a minified lookup
+// stays continuous in the hit point and its nearest texels fade out as its footprint
+// grows from one texel to two.
 rvec3 level_color(uint first, packed_texture t, uint level, real uu, real vv) {
   int w = int(((t.width - 1u) >> level) + 1u);
   int hh = int(((t.height - 1u) >> level) + 1u);
   uint texels = (level == 0u) ? t.texels : load_texture_level(first, level);
   precise real x = uu * real(w) - 0.5;
   precise real y = (1.0 - vv) * real(hh) - 0.5;
-  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u) return texel_at(texels, t.flags, w, hh, int(floor(x + 0.5)), int(floor(y + 0.5)));
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0u && level == 0u)
+    return texel_at(texels, t.flags, w, hh, int(floor(x + 0.5)), int(floor(y + 0.5)));
   real x0 = floor(x);
   real y0 = floor(y);
   precise real fx = x - x0;

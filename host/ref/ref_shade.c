@@ -472,7 +472,7 @@ rvec3 REF(level_color)(const ref_scene *sc, uint32_t first, packed_texture t, ui
   uint32_t texels = (level == 0u) ? t.texels : load_texture_level(sc, first, level);
   real x = uu * (real)w - (real)0.5;
   real y = (1 - vv) * (real)hh - (real)0.5;
-  if ((t.flags & RC_TEXTURE_BILINEAR) == 0)
+  if ((t.flags & RC_TEXTURE_BILINEAR) == 0 && level == 0u)
     return REF(texel_at)(sc, texels, t.flags, w, hh, (int)R_FLOOR(x + (real)0.5), (int)R_FLOOR(y + (real)0.5));
   real x0 = R_FLOOR(x);
   real y0 = R_FLOOR(y);
