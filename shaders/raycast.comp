@@ -3,6 +3,7 @@
 // push.batch_samples more samples to every pixel's running sum in `accum`; the host
 // repeats dispatches until every pixel has frame.samples_per_pixel (docs/design.md §2).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #if RC_F64
 #extension GL_ARB_gpu_shader_int64 : require
 #endif

@@ -626,14 +626,27 @@ rvec3 texture_color(uint first, real u, real v, real fu, real fv) {
   if (!(vv >= 0.0 && vv <= 1.0)) vv = 0.0;
   uint levels = t.flags >> RC_TEXTURE_LEVELS_SHIFT;
   precise real n = select_max(fu * abs(real(t.scale_u)) * real(t.width), fv * abs(real(t.scale_v)) * real(t.height));
-  if (levels <= 1u || !(n > 1.0)) return level_color(first, t, 0u, uu, vv);  // magnified, or NaN
-  if (!(n < RL(1073741824.0))) return level_color(first, t, levels - 1u, uu, vv);  // past every level
-  int e;
-  real m = frexp(n, e);
-  uint level = uint(e - 1);
-  if (level >= levels - 1u) return level_color(first, t, levels - 1u, uu, vv);
-  precise real s = 2.0 * m - 1.0;
-  return lerp_color(level_color(first, t, level, uu, vv), level_color(first, t, level + 1u, uu, vv), s);
+  uint level = 0u;  // magnified (n <= 1), or n NaN: level 0 alone
+  real s = 0.0;     // the weight of level + 1
+  if (levels > 1u && n > 1.0) {
+    level = levels - 1u;  // past every level, or n too large for an int exponent
+    if (n < RL(1073741824.0)) {
+      int e;
+      real m = frexp(n, e);
+      if (uint(e - 1) < levels - 1u) {
+        level = uint(e - 1);
+        s = 2.0 * m - 1.0;
+      }
+    }
+  }
+  // One lookup site for both levels: inlined twice, the bilinear lookup's registers stay
+  // live across the whole shader (docs/performance.md, "Mip levels and ray cones").
+  rvec3 c = rvec3(0.0);
+  [[dont_unroll]] for (uint k = 0u; k < ((s > 0.0) ? 2u : 1u); k++) {
+    rvec3 ck = level_color(first, t, level + k, uu, vv);
+    c = (k == 0u) ? ck : lerp_color(c, ck, s);
+  }
+  return c;
 }
 
 // atan2(y, x) in [-pi, pi] from +, *, / alone, so that the shader and the reference compute

@@ -5,7 +5,8 @@
 # limit so that everything ends inside one call, and leaves the reports in OUT (at most 8
 # files: the device tool's limit).
 #   OUT=$OUT tools/gpu_device.sh
-# Env: T_CHK (180), T_AB (90), T_CERT (100), T_CTEST (180) seconds; AB_ROUNDS (5); PARTS
+# Env: T_CHK (180), T_AB (90), T_CERT (100), T_CTEST (180) seconds; AB_ROUNDS (5); AB_SCENES
+# (scenes/showcase.json scenes/mesh.json); AB_TILES ("default 1024 512 256"); PARTS
 # ("checklist ab certified ctest"; ab runs where the bundle has a baseline: BASE=commit
 # tools/gpu_bundle.sh); CTEST_ARGS (added to ctest's).
 set -u
@@ -51,9 +52,11 @@ if [[ $parts == *ab* && -x build-gpu-base/vkraycast ]]; then
   # PNG: the shader's 8-bit encoding. The baseline borrows this build's mesh importer.
   # shellcheck disable=SC2016
   VKRAYCAST_MESH_IMPORTER=$root/build-gpu/vkraycast-mesh-import EXT=png timeout "${T_AB:-90}" bash -c '
-    for tile in "" "--tile 1024" "--tile 512" "--tile 256"; do
+    for tile in ${AB_TILES:-default 1024 512 256}; do
+      [[ $tile == default ]] && tile="" || tile="--tile $tile"
+      # shellcheck disable=SC2086
       ROUNDS=${AB_ROUNDS:-5} FRAMES=6 ARGS="--width 3840 --height 2160 --spp 1 $tile" \
-        tools/bench_ab.sh build-gpu-base/vkraycast "$1" scenes/showcase.json scenes/mesh.json; echo
+        tools/bench_ab.sh build-gpu-base/vkraycast "$1" ${AB_SCENES:-scenes/showcase.json scenes/mesh.json}; echo
     done' _ "$bin" >"$out/ab.md" 2>&1
   el "ab: exit $?"
 fi

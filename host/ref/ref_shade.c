@@ -502,14 +502,25 @@ rvec3 REF(texture_color)(const ref_scene *sc, uint32_t first, real u, real v, re
   if (!(vv >= 0 && vv <= 1)) vv = 0;
   uint32_t levels = t.flags >> RC_TEXTURE_LEVELS_SHIFT;
   real n = rmax(fu * R_ABS((real)t.scale_u) * (real)t.width, fv * R_ABS((real)t.scale_v) * (real)t.height);
-  if (levels <= 1u || !(n > 1)) return REF(level_color)(sc, first, t, 0u, uu, vv);
-  if (!(n < RL(1073741824.0))) return REF(level_color)(sc, first, t, levels - 1u, uu, vv);
-  int e;
-  real m = R_FREXP(n, &e);
-  uint32_t level = (uint32_t)(e - 1);
-  if (level >= levels - 1u) return REF(level_color)(sc, first, t, levels - 1u, uu, vv);
-  real s = 2 * m - 1;
-  return REF(lerp_color)(REF(level_color)(sc, first, t, level, uu, vv), REF(level_color)(sc, first, t, level + 1u, uu, vv), s);
+  uint32_t level = 0u;
+  real s = 0;
+  if (levels > 1u && n > 1) {
+    level = levels - 1u;
+    if (n < RL(1073741824.0)) {
+      int e;
+      real m = R_FREXP(n, &e);
+      if ((uint32_t)(e - 1) < levels - 1u) {
+        level = (uint32_t)(e - 1);
+        s = 2 * m - 1;
+      }
+    }
+  }
+  rvec3 c = RV(make)(0, 0, 0);
+  for (uint32_t k = 0u; k < ((s > 0) ? 2u : 1u); k++) {
+    rvec3 ck = REF(level_color)(sc, first, t, level + k, uu, vv);
+    c = (k == 0u) ? ck : REF(lerp_color)(c, ck, s);
+  }
+  return c;
 }
 
 real REF(atan2_poly)(real y, real x) {

@@ -82,7 +82,7 @@ RV_OPS = {"add": "+", "sub": "-", "mul": "*", "scale": "*", "div": "/", "divs": 
 NEUTRAL = set("""real rvec3 rvec4 vec3 dvec3 vec2 ivec3 uvec3 uvec4 uvec2 bvec3 float double int uint uint32_t int32_t
 uint64_t int64_t bool const precise ray_shear sheared_triangle surface hit_record in out inout void static return
 if else for while break continue do struct sc rvec3_from vec3_from rv_get true false v3 rcm_xyz rcm_make_f rcm_to_f
-RC_OFFSET_INT offset_int xyz""".split())
+RC_OFFSET_INT offset_int xyz dont_unroll""".split())
 SPEC_CONSTANTS = ["sphere_formula", "triangle_formula", "offset_strategy", "offset_epsilon", "use_bvh", "certify"]
 OPS = {"+", "-", "*", "/", "<", ">", "<=", ">=", "==", "!=", "&&", "||", "!", "?", "%", "<<", ">>", "&", "|", "^",
        "+=", "-=", "*=", "/=", "++", "--", "~"}
