@@ -227,18 +227,24 @@ for case in down horizon; do
   mip_scene "$work/nomip_$case.json" "$camera" '{ "ambient": [1, 1, 1], "texture": "fine.exr", "texture_filter": "nearest", "texture_mipmap": false }' "$objs"
   mip_scene "$work/grey_$case.json" "$camera" '{ "ambient": [0.5, 0.5, 0.5] }' "$objs"
 done
+# Without mip-mapping the lookup is the host's packing and level 0's, the same on every
+# backend: checked with the first variant alone (the suite's time, issue 48).
 for v in "${variants[@]}"; do
   why=ok
   for case in down horizon; do
-    for f in mip nomip grey; do
+    kinds=(mip grey)
+    [[ $v != "${variants[0]}" ]] || kinds+=(nomip)
+    for f in "${kinds[@]}"; do
       # shellcheck disable=SC2086
       "$bin" render "$work/${f}_$case.json" $v --quiet -o "$work/${f}_$case.exr" || because "${f}_$case failed"
     done
     "$bin" compare "$work/mip_$case.exr" "$work/grey_$case.exr" --fail 0 --hardfail 0 >"$work/cmp" 2>&1 ||
       because "$case: the mip-mapped checker is not grey: $(grep -m1 'max error' "$work/cmp")"
-    "$bin" compare "$work/nomip_$case.exr" "$work/grey_$case.exr" --fail 0.25 --hardfail 0.25 >/dev/null 2>&1 &&
+    [[ $v != "${variants[0]}" ]] ||
+      ! "$bin" compare "$work/nomip_$case.exr" "$work/grey_$case.exr" --fail 0.25 --hardfail 0.25 >/dev/null 2>&1 ||
       because "$case: without mip-mapping the checker is grey too (no texel of level 0 read?)"
   done
-  check "a minified checker reads its mip levels (grey), and aliases without them, $v" "$why"
+  [[ $v == "${variants[0]}" ]] && also=", and aliases without them" || also=""
+  check "a minified checker reads its mip levels (grey)$also, $v" "$why"
 done
 finish
