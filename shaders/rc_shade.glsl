@@ -13,6 +13,7 @@ struct surface {
   rvec3 uv_at;    // a sphere's unit normal in its own frame; else (u, v, 0)
   rvec3 uv_rate;  // how fast u and v change along the surface, per packed unit (texture_color)
   real footprint; // the ray cone's width at the hit over |cos| of its incidence, packed units
+  real curvature; // 1 / the radius of curvature where known (a sphere's), else 0 (flat)
 };
 
 // How fast a sphere's (u, v) change along its surface, at unit normal n on a sphere of
@@ -132,6 +133,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
   sf.uv_at = rvec3(0.0);
   sf.uv_rate = rvec3(0.0);
   sf.footprint = 0.0;
+  sf.curvature = 0.0;
   rvec3 n;
   if (has_kind(RC_KIND_SPHERES) && h.kind == RC_HIT_SPHERE) {
     packed_sphere s = load_sphere(h.index);
@@ -162,6 +164,7 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
     sf.uv_kind = RC_UV_SPHERE;
     sf.uv_at = n;
     sf.uv_rate = sphere_uv_rate(n, r);
+    sf.curvature = 1.0 / r;
     if ((!has_kind(RC_KIND_SPHERE_TRANSFORMS) || s.transform == RC_NO_TRANSFORM) && sphere_formula == RC_SPHERE_GEOMETRIC) {
       precise rvec3 rn = r * n;
       sf.p = rvec3(s.center) + rn;
@@ -174,7 +177,9 @@ surface surface_at(rvec3 o, rvec3 d, hit_record h) {
         // Normals go back by the transpose of object_from_packed's linear part; its largest
         // row stretches a packed step the most (an estimate of its norm).
         n = normalize(n.x * rvec3(m.row0.xyz) + n.y * rvec3(m.row1.xyz) + n.z * rvec3(m.row2.xyz));
-        sf.uv_rate = sf.uv_rate * select_max(select_max(length(rvec3(m.row0.xyz)), length(rvec3(m.row1.xyz))), length(rvec3(m.row2.xyz)));
+        real stretch = select_max(select_max(length(rvec3(m.row0.xyz)), length(rvec3(m.row1.xyz))), length(rvec3(m.row2.xyz)));
+        sf.uv_rate = sf.uv_rate * stretch;
+        sf.curvature = sf.curvature * stretch;
       }
       precise rvec3 td = h.t * d;
       sf.p = o + td;

@@ -30,8 +30,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
   uvec2 nodes = eye_nodes(pixel);
   // The sample's ray cone (Akenine-Moller et al., "Texture Level of Detail Strategies for
   // Real-Time Ray Tracing", Ray Tracing Gems, 2019, ch. 20), for texture lookups: its width
-  // grows by the spread angle per unit of distance, and a mirror passes the cone on with
-  // its spread unchanged (a flat mirror's; a curved one's focusing is not modelled).
+  // grows by the spread angle per unit of distance. A mirror passes it on, its spread grown
+  // by twice the angle the normal turns through across the cone's width (a convex
+  // sphere's w / r, doubled by the reflection; 0 on a flat or unknown surface).
   real cone_width = real(frame.cone_width);
   real cone_spread = real(frame.cone_spread);
   for (uint depth = 0u; depth <= scene_reflection_depth(); depth++) {
@@ -68,6 +69,7 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
     if (depth == scene_reflection_depth() || mirror == rvec3(0.0)) break;
     weight *= mirror;
     cone_width = width;
+    cone_spread = cone_spread + 2.0 * width * sf.curvature;
     o = spawn_origin(sf);
     precise rvec3 bounced = normalize(reflect(d, sf.n)); // unfused, as the CPU twin's (rc_camera.glsl)
     d = bounced;

@@ -94,6 +94,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
   sf.uv_at = RV(make)(0, 0, 0);
   sf.uv_rate = RV(make)(0, 0, 0);
   sf.footprint = 0;
+  sf.curvature = 0;
   rvec3 n;
   if (h->kind == RC_HIT_SPHERE) {
     packed_sphere s = sc->spheres[h->index];
@@ -122,6 +123,7 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
     sf.uv_kind = RC_UV_SPHERE;
     sf.uv_at = n;
     sf.uv_rate = REF(sphere_uv_rate)(n, r);
+    sf.curvature = 1 / r;
     if (!m && !algebraic) {
       rvec3 rn = RV(scale)(n, r);
       sf.p = RV(add)(rvec3_from(s.center), rn);
@@ -130,8 +132,10 @@ ref_surface REF(surface_at)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_hit
       if (m) {
         n = RV(normalize)(RV(add)(RV(add)(RV(scale)(rvec3_from(rcm_xyz(m->row0)), n.x), RV(scale)(rvec3_from(rcm_xyz(m->row1)), n.y)),
                                   RV(scale)(rvec3_from(rcm_xyz(m->row2)), n.z)));
-        sf.uv_rate = RV(scale)(sf.uv_rate, rmax(rmax(RV(length)(rvec3_from(rcm_xyz(m->row0))), RV(length)(rvec3_from(rcm_xyz(m->row1)))),
-                                                RV(length)(rvec3_from(rcm_xyz(m->row2)))));
+        real stretch = rmax(rmax(RV(length)(rvec3_from(rcm_xyz(m->row0))), RV(length)(rvec3_from(rcm_xyz(m->row1)))),
+                            RV(length)(rvec3_from(rcm_xyz(m->row2))));
+        sf.uv_rate = RV(scale)(sf.uv_rate, stretch);
+        sf.curvature = sf.curvature * stretch;
       }
       rvec3 td = RV(scale)(d, h->t);
       sf.p = RV(add)(o, td);

@@ -21,7 +21,7 @@ extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
 extern _Thread_local packed_aov ref_aov_record;
 
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
-  typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; uint32_t uv_kind; V uv_at, uv_rate; R footprint; } ref_surface_##S; \
+  typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; uint32_t uv_kind; V uv_at, uv_rate; R footprint, curvature; } ref_surface_##S; \
   void ref_camera_ray_##S(const ref_scene *sc, ref_vec2 raster, V *origin, V *dir);            \
   V ref_plane_uv_##S(const packed_quadric *q, V p);                                             \
   uint32_t ref_quadric_uv_##S(const packed_quadric *q, uint32_t code, V p, V *uv_at, V *uv_rate); \

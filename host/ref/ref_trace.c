@@ -54,6 +54,7 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     if (depth == sc->frame->reflection_depth || RV(eq)(mirror, RV(make)(0, 0, 0))) break;
     weight = RV(mul)(weight, mirror);
     cone_width = width;
+    cone_spread = cone_spread + 2 * width * sf.curvature;
     o = REF(spawn_origin)(sc, &sf);
     rvec3 bounced = RV(normalize)(RV(reflect)(d, sf.n)); /* `precise` in the shader: never fused */
     d = bounced;

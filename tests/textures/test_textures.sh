@@ -16,7 +16,8 @@
 # - a minified texture reads its mip levels: a checker of one-texel squares, whose levels
 #   past the first are all exactly grey, under a ray cone of 2 or more texels (a floor
 #   under a parallel camera; a floor to the horizon, a far sphere and a quad under a
-#   perspective one) gives exactly the untextured render at half the colour, and without
+#   perspective one; a magnified floor seen in a mirror sphere, whose curvature spreads
+#   the cone) gives exactly the untextured render at half the colour, and without
 #   mip-mapping it does not (it aliases).
 # Usage: test_textures.sh VKRAYCAST WORKDIR
 set -uo pipefail
@@ -220,6 +221,15 @@ floor_obj='{ "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material
 far_objs="$floor_obj,
     { \"type\": \"sphere\", \"center\": [-0.6, 0.5, -8], \"radius\": 0.2, \"material\": \"m\" },
     { \"type\": \"triangle\", \"vertices\": [[0.5, 0.3, -6], [1.5, 0.3, -6], [1.5, 1.3, -6]], \"uvs\": [[0, 0], [1, 0], [1, 1]], \"material\": \"m\" }"
+# A mirror sphere of radius 1 over a floor whose checker is magnified (a pixel is 0.125
+# units, 4 texels a unit: level 0, black or white): straight down, parallel, a cone keeps
+# its width until a mirror spreads it by twice the normal's turn across it, 2 w / r. At
+# pixel columns 8, 9, 22 and 23 of row 16 the reflected rays meet the floor 3-5 units away
+# at 15-30 degrees, a footprint of 5-17 texels: grey. A flat mirror's cone would cover 1-2
+# texels there (the pixels were 1, 0.74, 0.26 and 0 before the curvature was modelled).
+mip_scene "$work/mirror.json" "$down" '{ "ambient": [1, 1, 1], "texture": "fine.exr", "texture_filter": "nearest", "texture_scale": [0.0625, 0.0625] },
+    "mirror": { "mirror": [1, 1, 1] }' \
+  "$floor_obj, { \"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": 1, \"material\": \"mirror\" }"
 for case in down horizon; do
   camera=$down objs=$floor_obj
   [[ $case == down ]] || camera=$horizon objs=$far_objs
@@ -244,7 +254,13 @@ for v in "${variants[@]}"; do
       ! "$bin" compare "$work/nomip_$case.exr" "$work/grey_$case.exr" --fail 0.25 --hardfail 0.25 >/dev/null 2>&1 ||
       because "$case: without mip-mapping the checker is grey too (no texel of level 0 read?)"
   done
+  # shellcheck disable=SC2086
+  "$bin" render "$work/mirror.json" $v --quiet -o "$work/mirror.exr" || because "the mirror failed"
+  for x in 8 9 22 23; do
+    [[ $(pixel "$work/mirror.exr" $x 16) == "0.5000"*" 0.5000"*" 0.5000"* ]] ||
+      because "the mirror's pixel ($x, 16) is not grey: $(pixel "$work/mirror.exr" $x 16)"
+  done
   [[ $v == "${variants[0]}" ]] && also=", and aliases without them" || also=""
-  check "a minified checker reads its mip levels (grey)$also, $v" "$why"
+  check "a minified checker reads its mip levels (grey)$also, through a curved mirror too, $v" "$why"
 done
 finish
