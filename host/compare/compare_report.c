@@ -84,7 +84,7 @@ static void print_notes(const rc_compare_report *rep, FILE *f) {
             "        An AOV file records each pixel's first sample%s%s%s and first ray only; the\n"
             "        difference comes from a later sample, a mirror bounce, or a texture lookup (not\n"
             "        recorded) whose colour moves with the hit point's last bits: a texel edge under\n"
-            "        nearest filtering, a minified texture on a plane's horizon.\n"
+            "        nearest filtering where the texture is magnified (minified, it reads mip levels).\n"
             "        Render both with --spp 1 and --reflection-depth 0 to see every decision of a\n"
             "        pixel in its AOV.\n",
             (unsigned long long)rep->over_same_decisions, (unsigned long long)r->over, rep->limits->fail,
