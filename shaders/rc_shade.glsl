@@ -63,8 +63,9 @@ uint quadric_uv(packed_quadric q, uint code, rvec3 p, out rvec3 uv_at, out rvec3
     return RC_UV_GIVEN;
   }
   if (kind == RC_QUADRIC_UV_ELLIPSOID) {
-    rvec3 k = sqrt(rvec3(q.diag)) * axes;
-    uv_at = normalize(f * sqrt(rvec3(q.diag)));
+    rvec3 inv_radii = sqrt(rvec3(q.diag));
+    rvec3 k = inv_radii * axes;
+    uv_at = normalize(f * inv_radii);
     uv_rate = sphere_uv_rate(uv_at, 1.0 / select_max(select_max(k.x, k.y), k.z));
     return RC_UV_SPHERE;
   }

@@ -34,8 +34,9 @@ uint32_t REF(quadric_uv)(const packed_quadric *q, uint32_t code, rvec3 p, rvec3 
   }
   if (kind == RC_QUADRIC_UV_ELLIPSOID) {
     rvec3 D = rvec3_from(q->diag);
-    rvec3 k = RV(mul)(RV(make)(R_SQRT(D.x), R_SQRT(D.y), R_SQRT(D.z)), axes);
-    *uv_at = RV(normalize)(RV(mul)(f, RV(make)(R_SQRT(D.x), R_SQRT(D.y), R_SQRT(D.z))));
+    rvec3 inv_radii = RV(make)(R_SQRT(D.x), R_SQRT(D.y), R_SQRT(D.z));
+    rvec3 k = RV(mul)(inv_radii, axes);
+    *uv_at = RV(normalize)(RV(mul)(f, inv_radii));
     *uv_rate = REF(sphere_uv_rate)(*uv_at, 1 / rmax(rmax(k.x, k.y), k.z));
     return RC_UV_SPHERE;
   }

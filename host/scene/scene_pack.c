@@ -58,14 +58,6 @@ static double scene_size(const rc_scene *s, dvec3 origin) {
  * every product, quotient and square root of the renderers with it: the image is the
  * image of the unscaled arithmetic wherever that stayed in range (tests/rescale/). The
  * exponent stays within 60, where the light's attenuation constant c0 s^2 is still normal. */
-/* The mip levels stored for image i (rc_texture_def.image): all of them where a texture
- * reading it is mip-mapped, else the image alone. */
-static uint32_t image_levels(const rc_scene *s, size_t i) {
-  bool mipmap = false;
-  for (size_t k = 0; k < s->texture_count; k++) mipmap |= s->textures[k].image == i && s->textures[k].mipmap;
-  return rc_texture_level_count(s->textures[i].width, s->textures[i].height, mipmap);
-}
-
 static double packing_scale(const rc_scene *s, dvec3 origin) {
   double size = scene_size(s, origin);
   if (!s->quality.rescale || size == 0 || (size >= 0x1p-20 && size < 0x1p20)) return 1;
@@ -290,6 +282,14 @@ static void pack_frame(const rc_scene *s, rc_packed_scene *p) {
   f->reflection_depth = any_mirror ? s->reflection_depth : 0;
   for (size_t i = 0; i < s->csg_count; i++)
     if (s->csgs[i].steps > f->csg_max_steps) f->csg_max_steps = s->csgs[i].steps;
+}
+
+/* The mip levels stored for image i (rc_texture_def.image): all of them where a texture
+ * reading it is mip-mapped, else the image alone. */
+static uint32_t image_levels(const rc_scene *s, size_t i) {
+  bool mipmap = false;
+  for (size_t k = 0; k < s->texture_count; k++) mipmap |= s->textures[k].image == i && s->textures[k].mipmap;
+  return rc_texture_level_count(s->textures[i].width, s->textures[i].height, mipmap);
 }
 
 /* Every array at its size, at least one element each: Vulkan has no zero-sized buffers. */
