@@ -93,8 +93,8 @@ same=$(cmp -s "$out/frame_auto.png" "$out/frame_off.png" && echo 1)
 for enc in auto off; do
   j=$out/frame_$enc.json
   say "  - \`--gpu-encode $enc\`: readback_bytes $(num readback_bytes "$j"), readback_submits $(num readback_submits "$j"), \
-readback_overlapped $(num readback_overlapped "$j") of $(num tiles "$j") tiles, readback_ms $(num readback_ms "$j"), \
-render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j"), write_ms $(num write_ms "$j"), \
+readback_overlapped $(num readback_overlapped "$j") of $(num tiles "$j") tiles, bands_overlapped $(num bands_overlapped "$j"), \
+band_overlapped_ms $(num band_overlapped_ms "$j"), readback_ms $(num readback_ms "$j"), render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j"), write_ms $(num write_ms "$j"), \
 gpu_encoded $(num gpu_encoded "$j"), readback_cached $(num readback_cached "$j")"
 done
 cached=$(num readback_cached "$out/frame_auto.json")
@@ -105,7 +105,7 @@ verdict "8. frame at 3840x2160" "$([[ $same == 1 && $cached == true ]] && echo 1
   --repeat 5 --quiet --tile 512 --stats-json "$out/frame_tiles.json"
 j=$out/frame_tiles.json
 say "  - \`--tile 512\`: staging $(num staging "$j"), readback_overlapped $(num readback_overlapped "$j") of $(num tiles "$j") tiles, \
-readback_ms $(num readback_ms "$j"), render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j")"
+bands_overlapped $(num bands_overlapped "$j"), readback_ms $(num readback_ms "$j"), render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j")"
 cmp -s "$out/frame_tiles.png" "$out/frame_auto.png" || say "  - \`--tile 512\`: the PNG DIFFERS from the whole frame's"
 rm -f "$out"/frame_*.png
 

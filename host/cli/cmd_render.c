@@ -578,12 +578,16 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
      * time is the write's (write_ms), not the frame's, as on the CPU backend, whose frame
      * time stops before its bands are written. Counted in both, it made the steady frame
      * of a 2- or 3-frame --repeat (steady() takes the later of frames 2 and 3) the
-     * frame plus the write. The certified re-render in the sink stays in the frame. (No
+     * frame plus the write. The certified re-render in the sink stays in the frame, and so
+     * does the write of bands handed on while the next band rendered (band_overlapped_ms):
+     * what of it the device's work hid is not known, so the frame is not flattered. (No
      * output yet, or a discarded frame: no write time, and rc_output_write_ms of NULL is 0.) */
     double written = rc_output_write_ms(*out);
     if (st == RC_OK) st = rc_gpu_renderer_render(r, band, user, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
-    wall_ms[i] = rs->gpu.render_ms - (rc_output_write_ms(*out) - written);
+    double write_ms = rc_output_write_ms(*out) - written;
+    double hidden = rs->gpu.band_overlapped_ms < write_ms ? rs->gpu.band_overlapped_ms : write_ms;
+    wall_ms[i] = rs->gpu.render_ms - (write_ms - hidden);
   }
   if (st == RC_OK) {
     rs->first_frame_ms = wall_ms[0];

@@ -83,6 +83,7 @@ struct rc_output {
   double length_unit; /* the AOV depth's scene units per packed unit */
   float *aov_band; /* rows * width * RC_AOV_CHANNELS */
   uint32_t aov_band_rows;
+  uint32_t bands; /* bands written so far */
   double write_ms;
 };
 
@@ -173,6 +174,14 @@ rc_status rc_output_band(uint32_t y0, uint32_t rows, const float *rgb, const uin
   int failed = !o->image ? 0
                : levels  ? rc_image_writer_levels(o->image, (int)rows, levels, err, sizeof err)
                          : rc_image_writer_rows(o->image, (int)rows, rgb, err, sizeof err);
+  /* VKRAYCAST_FAULT=write-band:N fails band N (from 0) as a full disk would: how the tests
+   * make a write fail while the next band renders (gpu_render.c, host_work). */
+  const char *fault = rc_fault_arg("write-band");
+  if (!failed && fault && (uint32_t)atoi(fault) == o->bands) {
+    snprintf(err, sizeof err, "write failed: %s (injected)", strerror(ENOSPC));
+    failed = 1;
+  }
+  o->bands++;
   if (failed) {
     rc_error("%s: cannot write image: %s", o->image_path, err);
     return RC_ERR_IO;

@@ -183,6 +183,8 @@ static const stats_field gpu_fields[] = {
     FIELD("dispatches", F_U32, gpu.dispatches),
     FIELD("readback_submits", F_U32, gpu.readback_submits),
     FIELD("readback_overlapped", F_U32, gpu.readback_overlapped),
+    FIELD("bands_overlapped", F_U32, gpu.bands_overlapped),
+    FIELD("band_overlapped_ms", F_DOUBLE, gpu.band_overlapped_ms),
     FIELD("tile_budget_ms", F_DOUBLE, gpu.tile_budget_ms),
     FIELD("max_dispatch_ms", F_DOUBLE, gpu.max_dispatch_ms),
     FIELD("dispatches_over_budget", F_U32, gpu.over_budget),

@@ -331,13 +331,13 @@ static rc_status warm_up(rc_gpu_renderer *r) {
   return submit(r);
 }
 
-static rc_status read_pending(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats *stats);
+static rc_status host_work(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats *stats);
 
 /* One dispatch over a tile: reset the status counters (and the accumulation buffer on the
  * first batch), run the shader between two timestamps, and bring the status back. Through
  * staging, a dispatch that may be the tile's last (copy_tile) also copies the tile out in
  * the same submit: a second submit and wait cost a queue round trip per tile. While it
- * runs, the host reads the tile left pending before it. */
+ * runs, the host does the work left for it (host_work). */
 static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool first, bool copy_tile,
                           packed_status *status, double *ms, rc_gpu_stats *stats) {
   rc_status st = begin(r);
@@ -372,14 +372,21 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   if (r->tile_copied) record_tile_readback(r, push->tile_width, push->tile_height);
   double t0 = rc_now_ms();
   st = submit_only(r);
-  /* The previous tile, copied out into the other slot, is read while this one runs. */
+  const bool submitted = st == RC_OK;
+  /* The previous tile, copied out into the other slot, is read while this one runs, and
+   * the band it completed is handed on. */
   double read_ms = 0;
-  if (st == RC_OK && r->pending.valid) {
+  if (st == RC_OK && (r->pending.valid || r->band_done.valid)) {
     double r0 = rc_now_ms();
-    st = read_pending(r, true, stats);
+    st = host_work(r, true, stats);
     read_ms = rc_now_ms() - r0;
   }
-  if (st == RC_OK) st = wait_submitted(r);
+  /* Waited for even where the host's work failed (a full disk): the fence and the command
+   * buffer are whole again before anything else touches them. */
+  if (submitted) {
+    rc_status waited = wait_submitted(r);
+    if (st == RC_OK) st = waited;
+  }
   double wall = rc_now_ms() - t0 - read_ms;
   if (st != RC_OK) return st;
   const rc_buffer *sb = r->staging ? &r->status_readback : &r->status;
@@ -493,6 +500,23 @@ static rc_status read_pending(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats 
   if (overlapped) stats->readback_overlapped++;
   else r->slot = r->pending.slot; /* nothing runs: the next copy may take the slot back */
   return read_tile(r, r->pending.x0, r->pending.tw, r->pending.th, r->pending.slot, true, stats);
+}
+
+/* The host's work that waits for the next dispatch to hide it: the tile left pending, then
+ * the band it completed, if it did, to the band function (writing a band of a 4K PNG takes
+ * longer than rendering it on a GPU). The band's buffers are free again before the next
+ * tile is read into them: after that dispatch. `overlapped`: while a dispatch runs. */
+static rc_status host_work(rc_gpu_renderer *r, bool overlapped, rc_gpu_stats *stats) {
+  rc_status st = r->pending.valid ? read_pending(r, overlapped, stats) : RC_OK;
+  if (st != RC_OK || !r->band_done.valid) return st;
+  r->band_done.valid = false;
+  double t0 = rc_now_ms();
+  st = r->band(r->band_done.y0, r->band_done.rows, r->band_rgb, r->band_levels, r->band_aov, r->band_user);
+  if (overlapped) {
+    stats->bands_overlapped++;
+    stats->band_overlapped_ms += rc_now_ms() - t0;
+  }
+  return st;
 }
 
 /* The plan's batch rests on a worst case (every ray to the deepest leaf, every bounce taken:
@@ -623,9 +647,9 @@ static rc_status render_tile(rc_gpu_renderer *r, uint32_t x0, uint32_t y0, uint3
     if (status.incomplete_pixels == 0) break;
   }
   if (!r->tile_copied) return read_tile(r, x0, tw, th, r->slot, false, stats);
-  /* Copied out by its last dispatch: read while the next tile's first one runs, which on a
-   * GPU hides the host's pass over the tile behind the device's work (at the band's end,
-   * where the band needs it, at once). */
+  /* Copied out by its last dispatch: read while the next tile's first one runs, the next
+   * band's too, which on a GPU hides the host's pass over the tile behind the device's work
+   * (at the frame's end, at once). */
   r->pending.valid = true;
   r->pending.x0 = x0, r->pending.tw = tw, r->pending.th = th, r->pending.slot = r->slot;
   r->slot ^= 1;
@@ -637,8 +661,10 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   stats->shadow_rays = stats->reflection_rays = 0;
   memset(stats->uncertified_at, 0, sizeof stats->uncertified_at);
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = stats->readback_submits = 0;
-  stats->readback_overlapped = 0;
-  r->pending.valid = false;
+  stats->readback_overlapped = stats->bands_overlapped = 0;
+  stats->band_overlapped_ms = 0;
+  r->pending.valid = r->band_done.valid = false;
+  r->band = band, r->band_user = user;
   stats->crossing_object = UINT32_MAX;
   stats->patch_stalls = 0;
   stats->readback_bytes = 0;
@@ -665,11 +691,17 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
                 100.0 * (double)done / total, stats->tiles, el, el * (double)(total - done) / (double)done);
       }
     }
-    rc_status st = r->pending.valid ? read_pending(r, false, stats) : RC_OK;
-    if (st == RC_OK) st = band(y0, rows, r->band_rgb, r->band_levels, r->band_aov, user);
+    /* The band goes on during the next band's first dispatch (host_work). One still
+     * waiting, where this band had no dispatch (a re-render's tiles without a marked
+     * pixel), goes first, at once. */
+    rc_status st = r->band_done.valid ? host_work(r, false, stats) : RC_OK;
     if (st != RC_OK) return st;
+    r->band_done.valid = true;
+    r->band_done.y0 = y0, r->band_done.rows = rows;
     y0 += rows;
   }
+  rc_status st = host_work(r, false, stats); /* the frame's last band */
+  if (st != RC_OK) return st;
   if (r->opts.progress) fputc('\n', stderr);
   stats->lights_per_pass = r->light_pass;
   stats->batch_samples_end = r->batch_samples;

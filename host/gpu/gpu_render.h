@@ -62,8 +62,13 @@ typedef struct rc_gpu_stats {
    * plan); 0 where the host reads the buffers directly. */
   uint32_t readback_submits;
   /* Tiles the host read out of their staging slot while the next tile's first dispatch ran
-   * on the device (the others: each band's last, and tiles read directly). */
+   * on the device (the others: the frame's last, and tiles read directly). */
   uint32_t readback_overlapped;
+  /* Bands handed to the band function while the next band's first dispatch ran on the
+   * device (all but the last, unless a re-render left a band without a dispatch), and the
+   * wall time spent in the band function then. */
+  uint32_t bands_overlapped;
+  double band_overlapped_ms;
   double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
   double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
   uint32_t over_budget;    /* dispatches longer than tile_budget_ms */

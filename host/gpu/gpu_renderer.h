@@ -33,7 +33,7 @@ struct rc_gpu_renderer {
   double tile_budget_ms;     /* resolved: 0 where no watchdog limits a dispatch */
   /* Staging: two readback slots each, so that the host can read one tile out of one while
    * the next tile's dispatch copies into the other (`pending`). The second is made when a
-   * band first has two tiles. */
+   * frame first has two tiles. */
   rc_buffer accum, accum_readback[2];
   rc_buffer status, status_readback;
   /* The AOV records; with opts.levels the encoding and the tile's levels instead
@@ -62,11 +62,20 @@ struct rc_gpu_renderer {
   bool tile_copied;
   uint32_t slot; /* the readback slot the next tile's copy goes to */
   /* A tile copied out into its slot whose pixels the host has not read yet: read while the
-   * next tile's first dispatch runs on the device (render_tile), or at the band's end. */
+   * next tile's first dispatch runs on the device (render_tile), the next band's included,
+   * or at the frame's end. */
   struct {
     bool valid;
     uint32_t x0, tw, th, slot;
   } pending;
+  /* A band whose tiles are all rendered, handed to `band` while the next band's first
+   * dispatch runs (its last tile, pending, read first), or at the frame's end. */
+  struct {
+    bool valid;
+    uint32_t y0, rows;
+  } band_done;
+  rc_band_fn band;
+  void *band_user;
 };
 
 /* The binding of scene array i (rc_shared.h, RC_BINDING_*), in upload order. */

@@ -42,6 +42,17 @@ intact "pipeline creation"
 expect "host out of memory" 3 "out of memory" -- env VKRAYCAST_FAULT=host-memory "$bin" render "$scenes/shadows.json" \
   -o "$work/keep.png" --width 1024 --height 1024 --quiet
 intact "host out of memory"
+# A band is written while the next band's first tile renders (gpu_render.c, host_work): a
+# write that fails then (a full disk) stops the render with exit status 2, its message
+# and no validation error, directly and through staging. 64 x 48 in tiles of 16: bands 0
+# and 1 are written while the next renders, band 2 at the frame's end.
+for band in 1 2; do
+  for path in "" --staging; do
+    expect "band $band's write fails${path:+ ($path)}" 2 "cannot write image: write failed: No space left on device" -- \
+      env VKRAYCAST_FAULT=write-band:$band "${render[@]}" --tile 16 $path
+    intact "band $band's write fails${path:+ ($path)}"
+  done
+done
 
 # The mesh importer (assimp in a process of its own, host/scene/mesh_wire.h): however it
 # ends without a whole answer, the render stops with exit status 2 naming the mesh file

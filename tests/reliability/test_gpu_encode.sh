@@ -67,12 +67,15 @@ submits() {
 }
 submits parallel_tiles auto 0
 submits parallel_tiles off 0
-# ... and the host reads each tile while the next one's dispatch runs, except each band's
-# last: 12 tiles of 24 x 24 in 3 bands of 4.
+# ... and the host reads each tile while the next one's dispatch runs, the next band's
+# included, except the frame's last: 12 tiles of 24 x 24 in 3 bands of 4. Each band but the
+# last is written while the next band's first tile renders.
 for m in auto off; do
   why=ok got=$(json_num readback_overlapped "$work/parallel_tiles.$m.json")
-  [[ $got == 9 ]] || because "readback_overlapped $got, expected 9"
-  check "parallel_tiles ($m): 9 of 12 tiles read while the next one renders" "$why"
+  [[ $got == 11 ]] || because "readback_overlapped $got, expected 11"
+  got=$(json_num bands_overlapped "$work/parallel_tiles.$m.json")
+  [[ $got == 2 ]] || because "bands_overlapped $got, expected 2"
+  check "parallel_tiles ($m): 11 of 12 tiles and 2 of 3 bands handed on while the next renders" "$why"
 done
 # ... and the pixels so copied are those the host reads from mapped device memory.
 for m in auto off; do
@@ -84,9 +87,12 @@ for m in auto off; do
   # Read where the shader wrote them, a tile must be read before the next dispatch clears it.
   # A discrete GPU without host-visible device memory stages by default: there it overlaps.
   want=0
-  grep -q "\"staging\":[[:space:]]*true" "$work/parallel_direct.$m.json" && want=9
+  grep -q "\"staging\":[[:space:]]*true" "$work/parallel_direct.$m.json" && want=11
   got=$(json_num readback_overlapped "$work/parallel_direct.$m.json")
   [[ $got == "$want" ]] || because "readback_overlapped $got, expected $want"
+  # The band's buffers are the host's: handed on while the next band renders either way.
+  got=$(json_num bands_overlapped "$work/parallel_direct.$m.json")
+  [[ $got == 2 ]] || because "bands_overlapped $got, expected 2"
   check "parallel_tiles ($m): staging's file is the direct one's" "$why"
 done
 same showcase_region "$scenes/showcase.json" png --region 10,7,90,51 --tile 32
