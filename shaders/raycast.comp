@@ -79,6 +79,10 @@ uint pass_end_light = 0u;
 // The AOV record of this invocation's first sample (rc_trace.glsl fills it).
 bool aov_recording = false;
 packed_aov aov_record;
+// The sample and bounce being traced (rc_trace.glsl), and the digest of that sample's
+// decisions so far (packed_aov.decisions).
+uint decision_key = 0u;
+uint sample_decisions = 0u;
 
 // The scene's features: the specialized constant, or the frame's value in a generic
 // pipeline. A constant lets the compiler drop unused code and fix the loop counts.
@@ -99,6 +103,23 @@ uint scene_reflection_depth() {
 // reflection rays.
 uint light_pass_begin() { return light_passes ? pass_first_light : 0u; }
 uint light_pass_end() { return light_passes ? pass_end_light : scene_light_count(); }
+
+// Chris Wellons's "lowbias32" integer hash (2018): full avalanche in 32 bits, so that the
+// digest's sum of hashes shows any one decision that differs. Its twin: ref_render.c.
+uint decision_hash(uint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// Adds one decision of the sample and bounce in decision_key to the sample's digest: 0 a
+// miss, 2 (object + 1) a hit, 2 light + 1 a blocked shadow ray. Only where AOVs are recorded.
+void note_decision(uint value) {
+  if (aov_enabled) sample_decisions += decision_hash(decision_hash(decision_key) + value);
+}
 
 #include "rc_real.glsl"
 #include "rc_scene_access.glsl"
@@ -182,6 +203,7 @@ void main() {
   uint uncertified_mask = 0u;
   bool trace_all = true;  // false: trace only the samples in trace_mask
   uint trace_mask = 0u;
+  uint decisions = 0u;  // packed_aov.decisions, continued from the pixel's earlier dispatches
   packed_aov mark;
   if (inside) {
     sum = accum[slot];
@@ -202,6 +224,10 @@ void main() {
         if (done == 0u) sum.rgb = mark.certified_sum;
       }
     }
+    // The digest goes on from the pixel's earlier dispatches, or from the certified samples'
+    // where a re-render traces only the others; a pixel traced from its first sample starts
+    // from none.
+    if (aov_enabled && (done > 0u || !trace_all)) decisions = aov[slot].decisions;
     if (light_passes) {
       // Progress counts lights: the next pass of sample s starts at light done - s x lights,
       // and traces the sample's rays again (the same rays: nothing in them is random).
@@ -212,10 +238,14 @@ void main() {
       if (s < scene_samples_per_pixel() && budget_step()) {
         pass_first_light = done - s * lights;
         pass_end_light = min(pass_first_light + push.light_pass, lights);
+        sample_decisions = 0u;
         sum.rgb += vec3(trace_sample(pixel, s));
+        bool decided = true;  // the pass's decisions join the digest (certified ones only)
 #if RC_CERTIFY
         if (!cert_ok) uncertified_at[cert_stage - 1u]++;
+        decided = !certify || cert_ok;
 #endif
+        if (decided) decisions += sample_decisions;
         target = s * lights + pass_end_light;
         // The first sample's record gathers its shadow bits over the passes.
         aov_write = aov_enabled && s == 0u;
@@ -232,8 +262,10 @@ void main() {
       for (uint s = done; s < target; s++) {
         if (!trace_all && (s >= 32u || ((trace_mask >> s) & 1u) == 0u)) continue;
         if (!budget_step()) break;
+        sample_decisions = 0u;
         vec3 c = vec3(trace_sample(pixel, s));
         sum.rgb += c;
+        bool decided = true;  // the sample's decisions join the digest (certified ones only)
 #if RC_CERTIFY
         if (!cert_ok) {
           uncertified_at[cert_stage - 1u]++;
@@ -241,7 +273,9 @@ void main() {
         } else {
           certified_sum += c;
         }
+        decided = !certify || cert_ok;
 #endif
+        if (decided) decisions += sample_decisions;
       }
       if (aov_write && push.masked != 0u) {
         // The marks stay for the pixel's later dispatches.
@@ -275,6 +309,7 @@ void main() {
   accum[slot] = vec4(sum.rgb, float(target));
   if (encode_levels && target == total) levels[slot] = encode_pixel(sum.rgb);
   if (aov_write) aov[slot] = aov_record;
+  if (aov_enabled) aov[slot].decisions = decisions;
   // The count and the bits gather over the pixel's dispatches: its first wrote the
   // record, with none. The sum runs on, in sample order, as the colour's does.
   if (certify) {

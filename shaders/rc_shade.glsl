@@ -738,6 +738,7 @@ rvec3 shade_phong(surface sf, rvec3 d) {
     if (scene_shadows()) shadow_rays++;
     if (scene_shadows() && occluded(t_min_start(origin, to_light), to_light, t_min_end(shadow_t_max), i)) {
       if (aov_recording && i < RC_AOV_SHADOW_LIGHTS) aov_record.shadow_bits += float(1u << i);
+      note_decision(2u * i + 1u);
       continue;
     }
     color += light_contribution(m, kd, sf.n, l, v, n_dot_l, irradiance);

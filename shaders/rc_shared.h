@@ -510,6 +510,14 @@ struct packed_aov {
    * sample s < 32 is uncertified. Where the bits count fewer samples than `uncertified`
    * (samples from 32 on, light passes) the whole pixel is rendered again. */
   vec3 certified_sum; uint uncertified_mask;
+  /* A digest of the decisions of every sample the pixel's colour holds (hit or miss and the
+   * object at each bounce, the lights a shadow ray found blocked): the wrapping sum over
+   * samples and decisions of a hash of (sample, bounce, decision), raycast.comp's
+   * note_decision. A sum, so batches, light passes and a re-render's samples add to it in
+   * any order; in certified mode's f32 pass, of the certified samples only, which the
+   * re-render's then join. Equal digests: the same decisions in every sample (up to a
+   * collision, 2^-24 in the AOV file's float channel). */
+  uint decisions; uint pad0; uint pad1; uint pad2;
 };
 
 /* A BVH node: one box, in depth-first order (an interior node's first child is the next
@@ -657,7 +665,8 @@ RC_ASSERT_LAYOUT(packed_aov, hit, 0);    RC_ASSERT_LAYOUT(packed_aov, object, 4)
 RC_ASSERT_LAYOUT(packed_aov, t, 8);      RC_ASSERT_LAYOUT(packed_aov, shadow_bits, 12);
 RC_ASSERT_LAYOUT(packed_aov, normal, 16);   RC_ASSERT_LAYOUT(packed_aov, uncertified, 28);
 RC_ASSERT_LAYOUT(packed_aov, certified_sum, 32); RC_ASSERT_LAYOUT(packed_aov, uncertified_mask, 44);
-RC_ASSERT_SIZE(packed_aov, 48);
+RC_ASSERT_LAYOUT(packed_aov, decisions, 48);
+RC_ASSERT_SIZE(packed_aov, 64);
 
 RC_ASSERT_LAYOUT(packed_push, tile_x, 0); RC_ASSERT_LAYOUT(packed_push, tile_width, 8);
 RC_ASSERT_LAYOUT(packed_push, batch_samples, 16); RC_ASSERT_LAYOUT(packed_push, row_stride, 20);

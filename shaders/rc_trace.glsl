@@ -13,6 +13,7 @@ void aov_begin(hit_record h) {
   aov_record.uncertified = certify ? 0.0 : float(scene_samples_per_pixel());
   aov_record.certified_sum = vec3(0.0);
   aov_record.uncertified_mask = 0u;
+  aov_record.decisions = 0u;
 }
 
 rvec3 trace_sample(uvec2 pixel, uint s) {
@@ -45,6 +46,9 @@ rvec3 trace_sample(uvec2 pixel, uint s) {
 #endif
     aov_recording = aov_enabled && s == 0u && depth == 0u;
     if (aov_recording) aov_begin(h);
+    // Once a sample: a later light pass traces the same rays again.
+    decision_key = (s << 8u) + depth;
+    if (light_pass_begin() == 0u) note_decision(hit ? 2u * (surface_object(h.object) + 1u) : 0u);
     if (!hit) {
       if (light_pass_begin() == 0u) color += weight * rvec3(frame.background);
       break;

@@ -5,8 +5,9 @@
 # (f32, certified, f64, cpu f64, f32, ...) ROUNDS processes each with --repeat FRAMES; the
 # share of samples left uncertified, of pixels re-rendered and of samples traced again
 # in them (the uncertified ones, or whole pixels: base/certified_marks.h); and the pixels whose
-# first-sample decisions plain f32 gets wrong against the CPU f64 reference, which certified
-# mode gets right (AOV compare).
+# decisions plain f32 gets wrong against the CPU f64 reference, in the first sample or, by the
+# digests of every sample's decisions, in any sample or bounce, which certified mode gets
+# right (AOV compare).
 # Usage: tools/bench_certified.sh [BIN] [SCENE...]   (default: build/vkraycast, scenes/*.json)
 # Env: ROUNDS (3), FRAMES (3), ARGS (extra render options for every run).
 set -euo pipefail
@@ -36,7 +37,7 @@ for s in "${scenes[@]}"; do
       num render_wall_ms "$work/st.json" >>"$work/$m.txt"
     done
   done
-  # One more process of each kind for the decisions (the AOVs of sample 0 of each pixel).
+  # One more process of each kind for the decisions (the AOVs: sample 0's, and every sample's digest).
   # shellcheck disable=SC2086
   "$bin" render "$s" -o "$work/ref.exr" --backend cpu --precision f64 --aov "$work/ref.aov.exr" --quiet \
     --allow-outside-paths ${ARGS:-}
@@ -47,7 +48,8 @@ for s in "${scenes[@]}"; do
     ${ARGS:-} --stats-json "$work/c.json"
   wrong() {
     "$bin" compare "$1" "$work/ref.aov.exr" --json >"$work/cmp.json" 2>/dev/null || true
-    echo $(($(num hit_mismatch "$work/cmp.json") + $(num object_mismatch "$work/cmp.json") + $(num shadow_mismatch "$work/cmp.json")))
+    echo $(($(num hit_mismatch "$work/cmp.json") + $(num object_mismatch "$work/cmp.json") + $(num shadow_mismatch "$work/cmp.json") +
+      $(num sample_mismatch "$work/cmp.json")))
   }
   samples=$(($(num width "$work/c.json") * $(num height "$work/c.json") * $(num samples_per_pixel "$work/c.json")))
   pixels=$(($(num width "$work/c.json") * $(num height "$work/c.json")))

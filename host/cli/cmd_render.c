@@ -468,6 +468,9 @@ static rc_status rerendered_band(uint32_t y0, uint32_t rows, const float *rgb, c
       *mark = aov[i];
       rc_aov_keep_marks(mark, &marks);
     }
+    /* The digest of every sample's decisions: the certified samples' (the marks carried it
+     * into the re-render) and the re-rendered ones'. */
+    mark->decisions = aov[i].decisions;
     c->stats.pixels_rerendered++;
     c->stats.samples_rerendered += rc_aov_samples_rerendered(mark, spp);
   }

@@ -4,15 +4,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The digest's low 24 bits: every such integer is exact in a float channel. */
+#define RC_AOV_DIGEST_MASK 0xffffffu
+
 const char *const rc_aov_channel_names[RC_AOV_CHANNELS] = {"R", "G", "B", "hit", "object", "t",
-                                                           "N.X", "N.Y", "N.Z", "shadow", "uncertified"};
+                                                           "N.X", "N.Y", "N.Z", "shadow", "uncertified", "decisions"};
 
 void rc_aov_pack(const float *rgb, const packed_aov *aov, size_t count, double length_unit, float *out) {
   for (size_t i = 0; i < count; i++) {
     const packed_aov *a = &aov[i];
     const float v[RC_AOV_CHANNELS] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], a->hit,      a->object,
                                       (float)(a->t * length_unit), a->normal.x,    a->normal.y,    a->normal.z, a->shadow_bits,
-                                      a->uncertified};
+                                      a->uncertified, (float)(a->decisions & RC_AOV_DIGEST_MASK)};
     memcpy(out + i * RC_AOV_CHANNELS, v, sizeof v);
   }
 }
@@ -24,10 +27,11 @@ static int find(char names[][32], int count, const char *name) {
 }
 
 bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout) {
-  for (int i = 0; i < RC_AOV_CHANNELS - 1; i++)
+  for (int i = 0; i < RC_AOV_REQUIRED_CHANNELS; i++)
     if (find(names, count, rc_aov_channel_names[i]) < 0) return false;
-  int *slots[RC_AOV_CHANNELS] = {&layout->r,  &layout->g,  &layout->b,  &layout->hit,    &layout->object,     &layout->t,
-                                 &layout->nx, &layout->ny, &layout->nz, &layout->shadow, &layout->uncertified};
+  int *slots[RC_AOV_CHANNELS] = {&layout->r,  &layout->g,  &layout->b,      &layout->hit,         &layout->object,
+                                 &layout->t,  &layout->nx, &layout->ny,     &layout->nz,          &layout->shadow,
+                                 &layout->uncertified,     &layout->decisions};
   for (int i = 0; i < RC_AOV_CHANNELS; i++) *slots[i] = find(names, count, rc_aov_channel_names[i]);
   return true;
 }
@@ -35,12 +39,14 @@ bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout) {
 bool rc_aov_same_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb, int c,
                            size_t i) {
   const float *x = a + i * c, *y = b + i * c;
-  return x[la->hit] == y[lb->hit] && x[la->object] == y[lb->object] && x[la->shadow] == y[lb->shadow];
+  bool samples = la->decisions < 0 || lb->decisions < 0 || x[la->decisions] == y[lb->decisions];
+  return x[la->hit] == y[lb->hit] && x[la->object] == y[lb->object] && x[la->shadow] == y[lb->shadow] && samples;
 }
 
 void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb, int w,
                               int h, int c, const unsigned char *band, rc_compare_result *r) {
   r->decisions = true;
+  r->digests = la->decisions >= 0 && lb->decisions >= 0;
   for (size_t i = 0; i < (size_t)w * h; i++) {
     const float *x = a + i * c, *y = b + i * c;
     r->a_hits += x[la->hit] != 0;
@@ -58,11 +64,15 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
     r->hit_mismatch += !same_hit;
     r->object_mismatch += same_hit && !same_object;
     r->shadow_mismatch += same_object && !same_decisions;
-    /* A's certified pixels (--precision certified): their decisions are claimed to be the
-     * f64 reference's, so against it any difference is a broken certificate. */
+    /* Every sample's, bounces included: the digests. */
+    bool same_samples = !r->digests || x[la->decisions] == y[lb->decisions];
+    r->sample_mismatch += !same_samples;
+    /* A's certified pixels (--precision certified): their decisions, in every sample where
+     * the digests say, are claimed to be the f64 reference's, so against it any difference
+     * is a broken certificate. */
     bool certified = la->uncertified >= 0 && x[la->uncertified] == 0;
     r->uncertified_pixels += la->uncertified >= 0 && x[la->uncertified] != 0;
-    r->certified_mismatch += certified && !same_decisions;
+    r->certified_mismatch += certified && !(same_decisions && same_samples);
     if (!same_object || y[lb->hit] == 0) continue;
     /* Depth relative to the reference's; the normal as the angle between the two. */
     double tb = y[lb->t], dt = fabs((double)x[la->t] - tb) / (tb != 0 ? fabs(tb) : 1);

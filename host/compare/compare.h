@@ -31,6 +31,10 @@ typedef struct rc_compare_result {
   /* A's pixels with uncertified samples (its `uncertified` channel, --precision certified),
    * and A's certified pixels whose decisions differ from B's (outside the band). */
   uint64_t uncertified_pixels, certified_mismatch;
+  /* Both AOV files have the digest of every sample's decisions (packed_aov.decisions), and
+   * the pixels whose digests differ: a decision of some sample or bounce differs. */
+  bool digests;
+  uint64_t sample_mismatch;
   /* A's certified pixels inside the band (--band), where inputs moved by a few ulps flip a
    * decision of the reference: each should be uncertified (docs/numerics.md §10). */
   uint64_t certified_in_band;

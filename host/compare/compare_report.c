@@ -76,7 +76,15 @@ static void print_checks(const rc_compare_report *rep, FILE *f) {
 /* Notes that explain a result a reader would otherwise misread. */
 static void print_notes(const rc_compare_report *rep, FILE *f) {
   const rc_compare_result *r = rep->r;
-  if (r->decisions && rep->over_same_decisions) {
+  if (r->decisions && rep->over_same_decisions && r->digests) {
+    fprintf(f,
+            "  note: %llu of the %llu pixels over --fail %g make the same decisions in A and B, in every\n"
+            "        sample and bounce (their digests agree): a colour difference, not a flipped decision,\n"
+            "        such as a texture lookup (not a decision) whose colour moves with the hit point's last\n"
+            "        bits: a texel edge under nearest filtering where the texture is magnified (minified,\n"
+            "        it reads mip levels).\n",
+            (unsigned long long)rep->over_same_decisions, (unsigned long long)r->over, rep->limits->fail);
+  } else if (r->decisions && rep->over_same_decisions) {
     char spp[16];
     bool known = rc_settings_value(rep->b->header.settings, "spp", spp, sizeof spp);
     fprintf(f,
@@ -86,7 +94,7 @@ static void print_notes(const rc_compare_report *rep, FILE *f) {
             "        recorded) whose colour moves with the hit point's last bits: a texel edge under\n"
             "        nearest filtering where the texture is magnified (minified, it reads mip levels).\n"
             "        Render both with --spp 1 and --reflection-depth 0 to see every decision of a\n"
-            "        pixel in its AOV.\n",
+            "        pixel in its AOV, or with a vkraycast that writes the `decisions` channel.\n",
             (unsigned long long)rep->over_same_decisions, (unsigned long long)r->over, rep->limits->fail,
             known ? " (these renders have spp " : "", known ? spp : "", known ? ")" : "");
   }
@@ -142,6 +150,9 @@ void rc_compare_print_text(const rc_compare_report *rep, FILE *f) {
     fprintf(f, "  decisions differ: hit %llu, object %llu, shadow %llu pixels%s\n", (unsigned long long)r->hit_mismatch,
             (unsigned long long)r->object_mismatch, (unsigned long long)r->shadow_mismatch,
             rep->banded ? " outside the band" : "");
+    if (r->digests)
+      fprintf(f, "  decisions of every sample and bounce differ: %llu pixels%s\n", (unsigned long long)r->sample_mismatch,
+              rep->banded ? " outside the band" : "");
     fprintf(f, "  where both hit the same object: depth error %.3g (relative), normal error %.3g rad\n",
             r->max_depth_rel, r->max_normal_angle);
     if (rep->banded) fprintf(f, "  conditioning band: %llu pixels\n", (unsigned long long)r->band_pixels);
@@ -260,6 +271,7 @@ void rc_compare_print_json(const rc_compare_report *rep, FILE *f) {
     cJSON_AddNumberToObject(o, "band_pixels", (double)r->band_pixels);
     cJSON_AddNumberToObject(o, "uncertified_pixels", (double)r->uncertified_pixels);
     cJSON_AddNumberToObject(o, "certified_mismatch", (double)r->certified_mismatch);
+    if (r->digests) cJSON_AddNumberToObject(o, "sample_mismatch", (double)r->sample_mismatch);
     cJSON_AddNumberToObject(o, "certified_in_band", (double)r->certified_in_band);
     cJSON_AddNumberToObject(o, "a_hits", (double)r->a_hits);
     cJSON_AddNumberToObject(o, "b_hits", (double)r->b_hits);

@@ -30,7 +30,8 @@ typedef struct {
   const char *preset;                 /* NULL: none */
   const rc_compare_judgement *judgement;
   bool banded;                        /* --band given: decision counts leave the band out */
-  uint64_t over_same_decisions;       /* AOV files: pixels over --fail whose first-sample decisions agree */
+  uint64_t over_same_decisions;       /* AOV files: pixels over --fail whose decisions agree (first sample, or every
+                                         sample where both files have digests) */
   int top;                            /* worst pixels to list */
   const char *heat_path;              /* --diff, or NULL */
   rc_heat_scale heat;

@@ -52,7 +52,7 @@ typedef struct rc_gpu_stats {
   double readback_ms;  /* accumulation buffer to the host image, wall */
   /* Bytes moved between host and device: the scene arrays and the frame, once per
    * renderer; per frame, what the host reads back (each dispatch's status, each tile's
-   * accumulated sums, 16 bytes a pixel, or its 8-bit levels, 4, and AOV records, 32). */
+   * accumulated sums, 16 bytes a pixel, or its 8-bit levels, 4, and AOV records, 64). */
   uint64_t upload_bytes, readback_bytes;
   uint64_t shadow_rays, reflection_rays;
   uint64_t uncertified_at[3]; /* as rc_ref_stats.uncertified_at (ref_render.h), from the f32 pass */

@@ -20,6 +20,21 @@ _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays, ref_work;
 _Thread_local bool ref_spawned_ray;
 _Thread_local bool ref_aov_enabled, ref_aov_recording;
 _Thread_local packed_aov ref_aov_record;
+_Thread_local uint32_t ref_decision_key, ref_sample_decisions;
+
+/* raycast.comp's decision_hash (Wellons's lowbias32) and note_decision, bit for bit. */
+uint32_t ref_decision_hash(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+void ref_note_decision(uint32_t value) {
+  if (ref_aov_enabled) ref_sample_decisions += ref_decision_hash(ref_decision_hash(ref_decision_key) + value);
+}
 
 #define ROWS_PER_JOB 4
 
@@ -58,6 +73,8 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
   uint32_t uncertified_at[3] = {0, 0, 0}, uncertified_mask = 0; /* by cert_note's stage */
   vec3 certified_sum = {0, 0, 0};
   bool traced_first = true;
+  /* As main()'s: from the certified samples' digest where only the others are traced. */
+  uint32_t decisions = mark && rc_aov_per_sample(mark) ? mark->decisions : 0;
   if (j->f64) {
     dvec3 sum = {0, 0, 0};
     if (mark && rc_aov_per_sample(mark))
@@ -68,8 +85,10 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
         continue;
       }
       uint64_t w = ref_work;
+      ref_sample_decisions = 0;
       sum = rcm_add_d(sum, ref_trace_sample_d(&j->scene, x, y, s));
       sample_steps[s] = (uint32_t)(ref_work - w);
+      if (!j->frame->certify || ref_cert_ok_d) decisions += ref_sample_decisions;
     }
     sum = rcm_scale_d(sum, 1.0 / spp);
     o[0] = (float)sum.x, o[1] = (float)sum.y, o[2] = (float)sum.z;
@@ -78,9 +97,11 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
     vec3 sum = {0, 0, 0};
     for (uint32_t s = 0; s < spp; s++) {
       uint64_t w = ref_work;
+      ref_sample_decisions = 0;
       vec3 c = ref_trace_sample_f(&j->scene, x, y, s);
       sum = rcm_add_f(sum, c);
       sample_steps[s] = (uint32_t)(ref_work - w);
+      if (!j->frame->certify || ref_cert_ok_f) decisions += ref_sample_decisions;
       if (!j->frame->certify) continue;
       if (!ref_cert_ok_f) {
         uncertified_at[ref_cert_stage_f - 1]++;
@@ -101,6 +122,7 @@ static void render_pixel(job *j, uint32_t x, uint32_t y, uint32_t *sample_steps)
     for (int k = 0; k < 3; k++)
       if (uncertified_at[k]) atomic_fetch_add(&j->uncertified_at[k], uncertified_at[k]);
   }
+  rec.decisions = decisions;
   if (mark) rc_aov_keep_marks(&rec, mark);
   if (j->aov) j->aov[index] = rec;
   if (ref_crossing_blame) {

@@ -595,6 +595,7 @@ rvec3 REF(shade_phong)(const ref_scene *sc, const ref_surface *sf, rvec3 d) {
     if (sc->frame->shadows &&
         REF(occluded)(sc, REF(t_min_start)(sc, origin, to_light), to_light, REF(t_min_end)(sc, shadow_t_max), i)) {
       if (ref_aov_recording && i < RC_AOV_SHADOW_LIGHTS) ref_aov_record.shadow_bits += (float)(1u << i);
+      ref_note_decision(2u * i + 1u);
       continue;
     }
     color = RV(add)(color, REF(light_contribution)(sc, m, kd, sf->n, l, v, n_dot_l, irradiance));

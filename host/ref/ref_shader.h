@@ -19,6 +19,11 @@ extern _Thread_local uint64_t ref_shadow_rays, ref_reflection_rays;
 extern _Thread_local uint64_t ref_work;
 extern _Thread_local bool ref_aov_enabled, ref_aov_recording;
 extern _Thread_local packed_aov ref_aov_record;
+/* raycast.comp's decision digest (packed_aov.decisions): the sample and bounce being
+ * traced, the digest of the sample's decisions so far, and what adds one to it. */
+extern _Thread_local uint32_t ref_decision_key, ref_sample_decisions;
+uint32_t ref_decision_hash(uint32_t x);
+void ref_note_decision(uint32_t value);
 
 #define REF_DECLARE_SHADER(S, R, V)                                                             \
   typedef struct ref_surface_##S { V p, n, ng, p_error; uint32_t material; uint32_t uv_kind; V uv_at, uv_rate; R footprint, curvature; } ref_surface_##S; \

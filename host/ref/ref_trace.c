@@ -13,6 +13,7 @@ void REF(aov_begin)(const ref_scene *sc, const ref_hit *h) {
   ref_aov_record.uncertified = sc->frame->certify ? 0.0f : (float)sc->frame->samples_per_pixel;
   ref_aov_record.certified_sum = rcm_make_f(0, 0, 0);
   ref_aov_record.uncertified_mask = 0;
+  ref_aov_record.decisions = 0;
 }
 
 rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t s) {
@@ -34,6 +35,8 @@ rvec3 REF(trace_sample)(const ref_scene *sc, uint32_t px, uint32_t py, uint32_t 
     if (sc->frame->certify) REF(cert_note)(depth == 0 ? RC_UNCERTIFIED_HIT : RC_UNCERTIFIED_BOUNCE);
     ref_aov_recording = ref_aov_enabled && s == 0 && depth == 0;
     if (ref_aov_recording) REF(aov_begin)(sc, &h);
+    ref_decision_key = (s << 8u) + depth;
+    ref_note_decision(hit ? 2u * (REF(surface_object)(sc, h.object) + 1u) : 0u);
     if (!hit) {
       color = RV(add)(color, RV(mul)(weight, rvec3_from(sc->frame->background)));
       break;

@@ -14,7 +14,7 @@
 
 enum { W = 4, H = 2, C = RC_AOV_CHANNELS };
 /* Channel order as rc_aov_channel_names: R G B hit object t N.X N.Y N.Z shadow uncertified
- * (left 0 here). */
+ * decisions (both left 0 here). */
 static float A[W * H][C], B[W * H][C];
 
 static const double NORMAL_ANGLE = 0.1; /* radians, pixel 4 */
@@ -217,19 +217,57 @@ TEST(presets_and_named_checks) {
   CHECK(stderr_contains("expected one of same-backend, same-precision, gpu-vs-cpu, f32-vs-f64"));
 }
 
-/* An error past --fail where the first-sample decisions agree is explained. */
+/* An error past --fail where the first-sample decisions agree is explained: files without
+ * the `decisions` channel (written before it) record the first sample's alone. */
 TEST(first_sample_note) {
   static float c[W * H][C];
   memcpy(c, A, sizeof c);
   c[5][0] += 0.05f; /* pixel 5: colour only, decisions as in A */
-  write_exr("c.aov.exr", (const float (*)[C])c, C, rc_aov_channel_names);
-  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/a.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
+  write_exr("c.aov.exr", (const float (*)[C])c, C - 1, rc_aov_channel_names);
+  write_exr("a11.aov.exr", A, C - 1, rc_aov_channel_names);
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/a11.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
   CHECK(stdout_has("note: 1 of the 1 pixels over --fail 0.001 make the same first-sample decisions"));
   CHECK(stdout_has("Render both with --spp 1"));
   CHECK(stdout_has("or a texture lookup (not\n        recorded)"));
   /* Where the decisions differ there is no such note. */
   CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 0.1 --decisions 9 > %s/out.txt", tmp, tmp, tmp), 1);
   CHECK(!stdout_has("note: "));
+}
+
+/* With the digest of every sample's decisions (packed_aov.decisions) in both files, a pixel
+ * whose first sample agrees but whose digests differ made another decision in a later
+ * sample or bounce: a decision mismatch, and for a certified pixel a broken certificate;
+ * where the digests agree too, the note says the difference is colour alone. */
+TEST(every_sample_digest) {
+  static float c[W * H][C], d[W * H][C];
+  memcpy(c, A, sizeof c);
+  memcpy(d, A, sizeof d);
+  for (int i = 0; i < W * H; i++) c[i][11] = d[i][11] = (float)(1000 + i);
+  c[5][0] += 0.05f;  /* pixel 5: colour only, every sample's decisions the same */
+  d[6][11] = 77;     /* pixel 6: a later sample decided otherwise, the first did not */
+  d[6][1] += 0.05f;
+  write_exr("c.aov.exr", (const float (*)[C])c, C, rc_aov_channel_names);
+  write_exr("d.aov.exr", (const float (*)[C])d, C, rc_aov_channel_names);
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/d.aov.exr --fail 1e-3 --json > %s/m.json", tmp, tmp, tmp), 1);
+  cJSON *j = load_json("m.json");
+  CHECK_NEAR(json_number(j, "sample_mismatch"), 1, 0);
+  CHECK_NEAR(json_number(j, "hit_mismatch") + json_number(j, "object_mismatch") + json_number(j, "shadow_mismatch"), 0,
+             0);
+  CHECK_NEAR(json_number(j, "over_same_decisions"), 1, 0); /* pixel 5 */
+  /* A's pixels are certified (uncertified 0): pixel 6's other decision breaks its certificate. */
+  CHECK_NEAR(json_number(j, "certified_mismatch"), 1, 0);
+  cJSON_Delete(j);
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/d.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
+  CHECK(stdout_has("decisions of every sample and bounce differ: 1 pixels\n"));
+  CHECK(stdout_has("note: 1 of the 2 pixels over --fail 0.001 make the same decisions in A and B, in every\n"));
+  /* Files without the channel compare by the first sample, as before. */
+  write_exr("c11.aov.exr", (const float (*)[C])c, C - 1, rc_aov_channel_names);
+  write_exr("d11.aov.exr", (const float (*)[C])d, C - 1, rc_aov_channel_names);
+  CHECK_EQ_INT(run("compare %s/c11.aov.exr %s/d11.aov.exr --fail 1e-3 --json > %s/m.json", tmp, tmp, tmp), 1);
+  j = load_json("m.json");
+  CHECK(item(j, "sample_mismatch") == NULL);
+  CHECK_NEAR(json_number(j, "certified_mismatch"), 0, 0);
+  cJSON_Delete(j);
 }
 
 /* +Inf equals +Inf; NaN equals NaN; NaN against a number is reported as such and makes
@@ -407,6 +445,7 @@ int main(int argc, char **argv) {
   RUN(heat_map_before_verdict);
   RUN(presets_and_named_checks);
   RUN(first_sample_note);
+  RUN(every_sample_digest);
   RUN(non_finite_values);
   RUN(header_aware);
   RUN(heat_map_readable);

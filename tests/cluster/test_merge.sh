@@ -128,7 +128,7 @@ expect_merge_refusal "AOV and image" "merge the images and the AOV files separat
 expect_merge_refusal "AOV into png" "name it .exr" "$a-0-aov.exr" "$a-1-aov.exr" "$a-2-aov.exr"
 # An AOV file missing a decision channel is neither kind of part.
 oiiotool "$a-1-aov.exr" --ch R,G,B,hit,object,t,N.X,N.Y,N.Z,N.Z -o "$work/aov-noshadow.exr" 2>/dev/null
-expect_merge_refusal "AOV without shadow" "or the 11 channels of an AOV file" "$a-0-aov.exr" "$work/aov-noshadow.exr" "$a-2-aov.exr"
+expect_merge_refusal "AOV without shadow" "or the 12 channels of an AOV file" "$a-0-aov.exr" "$work/aov-noshadow.exr" "$a-2-aov.exr"
 
 # `expect_merge_refusal NAME MESSAGE PARTS...`: exit 2, MESSAGE on stderr, no output.
 expect_merge_refusal() {

@@ -173,6 +173,10 @@ int main(void) {
   OFF("aov.uncertified", packed_aov, uncertified);
   OFF("aov.certified_sum", packed_aov, certified_sum);
   OFF("aov.uncertified_mask", packed_aov, uncertified_mask);
+  OFF("aov.decisions", packed_aov, decisions);
+  OFF("aov.pad0", packed_aov, pad0);
+  OFF("aov.pad1", packed_aov, pad1);
+  OFF("aov.pad2", packed_aov, pad2);
   printf("aov stride %zu\n", sizeof(packed_aov));
 
   printf("Frame binding %d\n", RC_BINDING_FRAME);
