@@ -3,7 +3,8 @@
 # and CPU f64, and compares GPU f32 / CPU f64 (the product against the accuracy
 # reference), GPU f32 / CPU f32 (same arithmetic: driver and compiler effects only) and
 # GPU f64 / CPU f64. Prints one markdown row per pair: PSNR, max error, pixels over 1e-3,
-# decision mismatches (hit, object, shadow), and each backend's render time.
+# first-sample decision mismatches (hit, object, shadow), the pixels whose decisions differ
+# in any sample or bounce (the AOVs' digests), and each backend's render time.
 #   tools/gpu_vs_cpu.sh [--check] VKRAYCAST OUTDIR SCENE...
 # --check: exit 1 unless every pair is within the thresholds stated below.
 set -euo pipefail
@@ -21,8 +22,8 @@ num() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.e+]*\).*/\1/p" "$2"; }
 declare -A preset=([f32-f64]=gpu-vs-cpu [f32-f32]=same-precision [f64-f64]=same-precision)
 
 failed=0
-echo "| scene | pair | PSNR dB | max error | pixels > 1e-3 | hit / object / shadow mismatches | GPU ms | CPU ms |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| scene | pair | PSNR dB | max error | pixels > 1e-3 | hit / object / shadow mismatches | any sample | GPU ms | CPU ms |"
+echo "|---|---|---|---|---|---|---|---|---|"
 for scene in "$@"; do
   name=$(basename "$scene" .json)
   for backend in gpu cpu; do
@@ -37,9 +38,9 @@ for scene in "$@"; do
     status=0
     "$bin" compare "$out/$name-gpu-$g.aov.exr" "$out/$name-cpu-$c.aov.exr" --preset "${preset[$pair]}" \
       --diff "$out/$name-$pair.heat.png" --json >"$json" || status=$?
-    printf "| %s | gpu %s / cpu %s | %.1f | %.3g | %d | %d / %d / %d | %.1f | %.1f |\n" "$name" "$g" "$c" \
+    printf "| %s | gpu %s / cpu %s | %.1f | %.3g | %d | %d / %d / %d | %d | %.1f | %.1f |\n" "$name" "$g" "$c" \
       "$(num psnr "$json")" "$(num max_error "$json")" "$(num pixels_over "$json")" "$(num hit_mismatch "$json")" \
-      "$(num object_mismatch "$json")" "$(num shadow_mismatch "$json")" \
+      "$(num object_mismatch "$json")" "$(num shadow_mismatch "$json")" "$(num sample_mismatch "$json")" \
       "$(num render_ms "$out/$name-gpu-$g.json")" "$(num render_ms "$out/$name-cpu-$c.json")"
     if ((status != 0)); then
       failed=1

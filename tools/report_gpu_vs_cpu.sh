@@ -25,9 +25,11 @@ scene at its own size and samples per pixel, rendered four ways with \`--aov\`:
   f32, as GLSL has no double pow).
 
 Colour columns compare the linear EXR images; *pixels > 1e-3* counts pixels with a channel
-off by more than 1e-3. Decision columns compare the AOVs of each pixel's first sample:
-primary hit/miss, the object hit, and the shadow bit of each light. Times are
-steady-state render ms (median of frames 2-3; GPU from timestamps, CPU wall clock).
+off by more than 1e-3. Decision columns compare the AOVs: *hit / object / shadow* each
+pixel's first sample (primary hit/miss, the object hit, and the shadow bit of each light),
+*any sample* the pixels whose decisions differ in some sample or mirror bounce (the AOVs'
+\`decisions\` digests, docs/accuracy.md). Times are steady-state render ms (median of
+frames 2-3; GPU from timestamps, CPU wall clock).
 
 $table
 
@@ -68,7 +70,17 @@ What \`vkraycast compare --preset\` allows, and why. The numbers live in one tab
   2 ulps, pow up to 17, numerics.md §1), which can still flip a grazing decision in a
   later sample or a bounce (the mesh scene above: 2 of 172,800 pixels by 0.006). So: PSNR
   at least 80 dB, at most 0.01 % of pixels over 1e-3 (a warning past 0.01 % over 1e-4),
-  first-sample decisions on at most 0.05 % of pixels.
+  first-sample decisions on at most 0.05 % of pixels. A texture lookup whose pixel spans
+  many texels (a textured plane's horizon) used to be ill-conditioned: one ulp in the ray
+  moved its colour by up to the texture's contrast, and on an NVIDIA H200 earth and
+  uv_convention had 202 and 211 such pixels (0.13 and 0.33 %, max 0.12) and failed
+  (docs/porting.md, "Seen on an NVIDIA H200, again"). Minified lookups now read mip levels
+  by the ray cone's footprint (scene-format.md, "Textures"), whose colour is a mean that
+  an ulp barely moves: the experiment that moved 92 and 82 pixels (one ulp in the primary
+  ray) now moves none past 1e-3 (docs/porting.md, "Texture level of detail"). A hit at a
+  texel edge under \`nearest\`, magnified, stays a discontinuity by the user's choice.
+  Where a pixel is past a colour limit, \`compare\`'s note says whether its decisions agree in
+  every sample (the digests): a colour difference, or a flip a later sample made.
 - **\`same-backend\`**: two renders by one backend at one precision must be bit-identical
   (threads, tiles, regions and merged shards change no bit).
 

@@ -194,9 +194,12 @@ TEST(composite_transform_moves_its_operands_as_one) {
   check_alike("whole", "each", 0);
 }
 
-/* Renders TMP/name.json on each backend and precision to name.BACKEND.PRECISION.aov.exr
- * (channels as read back: R, G, B, hit, object, shadow, t, uncertified, N.X, N.Y, N.Z) and hands each
- * image to check(). */
+/* The AOV channels as read back (OpenEXR stores them sorted, layers last): R, G, B, decisions,
+ * hit, object, shadow, t, uncertified, N.X, N.Y, N.Z. */
+enum { CH_HIT = 4, CH_OBJECT = 5, CH_SHADOW = 6, CH_T = 7, CH_NX = 9, CH_NY = 10, CH_NZ = 11, CH_COUNT = 12 };
+
+/* Renders TMP/name.json on each backend and precision to name.BACKEND.PRECISION.aov.exr and
+ * hands each image to check(). */
 static void for_each_variant(const char *name, void (*check)(const image *im, const char *variant)) {
   static const char *const variants[3][2] = {{"gpu", "f32"}, {"cpu", "f64"}, {"cpu", "f32"}};
   for (int v = 0; v < 3; v++) {
@@ -207,7 +210,7 @@ static void for_each_variant(const char *name, void (*check)(const image *im, co
                      tmp, out, variants[v][0], variants[v][1]),
                  0);
     image im = load(out);
-    if (!im.px || im.c != 11) {
+    if (!im.px || im.c != CH_COUNT) {
       CHECK(false);
     } else {
       check(&im, variant);
@@ -230,8 +233,8 @@ static void check_floor(const image *im, const char *variant) {
       double x = -4 + 8 * (i + 0.5) / 64, z = -4 + 8 * (j + 0.5) / 64;
       double dx = x - 1, dy = 4, dz = z + 1, r = sqrt(dx * dx + dy * dy + dz * dz);
       double want = 0.5 * 10 * dy / (r * r * r);
-      bad_t += !(px[3] == 1 && fabs(px[6] - 10) <= 4e-6 * 10);
-      bad_n += !(fabs(px[8]) <= 1e-6 && fabs(px[9] - 1) <= 1e-6 && fabs(px[10]) <= 1e-6);
+      bad_t += !(px[CH_HIT] == 1 && fabs(px[CH_T] - 10) <= 4e-6 * 10);
+      bad_n += !(fabs(px[CH_NX]) <= 1e-6 && fabs(px[CH_NY] - 1) <= 1e-6 && fabs(px[CH_NZ]) <= 1e-6);
       double e = fabs(px[0] - want) / want;
       worst = fmax(worst, e);
       bad_c += e > 1e-5;
@@ -261,7 +264,7 @@ static int wall_hits;
 static void count_wall(const image *im, const char *variant) {
   (void)variant;
   wall_hits = 0;
-  for (size_t i = 0; i < (size_t)im->w * im->h; i++) wall_hits += im->px[i * im->c + 3] == 1 && im->px[i * im->c + 4] == 1;
+  for (size_t i = 0; i < (size_t)im->w * im->h; i++) wall_hits += im->px[i * im->c + CH_HIT] == 1 && im->px[i * im->c + CH_OBJECT] == 1;
 }
 
 TEST(one_sided_plane_is_seen_from_its_front_only) {
@@ -290,10 +293,9 @@ static void count_wall_and_shadow(const image *im, const char *variant) {
   wall_pixels = shadowed_floor = 0;
   for (size_t i = 0; i < (size_t)im->w * im->h; i++) {
     const float *px = im->px + i * im->c;
-    /* The channels as OpenEXR stores them: R G B hit object shadow t uncertified N.X N.Y N.Z. */
-    if (px[3] != 1) continue;
-    wall_pixels += fabsf(px[10]) > 0.9f;
-    shadowed_floor += fabsf(px[9]) > 0.9f && px[5] != 0;
+    if (px[CH_HIT] != 1) continue;
+    wall_pixels += fabsf(px[CH_NZ]) > 0.9f;
+    shadowed_floor += fabsf(px[CH_NY]) > 0.9f && px[CH_SHADOW] != 0;
   }
 }
 

@@ -91,8 +91,9 @@ for v in "${variants[@]}"; do
   tol=2e-5
   [[ $v == *f64* ]] && tol=2e-6
   # Pixel (i, j): x in [-1.6 + 0.1 i, -1.6 + 0.1 (i + 1)], y in [1.6 - 0.1 (j + 1), 1.6 - 0.1 j].
+  # The channels as read back: R G B decisions hit object shadow t uncertified N.X N.Y N.Z.
   report=$(oiiotool --dumpdata "$work/s.aov.exr" 2>/dev/null | awk -v tol=$tol '
-    /Pixel \(/ { gsub(/[(),:]/, " "); i = $2; j = $3; hit = $7; t = $10; nx = $12; ny = $13; nz = $14
+    /Pixel \(/ { gsub(/[(),:]/, " "); i = $2; j = $3; hit = $8; t = $11; nx = $13; ny = $14; nz = $15
       if (hit != 1) { miss++; next }
       hits++
       x = -ny / nz; y = -nx / nz
@@ -125,7 +126,7 @@ for v in "${variants[@]}"; do
     because "the render failed"
   oiiotool --dumpdata "$work/l.aov.exr" 2>/dev/null | grep -qi nan && because "a NaN in the AOVs"
   centre=$(oiiotool --dumpdata "$work/l.aov.exr" 2>/dev/null | sed -n 's/^ *Pixel (16, 16): *//p')
-  read -r _ _ _ hit _ _ t _ nx ny nz <<<"$centre"
+  read -r _ _ _ _ hit _ _ t _ nx ny nz <<<"$centre"
   awk -v h="$hit" -v t="$t" -v x="$nx" -v y="$ny" -v z="$nz" 'BEGIN {
     exit !(h == 1 && y > 0.9999 && x * x + z * z < 1e-4 && t > 6.84 && t < 6.86) }' ||
     because "the apex pixel: hit $hit, t $t (10 - 3.15), normal ($nx, $ny, $nz), not straight up"

@@ -54,7 +54,7 @@ same_file "a merged image" "$work/exr.merged.exr" "$work/oiio.merged.exr"
 same_file "a heat map (one whole-image write)" "$work/exr.heat.exr" "$work/oiio.heat.exr"
 why=ok
 [[ $(iinfo -v "$work/exr.part1.exr" | grep -c 'vkraycast:') -ge 5 ]] || because "no vkraycast: attributes"
-[[ $(iinfo -v "$work/exr.aov.exr" | grep -c 'channel list: R, G, B, hit, object, shadow, t') == 1 ]] ||
+[[ $(iinfo -v "$work/exr.aov.exr" | grep -c 'channel list: R, G, B, decisions, hit, object, shadow, t') == 1 ]] ||
   because "channels: $(iinfo -v "$work/exr.aov.exr" | grep 'channel list')"
 check "the attributes and channel names are there" "$why"
 
