@@ -103,6 +103,27 @@ per=$(json_num lights_per_pass "$work/f64.gpu.json")
 [[ -n $per && $per -gt 0 && $per -lt 900 ]] || because "lights_per_pass $per"
 check "f64: the GPU in passes traces the CPU's rays exactly" "$why"
 
+# The AOVs' digests of every sample's decisions (packed_aov.decisions): light passes trace a
+# sample's rays again, pass by pass; the primary decisions count once and each shadow ray in
+# its own pass, so the digests are those of the same render in one pass, bit for bit, and
+# the first-sample records too (the same device and arithmetic: no decision may differ).
+lights showcase.json 60 5 "$work/digest.json"
+why=ok
+for p in passes whole; do
+  budget=()
+  [[ $p == passes ]] && budget=(--plan-budget 400)
+  "$bin" render "$work/digest.json" -o "$work/digest.$p.exr" --aov "$work/digest.$p.aov.exr" --spp 2 --accel none \
+    --quiet --stats-json "$work/digest.$p.json" "${budget[@]}" 2>"$work/err" || because "$p: exit $?: $(head -c 300 "$work/err")"
+done
+per=$(json_num lights_per_pass "$work/digest.passes.json")
+[[ -n $per && $per -gt 0 && $per -lt 60 ]] || because "lights_per_pass $per, expected passes"
+[[ $(json_num lights_per_pass "$work/digest.whole.json") == 0 ]] || because "the whole render went in passes"
+"$bin" compare "$work/digest.passes.aov.exr" "$work/digest.whole.aov.exr" --json >"$work/digest.cmp.json" 2>/dev/null
+for k in sample_mismatch hit_mismatch object_mismatch shadow_mismatch; do
+  [[ $(json_num $k "$work/digest.cmp.json") == 0 ]] || because "$k $(json_num $k "$work/digest.cmp.json")"
+done
+check "light passes: every sample's decisions are those of one pass" "$why"
+
 # A pixel counts its progress in lights in a float, exact to 2^24: 1024 samples of 17,000
 # lights cannot go in passes. The sample then runs out of the loop budget in one dispatch,
 # and the refusal says why and what to change, not "objects piled up along a ray".
