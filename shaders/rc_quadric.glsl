@@ -162,38 +162,66 @@ void box_span(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d, out real t_in, out real t_ou
   box_slab(lo.z, hi.z, o.z, d.z, 3u, t_in, t_out, axis_in, axis_out);
 }
 
+// The solid {Q <= 0} along the ray's whole line, in the quadric's frame: the box's span
+// [b_in, b_out] and the axes (1..3) of the faces it starts and ends on, and the inside
+// pieces of the line before clipping to the box, [lo0, hi0] and, for OUTSIDE, [t_hi, +inf)
+// (-/+ RC_T_FAR for an open end); `pieces` 0 where the line misses the box or the solid.
+struct solid_line {
+  real b_in;
+  real b_out;
+  uint a_in;
+  uint a_out;
+  real lo0;
+  real hi0;
+  real t_hi;
+  uint pieces;
+};
+
+solid_line solid_line_of(packed_quadric q, rvec3 o, rvec3 d) {
+  solid_line l;
+  l.pieces = 0u;
+  l.lo0 = 0.0;
+  l.hi0 = 0.0;
+  l.t_hi = 0.0;
+  rvec3 f = quadric_local(q, o - rvec3(q.center));
+  rvec3 v = quadric_local(q, d);
+  box_span(rvec3(q.lo), rvec3(q.hi), f, v, l.b_in, l.b_out, l.a_in, l.a_out);
+  if (l.b_in > l.b_out) return l;
+  real t_lo;
+  uint kind = quadric_roots(q, f, v, t_lo, l.t_hi);
+  if (kind == RC_QR_NONE) return l;
+  l.lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -real(RC_T_FAR);
+  l.hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? l.t_hi : real(RC_T_FAR));
+  l.pieces = (kind == RC_QR_OUTSIDE) ? 2u : 1u;
+  return l;
+}
+
+// Piece k of the line clipped to the box, [s, e] (s > e: nothing left): it starts on the box
+// face where the box starts later, else on Q = 0, and ends likewise.
+void solid_piece(solid_line l, uint k, out real s, out real e, out bool box_starts, out bool box_ends) {
+  real lo = (k == 0u) ? l.lo0 : l.t_hi;
+  real hi = (k == 0u) ? l.hi0 : real(RC_T_FAR);
+  box_starts = l.b_in >= lo;
+  box_ends = l.b_out <= hi;
+  s = box_starts ? l.b_in : lo;
+  e = box_ends ? l.b_out : hi;
+}
+
 // The solid {Q <= 0} inside its box along the ray: up to two intervals, written to the
 // interval stack at `base` (csg_t, csg_code_of). Returns the number of interval ends.
 uint solid_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, bool flip, uint base) {
-  rvec3 f = quadric_local(q, o - rvec3(q.center));
-  rvec3 v = quadric_local(q, d);
-  real b_in, b_out;
-  uint a_in, a_out;
-  box_span(rvec3(q.lo), rvec3(q.hi), f, v, b_in, b_out, a_in, a_out);
-  if (b_in > b_out) return 0u;
-  real t_lo, t_hi;
-  uint kind = quadric_roots(q, f, v, t_lo, t_hi);
-  if (kind == RC_QR_NONE) return 0u;
+  solid_line l = solid_line_of(q, o, d);
   uint n = 0u;
-  // Inside pieces of the line before clipping to the box: [lo0, hi0] and, for OUTSIDE,
-  // [lo1, hi1]; -/+ RC_T_FAR for an open end.
-  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -real(RC_T_FAR);
-  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : real(RC_T_FAR));
-  uint pieces = (kind == RC_QR_OUTSIDE) ? 2u : 1u;
-  for (uint k = 0u; k < pieces; k++) {
+  for (uint k = 0u; k < l.pieces; k++) {
     if (!budget_step()) return n;
-    real lo = (k == 0u) ? lo0 : t_hi;
-    real hi = (k == 0u) ? hi0 : real(RC_T_FAR);
-    // The clipped piece starts on the box face where the box starts later, else on Q = 0.
-    bool box_starts = b_in >= lo;
-    bool box_ends = b_out <= hi;
-    real s = box_starts ? b_in : lo;
-    real e = box_ends ? b_out : hi;
+    real s, e;
+    bool box_starts, box_ends;
+    solid_piece(l, k, s, e, box_starts, box_ends);
     if (s > e) continue;
     csg_t[base + n] = s;
-    csg_code_of[base + n] = csg_code(leaf, box_starts ? a_in : 0u, false, flip);
+    csg_code_of[base + n] = csg_code(leaf, box_starts ? l.a_in : 0u, false, flip);
     csg_t[base + n + 1u] = e;
-    csg_code_of[base + n + 1u] = csg_code(leaf, box_ends ? a_out : 0u, true, flip);
+    csg_code_of[base + n + 1u] = csg_code(leaf, box_ends ? l.a_out : 0u, true, flip);
     n += 2u;
   }
   return n;
@@ -291,6 +319,31 @@ real first_interval_end(uint base, uint n, real t_max, out uint code) {
   return real(RC_T_FAR);
 }
 
+// A standalone solid's first interval end in (0, t_max] (RC_T_FAR if none) and its code:
+// first_interval_end over solid_intervals' list, in the same order, without writing the list.
+// llvmpipe keeps the interval stack in scratch memory, a store there a scatter lane by lane,
+// and every quadric a ray tested wrote four.
+real solid_first_end(uint leaf, packed_quadric q, rvec3 o, rvec3 d, real t_max, out uint code) {
+  code = 0u;
+  solid_line l = solid_line_of(q, o, d);
+  for (uint k = 0u; k < l.pieces; k++) {
+    if (!budget_step()) break;
+    real s, e;
+    bool box_starts, box_ends;
+    solid_piece(l, k, s, e, box_starts, box_ends);
+    if (s > e) continue;
+    if (s > 0.0 && s <= t_max && s < real(RC_T_FAR)) {
+      code = csg_code(leaf, box_starts ? l.a_in : 0u, false, false);
+      return s;
+    }
+    if (e > 0.0 && e <= t_max && e < real(RC_T_FAR)) {
+      code = csg_code(leaf, box_ends ? l.a_out : 0u, true, false);
+      return e;
+    }
+  }
+  return real(RC_T_FAR);
+}
+
 // An infinite plane (RC_QUADRIC_UNBOUNDED): Q = 2 f.z, so the root is t = -f.z / v.z, the
 // value quadric_roots finds with a = 0, without its products; a one-sided plane is met
 // only by rays moving against its normal. A root beyond RC_T_FAR is a miss, not a division.
@@ -315,8 +368,7 @@ real intersect_quadric(uint index, rvec3 o, rvec3 d, real t_max, out uint code) 
     code = csg_code(index, 0u, false, false);
     return intersect_quadric_surface(q, o, d, t_max);
   }
-  uint n = solid_intervals(index, q, o, d, false, 0u);
-  return first_interval_end(0u, n, t_max, code);
+  return solid_first_end(index, q, o, d, t_max, code);
 }
 
 // Whether a point is inside op(A, B), inside A or not and B or not.

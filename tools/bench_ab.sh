@@ -42,7 +42,9 @@ for s in "${scenes[@]}"; do
       process=$((($(date +%s%N) - t0) / 1000))
       wall=$(num render_wall_ms "$work/st.json") first=$(num first_frame_ms "$work/st.json")
       # render_wall_ms is the median of frames 2..N (stats.h); the first frame is apart.
-      echo "$wall $first $(num cpu_ms "$work/st.json") $(num dispatches "$work/st.json") $process" >>"$work/$which.txt"
+      # The CPU backend has no dispatches: "-" keeps the columns in place.
+      dispatches=$(num dispatches "$work/st.json")
+      echo "$wall $first $(num cpu_ms "$work/st.json") ${dispatches:--} $process" >>"$work/$which.txt"
     done
   done
   col() { awk -v c="$2" '{print $c}' "$work/$1.txt" | median; }

@@ -157,9 +157,13 @@ extern _Thread_local uint32_t ref_crossing_blame;
   uint32_t ref_quadric_roots_##S(const packed_quadric *q, V f, V v, R *t_lo, R *t_hi);             \
   void ref_box_slab_##S(R lo, R hi, R o, R d, uint32_t k, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
   void ref_box_span_##S(V lo, V hi, V o, V d, R *t_in, R *t_out, uint32_t *axis_in, uint32_t *axis_out); \
+  typedef struct ref_solid_line_##S { R b_in, b_out; uint32_t a_in, a_out; R lo0, hi0, t_hi; uint32_t pieces; } ref_solid_line_##S; \
+  ref_solid_line_##S ref_solid_line_of_##S(const packed_quadric *q, V o, V d);                     \
+  void ref_solid_piece_##S(const ref_solid_line_##S *l, uint32_t k, R *s, R *e, bool *box_starts, bool *box_ends); \
   uint32_t ref_solid_intervals_##S(uint32_t leaf, const packed_quadric *q, V o, V d, bool flip, uint32_t base); \
   R ref_intersect_quadric_surface_##S(const packed_quadric *q, V o, V d, R t_max);                 \
   R ref_first_interval_end_##S(uint32_t base, uint32_t n, R t_max, uint32_t *code);             \
+  R ref_solid_first_end_##S(uint32_t leaf, const packed_quadric *q, V o, V d, R t_max, uint32_t *code); \
   R ref_intersect_plane_##S(const packed_quadric *q, V o, V d, R t_max);                              \
   R ref_intersect_quadric_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \
   bool ref_csg_inside_##S(uint32_t op, bool in_a, bool in_b);                                  \

@@ -119,33 +119,48 @@ void REF(box_span)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d, real *t_in, real *t_out
   REF(box_slab)(lo.z, hi.z, o.z, d.z, 3, t_in, t_out, axis_in, axis_out);
 }
 
-uint32_t REF(solid_intervals)(uint32_t leaf, const packed_quadric *q, rvec3 o, rvec3 d, bool flip, uint32_t base) {
+ref_solid_line REF(solid_line_of)(const packed_quadric *q, rvec3 o, rvec3 d) {
   const real far = (real)RC_T_FAR;
+  ref_solid_line l;
+  l.pieces = 0;
+  l.lo0 = 0;
+  l.hi0 = 0;
+  l.t_hi = 0;
   rvec3 f = REF(quadric_local)(q, RV(sub)(o, v3(q->center)));
   rvec3 v = REF(quadric_local)(q, d);
-  real b_in, b_out;
-  uint32_t a_in, a_out;
-  REF(box_span)(v3(q->lo), v3(q->hi), f, v, &b_in, &b_out, &a_in, &a_out);
-  if (b_in > b_out) return 0;
-  real t_lo, t_hi;
-  uint32_t kind = REF(quadric_roots)(q, f, v, &t_lo, &t_hi);
-  if (kind == RC_QR_NONE) return 0;
+  REF(box_span)(v3(q->lo), v3(q->hi), f, v, &l.b_in, &l.b_out, &l.a_in, &l.a_out);
+  if (l.b_in > l.b_out) return l;
+  real t_lo;
+  uint32_t kind = REF(quadric_roots)(q, f, v, &t_lo, &l.t_hi);
+  if (kind == RC_QR_NONE) return l;
+  l.lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -far;
+  l.hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? l.t_hi : far);
+  l.pieces = (kind == RC_QR_OUTSIDE) ? 2 : 1;
+  return l;
+}
+
+void REF(solid_piece)(const ref_solid_line *l, uint32_t k, real *s, real *e, bool *box_starts, bool *box_ends) {
+  const real far = (real)RC_T_FAR;
+  real lo = (k == 0) ? l->lo0 : l->t_hi;
+  real hi = (k == 0) ? l->hi0 : far;
+  *box_starts = l->b_in >= lo;
+  *box_ends = l->b_out <= hi;
+  *s = *box_starts ? l->b_in : lo;
+  *e = *box_ends ? l->b_out : hi;
+}
+
+uint32_t REF(solid_intervals)(uint32_t leaf, const packed_quadric *q, rvec3 o, rvec3 d, bool flip, uint32_t base) {
+  ref_solid_line l = REF(solid_line_of)(q, o, d);
   uint32_t n = 0;
-  real lo0 = (kind == RC_QR_BETWEEN) ? t_lo : -far;
-  real hi0 = (kind == RC_QR_OUTSIDE) ? t_lo : ((kind == RC_QR_BETWEEN) ? t_hi : far);
-  uint32_t pieces = (kind == RC_QR_OUTSIDE) ? 2 : 1;
-  for (uint32_t k = 0; k < pieces; k++) {
-    real lo = (k == 0) ? lo0 : t_hi;
-    real hi = (k == 0) ? hi0 : far;
-    bool box_starts = b_in >= lo;
-    bool box_ends = b_out <= hi;
-    real s = box_starts ? b_in : lo;
-    real e = box_ends ? b_out : hi;
+  for (uint32_t k = 0; k < l.pieces; k++) {
+    real s, e;
+    bool box_starts, box_ends;
+    REF(solid_piece)(&l, k, &s, &e, &box_starts, &box_ends);
     if (s > e) continue;
     csg_t[base + n] = s;
-    csg_code_of[base + n] = REF(csg_code)(leaf, box_starts ? a_in : 0, false, flip);
+    csg_code_of[base + n] = REF(csg_code)(leaf, box_starts ? l.a_in : 0, false, flip);
     csg_t[base + n + 1] = e;
-    csg_code_of[base + n + 1] = REF(csg_code)(leaf, box_ends ? a_out : 0, true, flip);
+    csg_code_of[base + n + 1] = REF(csg_code)(leaf, box_ends ? l.a_out : 0, true, flip);
     n += 2;
   }
   return n;
@@ -232,6 +247,27 @@ real REF(first_interval_end)(uint32_t base, uint32_t n, real t_max, uint32_t *co
   return (real)RC_T_FAR;
 }
 
+real REF(solid_first_end)(uint32_t leaf, const packed_quadric *q, rvec3 o, rvec3 d, real t_max, uint32_t *code) {
+  const real far = (real)RC_T_FAR;
+  *code = 0;
+  ref_solid_line l = REF(solid_line_of)(q, o, d);
+  for (uint32_t k = 0; k < l.pieces; k++) {
+    real s, e;
+    bool box_starts, box_ends;
+    REF(solid_piece)(&l, k, &s, &e, &box_starts, &box_ends);
+    if (s > e) continue;
+    if (s > 0 && s <= t_max && s < far) {
+      *code = REF(csg_code)(leaf, box_starts ? l.a_in : 0, false, false);
+      return s;
+    }
+    if (e > 0 && e <= t_max && e < far) {
+      *code = REF(csg_code)(leaf, box_ends ? l.a_out : 0, true, false);
+      return e;
+    }
+  }
+  return far;
+}
+
 real REF(intersect_plane)(const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   const real far = (real)RC_T_FAR;
   real fz = RV(dot)(v3(q->axis_z), RV(sub)(o, v3(q->center)));
@@ -253,8 +289,7 @@ real REF(intersect_quadric)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 
     *code = REF(csg_code)(index, 0, false, false);
     return REF(intersect_quadric_surface)(q, o, d, t_max);
   }
-  uint32_t n = REF(solid_intervals)(index, q, o, d, false, 0);
-  return REF(first_interval_end)(0, n, t_max, code);
+  return REF(solid_first_end)(index, q, o, d, t_max, code);
 }
 
 bool REF(csg_inside)(uint32_t op, bool in_a, bool in_b) {

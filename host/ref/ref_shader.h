@@ -76,12 +76,14 @@ typedef ref_hit_d ref_hit;
 typedef ref_shear_d ref_shear;
 typedef ref_sheared_d ref_sheared;
 typedef ref_quadric_terms_d ref_quadric_terms;
+typedef ref_solid_line_d ref_solid_line;
 typedef ref_surface_d ref_surface;
 #else
 typedef ref_hit_f ref_hit;
 typedef ref_shear_f ref_shear;
 typedef ref_sheared_f ref_sheared;
 typedef ref_quadric_terms_f ref_quadric_terms;
+typedef ref_solid_line_f ref_solid_line;
 typedef ref_surface_f ref_surface;
 #endif
 #endif
