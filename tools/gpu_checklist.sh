@@ -94,7 +94,7 @@ for enc in auto off; do
   j=$out/frame_$enc.json
   say "  - \`--gpu-encode $enc\`: readback_bytes $(num readback_bytes "$j"), readback_submits $(num readback_submits "$j"), \
 readback_overlapped $(num readback_overlapped "$j") of $(num tiles "$j") tiles, bands_overlapped $(num bands_overlapped "$j"), \
-band_overlapped_ms $(num band_overlapped_ms "$j"), readback_ms $(num readback_ms "$j"), render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j"), write_ms $(num write_ms "$j"), \
+band_overlapped_ms $(num band_overlapped_ms "$j"), band_hidden_ms $(num band_hidden_ms "$j"), readback_ms $(num readback_ms "$j"), render_wall_ms $(num render_wall_ms "$j"), render_ms $(num render_ms "$j"), write_ms $(num write_ms "$j"), \
 gpu_encoded $(num gpu_encoded "$j"), readback_cached $(num readback_cached "$j")"
 done
 cached=$(num readback_cached "$out/frame_auto.json")

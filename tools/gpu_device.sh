@@ -6,7 +6,8 @@
 # files: the device tool's limit).
 #   OUT=$OUT tools/gpu_device.sh
 # Env: T_CHK (180), T_AB (90), T_CERT (100), T_CTEST (180) seconds; AB_ROUNDS (5); AB_SCENES
-# (scenes/showcase.json scenes/mesh.json); AB_TILES ("default 1024 512 256"); PARTS
+# (scenes/showcase.json scenes/mesh.json); AB_TILES ("default 1024 512 256"); AB_FRAMES (6;
+# 1 times a user's one-image process, the write included); PARTS
 # ("checklist ab certified ctest"; ab runs where the bundle has a baseline: BASE=commit
 # tools/gpu_bundle.sh); CTEST_ARGS (added to ctest's).
 set -u
@@ -55,7 +56,7 @@ if [[ $parts == *ab* && -x build-gpu-base/vkraycast ]]; then
     for tile in ${AB_TILES:-default 1024 512 256}; do
       [[ $tile == default ]] && tile="" || tile="--tile $tile"
       # shellcheck disable=SC2086
-      ROUNDS=${AB_ROUNDS:-5} FRAMES=6 ARGS="--width 3840 --height 2160 --spp 1 $tile" \
+      ROUNDS=${AB_ROUNDS:-5} FRAMES=${AB_FRAMES:-6} ARGS="--width 3840 --height 2160 --spp 1 $tile" \
         tools/bench_ab.sh build-gpu-base/vkraycast "$1" ${AB_SCENES:-scenes/showcase.json scenes/mesh.json}; echo
     done' _ "$bin" >"$out/ab.md" 2>&1
   el "ab: exit $?"

@@ -582,14 +582,16 @@ static rc_status render_frames(const render_args *a, rc_vk_ctx *ctx, const rc_sc
      * time stops before its bands are written. Counted in both, it made the steady frame
      * of a 2- or 3-frame --repeat (steady() takes the later of frames 2 and 3) the
      * frame plus the write. The certified re-render in the sink stays in the frame, and so
-     * does the write of bands handed on while the next band rendered (band_overlapped_ms):
-     * what of it the device's work hid is not known, so the frame is not flattered. (No
-     * output yet, or a discarded frame: no write time, and rc_output_write_ms of NULL is 0.) */
+     * does the part of a band's write that the next band's dispatch ran beside
+     * (band_hidden_ms): the frame would have taken that time without the write. Counting
+     * the whole of such writes in, the frame of a one-frame 4K PNG on an H200 read 240 ms,
+     * 225 of them zlib's, beside 1.3 ms of shader. (No output yet, or a discarded frame: no
+     * write time, and rc_output_write_ms of NULL is 0.) */
     double written = rc_output_write_ms(*out);
     if (st == RC_OK) st = rc_gpu_renderer_render(r, band, user, &rs->gpu);
     gpu_ms[i] = rs->gpu.gpu_ms;
     double write_ms = rc_output_write_ms(*out) - written;
-    double hidden = rs->gpu.band_overlapped_ms < write_ms ? rs->gpu.band_overlapped_ms : write_ms;
+    double hidden = rs->gpu.band_hidden_ms < write_ms ? rs->gpu.band_hidden_ms : write_ms;
     wall_ms[i] = rs->gpu.render_ms - (write_ms - hidden);
   }
   if (st == RC_OK) {

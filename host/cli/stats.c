@@ -185,6 +185,7 @@ static const stats_field gpu_fields[] = {
     FIELD("readback_overlapped", F_U32, gpu.readback_overlapped),
     FIELD("bands_overlapped", F_U32, gpu.bands_overlapped),
     FIELD("band_overlapped_ms", F_DOUBLE, gpu.band_overlapped_ms),
+    FIELD("band_hidden_ms", F_DOUBLE, gpu.band_hidden_ms),
     FIELD("tile_budget_ms", F_DOUBLE, gpu.tile_budget_ms),
     FIELD("max_dispatch_ms", F_DOUBLE, gpu.max_dispatch_ms),
     FIELD("dispatches_over_budget", F_U32, gpu.over_budget),

@@ -375,12 +375,13 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   const bool submitted = st == RC_OK;
   /* The previous tile, copied out into the other slot, is read while this one runs, and
    * the band it completed is handed on. */
-  double read_ms = 0;
+  double read_ms = 0, written_ms = stats->band_overlapped_ms;
   if (st == RC_OK && (r->pending.valid || r->band_done.valid)) {
     double r0 = rc_now_ms();
     st = host_work(r, true, stats);
     read_ms = rc_now_ms() - r0;
   }
+  written_ms = stats->band_overlapped_ms - written_ms;
   /* Waited for even where the host's work failed (a full disk): the fence and the command
    * buffer are whole again before anything else touches them. */
   if (submitted) {
@@ -410,6 +411,9 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   double overhead, slope;
   if (fake && sscanf(fake, "%lf:%lf", &overhead, &slope) == 2)
     *ms = overhead + slope * (double)push->tile_width * push->tile_height * push->batch_samples;
+  /* A band written while this dispatch ran hid no more of the write than the device's time:
+   * past it the device waited for the host. */
+  stats->band_hidden_ms += written_ms < *ms ? written_ms : *ms;
   return RC_OK;
 }
 
@@ -662,7 +666,7 @@ rc_status rc_gpu_renderer_render(rc_gpu_renderer *r, rc_band_fn band, void *user
   memset(stats->uncertified_at, 0, sizeof stats->uncertified_at);
   stats->dispatches = stats->tiles = stats->budget_retries = stats->over_budget = stats->readback_submits = 0;
   stats->readback_overlapped = stats->bands_overlapped = 0;
-  stats->band_overlapped_ms = 0;
+  stats->band_overlapped_ms = stats->band_hidden_ms = 0;
   r->pending.valid = r->band_done.valid = false;
   r->band = band, r->band_user = user;
   stats->crossing_object = UINT32_MAX;

@@ -66,9 +66,11 @@ typedef struct rc_gpu_stats {
   uint32_t readback_overlapped;
   /* Bands handed to the band function while the next band's first dispatch ran on the
    * device (all but the last, unless a re-render left a band without a dispatch), and the
-   * wall time spent in the band function then. */
+   * wall time spent in the band function then; of that, what the device's work ran beside:
+   * each such band's time up to its dispatch's (timestamps; without them the wall time the
+   * host waited after the band, which can only say less). */
   uint32_t bands_overlapped;
-  double band_overlapped_ms;
+  double band_overlapped_ms, band_hidden_ms;
   double tile_budget_ms;   /* the budget in force: 0 where none limits a dispatch */
   double max_dispatch_ms;  /* the longest dispatch (GPU timestamps) */
   uint32_t over_budget;    /* dispatches longer than tile_budget_ms */

@@ -95,6 +95,29 @@ for m in auto off; do
   [[ $got == 2 ]] || because "bands_overlapped $got, expected 2"
   check "parallel_tiles ($m): staging's file is the direct one's" "$why"
 done
+# What the device hid of a band's write is the write up to the dispatch's time: none where
+# the dispatch takes no time (then the frame keeps the whole write), all of it where the
+# dispatch outlasts it. Dispatch times injected (VKRAYCAST_FAULT=dispatch-ms), not read.
+for fake in 0:0 100000:0; do
+  why=ok
+  VKRAYCAST_FAULT=dispatch-ms:$fake "$bin" render "$scenes/parallel.json" -o "$work/hidden.png" --width 96 \
+    --height 64 --quiet --tile 24 --spp 3 --stats-json "$work/hidden.json" 2>"$work/err" ||
+    because "exit $?: $(head -c 300 "$work/err")"
+  python3 - "$work/hidden.json" "$fake" <<'PY' >"$work/err" 2>&1 || because "$(head -c 300 "$work/err")"
+import json, sys
+s, fake = json.load(open(sys.argv[1])), sys.argv[2]
+written, hidden = s["band_overlapped_ms"], s["band_hidden_ms"]
+if s["bands_overlapped"] != 2 or written <= 0:
+    sys.exit(f"bands_overlapped {s['bands_overlapped']}, band_overlapped_ms {written}: expected 2 bands written")
+want = 0.0 if fake == "0:0" else written
+if abs(hidden - want) > 1e-9 * max(1.0, written):
+    sys.exit(f"band_hidden_ms {hidden}, expected {want} (band_overlapped_ms {written})")
+# The frame (the last, the only one) keeps what was not hidden of the bands' write.
+if fake == "0:0" and s["render_wall_ms"] < written:
+    sys.exit(f"render_wall_ms {s['render_wall_ms']} leaves out the {written} ms of writes no dispatch hid")
+PY
+  check "parallel_tiles (dispatch-ms $fake): band_hidden_ms is the write up to the dispatch's time" "$why"
+done
 same showcase_region "$scenes/showcase.json" png --region 10,7,90,51 --tile 32
 bytes showcase_region $((80 * 44)) 4 auto
 same mesh_jpeg "$scenes/mesh.json" jpg
