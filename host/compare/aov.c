@@ -47,8 +47,20 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
                               int h, int c, const unsigned char *band, rc_compare_result *r) {
   r->decisions = true;
   r->digests = la->decisions >= 0 && lb->decisions >= 0;
+  double sum2 = 0;
+  bool nonfinite = false;
   for (size_t i = 0; i < (size_t)w * h; i++) {
     const float *x = a + i * c, *y = b + i * c;
+    if (rc_aov_same_decisions(a, la, b, lb, c, i)) {
+      r->pixels_alike++;
+      const int ka[3] = {la->r, la->g, la->b}, kb[3] = {lb->r, lb->g, lb->b};
+      for (int k = 0; k < 3; k++) {
+        float u = x[ka[k]], v = y[kb[k]];
+        if (u == v || (isnan(u) && isnan(v))) continue;
+        if (!isfinite(u) || !isfinite(v)) nonfinite = true;
+        else sum2 += ((double)u - v) * ((double)u - v);
+      }
+    }
     r->a_hits += x[la->hit] != 0;
     r->b_hits += y[lb->hit] != 0;
     r->a_shadowed += x[la->shadow] != 0;
@@ -84,4 +96,6 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
     double angle = atan2(sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz);
     if (!(angle <= r->max_normal_angle)) r->max_normal_angle = isnan(angle) ? INFINITY : angle;
   }
+  double mse = r->pixels_alike ? sum2 / (3.0 * (double)r->pixels_alike) : 0;
+  r->psnr_alike = nonfinite ? NAN : mse > 0 ? 10.0 * log10(1.0 / mse) : INFINITY;
 }

@@ -27,7 +27,8 @@ bool rc_aov_find_channels(char names[][32], int count, rc_aov_layout *layout);
  * where both files have the digest of every sample's decisions, the pixels whose digests
  * differ (r->sample_mismatch), leaving out the pixels where band[i] is set (the
  * conditioning band, docs/accuracy.md; band may be NULL), and measures depth and normal
- * error where both hit the same object. */
+ * error where both hit the same object, and the PSNR of the pixels that decide alike
+ * (r->psnr_alike). */
 void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const float *b, const rc_aov_layout *lb,
                               int width, int height, int channels, const unsigned char *band, rc_compare_result *r);
 /* True when pixel i of the two AOV files has the same hit flag, object and shadow bits,

@@ -35,6 +35,12 @@ typedef struct rc_compare_result {
    * the pixels whose digests differ: a decision of some sample or bounce differs. */
   bool digests;
   uint64_t sample_mismatch;
+  /* The pixels whose decisions agree in the first sample and, where both have digests, in
+   * every other (band or not), and the PSNR of their colour: what arithmetic alone, not a
+   * flipped decision, made of it (NaN where such a pixel is non-finite in one file and not
+   * the other). */
+  uint64_t pixels_alike;
+  double psnr_alike;
   /* A's certified pixels inside the band (--band), where inputs moved by a few ulps flip a
    * decision of the reference: each should be uncertified (docs/numerics.md §10). */
   uint64_t certified_in_band;

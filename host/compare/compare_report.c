@@ -150,13 +150,25 @@ void rc_compare_print_text(const rc_compare_report *rep, FILE *f) {
     fprintf(f, "  decisions differ: hit %llu, object %llu, shadow %llu pixels%s\n", (unsigned long long)r->hit_mismatch,
             (unsigned long long)r->object_mismatch, (unsigned long long)r->shadow_mismatch,
             rep->banded ? " outside the band" : "");
-    if (r->digests)
+    if (r->digests) {
       fprintf(f, "  decisions of every sample and bounce differ: %llu pixels%s\n", (unsigned long long)r->sample_mismatch,
               rep->banded ? " outside the band" : "");
+      if (isnan(r->psnr_alike))
+        fprintf(f, "  the %llu pixels that decide alike: PSNR undefined (NaN against a number)\n",
+                (unsigned long long)r->pixels_alike);
+      else if (isinf(r->psnr_alike))
+        fprintf(f, "  the %llu pixels that decide alike: the same colour\n", (unsigned long long)r->pixels_alike);
+      else
+        fprintf(f, "  the %llu pixels that decide alike: PSNR %.2f dB\n", (unsigned long long)r->pixels_alike,
+                r->psnr_alike);
+    }
     fprintf(f, "  where both hit the same object: depth error %.3g (relative), normal error %.3g rad\n",
             r->max_depth_rel, r->max_normal_angle);
     if (rep->banded) fprintf(f, "  conditioning band: %llu pixels\n", (unsigned long long)r->band_pixels);
-    if (rep->a->layout.uncertified >= 0)
+    /* A render without --precision certified marks every sample uncertified. */
+    if (rep->a->layout.uncertified >= 0 && r->uncertified_pixels == r->pixels)
+      fputs("  certified (A): no pixel (as in any render without --precision certified)\n", f);
+    else if (rep->a->layout.uncertified >= 0)
       fprintf(f, "  certified (A): %llu pixels with uncertified samples; certified pixels whose decisions differ: %llu\n",
               (unsigned long long)r->uncertified_pixels, (unsigned long long)r->certified_mismatch);
     if (rep->a->layout.uncertified >= 0 && rep->banded)
@@ -271,7 +283,14 @@ void rc_compare_print_json(const rc_compare_report *rep, FILE *f) {
     cJSON_AddNumberToObject(o, "band_pixels", (double)r->band_pixels);
     cJSON_AddNumberToObject(o, "uncertified_pixels", (double)r->uncertified_pixels);
     cJSON_AddNumberToObject(o, "certified_mismatch", (double)r->certified_mismatch);
-    if (r->digests) cJSON_AddNumberToObject(o, "sample_mismatch", (double)r->sample_mismatch);
+    if (r->digests) {
+      cJSON_AddNumberToObject(o, "sample_mismatch", (double)r->sample_mismatch);
+      cJSON_AddNumberToObject(o, "pixels_alike", (double)r->pixels_alike);
+      if (isnan(r->psnr_alike))
+        cJSON_AddNullToObject(o, "psnr_alike");
+      else
+        cJSON_AddNumberToObject(o, "psnr_alike", finite_or(r->psnr_alike, 999));
+    }
     cJSON_AddNumberToObject(o, "certified_in_band", (double)r->certified_in_band);
     cJSON_AddNumberToObject(o, "a_hits", (double)r->a_hits);
     cJSON_AddNumberToObject(o, "b_hits", (double)r->b_hits);

@@ -202,13 +202,18 @@ TEST(presets_and_named_checks) {
   CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 1 --warn 1 --decisions-percent 24 > %s/out.txt", tmp,
                    tmp, tmp), 1);
   CHECK(stdout_has("allowed 24 % = 1\n"));
-  /* same-backend: bit-identical or FAIL; same-precision's PSNR floor is a check of its own. */
+  /* same-backend: bit-identical or FAIL; same-precision's PSNR floor is a check of its own,
+   * over the pixels that decide alike: 6 here (pixels 2 and 3 decide otherwise), whose
+   * colours are equal, so it passes; pixel 2's colour fails the share over --fail. */
   CHECK_EQ_INT(run("compare %s/a.aov.exr %s/a.aov.exr --preset same-backend > %s/out.txt", tmp, tmp, tmp), 0);
   CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --preset same-precision --json > %s/p.json", tmp, tmp, tmp), 1);
   j = load_json("p.json");
   const cJSON *psnr = check_of(j, "psnr");
-  CHECK(psnr != NULL && !cJSON_IsTrue(item(psnr, "ok")));
+  CHECK(psnr != NULL && cJSON_IsTrue(item(psnr, "ok")));
   if (psnr) CHECK_NEAR(json_number(psnr, "allowed"), 80, 0);
+  CHECK_NEAR(json_number(j, "pixels_alike"), 6, 0);
+  CHECK_NEAR(json_number(j, "psnr_alike"), 999, 0);
+  CHECK(json_number(j, "psnr") < 30); /* pixel 2's 0.2 over all 8 pixels: 27.8 dB */
   cJSON_Delete(j);
   /* A warning names its check too. */
   CHECK_EQ_INT(run("compare %s/a.aov.exr %s/b.aov.exr --fail 1 --decisions 9 > %s/out.txt", tmp, tmp, tmp), 0);
@@ -260,12 +265,36 @@ TEST(every_sample_digest) {
   CHECK_EQ_INT(run("compare %s/c.aov.exr %s/d.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
   CHECK(stdout_has("decisions of every sample and bounce differ: 1 pixels\n"));
   CHECK(stdout_has("note: 1 of the 2 pixels over --fail 0.001 make the same decisions in A and B, in every\n"));
-  /* Files without the channel compare by the first sample, as before. */
+  /* same-precision's PSNR runs over the 7 pixels that decide alike in every sample: pixel
+   * 5's 0.05 in one channel of 21 gives 39.2 dB and fails; without it, pixel 6's flip
+   * alone is left to the shares over --fail (0.01 % of 8 pixels: 0), and the PSNR passes. */
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/d.aov.exr --preset same-precision --json > %s/m.json", tmp, tmp, tmp), 1);
+  j = load_json("m.json");
+  const cJSON *psnr = check_of(j, "psnr");
+  CHECK(psnr != NULL && !cJSON_IsTrue(item(psnr, "ok")));
+  CHECK_NEAR(json_number(j, "pixels_alike"), 7, 0);
+  CHECK_NEAR(json_number(j, "psnr_alike"), 10 * log10(21 / (0.05 * 0.05)), 0.01);
+  cJSON_Delete(j);
+  c[5][0] = A[5][0];
+  write_exr("c.aov.exr", (const float (*)[C])c, C, rc_aov_channel_names);
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/d.aov.exr --preset same-precision --json > %s/m.json", tmp, tmp, tmp), 1);
+  j = load_json("m.json");
+  psnr = check_of(j, "psnr");
+  CHECK(psnr != NULL && cJSON_IsTrue(item(psnr, "ok")));
+  CHECK_NEAR(json_number(j, "psnr_alike"), 999, 0);
+  const cJSON *over = check_of(j, "pixels_over_fail");
+  CHECK(over != NULL && !cJSON_IsTrue(item(over, "ok")));
+  cJSON_Delete(j);
+  CHECK_EQ_INT(run("compare %s/c.aov.exr %s/d.aov.exr --fail 1e-3 > %s/out.txt", tmp, tmp, tmp), 1);
+  CHECK(stdout_has("  the 7 pixels that decide alike: the same colour\n"));
+  c[5][0] += 0.05f;
+  /* Files without the channel compare by the first sample, as before, and so does PSNR. */
   write_exr("c11.aov.exr", (const float (*)[C])c, C - 1, rc_aov_channel_names);
   write_exr("d11.aov.exr", (const float (*)[C])d, C - 1, rc_aov_channel_names);
   CHECK_EQ_INT(run("compare %s/c11.aov.exr %s/d11.aov.exr --fail 1e-3 --json > %s/m.json", tmp, tmp, tmp), 1);
   j = load_json("m.json");
   CHECK(item(j, "sample_mismatch") == NULL);
+  CHECK(item(j, "psnr_alike") == NULL);
   CHECK_NEAR(json_number(j, "certified_mismatch"), 0, 0);
   cJSON_Delete(j);
 }
