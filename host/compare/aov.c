@@ -51,14 +51,17 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
   bool nonfinite = false;
   for (size_t i = 0; i < (size_t)w * h; i++) {
     const float *x = a + i * c, *y = b + i * c;
-    if (rc_aov_same_decisions(a, la, b, lb, c, i)) {
+    bool same_hit = x[la->hit] == y[lb->hit];
+    bool same_object = same_hit && x[la->object] == y[lb->object];
+    bool same_decisions = same_object && x[la->shadow] == y[lb->shadow];
+    /* Every sample's, bounces included: the digests. */
+    bool same_samples = !r->digests || x[la->decisions] == y[lb->decisions];
+    if (same_decisions && same_samples) {
       r->pixels_alike++;
       const int ka[3] = {la->r, la->g, la->b}, kb[3] = {lb->r, lb->g, lb->b};
       for (int k = 0; k < 3; k++) {
-        float u = x[ka[k]], v = y[kb[k]];
-        if (u == v || (isnan(u) && isnan(v))) continue;
-        if (!isfinite(u) || !isfinite(v)) nonfinite = true;
-        else sum2 += ((double)u - v) * ((double)u - v);
+        double e = rc_compare_channel_error(x[ka[k]], y[kb[k]], &nonfinite);
+        if (isfinite(e)) sum2 += e * e;
       }
     }
     r->a_hits += x[la->hit] != 0;
@@ -70,14 +73,9 @@ void rc_aov_compare_decisions(const float *a, const rc_aov_layout *la, const flo
       r->certified_in_band += la->uncertified >= 0 && x[la->uncertified] == 0;
       continue;
     }
-    bool same_hit = x[la->hit] == y[lb->hit];
-    bool same_object = same_hit && x[la->object] == y[lb->object];
-    bool same_decisions = same_object && x[la->shadow] == y[lb->shadow];
     r->hit_mismatch += !same_hit;
     r->object_mismatch += same_hit && !same_object;
     r->shadow_mismatch += same_object && !same_decisions;
-    /* Every sample's, bounces included: the digests. */
-    bool same_samples = !r->digests || x[la->decisions] == y[lb->decisions];
     r->sample_mismatch += !same_samples;
     /* A's certified pixels (--precision certified): their decisions, in every sample where
      * the digests say, are claimed to be the f64 reference's, so against it any difference

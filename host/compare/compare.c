@@ -6,7 +6,7 @@
 /* |x - y|, with equal values (infinities too) at 0 and NaN against NaN at 0: "the same"
  * in the sense a regression test means. Anything else involving a non-finite value has
  * no size: +Inf, flagged through *nonfinite. */
-static double channel_error(float x, float y, bool *nonfinite) {
+double rc_compare_channel_error(float x, float y, bool *nonfinite) {
   if (x == y || (isnan(x) && isnan(y))) return 0;
   if (!isfinite(x) || !isfinite(y)) {
     *nonfinite = true;
@@ -21,7 +21,7 @@ double rc_compare_pixel_error(const float *a, const float *b, int c, const bool 
   for (int k = 0; k < c; k++) {
     if (colour && !colour[k]) continue;
     bool nonfinite = false;
-    double d = channel_error(a[p * c + k], b[p * c + k], &nonfinite);
+    double d = rc_compare_channel_error(a[p * c + k], b[p * c + k], &nonfinite);
     if (d > e) e = d, *channel = k;
   }
   return e;
@@ -57,7 +57,7 @@ void rc_compare_images(const float *a, const float *b, int w, int h, int c, cons
         r->nan_a += !isfinite(a[i + k]);
         r->nan_b += !isfinite(b[i + k]);
         bool nonfinite = false;
-        double d = channel_error(a[i + k], b[i + k], &nonfinite);
+        double d = rc_compare_channel_error(a[i + k], b[i + k], &nonfinite);
         r->nonfinite_mismatch += nonfinite;
         sum += isfinite(d) ? d : 0;
         sum2 += isfinite(d) ? d * d : 0;

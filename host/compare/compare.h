@@ -62,6 +62,10 @@ typedef struct rc_compare_result {
 void rc_compare_images(const float *a, const float *b, int width, int height, int channels, const bool *colour,
                        double fail, double warn, rc_compare_result *r);
 
+/* |x - y| of one channel, 0 where the values are equal (infinities too) or both NaN; +Inf,
+ * and *nonfinite set, where one side is non-finite and they differ. */
+double rc_compare_channel_error(float x, float y, bool *nonfinite);
+
 /* The largest absolute difference over the colour channels of pixel p: +Inf where one
  * side is non-finite and the two differ, 0 where they are equal. */
 double rc_compare_pixel_error(const float *a, const float *b, int channels, const bool *colour, size_t p,
