@@ -375,13 +375,14 @@ static rc_status dispatch(rc_gpu_renderer *r, const packed_push *push, bool firs
   const bool submitted = st == RC_OK;
   /* The previous tile, copied out into the other slot, is read while this one runs, and
    * the band it completed is handed on. */
-  double read_ms = 0, written_ms = stats->band_overlapped_ms;
+  double read_ms = 0;
+  const double band_ms_before = stats->band_overlapped_ms;
   if (st == RC_OK && (r->pending.valid || r->band_done.valid)) {
     double r0 = rc_now_ms();
     st = host_work(r, true, stats);
     read_ms = rc_now_ms() - r0;
   }
-  written_ms = stats->band_overlapped_ms - written_ms;
+  const double written_ms = stats->band_overlapped_ms - band_ms_before; /* this band's write */
   /* Waited for even where the host's work failed (a full disk): the fence and the command
    * buffer are whole again before anything else touches them. */
   if (submitted) {
