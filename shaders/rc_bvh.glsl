@@ -25,6 +25,25 @@ real intersect_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   return (t_enter <= t_exit && t_enter <= t_max * real(RC_BOX_NEAR_SCALE)) ? t_enter : real(RC_T_FAR);
 }
 
+// Whether the pipeline has a loop for each kind's loose objects (all four in the generic
+// pipeline, whose frame says which run): constants that the host's specialization folds.
+const bool loose_quadrics = (scene_kinds & RC_KIND_LOOSE_QUADRICS) != 0u;
+const bool loose_csg = (scene_kinds & RC_KIND_LOOSE_CSG) != 0u;
+
+// The kinds (RC_KIND_*) of the objects frame.loose_kinds keeps out of the tree: the
+// specialization's where the pipeline was specialized, else the frame's.
+uint loose_kinds() {
+  return scene_kinds == RC_KIND_ALL ? frame.loose_kinds : (scene_kinds & RC_KIND_LOOSE_ALL) >> RC_KIND_LOOSE_SHIFT;
+}
+
+// The kinds the tree's leaves can hold, a constant for intersect_object: those the scene has
+// but the loose ones, where the quadrics' include the patch pieces. The generic pipeline's
+// leaves keep every kind's test, as its one module must serve every frame.
+uint tree_kinds() {
+  uint loose = (scene_kinds & RC_KIND_LOOSE_ALL) >> RC_KIND_LOOSE_SHIFT;
+  return scene_kinds == RC_KIND_ALL ? RC_KIND_ALL : ~loose;
+}
+
 // Tests the objects of one leaf; true when `any` and one of them blocks. The caller has
 // taken the loop's steps from the budget (budget_take).
 bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
@@ -34,9 +53,9 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
     rvec3 bary;
     uint part;
 #if RC_CERTIFY
-    if (certify) cert_object(object, o, d, sh, any ? t_max : h.t);
+    if (certify) cert_object(tree_kinds(), object, o, d, sh, any ? t_max : h.t);
 #endif
-    real t = intersect_object(object, o, d, sh, any ? t_max : h.t, side, bary, part);
+    real t = intersect_object(tree_kinds(), object, o, d, sh, any ? t_max : h.t, side, bary, part);
 #if RC_CERTIFY
     if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) continue;
 #endif
@@ -137,6 +156,82 @@ bool test_planes(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   return false;
 }
 
+// A loose object's test ended at t: true when `any` and it blocks (test_leaf's rule).
+bool loose_hit(uint object, real t, real side, rvec3 bary, uint part, bool any, inout hit_record h) {
+#if RC_CERTIFY
+  if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) return false;
+#endif
+  if (any && t < real(RC_T_FAR)) return true;
+  consider_hit(object, t, side, bary, part, h);
+  return false;
+}
+
+#if RC_QUADRICS
+// Each loose kind's loop holds that kind's test alone, called directly: a SIMD shader runs
+// every test a loop body holds, and the driver inlines every call before it folds a
+// constant argument, so intersect_object there would cost each loop every kind's code (and
+// the pipeline's creation its compile time). True when `any` and one blocks. The
+// standalone quadrics but the planes, which have their own loop (test_planes).
+bool test_loose_quadrics(rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
+  for (uint object = first_quadric_object; object < first_csg_object - frame.plane_count; object++) {
+#if RC_CERTIFY
+    if (certify) cert_object(RC_KIND_QUADRICS, object, o, d, sh, any ? t_max : h.t);
+#endif
+    rvec3 bary;
+    uint part;
+    real t = intersect_quadric_object(object - first_quadric_object, o, d, any ? t_max : h.t, bary, part);
+    if (loose_hit(object, t, 0.0, bary, part, any, h)) return true;
+  }
+  return false;
+}
+
+bool test_loose_csg(rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
+  for (uint object = first_csg_object; object < frame.object_count; object++) {
+#if RC_CERTIFY
+    if (certify) cert_object(RC_KIND_CSG, object, o, d, sh, any ? t_max : h.t);
+#endif
+    uint part;
+    real t = intersect_csg(object - first_csg_object, o, d, any ? t_max : h.t, part);
+    if (loose_hit(object, t, 0.0, rvec3(0.0), part, any, h)) return true;
+  }
+  return false;
+}
+#endif
+
+// The loose objects (frame.loose_kinds, host/scene/bvh.c): every ray tests them before the
+// tree, each kind in its loop, so that neither these loops nor the tree's leaves run the
+// others' tests under a SIMD mask. Before the tree: a hit here shortens the walk, and a
+// blocker ends a shadow ray's query. True when `any` and one blocks.
+bool test_loose(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
+  uint loose = loose_kinds();
+  if (loose == 0u) return false;
+  uint first = (loose & RC_KIND_QUADRICS) != 0u ? first_quadric_object : first_csg_object;
+  uint count = ((loose & RC_KIND_QUADRICS) != 0u ? frame.quadric_count - frame.plane_count : 0u) +
+               ((loose & RC_KIND_CSG) != 0u ? frame.csg_count : 0u);
+#if RC_CERTIFY
+  if (certify && cert_blocked_later && budget_steps + count > loop_budget) return false;
+#endif
+  if (!budget_take(count)) {
+    budget_blame = 1u + first;
+    return false;
+  }
+  ray_shear sh = ray_shear_for(d);
+  // Each loop sits under a constant of its own (loose_quadrics, loose_csg), alone in its
+  // `if`, which the host's specialization folds (host/gpu/spirv_specialize.cpp; an `&&` would
+  // hide it behind a short circuit): a pipeline without loose objects of a kind has no code
+  // for them.
+  bool blocked = false;
+#if RC_QUADRICS
+  if (loose_quadrics) {
+    if ((loose & RC_KIND_QUADRICS) != 0u) blocked = test_loose_quadrics(o, d, sh, any, t_max, h);
+  }
+  if (loose_csg) {
+    if (!blocked && (loose & RC_KIND_CSG) != 0u) blocked = test_loose_csg(o, d, sh, any, t_max, h);
+  }
+#endif
+  return blocked;
+}
+
 // The nodes a primary ray through `pixel` must walk: its tile of the eye buffer
 // (rc_shared.h, RC_EYE_BUFFER_*; host/scene/light_buffer.h), or the whole tree.
 uvec2 eye_nodes(uvec2 pixel) {
@@ -160,6 +255,7 @@ bool closest_hit(rvec3 o, rvec3 d, uvec2 nodes, out hit_record h) {
   }
 #endif
   if (use_bvh) {
+    test_loose(o, d, false, real(RC_T_FAR), h);
     traverse_bvh(o, d, false, real(RC_T_FAR), nodes.x, nodes.y, h);
     test_planes(o, d, false, real(RC_T_FAR), h);
   } else {
@@ -212,7 +308,8 @@ bool occluded(rvec3 o, rvec3 d, real t_max, uint light) {
   } else {
     hit_record h = no_hit();
     uvec2 nodes = shadow_nodes(light, d, t_max);
-    blocked = traverse_bvh(o, d, true, t_max, nodes.x, nodes.y, h) || test_planes(o, d, true, t_max, h);
+    blocked = test_loose(o, d, true, t_max, h) || traverse_bvh(o, d, true, t_max, nodes.x, nodes.y, h) ||
+              test_planes(o, d, true, t_max, h);
   }
 #if RC_CERTIFY
   if (certify) {

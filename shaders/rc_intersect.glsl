@@ -107,17 +107,42 @@ uint object_kind(uint object, out uint index) {
          : (object < first_csg_object) ? RC_HIT_QUADRIC : RC_HIT_CSG;
 }
 
+#if RC_QUADRICS
+// A standalone bounded quadric or patch piece, `index` in the quadric array:
+// intersect_object's test of one, and a loose quadric's (rc_bvh.glsl, test_loose).
+real intersect_quadric_object(uint index, rvec3 o, rvec3 d, real t_max, out rvec3 bary, out uint part) {
+  bary = rvec3(0.0);
+  part = 0u;
+#if RC_PATCHES
+  if (has_kind(RC_KIND_PATCHES)) {
+    packed_quadric q = load_quadric(index);
+    if ((q.flags & RC_QUADRIC_PATCH) != 0u) {
+      part = csg_code(index, 0u, false, false);
+      return intersect_patch(index, q, o, d, t_max, bary);
+    }
+  }
+#endif
+  if (!has_kind(RC_KIND_QUADRICS)) return real(RC_T_FAR);  // patch pieces only
+  return intersect_quadric(index, o, d, t_max, part);
+}
+#endif
+
 // The ray against object `object`; t as above. Kinds the scene lacks are compiled out
-// (has_kind, a specialization constant).
-real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary,
-                      out uint part) {
+// (has_kind, a specialization constant), and so are those the caller's objects cannot be:
+// `kinds` (RC_KIND_*) is a constant at each call, RC_KIND_ALL in brute force and the
+// tree's kinds in its leaves (rc_bvh.glsl, tree_kinds). A SIMD shader runs every test an
+// object could need, so a leaf that might hold a sphere, a box or a composite paid for all
+// three on each of a mesh's triangles (docs/performance.md, "Loose objects").
+real intersect_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side,
+                      out rvec3 bary, out uint part) {
   side = 0.0;
   bary = rvec3(0.0);
   part = 0u;
   uint index;
   uint kind = object_kind(object, index);
-  if (has_kind(RC_KIND_SPHERES) && kind == RC_HIT_SPHERE) return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
-  if (has_kind(RC_KIND_TRIANGLES) && kind == RC_HIT_TRIANGLE) {
+  if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE)
+    return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
+  if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = load_triangle(index);
     if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u && !triangle_faces_ray(tri, d))
       return real(RC_T_FAR);
@@ -126,17 +151,10 @@ real intersect_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, o
     return intersect_triangle(o, sh, tri, t_max, bary);
   }
 #if RC_QUADRICS
-#if RC_PATCHES
-  if (has_kind(RC_KIND_PATCHES) && kind == RC_HIT_QUADRIC) {
-    packed_quadric q = load_quadric(index);
-    if ((q.flags & RC_QUADRIC_PATCH) != 0u) {
-      part = csg_code(index, 0u, false, false);
-      return intersect_patch(index, q, o, d, t_max, bary);
-    }
-  }
-#endif
-  if (has_kind(RC_KIND_QUADRICS) && kind == RC_HIT_QUADRIC) return intersect_quadric(index, o, d, t_max, part);
-  if (has_kind(RC_KIND_CSG) && kind == RC_HIT_CSG) return intersect_csg(index, o, d, t_max, part);
+  if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC)
+    return intersect_quadric_object(index, o, d, t_max, bary, part);
+  if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG)
+    return intersect_csg(index, o, d, t_max, part);
 #endif
   return real(RC_T_FAR);
 }
@@ -257,53 +275,55 @@ void cert_test_end(bool ok) {
   cert_ok = ok && cert_ok;
 }
 
-void cert_object_tests(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   uint index;
   uint kind = object_kind(object, index);
-  if (kind == RC_HIT_SPHERE) {
+  if ((kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
     cert_sphere(o, d, load_sphere(index), t_max);
-  } else if (kind == RC_HIT_TRIANGLE) {
+  } else if ((kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
     // The watertight test's sheared x and y do not change when the origin moves along the
     // ray, and its t moves by as much: cert_eo (across) alone, and cert_et where t meets 0.
     packed_triangle tri = load_triangle(index);
     uint side = RC_SIDE_FRONT;
     if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) side = cert_triangle_side(tri, d);
     if (side != RC_SIDE_BACK) cert_triangle(o, sh, tri, t_max, side == RC_SIDE_UNSURE);
-  } else {
+  } else if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0u) {
 #if RC_QUADRICS
-    if (has_kind(RC_KIND_CSG) && kind == RC_HIT_CSG) {
+    if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG) {
       cert_csg(index, o, d, t_max);
       return;
     }
-    packed_quadric q = load_quadric(index);
-    if (kind == RC_HIT_QUADRIC && (q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
-      cert_plane(q, o, d, t_max);
-      return;
-    }
-    if (kind == RC_HIT_QUADRIC && (q.flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0u) {
-      cert_quadric(q, o, d, t_max);
-      return;
-    }
+    if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC) {
+      packed_quadric q = load_quadric(index);
+      if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
+        cert_plane(q, o, d, t_max);
+        return;
+      }
+      if ((q.flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0u) {
+        cert_quadric(q, o, d, t_max);
+        return;
+      }
 #if RC_PATCHES
-    if (has_kind(RC_KIND_PATCHES) && kind == RC_HIT_QUADRIC && (q.flags & RC_QUADRIC_PATCH) != 0u) {
-      cert_patch(index, q, o, d, t_max);
-      return;
-    }
+      if (has_kind(RC_KIND_PATCHES) && (q.flags & RC_QUADRIC_PATCH) != 0u) {
+        cert_patch(index, q, o, d, t_max);
+        return;
+      }
 #endif
+    }
 #endif
     cert_fail();
   }
 }
 
 // The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
-// the kinds rc_certify.glsl bounds, none of the others.
-void cert_object(uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+// the kinds rc_certify.glsl bounds, none of the others. `kinds` as intersect_object's.
+void cert_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   bool ok = cert_test_begin(object);
   // The other kinds' bounds take the origin's move in any direction: along the ray too.
   real eo = cert_eo;
   uint index;
   if (object_kind(object, index) != RC_HIT_TRIANGLE) cert_eo += cert_et;
-  cert_object_tests(object, o, d, sh, t_max);
+  cert_object_tests(kinds, object, o, d, sh, t_max);
   cert_eo = eo;
   cert_test_end(ok);
 }
@@ -363,9 +383,9 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
     rvec3 bary;
     uint part;
 #if RC_CERTIFY
-    if (certify) cert_object(i, o, d, sh, h.t);
+    if (certify) cert_object(RC_KIND_ALL, i, o, d, sh, h.t);
 #endif
-    real t = intersect_object(i, o, d, sh, h.t, side, bary, part);
+    real t = intersect_object(RC_KIND_ALL, i, o, d, sh, h.t, side, bary, part);
     consider_hit(i, t, side, bary, part, h);
   }
 }
@@ -386,9 +406,9 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
     rvec3 bary;
     uint part;
 #if RC_CERTIFY
-    if (certify) cert_object(i, o, d, sh, t_max);
+    if (certify) cert_object(RC_KIND_ALL, i, o, d, sh, t_max);
 #endif
-    bool blocks = intersect_object(i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
+    bool blocks = intersect_object(RC_KIND_ALL, i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
 #if RC_CERTIFY
     if (certify && blocks && !cert_blocker_ends()) continue;
 #endif

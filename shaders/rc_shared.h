@@ -107,7 +107,13 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_KIND_ONE_SIDED_TRIANGLES 256u /* a triangle has RC_TRIANGLE_ONE_SIDED */
 #define RC_KIND_TEXTURES 512u /* a material has a texture (packed_material.texture) */
 #define RC_KIND_PATCHES 1024u /* a quadric is a piece of a Bezier patch (RC_QUADRIC_PATCH) */
-#define RC_KIND_ALL 2047u
+/* frame.loose_kinds << RC_KIND_LOOSE_SHIFT: the kinds whose objects are tested in loops of
+ * their own beside the tree, not in its leaves (host/scene/bvh.c, rc_loose_kinds) */
+#define RC_KIND_LOOSE_SHIFT 11
+#define RC_KIND_LOOSE_QUADRICS 8192u
+#define RC_KIND_LOOSE_CSG 16384u
+#define RC_KIND_LOOSE_ALL 24576u
+#define RC_KIND_ALL 26623u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -223,8 +229,13 @@ struct packed_frame {
    * (packed units; a parallel camera's pixel over sqrt(spp)) and its spread angle (radians;
    * a perspective camera's pixel over sqrt(spp)). */
   float cone_width;       float cone_spread;
-  uint pad_cone0;         uint pad_cone1;
+  uint loose_kinds;       /* RC_KIND_QUADRICS | RC_KIND_CSG: every object of these kinds is out
+                             of the object tree, tested by every ray in a loop of its kind
+                             (rc_bvh.glsl, test_loose): at most RC_LOOSE_MAX */
+  uint pad_cone1;
 };
+/* Objects a frame may keep out of its tree (frame.loose_kinds), all kinds together. */
+#define RC_LOOSE_MAX 8u
 
 /* A sphere; with transform != RC_NO_TRANSFORM, the sphere (center, radius) lives in an
  * object space and the ray is taken there by packed_transform: an ellipsoid (CSE167 format,
@@ -575,6 +586,11 @@ struct packed_push {
 #define RC_ASSERT_SIZE(type, size) _Static_assert(sizeof(type) == (size), #type " size")
 
 RC_ASSERT_SIZE(vec3, 12);
+_Static_assert(RC_KIND_LOOSE_QUADRICS == RC_KIND_QUADRICS << RC_KIND_LOOSE_SHIFT &&
+                   RC_KIND_LOOSE_CSG == RC_KIND_CSG << RC_KIND_LOOSE_SHIFT &&
+                   RC_KIND_LOOSE_ALL == (RC_KIND_LOOSE_QUADRICS | RC_KIND_LOOSE_CSG) &&
+                   RC_KIND_ALL == (RC_KIND_LOOSE_ALL | ((1u << RC_KIND_LOOSE_SHIFT) - 1u)),
+               "the loose kinds are the object kinds shifted, above every other kind bit");
 RC_ASSERT_LAYOUT(packed_camera, eye, 0);    RC_ASSERT_LAYOUT(packed_camera, left, 12);
 RC_ASSERT_LAYOUT(packed_camera, u, 16);     RC_ASSERT_LAYOUT(packed_camera, right, 28);
 RC_ASSERT_LAYOUT(packed_camera, v, 32);     RC_ASSERT_LAYOUT(packed_camera, bottom, 44);
@@ -599,6 +615,7 @@ RC_ASSERT_LAYOUT(packed_frame, shadows, 184); RC_ASSERT_LAYOUT(packed_frame, csg
 RC_ASSERT_LAYOUT(packed_frame, plane_count, 192); RC_ASSERT_LAYOUT(packed_frame, patch_count, 196);
 RC_ASSERT_LAYOUT(packed_frame, light_buffers, 200); RC_ASSERT_LAYOUT(packed_frame, certify, 204);
 RC_ASSERT_LAYOUT(packed_frame, cone_width, 208); RC_ASSERT_LAYOUT(packed_frame, cone_spread, 212);
+RC_ASSERT_LAYOUT(packed_frame, loose_kinds, 216);
 RC_ASSERT_SIZE(packed_frame, 224);
 RC_ASSERT_LAYOUT(packed_quadric, center, 0);   RC_ASSERT_LAYOUT(packed_quadric, material, 12);
 RC_ASSERT_LAYOUT(packed_quadric, axis_x, 16);  RC_ASSERT_LAYOUT(packed_quadric, constant, 28);

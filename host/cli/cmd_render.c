@@ -955,6 +955,7 @@ static rc_status render_scene(render_args *a, const rc_scene *scene, rc_vk_ctx *
     st = rc_prepared_packed(a->prepared, scene, &packed);
     rs.bvh = rc_prepared_bvh_stats(a->prepared);
     rs.bvh.build_ms = 0; /* built when it was prepared */
+    if (st == RC_OK) rs.bvh.loose = rc_loose_objects(&packed.frame);
   } else {
     st = a->prepared ? rc_prepared_packed_copy(a->prepared, scene, &packed) : rc_scene_pack(scene, &packed);
     if (st == RC_OK && a->perturb) rc_packed_scene_perturb(&packed, a->perturb);

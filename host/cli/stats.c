@@ -54,8 +54,8 @@ void rc_stats_print(const rc_render_stats *s) {
             100 * s->simd8_efficiency);
   if (s->bvh.nodes)
     fprintf(stderr, "vkraycast: BVH %u nodes, %u leaves (at most %u objects), depth %u, built in %.1f ms; %u exact "
-            "repeats of an earlier object left out\n", s->bvh.nodes, s->bvh.leaves, s->bvh.max_leaf, s->bvh.depth,
-            s->bvh.build_ms, s->bvh.repeats);
+            "repeats of an earlier object left out, %u objects tested beside it\n", s->bvh.nodes, s->bvh.leaves,
+            s->bvh.max_leaf, s->bvh.depth, s->bvh.build_ms, s->bvh.repeats, s->bvh.loose);
   if (s->rerender && strcmp(s->rerender, "off") != 0)
     fprintf(stderr, "vkraycast: certified: %llu samples uncertified (first at the primary hit %llu, its shadow rays "
             "%llu, a mirror bounce %llu); %llu samples of %llu pixels rendered again in f64 (%s), %.1f ms\n",
@@ -140,6 +140,7 @@ static const stats_field bvh_fields[] = {
     FIELD("bvh_nodes", F_U32, bvh.nodes),
     FIELD("bvh_depth", F_U32, bvh.depth),
     FIELD("bvh_repeats_left_out", F_U32, bvh.repeats),
+    FIELD("bvh_loose_objects", F_U32, bvh.loose),
     FIELD("samples_uncertified", F_U64, samples_uncertified),
     FIELD("samples_uncertified_hit", F_U64, uncertified_at[0]),
     FIELD("samples_uncertified_shadow", F_U64, uncertified_at[1]),

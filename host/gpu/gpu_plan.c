@@ -1,5 +1,7 @@
 #include "gpu/gpu_plan.h"
 
+#include "scene/bvh.h"
+
 /* Loop steps of one sample whose rays cost `ray` steps each, shading `lights` lights:
  * 1 (sample loop) + (depth + 1) x [1 (bounce) + ray + lights x (1 (light) + ray)]. With
  * every light it is the whole sample; with fewer, one light pass (gpu_plan.h). */
@@ -37,10 +39,11 @@ rc_status rc_gpu_plan_make(const packed_frame *f, uint32_t bvh_depth, uint32_t b
   plan->budget = budget;
   plan->light_pass = 0;
   plan->uncountable = false;
-  /* Through the BVH: its boxes and leaves, then every infinite plane, one step each (a
-   * plane's test has no loop: rc_bvh.glsl, test_planes). */
+  /* Through the BVH: the loose objects, its boxes and leaves, then every infinite plane, one
+   * step each (a plane's test has no loop: rc_bvh.glsl, test_planes). */
   uint64_t objects = (uint64_t)f->sphere_count + f->triangle_count + f->quadric_count + f->csg_count;
-  uint64_t ray = bvh_depth ? 4ull * bvh_depth + leaf_tests(f) * object_steps(f) + f->plane_count
+  uint64_t ray = bvh_depth ? 4ull * bvh_depth + ((uint64_t)leaf_tests(f) + rc_loose_objects(f)) * object_steps(f) +
+                                 f->plane_count
                            : objects * object_steps(f);
   plan->steps_per_sample = pass_steps(f, ray, f->light_count);
   uint64_t batch = budget / plan->steps_per_sample;

@@ -22,6 +22,10 @@ real REF(intersect_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   return (t_enter <= t_exit && t_enter <= t_max * (real)RC_BOX_NEAR_SCALE) ? t_enter : (real)RC_T_FAR;
 }
 
+uint32_t REF(loose_kinds)(const ref_scene *sc) { return sc->frame->loose_kinds; }
+
+uint32_t REF(tree_kinds)(const ref_scene *sc) { return ~REF(loose_kinds)(sc); }
+
 bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o, rvec3 d, const ref_shear *sh, bool any,
                     real t_max, ref_hit *h) {
   for (uint32_t k = first; k < first + count; k++) {
@@ -29,8 +33,8 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     real side;
     rvec3 bary;
     uint32_t part;
-    if (sc->frame->certify) REF(cert_object)(sc, object, o, d, sh, any ? t_max : h->t);
-    real t = REF(intersect_object)(sc, object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
+    if (sc->frame->certify) REF(cert_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any ? t_max : h->t);
+    real t = REF(intersect_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
     if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, object, t, side, bary, part, h);
@@ -85,6 +89,52 @@ bool REF(test_planes)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_ma
   return false;
 }
 
+bool REF(loose_hit)(const ref_scene *sc, uint32_t object, real t, real side, rvec3 bary, uint32_t part, bool any,
+                    ref_hit *h) {
+  if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) return false;
+  if (any && t < (real)RC_T_FAR) return true;
+  REF(consider_hit)(sc, object, t, side, bary, part, h);
+  return false;
+}
+
+/* The first quadric and composite object numbers: spheres come first, then triangles,
+ * quadrics (the planes last), composites (rc_intersect.glsl, object_kind). */
+static uint32_t first_quadric(const ref_scene *sc) { return sc->frame->sphere_count + sc->frame->triangle_count; }
+static uint32_t first_csg(const ref_scene *sc) { return first_quadric(sc) + sc->frame->quadric_count; }
+
+bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_shear *sh, bool any, real t_max,
+                              ref_hit *h) {
+  for (uint32_t object = first_quadric(sc); object < first_csg(sc) - sc->frame->plane_count; object++) {
+    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_QUADRICS, object, o, d, sh, any ? t_max : h->t);
+    rvec3 bary;
+    uint32_t part;
+    real t = REF(intersect_quadric_object)(sc, object - first_quadric(sc), o, d, any ? t_max : h->t, &bary, &part);
+    if (REF(loose_hit)(sc, object, t, 0, bary, part, any, h)) return true;
+  }
+  return false;
+}
+
+bool REF(test_loose_csg)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_shear *sh, bool any, real t_max, ref_hit *h) {
+  for (uint32_t object = first_csg(sc); object < sc->frame->object_count; object++) {
+    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_CSG, object, o, d, sh, any ? t_max : h->t);
+    uint32_t part;
+    real t = REF(intersect_csg)(sc, object - first_csg(sc), o, d, any ? t_max : h->t, &part);
+    if (REF(loose_hit)(sc, object, t, 0, RV(make)(0, 0, 0), part, any, h)) return true;
+  }
+  return false;
+}
+
+/* The loose objects before the tree, kind by kind, as the shader tests them. */
+bool REF(test_loose)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
+  uint32_t loose = REF(loose_kinds)(sc);
+  if (loose == 0) return false;
+  ref_shear sh = REF(ray_shear_for)(d);
+  bool blocked = false;
+  if ((loose & RC_KIND_QUADRICS) != 0) blocked = REF(test_loose_quadrics)(sc, o, d, &sh, any, t_max, h);
+  if (!blocked && (loose & RC_KIND_CSG) != 0) blocked = REF(test_loose_csg)(sc, o, d, &sh, any, t_max, h);
+  return blocked;
+}
+
 /* The node range [first, end) of a primary ray through pixel (x, y) (rc_bvh.glsl). */
 void REF(eye_nodes)(const ref_scene *sc, uint32_t x, uint32_t y, uint32_t *first, uint32_t *end) {
   *first = 0, *end = sc->frame->bvh_node_count;
@@ -103,6 +153,7 @@ bool REF(closest_hit)(const ref_scene *sc, rvec3 o, rvec3 d, uint32_t first, uin
     ref_cert_beyond = (real)RC_T_FAR;
   }
   if (sc->use_bvh) {
+    REF(test_loose)(sc, o, d, false, (real)RC_T_FAR, h);
     REF(traverse_bvh)(sc, o, d, false, (real)RC_T_FAR, first, end, h);
     REF(test_planes)(sc, o, d, false, (real)RC_T_FAR, h);
   } else {
@@ -152,7 +203,8 @@ bool REF(occluded)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max, uint32_t l
     ref_hit h = REF(no_hit)();
     uint32_t first, end;
     REF(shadow_nodes)(sc, light, d, t_max, &first, &end);
-    blocked = REF(traverse_bvh)(sc, o, d, true, t_max, first, end, &h) || REF(test_planes)(sc, o, d, true, t_max, &h);
+    blocked = REF(test_loose)(sc, o, d, true, t_max, &h) || REF(traverse_bvh)(sc, o, d, true, t_max, first, end, &h) ||
+              REF(test_planes)(sc, o, d, true, t_max, &h);
   }
   if (sc->frame->certify) {
     blocked = blocked || ref_cert_blocked_later;

@@ -86,16 +86,29 @@ uint32_t REF(object_kind)(const ref_scene *sc, uint32_t object, uint32_t *index)
                                     : RC_HIT_CSG;
 }
 
-real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max,
-                           real *side, rvec3 *bary, uint32_t *part) {
+real REF(intersect_quadric_object)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max, rvec3 *bary,
+                                   uint32_t *part) {
+  *bary = RV(make)(0, 0, 0);
+  *part = 0;
+  const packed_quadric *q = &sc->quadrics[index];
+  if ((q->flags & RC_QUADRIC_PATCH) != 0) {
+    *part = REF(csg_code)(index, 0, false, false);
+    return REF(intersect_patch)(sc, index, q, o, d, t_max, bary);
+  }
+  return REF(intersect_quadric)(sc, index, o, d, t_max, part);
+}
+
+real REF(intersect_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
+                           real t_max, real *side, rvec3 *bary, uint32_t *part) {
   ref_work++;
   *side = 0;
   *bary = RV(make)(0, 0, 0);
   *part = 0;
   uint32_t index;
   uint32_t kind = REF(object_kind)(sc, object, &index);
-  if (kind == RC_HIT_SPHERE) return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
-  if (kind == RC_HIT_TRIANGLE) {
+  if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE)
+    return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
+  if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = sc->triangles[index];
     if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0 && !REF(triangle_faces_ray)(tri, d)) return (real)RC_T_FAR;
     if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
@@ -103,15 +116,9 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 
     if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
     return REF(intersect_triangle)(o, sh, tri, t_max, bary);
   }
-  if (kind == RC_HIT_QUADRIC) {
-    const packed_quadric *q = &sc->quadrics[index];
-    if ((q->flags & RC_QUADRIC_PATCH) != 0) {
-      *part = REF(csg_code)(index, 0, false, false);
-      return REF(intersect_patch)(sc, index, q, o, d, t_max, bary);
-    }
-  }
-  if (kind == RC_HIT_QUADRIC) return REF(intersect_quadric)(sc, index, o, d, t_max, part);
-  if (kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
+  if ((kinds & RC_KIND_QUADRICS) != 0 && kind == RC_HIT_QUADRIC)
+    return REF(intersect_quadric_object)(sc, index, o, d, t_max, bary, part);
+  if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
   return (real)RC_T_FAR;
 }
 
@@ -207,44 +214,48 @@ void REF(cert_test_end)(bool ok) {
   ref_cert_ok = ok && ref_cert_ok;
 }
 
-void REF(cert_object_tests)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
+void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
+                            real t_max) {
   uint32_t index;
   uint32_t kind = REF(object_kind)(sc, object, &index);
-  if (kind == RC_HIT_SPHERE) {
+  if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE) {
     REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
-  } else if (kind == RC_HIT_TRIANGLE) {
+  } else if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = sc->triangles[index];
     uint32_t side = RC_SIDE_FRONT;
     if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0) side = REF(cert_triangle_side)(sc, tri, d);
     if (side != RC_SIDE_BACK) REF(cert_triangle)(sc, o, sh, tri, t_max, side == RC_SIDE_UNSURE);
-  } else {
-    if (kind == RC_HIT_CSG) {
+  } else if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0) {
+    if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) {
       REF(cert_csg)(sc, index, o, d, t_max);
       return;
     }
-    const packed_quadric *q = &sc->quadrics[index];
-    if (kind == RC_HIT_QUADRIC && (q->flags & RC_QUADRIC_UNBOUNDED) != 0) {
-      REF(cert_plane)(sc, q, o, d, t_max);
-      return;
-    }
-    if (kind == RC_HIT_QUADRIC && (q->flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0) {
-      REF(cert_quadric)(sc, q, o, d, t_max);
-      return;
-    }
-    if (kind == RC_HIT_QUADRIC && (q->flags & RC_QUADRIC_PATCH) != 0) {
-      REF(cert_patch)(sc, index, q, o, d, t_max);
-      return;
+    if ((kinds & RC_KIND_QUADRICS) != 0 && kind == RC_HIT_QUADRIC) {
+      const packed_quadric *q = &sc->quadrics[index];
+      if ((q->flags & RC_QUADRIC_UNBOUNDED) != 0) {
+        REF(cert_plane)(sc, q, o, d, t_max);
+        return;
+      }
+      if ((q->flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0) {
+        REF(cert_quadric)(sc, q, o, d, t_max);
+        return;
+      }
+      if ((q->flags & RC_QUADRIC_PATCH) != 0) {
+        REF(cert_patch)(sc, index, q, o, d, t_max);
+        return;
+      }
     }
     REF(cert_fail)();
   }
 }
 
-void REF(cert_object)(const ref_scene *sc, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, real t_max) {
+void REF(cert_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
+                      real t_max) {
   bool ok = REF(cert_test_begin)(sc, object);
   real eo = ref_cert_eo;
   uint32_t index;
   if (REF(object_kind)(sc, object, &index) != RC_HIT_TRIANGLE) ref_cert_eo += ref_cert_et;
-  REF(cert_object_tests)(sc, object, o, d, sh, t_max);
+  REF(cert_object_tests)(sc, kinds, object, o, d, sh, t_max);
   ref_cert_eo = eo;
   REF(cert_test_end)(ok);
 }
@@ -285,8 +296,8 @@ void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) 
     real side;
     rvec3 bary;
     uint32_t part;
-    if (sc->frame->certify) REF(cert_object)(sc, i, o, d, &sh, h->t);
-    real t = REF(intersect_object)(sc, i, o, d, &sh, h->t, &side, &bary, &part);
+    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_ALL, i, o, d, &sh, h->t);
+    real t = REF(intersect_object)(sc, RC_KIND_ALL, i, o, d, &sh, h->t, &side, &bary, &part);
     REF(consider_hit)(sc, i, t, side, bary, part, h);
   }
 }
@@ -297,8 +308,8 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint32_t part;
-    if (sc->frame->certify) REF(cert_object)(sc, i, o, d, &sh, t_max);
-    bool blocks = REF(intersect_object)(sc, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
+    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_ALL, i, o, d, &sh, t_max);
+    bool blocks = REF(intersect_object)(sc, RC_KIND_ALL, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
     if (sc->frame->certify && blocks && !REF(cert_blocker_ends)()) continue;
     if (blocks) return true;
   }

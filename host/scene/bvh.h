@@ -20,7 +20,16 @@ typedef struct rc_bvh_stats {
   double build_ms;
   uint32_t nodes, leaves, depth, max_leaf;
   uint32_t repeats; /* objects left out: bit-for-bit repeats of an earlier one's geometry */
+  uint32_t loose;   /* objects left out: of the kinds frame.loose_kinds names */
 } rc_bvh_stats;
+
+/* The kinds whose objects the object tree leaves out, for every ray to test in a loop of
+ * their kind (frame.loose_kinds: RC_KIND_QUADRICS, RC_KIND_CSG): the smallest of those two,
+ * at most RC_LOOSE_MAX objects in all and fewer than half the main kind's, never the kind
+ * with the most objects. bvh.c says why. */
+uint32_t rc_loose_kinds(const packed_frame *f);
+/* The number of objects of the kinds f->loose_kinds names. */
+uint32_t rc_loose_objects(const packed_frame *f);
 
 /* Builds into packed->bvh_nodes / bvh_prims: the object tree when `objects` (setting
  * frame.bvh_node_count; without it both renderers test every object), then always a tree

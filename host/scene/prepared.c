@@ -90,6 +90,7 @@ rc_status rc_prepared_encode(const rc_scene *scene, const rc_packed_scene *packe
   rc_packed_scene plain = *packed;
   rc_scene_pack_frame(scene, &plain);
   rc_prepared_tree tree = {.stats = *bvh, .object_nodes = packed->frame.bvh_node_count,
+                           .loose_kinds = packed->frame.loose_kinds,
                            .operand_steps = (uint64_t)packed->frame.csg_max_steps - plain.frame.csg_max_steps};
   /* Inputs by absolute path, so that a shard in another folder finds them. */
   rc_scene named = *scene;
@@ -225,6 +226,7 @@ rc_status rc_prepared_decode(const char *name, const void *bytes, size_t len, rc
     st = refuse(name, "%s", "inconsistent: the quadrics are miscounted");
   if (st == RC_OK) {
     rc_scene_pack_frame(scene, &pf->packed);
+    pf->packed.frame.loose_kinds = pf->tree.loose_kinds; /* checked with the arrays */
     st = check_arrays(pf, &h, base);
   }
   if (st != RC_OK) {
@@ -290,6 +292,7 @@ rc_status rc_prepared_packed(const rc_prepared *pf, const rc_scene *scene, rc_pa
   rc_packed_scene_count_patches(p);
   /* As rc_bvh_build leaves the frame (bvh.c, build_operands). */
   p->frame.bvh_node_count = pf->tree.object_nodes;
+  p->frame.loose_kinds = pf->tree.loose_kinds;
   uint64_t steps = pf->tree.operand_steps + p->frame.csg_max_steps;
   p->frame.csg_max_steps = steps > UINT32_MAX ? UINT32_MAX : (uint32_t)steps;
   return RC_OK;

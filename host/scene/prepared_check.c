@@ -1,5 +1,6 @@
 #include "scene/prepared_check.h"
 
+#include "scene/bvh.h"
 #include "scene/texture_levels.h"
 
 #include <stdarg.h>
@@ -118,6 +119,10 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
   if (object_nodes > p->bvh_node_total || (object_nodes && !p->bvh))
     return say(why, cap, "the object tree's %u nodes are not among the %u", object_nodes, p->bvh_node_total);
   if (object_nodes && (problem = tree_problem(p, 0, object_nodes, f->object_count, why, cap))) return problem;
+  if ((f->loose_kinds & ~(RC_KIND_QUADRICS | RC_KIND_CSG)) ||
+      rc_loose_objects(f) > RC_LOOSE_MAX || (f->loose_kinds && !p->bvh))
+    return say(why, cap, "the frame's loose kinds %u name more than %u objects or no tree", f->loose_kinds,
+               RC_LOOSE_MAX);
   for (uint32_t k = 0; k < p->mesh_operand_count; k++) {
     const rc_mesh_operand *op = &p->mesh_operands[k];
     /* In leaf order, each once: with the count above, every mesh leaf's tree is checked. */

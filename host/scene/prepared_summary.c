@@ -97,6 +97,7 @@ void rc_summary_encode(rc_blob *b, const rc_scene *s, const rc_packed_scene *p, 
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) put_u32(b, sizes[i]);
   put_u32(b, p->bvh);
   put_u32(b, tree->object_nodes);
+  put_u32(b, tree->loose_kinds);
   put_u64(b, tree->operand_steps);
   const rc_bvh_stats *t = &tree->stats;
   put_f64(b, t->build_ms);
@@ -277,6 +278,7 @@ static const char *decode_packed(reader *r, rc_packed_scene *p, rc_prepared_tree
   for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) *sizes[i] = get_u32(r);
   uint32_t bvh = get_u32(r);
   tree->object_nodes = get_u32(r);
+  tree->loose_kinds = get_u32(r);
   tree->operand_steps = get_u64(r);
   rc_bvh_stats *t = &tree->stats;
   t->build_ms = get_f64(r);

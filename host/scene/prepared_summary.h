@@ -24,6 +24,7 @@ void rc_blob_align(rc_blob *b, size_t align);
 typedef struct rc_prepared_tree {
   rc_bvh_stats stats;
   uint32_t object_nodes;
+  uint32_t loose_kinds; /* frame.loose_kinds: the kinds the object tree leaves out */
   uint64_t operand_steps;
 } rc_prepared_tree;
 

@@ -50,7 +50,7 @@ int main(void) {
   OFF("frame.certify", packed_frame, certify);
   OFF("frame.cone_width", packed_frame, cone_width);
   OFF("frame.cone_spread", packed_frame, cone_spread);
-  OFF("frame.pad_cone0", packed_frame, pad_cone0);
+  OFF("frame.loose_kinds", packed_frame, loose_kinds);
   OFF("frame.pad_cone1", packed_frame, pad_cone1);
   printf("Frame size %zu\n", sizeof(packed_frame));
 

@@ -204,6 +204,32 @@ TEST(composite_inconsistencies_are_refused) {
   release(&c);
 }
 
+/* csg.json's box is loose (frame.loose_kinds = RC_KIND_QUADRICS): the summary keeps the
+ * kinds after the tree's flag (1) and its node count, which the file must give back, and a
+ * forged value that names the spheres, never loose, is refused. */
+static uint32_t csg_tree_nodes;
+static void loose_kinds_forged(unsigned char *f) {
+  unsigned char *s = section(f, SUMMARY);
+  const uint32_t want[3] = {1, csg_tree_nodes, RC_KIND_QUADRICS};
+  for (size_t at = 0; at + sizeof want <= *size_of(f, SUMMARY); at++) /* the summary packs its fields */
+    if (memcmp(s + at, want, sizeof want) == 0) {
+      const uint32_t spheres = RC_KIND_SPHERES;
+      memcpy(s + at + 8, &spheres, 4);
+      return;
+    }
+}
+
+TEST(loose_kinds_round_trip_and_are_checked) {
+  check_round_trip("csg.json");
+  prepared_case c;
+  CHECK(prepare("csg.json", &c));
+  if (!c.file) return;
+  CHECK_EQ_INT(c.packed.frame.loose_kinds, RC_KIND_QUADRICS);
+  csg_tree_nodes = c.packed.frame.bvh_node_count;
+  CHECK_EQ_INT(decode_mutated(&c, loose_kinds_forged), RC_ERR_INPUT);
+  release(&c);
+}
+
 static void texture_past_texels(unsigned char *f) { ((packed_material *)section(f, MATERIALS))[0].texture = 1u << 20; }
 static void texture_wider_than_texels(unsigned char *f) {
   packed_material *m = (packed_material *)section(f, MATERIALS);
@@ -267,6 +293,7 @@ int main(int argc, char **argv) {
   RUN(composites_with_mesh_operands_round_trip);
   RUN(smooth_mesh_round_trips);
   RUN(textures_round_trip);
+  RUN(loose_kinds_round_trip_and_are_checked);
   RUN(showcase_inconsistencies_are_refused);
   RUN(composite_inconsistencies_are_refused);
   RUN(texture_inconsistencies_are_refused);
