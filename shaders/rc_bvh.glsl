@@ -25,10 +25,9 @@ real intersect_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 inv_d, real t_max) {
   return (t_enter <= t_exit && t_enter <= t_max * real(RC_BOX_NEAR_SCALE)) ? t_enter : real(RC_T_FAR);
 }
 
-// Whether the pipeline has a loop for each kind's loose objects (all four in the generic
-// pipeline, whose frame says which run): constants that the host's specialization folds.
+// Whether the pipeline has the loose quadrics' loop (the generic pipeline has it, and its
+// frame says whether it runs): a constant that the host's specialization folds.
 const bool loose_quadrics = (scene_kinds & RC_KIND_LOOSE_QUADRICS) != 0u;
-const bool loose_csg = (scene_kinds & RC_KIND_LOOSE_CSG) != 0u;
 
 // The kinds (RC_KIND_*) of the objects frame.loose_kinds keeps out of the tree: the
 // specialization's where the pipeline was specialized, else the frame's.
@@ -167,13 +166,14 @@ bool loose_hit(uint object, real t, real side, rvec3 bary, uint part, bool any, 
 }
 
 #if RC_QUADRICS
-// Each loose kind's loop holds that kind's test alone, called directly: a SIMD shader runs
-// every test a loop body holds, and the driver inlines every call before it folds a
-// constant argument, so intersect_object there would cost each loop every kind's code (and
-// the pipeline's creation its compile time). True when `any` and one blocks. The
-// standalone quadrics but the planes, which have their own loop (test_planes).
+// The bounded standalone quadrics (the planes have their own loop, test_planes), each by
+// its own test, called directly: a SIMD shader runs every test a loop body holds, and the
+// driver inlines every call before it folds a constant argument, so intersect_object here
+// would cost the loop every kind's code (and the pipeline's creation its compile time).
+// True when `any` and one blocks.
 bool test_loose_quadrics(rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
-  for (uint object = first_quadric_object; object < first_csg_object - frame.plane_count; object++) {
+  for (uint object = first_quadric_object; object < first_quadric_object + frame.quadric_count - frame.plane_count;
+       object++) {
 #if RC_CERTIFY
     if (certify) cert_object(RC_KIND_QUADRICS, object, o, d, sh, any ? t_max : h.t);
 #endif
@@ -184,52 +184,31 @@ bool test_loose_quadrics(rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, i
   }
   return false;
 }
-
-bool test_loose_csg(rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
-  for (uint object = first_csg_object; object < frame.object_count; object++) {
-#if RC_CERTIFY
-    if (certify) cert_object(RC_KIND_CSG, object, o, d, sh, any ? t_max : h.t);
-#endif
-    uint part;
-    real t = intersect_csg(object - first_csg_object, o, d, any ? t_max : h.t, part);
-    if (loose_hit(object, t, 0.0, rvec3(0.0), part, any, h)) return true;
-  }
-  return false;
-}
 #endif
 
-// The loose objects (frame.loose_kinds, host/scene/bvh.c): every ray tests them before the
-// tree, each kind in its loop, so that neither these loops nor the tree's leaves run the
-// others' tests under a SIMD mask. Before the tree: a hit here shortens the walk, and a
-// blocker ends a shadow ray's query. True when `any` and one blocks.
+// The loose objects (frame.loose_kinds, host/scene/bvh.c: a few bounded quadrics beside
+// composites): every ray tests them before the tree, so that the composites' leaves do not
+// run the quadric test under a SIMD mask. Before the tree: a hit here shortens the walk,
+// and a blocker ends a shadow ray's query. True when `any` and one blocks.
 bool test_loose(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
-  uint loose = loose_kinds();
-  if (loose == 0u) return false;
-  uint first = (loose & RC_KIND_QUADRICS) != 0u ? first_quadric_object : first_csg_object;
-  uint count = ((loose & RC_KIND_QUADRICS) != 0u ? frame.quadric_count - frame.plane_count : 0u) +
-               ((loose & RC_KIND_CSG) != 0u ? frame.csg_count : 0u);
-#if RC_CERTIFY
-  if (certify && cert_blocked_later && budget_steps + count > loop_budget) return false;
-#endif
-  if (!budget_take(count)) {
-    budget_blame = 1u + first;
-    return false;
-  }
-  ray_shear sh = ray_shear_for(d);
-  // Each loop sits under a constant of its own (loose_quadrics, loose_csg), alone in its
-  // `if`, which the host's specialization folds (host/gpu/spirv_specialize.cpp; an `&&` would
-  // hide it behind a short circuit): a pipeline without loose objects of a kind has no code
-  // for them.
-  bool blocked = false;
 #if RC_QUADRICS
+  // Under a constant alone in its `if`, which the host's specialization folds
+  // (host/gpu/spirv_specialize.cpp; an `&&` would hide it behind a short circuit): a
+  // pipeline without loose objects has no code for them.
   if (loose_quadrics) {
-    if ((loose & RC_KIND_QUADRICS) != 0u) blocked = test_loose_quadrics(o, d, sh, any, t_max, h);
-  }
-  if (loose_csg) {
-    if (!blocked && (loose & RC_KIND_CSG) != 0u) blocked = test_loose_csg(o, d, sh, any, t_max, h);
+    if ((loose_kinds() & RC_KIND_QUADRICS) == 0u) return false;
+    uint count = frame.quadric_count - frame.plane_count;
+#if RC_CERTIFY
+    if (certify && cert_blocked_later && budget_steps + count > loop_budget) return false;
+#endif
+    if (!budget_take(count)) {
+      budget_blame = 1u + first_quadric_object;
+      return false;
+    }
+    return test_loose_quadrics(o, d, ray_shear_for(d), any, t_max, h);
   }
 #endif
-  return blocked;
+  return false;
 }
 
 // The nodes a primary ray through `pixel` must walk: its tile of the eye buffer

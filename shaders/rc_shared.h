@@ -111,9 +111,8 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
  * their own beside the tree, not in its leaves (host/scene/bvh.c, rc_loose_kinds) */
 #define RC_KIND_LOOSE_SHIFT 11
 #define RC_KIND_LOOSE_QUADRICS 8192u
-#define RC_KIND_LOOSE_CSG 16384u
-#define RC_KIND_LOOSE_ALL 24576u
-#define RC_KIND_ALL 26623u
+#define RC_KIND_LOOSE_ALL 8192u
+#define RC_KIND_ALL 10239u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -229,8 +228,8 @@ struct packed_frame {
    * (packed units; a parallel camera's pixel over sqrt(spp)) and its spread angle (radians;
    * a perspective camera's pixel over sqrt(spp)). */
   float cone_width;       float cone_spread;
-  uint loose_kinds;       /* RC_KIND_QUADRICS | RC_KIND_CSG: every object of these kinds is out
-                             of the object tree, tested by every ray in a loop of its kind
+  uint loose_kinds;       /* 0 or RC_KIND_QUADRICS: every bounded standalone quadric is out of
+                             the object tree, tested by every ray in a loop of its own
                              (rc_bvh.glsl, test_loose): at most RC_LOOSE_MAX */
   uint pad_cone1;
 };
@@ -587,8 +586,7 @@ struct packed_push {
 
 RC_ASSERT_SIZE(vec3, 12);
 _Static_assert(RC_KIND_LOOSE_QUADRICS == RC_KIND_QUADRICS << RC_KIND_LOOSE_SHIFT &&
-                   RC_KIND_LOOSE_CSG == RC_KIND_CSG << RC_KIND_LOOSE_SHIFT &&
-                   RC_KIND_LOOSE_ALL == (RC_KIND_LOOSE_QUADRICS | RC_KIND_LOOSE_CSG) &&
+                   RC_KIND_LOOSE_ALL == RC_KIND_LOOSE_QUADRICS &&
                    RC_KIND_ALL == (RC_KIND_LOOSE_ALL | ((1u << RC_KIND_LOOSE_SHIFT) - 1u)),
                "the loose kinds are the object kinds shifted, above every other kind bit");
 RC_ASSERT_LAYOUT(packed_camera, eye, 0);    RC_ASSERT_LAYOUT(packed_camera, left, 12);

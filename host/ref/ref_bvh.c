@@ -97,14 +97,14 @@ bool REF(loose_hit)(const ref_scene *sc, uint32_t object, real t, real side, rve
   return false;
 }
 
-/* The first quadric and composite object numbers: spheres come first, then triangles,
- * quadrics (the planes last), composites (rc_intersect.glsl, object_kind). */
+/* The first quadric's object number: spheres come first, then triangles, quadrics (the
+ * planes last), composites (rc_intersect.glsl, object_kind). */
 static uint32_t first_quadric(const ref_scene *sc) { return sc->frame->sphere_count + sc->frame->triangle_count; }
-static uint32_t first_csg(const ref_scene *sc) { return first_quadric(sc) + sc->frame->quadric_count; }
 
 bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_shear *sh, bool any, real t_max,
                               ref_hit *h) {
-  for (uint32_t object = first_quadric(sc); object < first_csg(sc) - sc->frame->plane_count; object++) {
+  for (uint32_t object = first_quadric(sc); object < first_quadric(sc) + sc->frame->quadric_count - sc->frame->plane_count;
+       object++) {
     if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_QUADRICS, object, o, d, sh, any ? t_max : h->t);
     rvec3 bary;
     uint32_t part;
@@ -114,25 +114,11 @@ bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_s
   return false;
 }
 
-bool REF(test_loose_csg)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_shear *sh, bool any, real t_max, ref_hit *h) {
-  for (uint32_t object = first_csg(sc); object < sc->frame->object_count; object++) {
-    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_CSG, object, o, d, sh, any ? t_max : h->t);
-    uint32_t part;
-    real t = REF(intersect_csg)(sc, object - first_csg(sc), o, d, any ? t_max : h->t, &part);
-    if (REF(loose_hit)(sc, object, t, 0, RV(make)(0, 0, 0), part, any, h)) return true;
-  }
-  return false;
-}
-
-/* The loose objects before the tree, kind by kind, as the shader tests them. */
+/* The loose objects before the tree, as the shader tests them. */
 bool REF(test_loose)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
-  uint32_t loose = REF(loose_kinds)(sc);
-  if (loose == 0) return false;
+  if ((REF(loose_kinds)(sc) & RC_KIND_QUADRICS) == 0) return false;
   ref_shear sh = REF(ray_shear_for)(d);
-  bool blocked = false;
-  if ((loose & RC_KIND_QUADRICS) != 0) blocked = REF(test_loose_quadrics)(sc, o, d, &sh, any, t_max, h);
-  if (!blocked && (loose & RC_KIND_CSG) != 0) blocked = REF(test_loose_csg)(sc, o, d, &sh, any, t_max, h);
-  return blocked;
+  return REF(test_loose_quadrics)(sc, o, d, &sh, any, t_max, h);
 }
 
 /* The node range [first, end) of a primary ray through pixel (x, y) (rc_bvh.glsl). */

@@ -148,8 +148,6 @@ extern _Thread_local uint32_t ref_crossing_blame;
                          ref_hit_##S *h);                                                      \
   bool ref_test_loose_quadrics_##S(const ref_scene *sc, V o, V d, const ref_shear_##S *sh, bool any, R t_max, \
                                    ref_hit_##S *h);                                             \
-  bool ref_test_loose_csg_##S(const ref_scene *sc, V o, V d, const ref_shear_##S *sh, bool any, R t_max,     \
-                              ref_hit_##S *h);                                                  \
   bool ref_test_loose_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);    \
   void ref_eye_nodes_##S(const ref_scene *sc, uint32_t x, uint32_t y, uint32_t *first, uint32_t *end); \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, uint32_t first, uint32_t end, ref_hit_##S *h); \

@@ -362,67 +362,34 @@ static bool seen_before(const rc_packed_scene *p, uint32_t *slot, size_t cap, ui
  * ray is blocked by the first copy as surely as by the repeat. So the BVH leaves repeats
  * out, and a pile of coincident copies costs one test instead of exhausting the GPU's loop
  * budget. Brute force (--accel none) still tests them all, with the same result. */
-/* The objects of each kind, in frame order (rc_intersect.glsl, object_kind): spheres,
- * triangles, bounded standalone quadrics (patch pieces among them; the planes that follow
- * them are never in the tree), composites. */
-static void kind_ranges(const packed_frame *f, uint32_t first[4], uint32_t end[4]) {
-  first[0] = 0, end[0] = f->sphere_count;
-  first[1] = end[0], end[1] = first[1] + f->triangle_count;
-  first[2] = end[1], end[2] = first[2] + f->quadric_count - f->plane_count;
-  first[3] = end[2] + f->plane_count, end[3] = first[3] + f->csg_count;
-}
-
-static const uint32_t kind_bit[4] = {RC_KIND_SPHERES, RC_KIND_TRIANGLES, RC_KIND_QUADRICS, RC_KIND_CSG};
-
 /* A SIMD shader runs, for each object of a leaf, the test of every kind the tree's leaves
  * hold: llvmpipe skips no branch its lanes do not take (docs/performance.md, "What the
  * floor is"). A box beside three composites (scenes/csg.json) made every composite's leaf
  * run the bounded quadric's test too, 1,400 instructions with its clipped pieces and scan.
- * So the bounded quadrics and the composites, where they are few beside another kind, leave
- * the tree and are tested by every ray in a loop of their own kind, as the planes are. A
- * loose object costs every ray its test, which the tree's boxes spared the rays that miss
- * it; a mixed leaf costs its other kinds' tests at each visit. So a kind leaves only while
- * the main kind (the one with the most objects; on a tie the costlier test) has more than
- * twice as many objects as leave (a leaf holds about two: more leaves to visit than loose
- * objects to test), and at most RC_LOOSE_MAX in all, the smallest kind first. Spheres and
- * triangles stay: their tests are a few hundred instructions without a loop, and leaving
- * them out cost more than it saved (docs/performance.md, "Loose objects": the user-like
- * room's two spheres beside its spider, 1.17x the frame; the example room's sphere and
- * cylinder beside its one composite, 1.18x). */
+ * So where composites are the main kind (none of the other kinds has more objects), a few
+ * bounded quadrics beside them leave the tree: at most RC_LOOSE_MAX, fewer than half the
+ * composites (a leaf holds about two: more leaves to visit than loose objects to test).
+ * Every ray tests them, before the tree, in a loop of their own, as it tests the planes
+ * after it; a hit there shortens the composites' walk, and a blocker spares a shadow ray
+ * the composites' programs, which is why the CPU twin gains too. Nothing else leaves: a
+ * loose object costs every ray its test, which the boxes spared the rays that miss it.
+ * Leaving a box beside a mesh (dollhouse.json) cost the CPU twin 1.45x its frame for 0.97x
+ * on the GPU path, and spheres beside a mesh or a composite cost the GPU path 1.17-1.20x
+ * (docs/performance.md, "Loose objects"). */
 uint32_t rc_loose_kinds(const packed_frame *f) {
-  uint32_t first[4], end[4], keep = 4, loose = 0, total = 0;
-  kind_ranges(f, first, end);
-  for (uint32_t k = 0; k < 4; k++)
-    if (end[k] > first[k] && (keep == 4 || end[k] - first[k] >= end[keep] - first[keep])) keep = k;
-  if (keep == 4) return 0;
-  for (;;) { /* the smallest kind not yet loose, while the total allows */
-    uint32_t pick = 4;
-    for (uint32_t k = 2; k < 4; k++) /* quadrics and composites */
-      if (k != keep && end[k] > first[k] && !(loose & kind_bit[k]) &&
-          (pick == 4 || end[k] - first[k] < end[pick] - first[pick]))
-        pick = k;
-    uint32_t after = total + (end[pick] - first[pick]);
-    if (pick == 4 || after > RC_LOOSE_MAX || end[keep] - first[keep] <= 2 * after) return loose;
-    total += end[pick] - first[pick];
-    loose |= kind_bit[pick];
-  }
+  uint32_t bounded = f->quadric_count - f->plane_count; /* the planes are never in the tree */
+  bool composites_lead = f->csg_count >= f->sphere_count && f->csg_count >= f->triangle_count && f->csg_count >= bounded;
+  return composites_lead && bounded > 0 && bounded <= RC_LOOSE_MAX && f->csg_count > 2 * bounded ? RC_KIND_QUADRICS : 0;
 }
 
 uint32_t rc_loose_objects(const packed_frame *f) {
-  uint32_t first[4], end[4], n = 0;
-  kind_ranges(f, first, end);
-  for (uint32_t k = 0; k < 4; k++)
-    if (f->loose_kinds & kind_bit[k]) n += end[k] - first[k];
-  return n;
+  return (f->loose_kinds & RC_KIND_QUADRICS) ? f->quadric_count - f->plane_count : 0;
 }
 
-/* Whether object i is of a kind frame.loose_kinds keeps out of the tree. */
+/* Whether object i is one frame.loose_kinds keeps out of the tree. */
 static bool is_loose(const packed_frame *f, uint32_t i) {
-  uint32_t first[4], end[4];
-  kind_ranges(f, first, end);
-  for (uint32_t k = 0; k < 4; k++)
-    if ((f->loose_kinds & kind_bit[k]) && i >= first[k] && i < end[k]) return true;
-  return false;
+  uint32_t first_quadric = f->sphere_count + f->triangle_count;
+  return (f->loose_kinds & RC_KIND_QUADRICS) && i >= first_quadric && i - first_quadric < f->quadric_count - f->plane_count;
 }
 
 static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t *refs) {

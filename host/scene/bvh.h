@@ -24,9 +24,9 @@ typedef struct rc_bvh_stats {
 } rc_bvh_stats;
 
 /* The kinds whose objects the object tree leaves out, for every ray to test in a loop of
- * their kind (frame.loose_kinds: RC_KIND_QUADRICS, RC_KIND_CSG): the smallest of those two,
- * at most RC_LOOSE_MAX objects in all and fewer than half the main kind's, never the kind
- * with the most objects. bvh.c says why. */
+ * their own (frame.loose_kinds): RC_KIND_QUADRICS, the bounded quadrics, where composites
+ * are the main kind and the quadrics at most RC_LOOSE_MAX and fewer than half of them;
+ * else 0. bvh.c says why. */
 uint32_t rc_loose_kinds(const packed_frame *f);
 /* The number of objects of the kinds f->loose_kinds names. */
 uint32_t rc_loose_objects(const packed_frame *f);

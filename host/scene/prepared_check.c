@@ -119,7 +119,7 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
   if (object_nodes > p->bvh_node_total || (object_nodes && !p->bvh))
     return say(why, cap, "the object tree's %u nodes are not among the %u", object_nodes, p->bvh_node_total);
   if (object_nodes && (problem = tree_problem(p, 0, object_nodes, f->object_count, why, cap))) return problem;
-  if ((f->loose_kinds & ~(RC_KIND_QUADRICS | RC_KIND_CSG)) ||
+  if ((f->loose_kinds & ~RC_KIND_QUADRICS) ||
       rc_loose_objects(f) > RC_LOOSE_MAX || (f->loose_kinds && !p->bvh))
     return say(why, cap, "the frame's loose kinds %u name more than %u objects or no tree", f->loose_kinds,
                RC_LOOSE_MAX);
