@@ -356,12 +356,6 @@ static bool seen_before(const rc_packed_scene *p, uint32_t *slot, size_t cap, ui
   }
 }
 
-/* Fills refs[] with every object whose geometry does not repeat an earlier object's bit
- * for bit, in order, and returns their count (in expected linear time). A repeat can never
- * be hit first: on equal t the lower object number wins (rc_intersect.glsl), and a shadow
- * ray is blocked by the first copy as surely as by the repeat. So the BVH leaves repeats
- * out, and a pile of coincident copies costs one test instead of exhausting the GPU's loop
- * budget. Brute force (--accel none) still tests them all, with the same result. */
 /* A SIMD shader runs, for each object of a leaf, the test of every kind the tree's leaves
  * hold: llvmpipe skips no branch its lanes do not take (docs/performance.md, "What the
  * floor is"). A box beside three composites (scenes/csg.json) made every composite's leaf
@@ -370,9 +364,9 @@ static bool seen_before(const rc_packed_scene *p, uint32_t *slot, size_t cap, ui
  * bounded quadrics beside them leave the tree: at most RC_LOOSE_MAX, fewer than half the
  * composites (a leaf holds about two: more leaves to visit than loose objects to test).
  * Every ray tests them, before the tree, in a loop of their own, as it tests the planes
- * after it; a hit there shortens the composites' walk, and a blocker spares a shadow ray
- * the composites' programs, which is why the CPU twin gains too. Nothing else leaves: a
- * loose object costs every ray its test, which the boxes spared the rays that miss it.
+ * after it, where a hit can shorten the composites' walk: the CPU twin, which pays no
+ * masks, gained too (csg.json: 0.93x its frame, the GPU path 0.81x). Nothing else leaves:
+ * a loose object costs every ray its test, which the boxes spared the rays that miss it.
  * Leaving a box beside a mesh (dollhouse.json) cost the CPU twin 1.45x its frame for 0.97x
  * on the GPU path, and spheres beside a mesh or a composite cost the GPU path 1.17-1.20x
  * (docs/performance.md, "Loose objects"). */
@@ -392,6 +386,12 @@ static bool is_loose(const packed_frame *f, uint32_t i) {
   return (f->loose_kinds & RC_KIND_QUADRICS) && i >= first_quadric && i - first_quadric < f->quadric_count - f->plane_count;
 }
 
+/* Fills refs[] with every object whose geometry does not repeat an earlier object's bit
+ * for bit, in order, and returns their count (in expected linear time). A repeat can never
+ * be hit first: on equal t the lower object number wins (rc_intersect.glsl), and a shadow
+ * ray is blocked by the first copy as surely as by the repeat. So the BVH leaves repeats
+ * out, and a pile of coincident copies costs one test instead of exhausting the GPU's loop
+ * budget. Brute force (--accel none) still tests them all, with the same result. */
 static uint32_t distinct_objects(const rc_packed_scene *p, uint32_t n, uint32_t *refs) {
   size_t cap = 64;
   while (cap < 2 * (size_t)n) cap *= 2;
