@@ -32,16 +32,13 @@ const bool loose_quadrics = (scene_kinds & RC_KIND_LOOSE_QUADRICS) != 0u;
 // The kinds (RC_KIND_*) of the objects frame.loose_kinds keeps out of the tree: the
 // specialization's where the pipeline was specialized, else the frame's.
 uint loose_kinds() {
-  return scene_kinds == RC_KIND_ALL ? frame.loose_kinds : (scene_kinds & RC_KIND_LOOSE_ALL) >> RC_KIND_LOOSE_SHIFT;
+  return scene_kinds == RC_KIND_ALL ? frame.loose_kinds : (loose_quadrics ? RC_KIND_QUADRICS : 0u);
 }
 
 // The kinds the tree's leaves can hold, a constant for intersect_object: those the scene has
 // but the loose ones, where the quadrics' include the patch pieces. The generic pipeline's
 // leaves keep every kind's test, as its one module must serve every frame.
-uint tree_kinds() {
-  uint loose = (scene_kinds & RC_KIND_LOOSE_ALL) >> RC_KIND_LOOSE_SHIFT;
-  return scene_kinds == RC_KIND_ALL ? RC_KIND_ALL : ~loose;
-}
+uint tree_kinds() { return scene_kinds == RC_KIND_ALL ? RC_KIND_ALL : ~loose_kinds(); }
 
 // Tests the objects of one leaf; true when `any` and one of them blocks. The caller has
 // taken the loop's steps from the budget (budget_take).

@@ -107,12 +107,10 @@ typedef struct packed_vertex_uvs packed_vertex_uvs;
 #define RC_KIND_ONE_SIDED_TRIANGLES 256u /* a triangle has RC_TRIANGLE_ONE_SIDED */
 #define RC_KIND_TEXTURES 512u /* a material has a texture (packed_material.texture) */
 #define RC_KIND_PATCHES 1024u /* a quadric is a piece of a Bezier patch (RC_QUADRIC_PATCH) */
-/* frame.loose_kinds << RC_KIND_LOOSE_SHIFT: the kinds whose objects are tested in loops of
+/* frame.loose_kinds holds RC_KIND_QUADRICS: the bounded quadrics are tested in a loop of
  * their own beside the tree, not in its leaves (host/scene/bvh.c, rc_loose_kinds) */
-#define RC_KIND_LOOSE_SHIFT 11
-#define RC_KIND_LOOSE_QUADRICS 8192u
-#define RC_KIND_LOOSE_ALL 8192u
-#define RC_KIND_ALL 10239u
+#define RC_KIND_LOOSE_QUADRICS 2048u
+#define RC_KIND_ALL 4095u
 #define RC_LIGHTS_FROM_FRAME 0xffffffffu
 #define RC_SPECULAR_FROM_FRAME 0xffffffffu
 #define RC_DEPTH_FROM_FRAME 0xffffffffu
@@ -585,10 +583,8 @@ struct packed_push {
 #define RC_ASSERT_SIZE(type, size) _Static_assert(sizeof(type) == (size), #type " size")
 
 RC_ASSERT_SIZE(vec3, 12);
-_Static_assert(RC_KIND_LOOSE_QUADRICS == RC_KIND_QUADRICS << RC_KIND_LOOSE_SHIFT &&
-                   RC_KIND_LOOSE_ALL == RC_KIND_LOOSE_QUADRICS &&
-                   RC_KIND_ALL == (RC_KIND_LOOSE_ALL | ((1u << RC_KIND_LOOSE_SHIFT) - 1u)),
-               "the loose kinds are the object kinds shifted, above every other kind bit");
+_Static_assert(RC_KIND_ALL == 2u * RC_KIND_LOOSE_QUADRICS - 1u && RC_KIND_LOOSE_QUADRICS == 2u * RC_KIND_PATCHES,
+               "RC_KIND_ALL is every kind bit, the loose quadrics' the highest");
 RC_ASSERT_LAYOUT(packed_camera, eye, 0);    RC_ASSERT_LAYOUT(packed_camera, left, 12);
 RC_ASSERT_LAYOUT(packed_camera, u, 16);     RC_ASSERT_LAYOUT(packed_camera, right, 28);
 RC_ASSERT_LAYOUT(packed_camera, v, 32);     RC_ASSERT_LAYOUT(packed_camera, bottom, 44);

@@ -72,7 +72,7 @@ static void specialization(const rc_gpu_renderer *r, uint32_t v[RC_SPEC_COUNT]) 
                                    (r->vertex_normals ? RC_KIND_VERTEX_NORMALS : 0) |
                                    (r->one_sided_triangles ? RC_KIND_ONE_SIDED_TRIANGLES : 0) |
                                    (r->textures ? RC_KIND_TEXTURES : 0) | (r->patches ? RC_KIND_PATCHES : 0) |
-                                   (r->opts.bvh_depth ? f->loose_kinds << RC_KIND_LOOSE_SHIFT : 0);
+                                   (r->opts.bvh_depth && (f->loose_kinds & RC_KIND_QUADRICS) ? RC_KIND_LOOSE_QUADRICS : 0);
   v[RC_SPEC_LIGHT_COUNT] = generic ? RC_LIGHTS_FROM_FRAME : f->light_count;
   v[RC_SPEC_SHADOWS] = generic ? RC_SHADOWS_FROM_FRAME : f->shadows;
   v[RC_SPEC_SPECULAR_MODEL] = generic ? RC_SPECULAR_FROM_FRAME : f->specular_model;
