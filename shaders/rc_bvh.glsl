@@ -48,10 +48,7 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
     real side;
     rvec3 bary;
     uint part;
-#if RC_CERTIFY
-    if (certify) cert_object(tree_kinds(), object, o, d, sh, any ? t_max : h.t);
-#endif
-    real t = intersect_object(tree_kinds(), object, o, d, sh, any ? t_max : h.t, side, bary, part);
+    real t = test_object(tree_kinds(), object, o, d, sh, any ? t_max : h.t, side, bary, part);
 #if RC_CERTIFY
     if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) continue;
 #endif

@@ -127,6 +127,17 @@ real intersect_quadric_object(uint index, rvec3 o, rvec3 d, real t_max, out rvec
 }
 #endif
 
+// A triangle object, loaded: a one-sided one the ray meets from behind is a miss, else the
+// chosen formula's test.
+real intersect_triangle_object(packed_triangle tri, rvec3 o, rvec3 d, ray_shear sh, real t_max, out rvec3 bary) {
+  bary = rvec3(0.0);
+  if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u && !triangle_faces_ray(tri, d))
+    return real(RC_T_FAR);
+  if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
+  if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
+  return intersect_triangle(o, sh, tri, t_max, bary);
+}
+
 // The ray against object `object`; t as above. Kinds the scene lacks are compiled out
 // (has_kind, a specialization constant), and so are those the caller's objects cannot be:
 // `kinds` (RC_KIND_*) is a constant at each call, RC_KIND_ALL in brute force and the
@@ -142,14 +153,8 @@ real intersect_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, r
   uint kind = object_kind(object, index);
   if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE)
     return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
-  if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
-    packed_triangle tri = load_triangle(index);
-    if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u && !triangle_faces_ray(tri, d))
-      return real(RC_T_FAR);
-    if (triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE) return intersect_triangle_moller_trumbore(o, d, tri, t_max, bary);
-    if (triangle_formula == RC_TRIANGLE_CRAMER) return intersect_triangle_cramer(o, d, tri, t_max, bary);
-    return intersect_triangle(o, sh, tri, t_max, bary);
-  }
+  if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE)
+    return intersect_triangle_object(load_triangle(index), o, d, sh, t_max, bary);
 #if RC_QUADRICS
   if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC)
     return intersect_quadric_object(index, o, d, t_max, bary, part);
@@ -275,18 +280,22 @@ void cert_test_end(bool ok) {
   cert_ok = ok && cert_ok;
 }
 
+// A triangle object's decisions (intersect_triangle_object). The watertight test's sheared
+// x and y do not change when the origin moves along the ray, and its t moves by as much:
+// cert_eo (across) alone, and cert_et where t meets 0.
+void cert_triangle_object(packed_triangle tri, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+  uint side = RC_SIDE_FRONT;
+  if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) side = cert_triangle_side(tri, d);
+  if (side != RC_SIDE_BACK) cert_triangle(o, sh, tri, t_max, side == RC_SIDE_UNSURE);
+}
+
 void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
   uint index;
   uint kind = object_kind(object, index);
-  if ((kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
+  if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
     cert_sphere(o, d, load_sphere(index), t_max);
-  } else if ((kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
-    // The watertight test's sheared x and y do not change when the origin moves along the
-    // ray, and its t moves by as much: cert_eo (across) alone, and cert_et where t meets 0.
-    packed_triangle tri = load_triangle(index);
-    uint side = RC_SIDE_FRONT;
-    if (has_kind(RC_KIND_ONE_SIDED_TRIANGLES) && (tri.flags & RC_TRIANGLE_ONE_SIDED) != 0u) side = cert_triangle_side(tri, d);
-    if (side != RC_SIDE_BACK) cert_triangle(o, sh, tri, t_max, side == RC_SIDE_UNSURE);
+  } else if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
+    cert_triangle_object(load_triangle(index), o, d, sh, t_max);
   } else if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0u) {
 #if RC_QUADRICS
     if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG) {
@@ -295,11 +304,14 @@ void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, 
     }
     if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC) {
       packed_quadric q = load_quadric(index);
-      if ((q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
+      // Without RC_KIND_QUADRICS the only quadric objects a test meets are patch pieces
+      // (gpu_pipeline.c: planes have test_planes' loop): the leaves of a scene of patches or
+      // of composites beside planes need neither test's certificate (intersect_quadric_object).
+      if (has_kind(RC_KIND_QUADRICS) && (q.flags & RC_QUADRIC_UNBOUNDED) != 0u) {
         cert_plane(q, o, d, t_max);
         return;
       }
-      if ((q.flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0u) {
+      if (has_kind(RC_KIND_QUADRICS) && (q.flags & (RC_QUADRIC_PATCH | RC_QUADRIC_MESH)) == 0u) {
         cert_quadric(q, o, d, t_max);
         return;
       }
@@ -371,6 +383,31 @@ void cert_blocked(bool blocked, bool ok) {
 }
 #endif
 
+// The ray against object `object` (intersect_object), its decisions certified first where
+// the module certifies (cert_object). A triangle is loaded once for both: llvmpipe does not
+// merge two masked fetches of the same texels, and each certified leaf loop fetched every
+// triangle twice (docs/performance.md, "One fetch of a certified triangle").
+real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary,
+                 out uint part) {
+#if RC_CERTIFY
+  if (certify) {
+    uint index;
+    if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && object_kind(object, index) == RC_HIT_TRIANGLE) {
+      packed_triangle tri = load_triangle(index);
+      bool ok = cert_test_begin(object);
+      cert_triangle_object(tri, o, d, sh, t_max);
+      cert_test_end(ok);
+      side = 0.0;
+      part = 0u;
+      return intersect_triangle_object(tri, o, d, sh, t_max, bary);
+    }
+    cert_object(kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max);
+    return intersect_object(kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max, side, bary, part);
+  }
+#endif
+  return intersect_object(kinds, object, o, d, sh, t_max, side, bary, part);
+}
+
 // Brute force: every object, in order.
 void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
   ray_shear sh = ray_shear_for(d);
@@ -382,10 +419,7 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
     real side;
     rvec3 bary;
     uint part;
-#if RC_CERTIFY
-    if (certify) cert_object(RC_KIND_ALL, i, o, d, sh, h.t);
-#endif
-    real t = intersect_object(RC_KIND_ALL, i, o, d, sh, h.t, side, bary, part);
+    real t = test_object(RC_KIND_ALL, i, o, d, sh, h.t, side, bary, part);
     consider_hit(i, t, side, bary, part, h);
   }
 }
@@ -405,10 +439,7 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint part;
-#if RC_CERTIFY
-    if (certify) cert_object(RC_KIND_ALL, i, o, d, sh, t_max);
-#endif
-    bool blocks = intersect_object(RC_KIND_ALL, i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
+    bool blocks = test_object(RC_KIND_ALL, i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
 #if RC_CERTIFY
     if (certify && blocks && !cert_blocker_ends()) continue;
 #endif

@@ -33,8 +33,7 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     real side;
     rvec3 bary;
     uint32_t part;
-    if (sc->frame->certify) REF(cert_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any ? t_max : h->t);
-    real t = REF(intersect_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
+    real t = REF(test_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
     if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, object, t, side, bary, part, h);

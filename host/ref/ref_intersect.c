@@ -98,6 +98,16 @@ real REF(intersect_quadric_object)(const ref_scene *sc, uint32_t index, rvec3 o,
   return REF(intersect_quadric)(sc, index, o, d, t_max, part);
 }
 
+real REF(intersect_triangle_object)(const ref_scene *sc, packed_triangle tri, rvec3 o, rvec3 d, const ref_shear *sh,
+                                    real t_max, rvec3 *bary) {
+  *bary = RV(make)(0, 0, 0);
+  if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0 && !REF(triangle_faces_ray)(tri, d)) return (real)RC_T_FAR;
+  if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
+    return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
+  if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
+  return REF(intersect_triangle)(o, sh, tri, t_max, bary);
+}
+
 real REF(intersect_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
                            real t_max, real *side, rvec3 *bary, uint32_t *part) {
   ref_work++;
@@ -108,14 +118,8 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t kinds, uint32_t object,
   uint32_t kind = REF(object_kind)(sc, object, &index);
   if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE)
     return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
-  if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
-    packed_triangle tri = sc->triangles[index];
-    if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0 && !REF(triangle_faces_ray)(tri, d)) return (real)RC_T_FAR;
-    if (sc->frame->triangle_formula == RC_TRIANGLE_MOLLER_TRUMBORE)
-      return REF(intersect_triangle_moller_trumbore)(o, d, tri, t_max, bary);
-    if (sc->frame->triangle_formula == RC_TRIANGLE_CRAMER) return REF(intersect_triangle_cramer)(o, d, tri, t_max, bary);
-    return REF(intersect_triangle)(o, sh, tri, t_max, bary);
-  }
+  if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE)
+    return REF(intersect_triangle_object)(sc, sc->triangles[index], o, d, sh, t_max, bary);
   if ((kinds & RC_KIND_QUADRICS) != 0 && kind == RC_HIT_QUADRIC)
     return REF(intersect_quadric_object)(sc, index, o, d, t_max, bary, part);
   if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
@@ -214,6 +218,13 @@ void REF(cert_test_end)(bool ok) {
   ref_cert_ok = ok && ref_cert_ok;
 }
 
+void REF(cert_triangle_object)(const ref_scene *sc, packed_triangle tri, rvec3 o, rvec3 d, const ref_shear *sh,
+                               real t_max) {
+  uint32_t side = RC_SIDE_FRONT;
+  if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0) side = REF(cert_triangle_side)(sc, tri, d);
+  if (side != RC_SIDE_BACK) REF(cert_triangle)(sc, o, sh, tri, t_max, side == RC_SIDE_UNSURE);
+}
+
 void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
                             real t_max) {
   uint32_t index;
@@ -221,10 +232,7 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object
   if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE) {
     REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
   } else if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
-    packed_triangle tri = sc->triangles[index];
-    uint32_t side = RC_SIDE_FRONT;
-    if ((tri.flags & RC_TRIANGLE_ONE_SIDED) != 0) side = REF(cert_triangle_side)(sc, tri, d);
-    if (side != RC_SIDE_BACK) REF(cert_triangle)(sc, o, sh, tri, t_max, side == RC_SIDE_UNSURE);
+    REF(cert_triangle_object)(sc, sc->triangles[index], o, d, sh, t_max);
   } else if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0) {
     if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) {
       REF(cert_csg)(sc, index, o, d, t_max);
@@ -290,14 +298,33 @@ void REF(cert_blocked)(bool blocked, bool ok) {
   if (blocked && ref_cert_blocker_certain) ref_cert_ok = ok;
 }
 
+real REF(test_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
+                      real t_max, real *side, rvec3 *bary, uint32_t *part) {
+  if (sc->frame->certify) {
+    uint32_t index;
+    if ((kinds & RC_KIND_TRIANGLES) != 0 && REF(object_kind)(sc, object, &index) == RC_HIT_TRIANGLE) {
+      ref_work++;
+      packed_triangle tri = sc->triangles[index];
+      bool ok = REF(cert_test_begin)(sc, object);
+      REF(cert_triangle_object)(sc, tri, o, d, sh, t_max);
+      REF(cert_test_end)(ok);
+      *side = 0;
+      *part = 0;
+      return REF(intersect_triangle_object)(sc, tri, o, d, sh, t_max, bary);
+    }
+    REF(cert_object)(sc, kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max);
+    return REF(intersect_object)(sc, kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max, side, bary, part);
+  }
+  return REF(intersect_object)(sc, kinds, object, o, d, sh, t_max, side, bary, part);
+}
+
 void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) {
   ref_shear sh = REF(ray_shear_for)(d);
   for (uint32_t i = 0; i < sc->frame->object_count; i++) {
     real side;
     rvec3 bary;
     uint32_t part;
-    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_ALL, i, o, d, &sh, h->t);
-    real t = REF(intersect_object)(sc, RC_KIND_ALL, i, o, d, &sh, h->t, &side, &bary, &part);
+    real t = REF(test_object)(sc, RC_KIND_ALL, i, o, d, &sh, h->t, &side, &bary, &part);
     REF(consider_hit)(sc, i, t, side, bary, part, h);
   }
 }
@@ -308,8 +335,7 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint32_t part;
-    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_ALL, i, o, d, &sh, t_max);
-    bool blocks = REF(intersect_object)(sc, RC_KIND_ALL, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
+    bool blocks = REF(test_object)(sc, RC_KIND_ALL, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
     if (sc->frame->certify && blocks && !REF(cert_blocker_ends)()) continue;
     if (blocks) return true;
   }
