@@ -138,6 +138,21 @@ real intersect_triangle_object(packed_triangle tri, rvec3 o, rvec3 d, ray_shear 
   return intersect_triangle(o, sh, tri, t_max, bary);
 }
 
+// An object of the other kinds (a quadric, a patch piece, a composite), as intersect_object
+// finds it (`kind`, `index`), or of a kind `kinds` leaves out: RC_T_FAR.
+real intersect_other_object(uint kinds, uint kind, uint index, rvec3 o, rvec3 d, real t_max, out rvec3 bary,
+                            out uint part) {
+  bary = rvec3(0.0);
+  part = 0u;
+#if RC_QUADRICS
+  if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC)
+    return intersect_quadric_object(index, o, d, t_max, bary, part);
+  if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG)
+    return intersect_csg(index, o, d, t_max, part);
+#endif
+  return real(RC_T_FAR);
+}
+
 // The ray against object `object`; t as above. Kinds the scene lacks are compiled out
 // (has_kind, a specialization constant), and so are those the caller's objects cannot be:
 // `kinds` (RC_KIND_*) is a constant at each call, RC_KIND_ALL in brute force and the
@@ -155,13 +170,7 @@ real intersect_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, r
     return intersect_any_sphere(o, d, load_sphere(index), t_max, side);
   if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE)
     return intersect_triangle_object(load_triangle(index), o, d, sh, t_max, bary);
-#if RC_QUADRICS
-  if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC)
-    return intersect_quadric_object(index, o, d, t_max, bary, part);
-  if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG)
-    return intersect_csg(index, o, d, t_max, part);
-#endif
-  return real(RC_T_FAR);
+  return intersect_other_object(kinds, kind, index, o, d, t_max, bary, part);
 }
 
 #if RC_CERTIFY
@@ -289,14 +298,10 @@ void cert_triangle_object(packed_triangle tri, rvec3 o, rvec3 d, ray_shear sh, r
   if (side != RC_SIDE_BACK) cert_triangle(o, sh, tri, t_max, side == RC_SIDE_UNSURE);
 }
 
-void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
-  uint index;
-  uint kind = object_kind(object, index);
-  if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
-    cert_sphere(o, d, load_sphere(index), t_max);
-  } else if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
-    cert_triangle_object(load_triangle(index), o, d, sh, t_max);
-  } else if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0u) {
+// The decisions of intersect_other_object. An object these kinds' certificates do not cover
+// fails, where `kinds` has the other kinds at all.
+void cert_other_object_tests(uint kinds, uint kind, uint index, rvec3 o, rvec3 d, real t_max) {
+  if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0u) {
 #if RC_QUADRICS
     if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG) {
       cert_csg(index, o, d, t_max);
@@ -324,6 +329,18 @@ void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, 
     }
 #endif
     cert_fail();
+  }
+}
+
+void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+  uint index;
+  uint kind = object_kind(object, index);
+  if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
+    cert_sphere(o, d, load_sphere(index), t_max);
+  } else if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
+    cert_triangle_object(load_triangle(index), o, d, sh, t_max);
+  } else {
+    cert_other_object_tests(kinds, kind, index, o, d, t_max);
   }
 }
 
@@ -383,29 +400,45 @@ void cert_blocked(bool blocked, bool ok) {
 }
 #endif
 
-// The ray against object `object` (intersect_object), its decisions certified first where
-// the module certifies (cert_object). A triangle is loaded once for both: llvmpipe does not
-// merge two masked fetches of the same texels, and each certified leaf loop fetched every
-// triangle twice (docs/performance.md, "One fetch of a certified triangle").
+// The ray against object `object` (intersect_object), its decisions certified first in the
+// module that certifies (cert_object). A sphere or a triangle is loaded once for both:
+// llvmpipe does not merge two masked fetches of the same texels, and each certified leaf
+// loop fetched every triangle twice (docs/performance.md, "One fetch of a certified
+// triangle"). Each kind's test and certificate appear once here, not behind `if
+// (certify)`: the driver inlines every call before it folds a constant, and each copy cost
+// the pipeline's creation its compile time.
 real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary,
                  out uint part) {
 #if RC_CERTIFY
-  if (certify) {
-    uint index;
-    if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && object_kind(object, index) == RC_HIT_TRIANGLE) {
-      packed_triangle tri = load_triangle(index);
-      bool ok = cert_test_begin(object);
-      cert_triangle_object(tri, o, d, sh, t_max);
-      cert_test_end(ok);
-      side = 0.0;
-      part = 0u;
-      return intersect_triangle_object(tri, o, d, sh, t_max, bary);
-    }
-    cert_object(kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max);
-    return intersect_object(kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max, side, bary, part);
+  side = 0.0;
+  bary = rvec3(0.0);
+  part = 0u;
+  uint index;
+  uint kind = object_kind(object, index);
+  bool sphere = has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE;
+  bool triangle = has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE;
+  packed_sphere s;
+  packed_triangle tri;
+  bool ok = cert_test_begin(object);
+  real eo = cert_eo;
+  if (!triangle) cert_eo += cert_et;  // as cert_object: the other kinds' bounds take it
+  if (sphere) {
+    s = load_sphere(index);
+    cert_sphere(o, d, s, t_max);
+  } else if (triangle) {
+    tri = load_triangle(index);
+    cert_triangle_object(tri, o, d, sh, t_max);
+  } else {
+    cert_other_object_tests(kinds, kind, index, o, d, t_max);
   }
-#endif
+  cert_eo = eo;
+  cert_test_end(ok);
+  if (sphere) return intersect_any_sphere(o, d, s, t_max, side);
+  if (triangle) return intersect_triangle_object(tri, o, d, sh, t_max, bary);
+  return intersect_other_object(kinds, kind, index, o, d, t_max, bary, part);
+#else
   return intersect_object(kinds, object, o, d, sh, t_max, side, bary, part);
+#endif
 }
 
 // Brute force: every object, in order.

@@ -108,6 +108,16 @@ real REF(intersect_triangle_object)(const ref_scene *sc, packed_triangle tri, rv
   return REF(intersect_triangle)(o, sh, tri, t_max, bary);
 }
 
+real REF(intersect_other_object)(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, rvec3 o, rvec3 d,
+                                 real t_max, rvec3 *bary, uint32_t *part) {
+  *bary = RV(make)(0, 0, 0);
+  *part = 0;
+  if ((kinds & RC_KIND_QUADRICS) != 0 && kind == RC_HIT_QUADRIC)
+    return REF(intersect_quadric_object)(sc, index, o, d, t_max, bary, part);
+  if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
+  return (real)RC_T_FAR;
+}
+
 real REF(intersect_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
                            real t_max, real *side, rvec3 *bary, uint32_t *part) {
   ref_work++;
@@ -120,10 +130,7 @@ real REF(intersect_object)(const ref_scene *sc, uint32_t kinds, uint32_t object,
     return REF(intersect_any_sphere)(sc, o, d, sc->spheres[index], t_max, side);
   if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE)
     return REF(intersect_triangle_object)(sc, sc->triangles[index], o, d, sh, t_max, bary);
-  if ((kinds & RC_KIND_QUADRICS) != 0 && kind == RC_HIT_QUADRIC)
-    return REF(intersect_quadric_object)(sc, index, o, d, t_max, bary, part);
-  if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) return REF(intersect_csg)(sc, index, o, d, t_max, part);
-  return (real)RC_T_FAR;
+  return REF(intersect_other_object)(sc, kinds, kind, index, o, d, t_max, bary, part);
 }
 
 real REF(cert_limit)(const ref_scene *sc, real t, real e) {
@@ -225,15 +232,9 @@ void REF(cert_triangle_object)(const ref_scene *sc, packed_triangle tri, rvec3 o
   if (side != RC_SIDE_BACK) REF(cert_triangle)(sc, o, sh, tri, t_max, side == RC_SIDE_UNSURE);
 }
 
-void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
-                            real t_max) {
-  uint32_t index;
-  uint32_t kind = REF(object_kind)(sc, object, &index);
-  if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE) {
-    REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
-  } else if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
-    REF(cert_triangle_object)(sc, sc->triangles[index], o, d, sh, t_max);
-  } else if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0) {
+void REF(cert_other_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, rvec3 o, rvec3 d,
+                                  real t_max) {
+  if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0) {
     if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) {
       REF(cert_csg)(sc, index, o, d, t_max);
       return;
@@ -254,6 +255,19 @@ void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object
       }
     }
     REF(cert_fail)();
+  }
+}
+
+void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
+                            real t_max) {
+  uint32_t index;
+  uint32_t kind = REF(object_kind)(sc, object, &index);
+  if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE) {
+    REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
+  } else if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
+    REF(cert_triangle_object)(sc, sc->triangles[index], o, d, sh, t_max);
+  } else {
+    REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
   }
 }
 
@@ -301,19 +315,33 @@ void REF(cert_blocked)(bool blocked, bool ok) {
 real REF(test_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
                       real t_max, real *side, rvec3 *bary, uint32_t *part) {
   if (sc->frame->certify) {
+    ref_work++;
+    *side = 0;
+    *bary = RV(make)(0, 0, 0);
+    *part = 0;
     uint32_t index;
-    if ((kinds & RC_KIND_TRIANGLES) != 0 && REF(object_kind)(sc, object, &index) == RC_HIT_TRIANGLE) {
-      ref_work++;
-      packed_triangle tri = sc->triangles[index];
-      bool ok = REF(cert_test_begin)(sc, object);
+    uint32_t kind = REF(object_kind)(sc, object, &index);
+    bool sphere = (kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE;
+    bool triangle = (kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE;
+    packed_sphere s;
+    packed_triangle tri;
+    bool ok = REF(cert_test_begin)(sc, object);
+    real eo = ref_cert_eo;
+    if (!triangle) ref_cert_eo += ref_cert_et;
+    if (sphere) {
+      s = sc->spheres[index];
+      REF(cert_sphere)(sc, o, d, s, t_max);
+    } else if (triangle) {
+      tri = sc->triangles[index];
       REF(cert_triangle_object)(sc, tri, o, d, sh, t_max);
-      REF(cert_test_end)(ok);
-      *side = 0;
-      *part = 0;
-      return REF(intersect_triangle_object)(sc, tri, o, d, sh, t_max, bary);
+    } else {
+      REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
     }
-    REF(cert_object)(sc, kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max);
-    return REF(intersect_object)(sc, kinds & ~RC_KIND_TRIANGLES, object, o, d, sh, t_max, side, bary, part);
+    ref_cert_eo = eo;
+    REF(cert_test_end)(ok);
+    if (sphere) return REF(intersect_any_sphere)(sc, o, d, s, t_max, side);
+    if (triangle) return REF(intersect_triangle_object)(sc, tri, o, d, sh, t_max, bary);
+    return REF(intersect_other_object)(sc, kinds, kind, index, o, d, t_max, bary, part);
   }
   return REF(intersect_object)(sc, kinds, object, o, d, sh, t_max, side, bary, part);
 }

@@ -61,6 +61,10 @@ extern _Thread_local uint32_t ref_crossing_blame;
                                      uint32_t *part);                                           \
   R ref_intersect_triangle_object_##S(const ref_scene *sc, packed_triangle tri, V o, V d, const ref_shear_##S *sh, \
                                       R t_max, V *bary);                                        \
+  R ref_intersect_other_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, V o, V d, \
+                                   R t_max, V *bary, uint32_t *part);                           \
+  void ref_cert_other_object_tests_##S(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, V o, V d, \
+                                       R t_max);                                                \
   R ref_test_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, const ref_shear_##S *sh, \
                         R t_max, R *side, V *bary, uint32_t *part);                             \
   void ref_cert_triangle_object_##S(const ref_scene *sc, packed_triangle tri, V o, V d, const ref_shear_##S *sh, \
