@@ -404,9 +404,10 @@ void cert_blocked(bool blocked, bool ok) {
 // module that certifies (cert_object). A sphere or a triangle is loaded once for both:
 // llvmpipe does not merge two masked fetches of the same texels, and each certified leaf
 // loop fetched every triangle twice (docs/performance.md, "One fetch of a certified
-// triangle"). Each kind's test and certificate appear once here, not behind `if
-// (certify)`: the driver inlines every call before it folds a constant, and each copy cost
-// the pipeline's creation its compile time.
+// triangle"). Each kind's test and certificate appear once here, together in the kind's
+// branch, and not behind `if (certify)`: the driver inlines every call before it folds a
+// constant, so each copy cost the pipeline's creation its compile time, and certificates
+// and tests in two chains of branches cost the frame what the shared fetch saved.
 real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary,
                  out uint part) {
 #if RC_CERTIFY
@@ -415,27 +416,27 @@ real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t
   part = 0u;
   uint index;
   uint kind = object_kind(object, index);
-  bool sphere = has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE;
-  bool triangle = has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE;
-  packed_sphere s;
-  packed_triangle tri;
   bool ok = cert_test_begin(object);
   real eo = cert_eo;
-  if (!triangle) cert_eo += cert_et;  // as cert_object: the other kinds' bounds take it
-  if (sphere) {
-    s = load_sphere(index);
+  real t;
+  if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
+    packed_sphere s = load_sphere(index);
+    cert_eo += cert_et;  // as cert_object: the other kinds' bounds take the move along the ray
     cert_sphere(o, d, s, t_max);
-  } else if (triangle) {
-    tri = load_triangle(index);
+    cert_eo = eo;
+    t = intersect_any_sphere(o, d, s, t_max, side);
+  } else if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
+    packed_triangle tri = load_triangle(index);
     cert_triangle_object(tri, o, d, sh, t_max);
+    t = intersect_triangle_object(tri, o, d, sh, t_max, bary);
   } else {
+    cert_eo += cert_et;
     cert_other_object_tests(kinds, kind, index, o, d, t_max);
+    cert_eo = eo;
+    t = intersect_other_object(kinds, kind, index, o, d, t_max, bary, part);
   }
-  cert_eo = eo;
   cert_test_end(ok);
-  if (sphere) return intersect_any_sphere(o, d, s, t_max, side);
-  if (triangle) return intersect_triangle_object(tri, o, d, sh, t_max, bary);
-  return intersect_other_object(kinds, kind, index, o, d, t_max, bary, part);
+  return t;
 #else
   return intersect_object(kinds, object, o, d, sh, t_max, side, bary, part);
 #endif

@@ -321,27 +321,27 @@ real REF(test_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec
     *part = 0;
     uint32_t index;
     uint32_t kind = REF(object_kind)(sc, object, &index);
-    bool sphere = (kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE;
-    bool triangle = (kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE;
-    packed_sphere s;
-    packed_triangle tri;
     bool ok = REF(cert_test_begin)(sc, object);
     real eo = ref_cert_eo;
-    if (!triangle) ref_cert_eo += ref_cert_et;
-    if (sphere) {
-      s = sc->spheres[index];
+    real t;
+    if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE) {
+      packed_sphere s = sc->spheres[index];
+      ref_cert_eo += ref_cert_et;
       REF(cert_sphere)(sc, o, d, s, t_max);
-    } else if (triangle) {
-      tri = sc->triangles[index];
+      ref_cert_eo = eo;
+      t = REF(intersect_any_sphere)(sc, o, d, s, t_max, side);
+    } else if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
+      packed_triangle tri = sc->triangles[index];
       REF(cert_triangle_object)(sc, tri, o, d, sh, t_max);
+      t = REF(intersect_triangle_object)(sc, tri, o, d, sh, t_max, bary);
     } else {
+      ref_cert_eo += ref_cert_et;
       REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
+      ref_cert_eo = eo;
+      t = REF(intersect_other_object)(sc, kinds, kind, index, o, d, t_max, bary, part);
     }
-    ref_cert_eo = eo;
     REF(cert_test_end)(ok);
-    if (sphere) return REF(intersect_any_sphere)(sc, o, d, s, t_max, side);
-    if (triangle) return REF(intersect_triangle_object)(sc, tri, o, d, sh, t_max, bary);
-    return REF(intersect_other_object)(sc, kinds, kind, index, o, d, t_max, bary, part);
+    return t;
   }
   return REF(intersect_object)(sc, kinds, object, o, d, sh, t_max, side, bary, part);
 }
