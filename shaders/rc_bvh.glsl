@@ -165,11 +165,11 @@ bool loose_hit(uint object, real t, real side, rvec3 bary, uint part, bool any, 
 // driver inlines every call before it folds a constant argument, so intersect_object here
 // would cost the loop every kind's code (and the pipeline's creation its compile time).
 // True when `any` and one blocks.
-bool test_loose_quadrics(rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, inout hit_record h) {
+bool test_loose_quadrics(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
   for (uint object = first_quadric_object; object < first_quadric_object + frame.quadric_count - frame.plane_count;
        object++) {
 #if RC_CERTIFY
-    if (certify) cert_object(RC_KIND_QUADRICS, object, o, d, sh, any ? t_max : h.t);
+    if (certify) cert_object(RC_KIND_QUADRICS, object, o, d, any ? t_max : h.t);
 #endif
     rvec3 bary;
     uint part;
@@ -199,7 +199,7 @@ bool test_loose(rvec3 o, rvec3 d, bool any, real t_max, inout hit_record h) {
       budget_blame = 1u + first_quadric_object;
       return false;
     }
-    return test_loose_quadrics(o, d, ray_shear_for(d), any, t_max, h);
+    return test_loose_quadrics(o, d, any, t_max, h);
   }
 #endif
   return false;

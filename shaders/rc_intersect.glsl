@@ -332,27 +332,17 @@ void cert_other_object_tests(uint kinds, uint kind, uint index, rvec3 o, rvec3 d
   }
 }
 
-void cert_object_tests(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
-  uint index;
-  uint kind = object_kind(object, index);
-  if (has_kind(RC_KIND_SPHERES) && (kinds & RC_KIND_SPHERES) != 0u && kind == RC_HIT_SPHERE) {
-    cert_sphere(o, d, load_sphere(index), t_max);
-  } else if (has_kind(RC_KIND_TRIANGLES) && (kinds & RC_KIND_TRIANGLES) != 0u && kind == RC_HIT_TRIANGLE) {
-    cert_triangle_object(load_triangle(index), o, d, sh, t_max);
-  } else {
-    cert_other_object_tests(kinds, kind, index, o, d, t_max);
-  }
-}
-
-// The decisions of testing object `object` (rc_intersect.glsl, intersect_object): those of
-// the kinds rc_certify.glsl bounds, none of the others. `kinds` as intersect_object's.
-void cert_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max) {
+// The decisions of testing object `object` of the other kinds (intersect_other_object; the
+// loose quadrics' loop): those of the kinds rc_certify.glsl bounds, none of the others.
+// Spheres and triangles are test_object's, which certifies and tests them from one fetch.
+void cert_object(uint kinds, uint object, rvec3 o, rvec3 d, real t_max) {
   bool ok = cert_test_begin(object);
   // The other kinds' bounds take the origin's move in any direction: along the ray too.
   real eo = cert_eo;
+  cert_eo += cert_et;
   uint index;
-  if (object_kind(object, index) != RC_HIT_TRIANGLE) cert_eo += cert_et;
-  cert_object_tests(kinds, object, o, d, sh, t_max);
+  uint kind = object_kind(object, index);
+  cert_other_object_tests(kinds, kind, index, o, d, t_max);
   cert_eo = eo;
   cert_test_end(ok);
 }

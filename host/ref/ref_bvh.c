@@ -100,11 +100,10 @@ bool REF(loose_hit)(const ref_scene *sc, uint32_t object, real t, real side, rve
  * planes last), composites (rc_intersect.glsl, object_kind). */
 static uint32_t first_quadric(const ref_scene *sc) { return sc->frame->sphere_count + sc->frame->triangle_count; }
 
-bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_shear *sh, bool any, real t_max,
-                              ref_hit *h) {
+bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
   for (uint32_t object = first_quadric(sc); object < first_quadric(sc) + sc->frame->quadric_count - sc->frame->plane_count;
        object++) {
-    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_QUADRICS, object, o, d, sh, any ? t_max : h->t);
+    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_QUADRICS, object, o, d, any ? t_max : h->t);
     rvec3 bary;
     uint32_t part;
     real t = REF(intersect_quadric_object)(sc, object - first_quadric(sc), o, d, any ? t_max : h->t, &bary, &part);
@@ -116,8 +115,7 @@ bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, const ref_s
 /* The loose objects before the tree, as the shader tests them. */
 bool REF(test_loose)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
   if ((REF(loose_kinds)(sc) & RC_KIND_QUADRICS) == 0) return false;
-  ref_shear sh = REF(ray_shear_for)(d);
-  return REF(test_loose_quadrics)(sc, o, d, &sh, any, t_max, h);
+  return REF(test_loose_quadrics)(sc, o, d, any, t_max, h);
 }
 
 /* The node range [first, end) of a primary ray through pixel (x, y) (rc_bvh.glsl). */

@@ -258,26 +258,13 @@ void REF(cert_other_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t 
   }
 }
 
-void REF(cert_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
-                            real t_max) {
-  uint32_t index;
-  uint32_t kind = REF(object_kind)(sc, object, &index);
-  if ((kinds & RC_KIND_SPHERES) != 0 && kind == RC_HIT_SPHERE) {
-    REF(cert_sphere)(sc, o, d, sc->spheres[index], t_max);
-  } else if ((kinds & RC_KIND_TRIANGLES) != 0 && kind == RC_HIT_TRIANGLE) {
-    REF(cert_triangle_object)(sc, sc->triangles[index], o, d, sh, t_max);
-  } else {
-    REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
-  }
-}
-
-void REF(cert_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
-                      real t_max) {
+void REF(cert_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, real t_max) {
   bool ok = REF(cert_test_begin)(sc, object);
   real eo = ref_cert_eo;
+  ref_cert_eo += ref_cert_et;
   uint32_t index;
-  if (REF(object_kind)(sc, object, &index) != RC_HIT_TRIANGLE) ref_cert_eo += ref_cert_et;
-  REF(cert_object_tests)(sc, kinds, object, o, d, sh, t_max);
+  uint32_t kind = REF(object_kind)(sc, object, &index);
+  REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
   ref_cert_eo = eo;
   REF(cert_test_end)(ok);
 }

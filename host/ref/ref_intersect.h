@@ -76,16 +76,13 @@ extern _Thread_local uint32_t ref_crossing_blame;
   ref_hit_##S ref_no_hit_##S(void);                                                             \
   R ref_cert_limit_##S(const ref_scene *sc, R t, R e);                                          \
   void ref_cert_order_##S(const ref_scene *sc, R t, uint32_t object, const ref_hit_##S *h);       \
-  void ref_cert_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, const ref_shear_##S *sh, \
-                           R t_max);                                                            \
+  void ref_cert_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, R t_max); \
   void ref_cert_plane_object_##S(const ref_scene *sc, uint32_t object, const packed_quadric *q, V o, V d, R t_max); \
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
   bool ref_cert_blocker_ends_##S(void);                                                         \
   bool ref_cert_test_begin_##S(const ref_scene *sc, uint32_t object);                            \
   void ref_cert_test_end_##S(bool ok);                                                          \
-  void ref_cert_object_tests_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d,   \
-                                 const ref_shear_##S *sh, R t_max);                             \
   /* ref_certify.c, the twin of rc_certify.glsl, and its per-thread state. */                    \
   extern _Thread_local bool ref_cert_ok_##S, ref_cert_any_##S, ref_cert_self_##S, ref_cert_hit_ok_##S, \
       ref_cert_blocked_later_##S, ref_cert_blocker_certain_##S;                                 \
@@ -156,8 +153,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   bool ref_test_planes_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);   \
   bool ref_loose_hit_##S(const ref_scene *sc, uint32_t object, R t, R side, V bary, uint32_t part, bool any, \
                          ref_hit_##S *h);                                                      \
-  bool ref_test_loose_quadrics_##S(const ref_scene *sc, V o, V d, const ref_shear_##S *sh, bool any, R t_max, \
-                                   ref_hit_##S *h);                                             \
+  bool ref_test_loose_quadrics_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h); \
   bool ref_test_loose_##S(const ref_scene *sc, V o, V d, bool any, R t_max, ref_hit_##S *h);    \
   void ref_eye_nodes_##S(const ref_scene *sc, uint32_t x, uint32_t y, uint32_t *first, uint32_t *end); \
   bool ref_closest_hit_##S(const ref_scene *sc, V o, V d, uint32_t first, uint32_t end, ref_hit_##S *h); \
