@@ -30,62 +30,28 @@ struct patch_bounds {
   real weight;
 };
 
-// The largest squared length of the vectors (a[i], b[i], c[i]) of three coordinates.
-real max_sq3(rvec3 a, rvec3 b, rvec3 c) {
-  precise rvec3 s = a * a + b * b + c * c;
-  return select_max(select_max(s.x, s.y), s.z);
-}
-
-real max_sq4(rvec4 a, rvec4 b, rvec4 c) {
-  precise rvec4 s = a * a + b * b + c * c;
-  return select_max(select_max(s.x, s.y), select_max(s.z, s.w));
-}
-
-real max_sq2(rvec2 a, rvec2 b, rvec2 c) {
-  precise rvec2 s = a * a + b * b + c * c;
-  return select_max(s.x, s.y);
-}
-
-// The net's differences along u of one row (three coordinates): first and second.
-void row_differences(rvec4 a, rvec4 b, rvec4 c, inout real du, inout real duu) {
-  du = select_max(du, max_sq3(a.yzw - a.xyz, b.yzw - b.xyz, c.yzw - c.xyz));
-  duu = select_max(duu, max_sq2(a.zw - 2.0 * a.yz + a.xy, b.zw - 2.0 * b.yz + b.xy, c.zw - 2.0 * c.yz + c.xy));
-}
-
 // S = sum B_j(v) B_i(u) P_ij, so dS/du = 3 sum B_j(v) B2_i(u) (P_i+1,j - P_ij), d2S/du2 = 6 sum
 // B_j(v) B1_i(u) (second differences), d2S/dudv = 9 sum B2_j(v) B2_i(u) (mixed differences):
 // each at most its weights' magnitudes' sum times the largest difference. On [0, 1] a degree-n
 // Bernstein basis sums to 1 and is positive; a square that reaches x outside [0, 1] has
-// (|1 - u| + |u|)^n = (1 + 2 x)^n. The net's coordinates (net_row) round by gamma(4) of
-// sqrt(3) scale each, so a difference of up to four of them, in three coordinates, by
-// 12 gamma(4) scale; the bounds' own rounding is gamma(16) of them.
-patch_bounds cert_patch_bounds(patch_net n, real lo_u, real hi_u, real lo_v, real hi_v) {
+// (|1 - u| + |u|)^n = (1 + 2 x)^n. The largest differences are the piece's (rc_shared.h,
+// RC_QUADRIC_PATCH: lengths of the net's, rounded up on the host). In a ray's frame (net_row)
+// a difference is turned by the frame, whose rows are unit and perpendicular within gamma(10),
+// so lengthened by at most 1 + gamma(16); the frame's coordinates round by gamma(4) of sqrt(3)
+// scale each, so a difference of up to four of them, in three coordinates, moves by 12 gamma(4)
+// scale; the bounds' own rounding is gamma(16) of them.
+patch_bounds cert_patch_bounds(packed_quadric q, real scale, real lo_u, real hi_u, real lo_v, real hi_v) {
   real ku = 1.0 + 2.0 * select_max(0.0, select_max(-lo_u, hi_u - 1.0));
   real kv = 1.0 + 2.0 * select_max(0.0, select_max(-lo_v, hi_v - 1.0));
-  real du = 0.0;
-  real duu = 0.0;
-  row_differences(n.a0, n.b0, n.c0, du, duu);
-  row_differences(n.a1, n.b1, n.c1, du, duu);
-  row_differences(n.a2, n.b2, n.c2, du, duu);
-  row_differences(n.a3, n.b3, n.c3, du, duu);
-  real dv = select_max(select_max(max_sq4(n.a1 - n.a0, n.b1 - n.b0, n.c1 - n.c0),
-                                  max_sq4(n.a2 - n.a1, n.b2 - n.b1, n.c2 - n.c1)),
-                       max_sq4(n.a3 - n.a2, n.b3 - n.b2, n.c3 - n.c2));
-  real dvv = select_max(max_sq4(n.a2 - 2.0 * n.a1 + n.a0, n.b2 - 2.0 * n.b1 + n.b0, n.c2 - 2.0 * n.c1 + n.c0),
-                        max_sq4(n.a3 - 2.0 * n.a2 + n.a1, n.b3 - 2.0 * n.b2 + n.b1, n.c3 - 2.0 * n.c2 + n.c1));
-  real duv = 0.0;
-  real unused = 0.0;
-  row_differences(n.a1 - n.a0, n.b1 - n.b0, n.c1 - n.c0, duv, unused);
-  row_differences(n.a2 - n.a1, n.b2 - n.b1, n.c2 - n.c1, duv, unused);
-  row_differences(n.a3 - n.a2, n.b3 - n.b2, n.c3 - n.c2, duv, unused);
-  real e = 12.0 * gamma_bound(4.0) * n.scale;
+  real turn = 1.0 + gamma_bound(16.0);
+  real e = 12.0 * gamma_bound(4.0) * scale;
   real grow = 1.0 + gamma_bound(16.0);
   patch_bounds pb;
-  pb.su = 3.0 * ku * ku * kv * kv * kv * (sqrt(du) + e) * grow;
-  pb.sv = 3.0 * ku * ku * ku * kv * kv * (sqrt(dv) + e) * grow;
-  pb.suu = 6.0 * ku * kv * kv * kv * (sqrt(duu) + e) * grow;
-  pb.svv = 6.0 * ku * ku * ku * kv * (sqrt(dvv) + e) * grow;
-  pb.suv = 9.0 * ku * ku * kv * kv * (sqrt(duv) + e) * grow;
+  pb.su = 3.0 * ku * ku * kv * kv * kv * (real(q.linear.x) * turn + e) * grow;
+  pb.sv = 3.0 * ku * ku * ku * kv * kv * (real(q.linear.y) * turn + e) * grow;
+  pb.suu = 6.0 * ku * kv * kv * kv * (real(q.diag.z) * turn + e) * grow;
+  pb.svv = 6.0 * ku * ku * ku * kv * (real(q.off.z) * turn + e) * grow;
+  pb.suv = 9.0 * ku * ku * kv * kv * (real(q.linear.z) * turn + e) * grow;
   pb.weight = ku * ku * ku * kv * kv * kv * grow;
   return pb;
 }
@@ -182,7 +148,7 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
   real last_ref = k * real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) * (1.0 + gamma_bound(2.0));
   real last_ref_low = real(RC_PATCH_LAST_TOLERANCE) * (n.scale - k * cert_eo) * (1.0 - gamma_bound(2.0));
   real e_dom = gamma_bound(8.0);
-  // patch_newton's run, step for step (intersect_patch takes it: cert_patch_index).
+  // patch_newton's run, step for step (intersect_patch takes it: cert_patch_r).
   r = patch_start(m);
   rad = 0.0;
   off = 0.0;
@@ -308,8 +274,7 @@ real hull_low(patch_net n, rvec2 w, real lo_u, real hi_u, real lo_v, real hi_v) 
 }
 
 // The decisions of intersect_patch: a hit or a miss, and the hit's t against 0 and t_max.
-void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
-  cert_patch_index = 0xffffffffu;
+void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real b_in, b_out;
   uint a_in, a_out;
   box_span(rvec3(q.lo), rvec3(q.hi), o - rvec3(q.center), d, b_in, b_out, a_in, a_out);
@@ -323,7 +288,7 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real wu = m.u1 - m.u0;
   real wv = m.v1 - m.v0;
   // Where a run may go before it gives up: the piece grown by its width on every side.
-  patch_bounds pb = cert_patch_bounds(n, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
+  patch_bounds pb = cert_patch_bounds(q, n.scale, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
   // |S - o| there: the net's points are within sqrt(3) scale of o.
   real reach = 1.7320508075688772 * pb.weight * n.scale;
   // J's Lipschitz constant: |J(x) - J(y)| <= (|S_uu| + 2 |S_uv| + |S_vv|) |x - y|.
@@ -332,7 +297,6 @@ void cert_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real rad, off;
   uint run = cert_patch_run(m, n, pb.su + pb.sv, lip, r, rad, off);
   // The test that follows (intersect_patch, the same ray) takes this run.
-  cert_patch_index = index;
   cert_patch_r = r;
   cert_patch_t = patch_depth(r, n);
   real u = r.u;
@@ -424,7 +388,7 @@ void cert_patch_surface(packed_quadric q, rvec3 d, rvec3 uv, real bary_err, real
   rvec4 fx, fy, fz;
   patch_net n = patch_eval(q, uv, fx, fy, fz);
   patch_domain m = patch_domain_of(q);
-  patch_bounds pb = cert_patch_bounds(n, m.lo_u, m.hi_u, m.lo_v, m.hi_v);
+  patch_bounds pb = cert_patch_bounds(q, n.scale, m.lo_u, m.hi_u, m.lo_v, m.hi_v);
   real k = cert_factor();
   rvec3 pu = rvec3(fx.y, fy.y, fz.y);
   rvec3 pv = rvec3(fx.z, fy.z, fz.z);

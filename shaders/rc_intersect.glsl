@@ -322,7 +322,7 @@ void cert_other_object_tests(uint kinds, uint kind, uint index, rvec3 o, rvec3 d
       }
 #if RC_PATCHES
       if (has_kind(RC_KIND_PATCHES) && (q.flags & RC_QUADRIC_PATCH) != 0u) {
-        cert_patch(index, q, o, d, t_max);
+        cert_patch(q, o, d, t_max);
         return;
       }
 #endif

@@ -159,13 +159,12 @@ bool newton_step(rvec4 fa, rvec4 fb, inout real u, inout real v) {
   return true;
 }
 
-#if RC_CERTIFY
 // The run cert_patch (rc_certify_patch.glsl) took on the piece it certified last, with its t:
-// intersect_patch, called next with the same ray, takes it instead of running it again.
-uint cert_patch_index = 0xffffffffu;
+// intersect_patch takes it instead of running it again. In the module that certifies, every
+// patch test follows its certificate, with the same ray and t_max (test_object; cert_object
+// before test_loose_quadrics' test), and the two enter the piece's box alike.
 patch_run cert_patch_r;
 real cert_patch_t = 0.0;
-#endif
 
 // Newton's method on F(u, v) = (a.(S - o), b.(S - o)), a and b the ray's planes, from the
 // piece's centre: it stops when |F.x| + |F.y| is within RC_PATCH_TOLERANCE_ULPS ulps of the
@@ -214,13 +213,12 @@ real intersect_patch(uint index, packed_quadric q, rvec3 o, rvec3 d, real t_max,
   patch_domain m = patch_domain_of(q);
   patch_run r;
   real t;
-#if RC_CERTIFY
-  if (certify && cert_patch_index == index) {
+  // Not `certify && ` the piece's index, as it was: a SIMD shader ran the other arm's Newton
+  // run, masked, in every certified leaf (docs/performance.md, "Patch bounds packed").
+  if (certify) {
     r = cert_patch_r;
     t = cert_patch_t;
-  } else
-#endif
-  {
+  } else {
     rvec3 a, b;
     patch_planes(d, a, b);
     patch_net n = load_patch_net(q.mesh_root, o, a, b, d);

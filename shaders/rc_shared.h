@@ -326,7 +326,14 @@ struct packed_vertex_uvs {
  * lo..hi about `center` (axes identity): the piece's place in the BVH, and the box its rays
  * must enter. mesh_end: the quadric index of the patch's first piece (the patch's number
  * in the AOVs, packed_aov.object). A ray is solved by Newton's method on the piece, seeded at its centre
- * (Martin et al., "Practical Ray Tracing of Trimmed NURBS Surfaces", JGT 5(1), 2000). */
+ * (Martin et al., "Practical Ray Tracing of Trimmed NURBS Surfaces", JGT 5(1), 2000).
+ * The certificates' bounds on the patch's derivatives (rc_certify_patch.glsl,
+ * cert_patch_bounds) take the net's largest differences, in packed units, from here:
+ * linear = (first differences along u, along v, mixed differences), diag.z = second
+ * differences along u, off.z = along v; each the largest length over the whole net,
+ * computed in f64 from the f32 control points and rounded up (host/scene/patch_bounds.c;
+ * a prepared file's are checked against them). They do not depend on the ray: lengths do
+ * not change when the net is turned into a ray's frame. */
 #define RC_QUADRIC_PATCH 16u
 /* flags >> RC_QUADRIC_UV_SHIFT & 3: how a named shape's surface takes texture coordinates
  * (rc_shade.glsl, quadric_uv): none (a general matrix), as an ellipsoid (the sphere's

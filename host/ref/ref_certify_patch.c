@@ -14,63 +14,18 @@ typedef struct {
   real weight;
 } patch_bounds;
 
-/* GLSL's rvec4 arithmetic on rows of the net. */
-static rvec4 r4_sub(rvec4 a, rvec4 b) { return (rvec4){a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w}; }
-static rvec4 r4_second(rvec4 a, rvec4 b, rvec4 c) {
-  return (rvec4){c.x - 2 * b.x + a.x, c.y - 2 * b.y + a.y, c.z - 2 * b.z + a.z, c.w - 2 * b.w + a.w};
-}
-
-real REF(max_sq3)(rvec3 a, rvec3 b, rvec3 c) {
-  rvec3 s = {a.x * a.x + b.x * b.x + c.x * c.x, a.y * a.y + b.y * b.y + c.y * c.y, a.z * a.z + b.z * b.z + c.z * c.z};
-  return rmax(rmax(s.x, s.y), s.z);
-}
-
-real REF(max_sq4)(rvec4 a, rvec4 b, rvec4 c) {
-  rvec4 s = {a.x * a.x + b.x * b.x + c.x * c.x, a.y * a.y + b.y * b.y + c.y * c.y, a.z * a.z + b.z * b.z + c.z * c.z,
-             a.w * a.w + b.w * b.w + c.w * c.w};
-  return rmax(rmax(s.x, s.y), rmax(s.z, s.w));
-}
-
-real REF(max_sq2)(real ax, real ay, real bx, real by, real cx, real cy) {
-  real sx = ax * ax + bx * bx + cx * cx;
-  real sy = ay * ay + by * by + cy * cy;
-  return rmax(sx, sy);
-}
-
-void REF(row_differences)(rvec4 a, rvec4 b, rvec4 c, real *du, real *duu) {
-  *du = rmax(*du, REF(max_sq3)(RV(make)(a.y - a.x, a.z - a.y, a.w - a.z), RV(make)(b.y - b.x, b.z - b.y, b.w - b.z),
-                               RV(make)(c.y - c.x, c.z - c.y, c.w - c.z)));
-  *duu = rmax(*duu, REF(max_sq2)(a.z - 2 * a.y + a.x, a.w - 2 * a.z + a.y, b.z - 2 * b.y + b.x, b.w - 2 * b.z + b.y,
-                                 c.z - 2 * c.y + c.x, c.w - 2 * c.z + c.y));
-}
-
-patch_bounds REF(cert_patch_bounds)(patch_net n, real lo_u, real hi_u, real lo_v, real hi_v) {
+patch_bounds REF(cert_patch_bounds)(const packed_quadric *q, real scale, real lo_u, real hi_u, real lo_v, real hi_v) {
   real ku = 1 + 2 * rmax(0, rmax(-lo_u, hi_u - 1));
   real kv = 1 + 2 * rmax(0, rmax(-lo_v, hi_v - 1));
-  real du = 0;
-  real duu = 0;
-  REF(row_differences)(n.a0, n.b0, n.c0, &du, &duu);
-  REF(row_differences)(n.a1, n.b1, n.c1, &du, &duu);
-  REF(row_differences)(n.a2, n.b2, n.c2, &du, &duu);
-  REF(row_differences)(n.a3, n.b3, n.c3, &du, &duu);
-  real dv = rmax(rmax(REF(max_sq4)(r4_sub(n.a1, n.a0), r4_sub(n.b1, n.b0), r4_sub(n.c1, n.c0)),
-                      REF(max_sq4)(r4_sub(n.a2, n.a1), r4_sub(n.b2, n.b1), r4_sub(n.c2, n.c1))),
-                 REF(max_sq4)(r4_sub(n.a3, n.a2), r4_sub(n.b3, n.b2), r4_sub(n.c3, n.c2)));
-  real dvv = rmax(REF(max_sq4)(r4_second(n.a0, n.a1, n.a2), r4_second(n.b0, n.b1, n.b2), r4_second(n.c0, n.c1, n.c2)),
-                  REF(max_sq4)(r4_second(n.a1, n.a2, n.a3), r4_second(n.b1, n.b2, n.b3), r4_second(n.c1, n.c2, n.c3)));
-  real duv = 0;
-  real unused = 0;
-  REF(row_differences)(r4_sub(n.a1, n.a0), r4_sub(n.b1, n.b0), r4_sub(n.c1, n.c0), &duv, &unused);
-  REF(row_differences)(r4_sub(n.a2, n.a1), r4_sub(n.b2, n.b1), r4_sub(n.c2, n.c1), &duv, &unused);
-  REF(row_differences)(r4_sub(n.a3, n.a2), r4_sub(n.b3, n.b2), r4_sub(n.c3, n.c2), &duv, &unused);
-  real e = 12 * REF(gamma_bound)(4) * n.scale;
+  real turn = 1 + REF(gamma_bound)(16);
+  real e = 12 * REF(gamma_bound)(4) * scale;
   real grow = 1 + REF(gamma_bound)(16);
   patch_bounds pb;
-  pb.su = 3 * ku * ku * kv * kv * kv * (R_SQRT(du) + e) * grow;
-  pb.sv = 3 * ku * ku * ku * kv * kv * (R_SQRT(dv) + e) * grow;
-  pb.suu = 6 * ku * kv * kv * kv * (R_SQRT(duu) + e) * grow;
-  pb.svv = 6 * ku * ku * ku * kv * (R_SQRT(dvv) + e) * grow;
-  pb.suv = 9 * ku * ku * kv * kv * (R_SQRT(duv) + e) * grow;
+  pb.su = 3 * ku * ku * kv * kv * kv * ((real)q->linear.x * turn + e) * grow;
+  pb.sv = 3 * ku * ku * ku * kv * kv * ((real)q->linear.y * turn + e) * grow;
+  pb.suu = 6 * ku * kv * kv * kv * ((real)q->diag.z * turn + e) * grow;
+  pb.svv = 6 * ku * ku * ku * kv * ((real)q->off.z * turn + e) * grow;
+  pb.suv = 9 * ku * ku * kv * kv * ((real)q->linear.z * turn + e) * grow;
   pb.weight = ku * ku * ku * kv * kv * kv * grow;
   return pb;
 }
@@ -228,8 +183,7 @@ real REF(hull_low)(patch_net n, real wx, real wy, real lo_u, real hi_u, real lo_
   return rmin(rmin(c0, c1), rmin(c2, c3));
 }
 
-void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
-  ref_cert_patch_index = 0xffffffffu;
+void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   real b_in, b_out;
   uint32_t a_in, a_out;
   REF(box_span)(rvec3_from(q->lo), rvec3_from(q->hi), RV(sub)(o, rvec3_from(q->center)), d, &b_in, &b_out, &a_in,
@@ -242,13 +196,12 @@ void REF(cert_patch)(const ref_scene *sc, uint32_t index, const packed_quadric *
   real k = REF(cert_factor)(sc);
   real wu = m.u1 - m.u0;
   real wv = m.v1 - m.v0;
-  patch_bounds pb = REF(cert_patch_bounds)(n, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
+  patch_bounds pb = REF(cert_patch_bounds)(q, n.scale, m.u0 - wu, m.u1 + wu, m.v0 - wv, m.v1 + wv);
   real reach = (real)1.7320508075688772 * pb.weight * n.scale;
   real lip = k * (pb.suu + 2 * pb.suv + pb.svv) * (1 + ref_cert_ed + REF(gamma_bound)(10));
   patch_run r;
   real rad, off;
   uint32_t run = REF(cert_patch_run)(sc, m, n, pb.su + pb.sv, lip, &r, &rad, &off);
-  ref_cert_patch_index = index;
   ref_cert_patch_r = r;
   ref_cert_patch_t = REF(patch_depth)(r, n);
   real u = r.u;
@@ -316,7 +269,7 @@ void REF(cert_patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3
   rvec4 fx, fy, fz;
   patch_net n = REF(patch_eval)(sc, q, uv, &fx, &fy, &fz);
   patch_domain m = REF(patch_domain_of)(q);
-  patch_bounds pb = REF(cert_patch_bounds)(n, m.lo_u, m.hi_u, m.lo_v, m.hi_v);
+  patch_bounds pb = REF(cert_patch_bounds)(q, n.scale, m.lo_u, m.hi_u, m.lo_v, m.hi_v);
   real k = REF(cert_factor)(sc);
   rvec3 pu = RV(make)(fx.y, fy.y, fz.y);
   rvec3 pv = RV(make)(fx.z, fy.z, fz.z);

@@ -250,7 +250,7 @@ void REF(cert_other_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t 
         return;
       }
       if ((q->flags & RC_QUADRIC_PATCH) != 0) {
-        REF(cert_patch)(sc, index, q, o, d, t_max);
+        REF(cert_patch)(sc, q, o, d, t_max);
         return;
       }
     }

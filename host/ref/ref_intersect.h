@@ -200,7 +200,7 @@ extern _Thread_local uint32_t ref_patch_stalls, ref_patch_stall_piece;
 #define REF_DECLARE_PATCH(S, R, V)                                                              \
   R ref_intersect_patch_##S(const ref_scene *sc, uint32_t index, const packed_quadric *q, V o, V d, R t_max, V *uv); \
   V ref_patch_surface_##S(const ref_scene *sc, const packed_quadric *q, V uv, V *p, V *p_error);           \
-  void ref_cert_patch_##S(const ref_scene *sc, uint32_t index, const packed_quadric *q, V o, V d, R t_max);                 \
+  void ref_cert_patch_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);                                 \
   void ref_cert_patch_surface_##S(const ref_scene *sc, const packed_quadric *q, V d, V uv, R bary_err, \
                                   R off_err, R t, V ng, V p_error);
 REF_DECLARE_PATCH(d, double, dvec3)

@@ -10,7 +10,6 @@ _Thread_local uint32_t ref_patch_stalls, ref_patch_stall_piece;
 #endif
 
 /* rc_patch.glsl's cache of the run cert_patch took last (ref_patch.h). */
-_Thread_local uint32_t ref_cert_patch_index = 0xffffffffu;
 _Thread_local patch_run ref_cert_patch_r;
 _Thread_local real ref_cert_patch_t;
 
@@ -162,7 +161,7 @@ real REF(intersect_patch)(const ref_scene *sc, uint32_t index, const packed_quad
   patch_domain m = REF(patch_domain_of)(q);
   patch_run r;
   real t;
-  if (sc->frame->certify && ref_cert_patch_index == index) {
+  if (sc->frame->certify) {
     r = ref_cert_patch_r;
     t = ref_cert_patch_t;
   } else {

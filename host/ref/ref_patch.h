@@ -25,10 +25,8 @@ typedef struct {
 } patch_run;
 
 /* The run cert_patch took last, with its t, which intersect_patch takes (rc_patch.glsl). */
-#define ref_cert_patch_index REF(cert_patch_index)
 #define ref_cert_patch_r REF(cert_patch_r)
 #define ref_cert_patch_t REF(cert_patch_t)
-extern _Thread_local uint32_t ref_cert_patch_index;
 extern _Thread_local patch_run ref_cert_patch_r;
 extern _Thread_local real ref_cert_patch_t;
 

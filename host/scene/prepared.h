@@ -32,7 +32,7 @@
 #include "scene/scene.h"
 #include "scene/scene_pack.h"
 
-#define RC_PREPARED_VERSION 3u
+#define RC_PREPARED_VERSION 4u
 #define RC_PREPARED_EXTENSION ".vkrs"
 
 typedef struct rc_prepared rc_prepared;

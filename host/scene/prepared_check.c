@@ -1,6 +1,7 @@
 #include "scene/prepared_check.h"
 
 #include "scene/bvh.h"
+#include "scene/patch_bounds.h"
 #include "scene/texture_levels.h"
 
 #include <stdarg.h>
@@ -114,6 +115,10 @@ const char *rc_packed_arrays_problem(const rc_packed_scene *p, uint32_t object_n
       return say(why, cap, "quadric %u is a patch piece whose control points or first piece lie past the arrays", i);
   }
   if (meshes != p->mesh_operand_count) return say(why, cap, "the mesh operands are miscounted");
+  /* The certificates trust a patch's stored net differences as bounds (patch_bounds.h). */
+  uint32_t piece;
+  if (!rc_packed_patch_bounds_match(p, &piece))
+    return say(why, cap, "quadric %u is a patch piece whose net differences are not its control points'", piece);
   const char *problem = csg_problem(p, why, cap);
   if (problem) return problem;
   if (object_nodes > p->bvh_node_total || (object_nodes && !p->bvh))

@@ -1,5 +1,7 @@
 #include "scene/scene_pack.h"
 
+#include "scene/patch_bounds.h"
+
 #include "math/rcm_mat3.h"
 #include "scene/name_table.h"
 #include "scene/texture_levels.h"
@@ -152,10 +154,13 @@ static rc_status check_f32_range(const rc_scene *s, const rc_packed_scene *p) {
     const packed_quadric *q = &p->quadrics[i];
     bool bad = !fits(q->center, u) || !finite3(q->diag) || !finite3(q->off) || !fits(q->linear, u) ||
                !fits1(q->constant, u * u) || !fits(q->lo, u) || !fits(q->hi, u);
+    /* A patch's control points within an eighth of the range: the lengths of its net's
+     * second and mixed differences (4 coordinates' worth, in 3 axes) are packed too
+     * (patch_bounds.h). */
     for (uint32_t k = 0; (q->flags & RC_QUADRIC_PATCH) && k < RC_TEXELS_PER_PATCH && !bad; k++) {
       vec3 v;
       memcpy(&v, &p->texels[4 * (size_t)(q->mesh_root + k)], sizeof v);
-      bad = !fits(v, u);
+      bad = !fits(v, 8 * u);
     }
     if (bad && i < s->quadric_count) BAD(RC_ORIGIN_QUADRIC, i, "its centre (relative to the eye), size, coefficients or control points");
     else if (bad && i < standalone) BAD(RC_ORIGIN_PLANE, i - s->quadric_count, "its point nearest the eye (relative to the eye)");
@@ -532,6 +537,7 @@ rc_status rc_scene_pack(const rc_scene *s, rc_packed_scene *p) {
     pack_quadrics_and_composites(s, p);
     rc_packed_scene_count_patches(p);
     st = check_f32_range(s, p);
+    if (st == RC_OK) rc_packed_patch_bounds(p);
   }
   if (st != RC_OK) rc_packed_scene_free(p);
   return st;
@@ -603,6 +609,8 @@ void rc_packed_scene_perturb(rc_packed_scene *p, uint32_t seed) {
     q->lo = perturb_vec3(q->lo, seed);
     q->hi = perturb_vec3(q->hi, seed);
   }
+  /* The patches' nets moved: their differences follow (they are derived, not inputs). */
+  rc_packed_patch_bounds(p);
 }
 
 void rc_packed_scene_free(rc_packed_scene *p) {

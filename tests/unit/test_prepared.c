@@ -11,7 +11,11 @@
 
 #include "rc_test.h"
 #include "scene/bvh.h"
+#include "scene/patch_bounds.h"
 #include "scene/prepared.h"
+
+#include <float.h>
+#include <math.h>
 
 static const char *scenes_dir = ".";
 
@@ -263,6 +267,111 @@ TEST(mesh_normals_past_end_are_refused) {
   release(&c);
 }
 
+/* The teapot's patch pieces carry their nets' differences (rc_shared.h, RC_QUADRIC_PATCH),
+ * which the certificates take as bounds: a file whose are smaller than its control points'
+ * is refused, and --perturb, which moves the points, moves them too. */
+static void patch_difference_halved(unsigned char *f) {
+  packed_quadric *q = (packed_quadric *)section(f, QUADRICS);
+  q[0].linear.x *= 0.5f;
+}
+
+TEST(patch_bounds_round_trip_and_are_checked) {
+  check_round_trip("teapot.json");
+  prepared_case c;
+  CHECK(prepare("teapot.json", &c));
+  if (!c.file) return;
+  const packed_quadric *q = &c.packed.quadrics[0];
+  CHECK((q->flags & RC_QUADRIC_PATCH) != 0);
+  CHECK(q->linear.x > 0 && q->linear.y > 0 && q->diag.z > 0 && q->off.z > 0);
+  CHECK_EQ_INT(decode_mutated(&c, patch_difference_halved), RC_ERR_INPUT);
+  uint32_t piece = 0;
+  CHECK(rc_packed_patch_bounds_match(&c.packed, &piece));
+  float before = q->linear.x;
+  rc_packed_scene_perturb(&c.packed, 1);
+  CHECK(rc_packed_patch_bounds_match(&c.packed, &piece));
+  CHECK(q->linear.x != before);
+  release(&c);
+}
+
+/* What cert_patch_bounds claims of a ray's frame (rc_certify_patch.glsl): a difference of
+ * the net turned into it, each point's coordinates rounded as net_row rounds them (P - o,
+ * then a dot product with a unit row), is at most the stored length times 1 + gamma(16) plus
+ * 12 gamma(4) of the coordinates' scale. Checked over many rays at the teapot, in f32. */
+static float gamma_f(float n) { return n * 0x1p-24f / (1 - n * 0x1p-24f); }
+
+static uint32_t next_random(uint32_t *state) {
+  *state = *state * 1664525u + 1013904223u;
+  return *state >> 8;
+}
+
+static float unit_random(uint32_t *state) { return (float)next_random(state) / 16777216.0f * 2 - 1; }
+
+/* The shader's patch_planes: a = w / |w| perpendicular to d, b = a x d (f32). */
+static void planes(const float d[3], float a[3], float b[3]) {
+  float w[3];
+  if (fabsf(d[0]) > fabsf(d[1]) && fabsf(d[0]) > fabsf(d[2])) w[0] = d[1], w[1] = -d[0], w[2] = 0;
+  else w[0] = 0, w[1] = d[2], w[2] = -d[1];
+  float len = sqrtf(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  for (int k = 0; k < 3; k++) a[k] = w[k] / len;
+  b[0] = a[1] * d[2] - a[2] * d[1];
+  b[1] = a[2] * d[0] - a[0] * d[2];
+  b[2] = a[0] * d[1] - a[1] * d[0];
+}
+
+static float dot3f(const float a[3], const float p[3]) { return a[0] * p[0] + a[1] * p[1] + a[2] * p[2]; }
+
+TEST(patch_bounds_hold_in_every_ray_frame) {
+  prepared_case c;
+  CHECK(prepare("teapot.json", &c));
+  if (!c.file) return;
+  uint32_t state = 12345u, checked = 0, failed = 0;
+  for (uint32_t i = 0; i < c.packed.frame.quadric_count; i += 7) {
+    const packed_quadric *q = &c.packed.quadrics[i];
+    if (!(q->flags & RC_QUADRIC_PATCH)) continue;
+    const float *net = (const float *)&c.packed.texels[4 * (size_t)q->mesh_root];
+    for (int ray = 0; ray < 16; ray++) {
+      float d[3] = {unit_random(&state), unit_random(&state), unit_random(&state)};
+      float len = sqrtf(dot3f(d, d));
+      if (!(len > 0.1f)) continue;
+      for (int k = 0; k < 3; k++) d[k] /= len;
+      float a[3], b[3], o[3];
+      planes(d, a, b);
+      const float centre[3] = {q->center.x, q->center.y, q->center.z};
+      for (int k = 0; k < 3; k++) o[k] = centre[k] + 4 * unit_random(&state);
+      /* The net in the ray's frame, as net_row computes it. */
+      float f[16][3];
+      float scale = 0;
+      for (int n = 0; n < 16; n++) {
+        float p[3];
+        for (int k = 0; k < 3; k++) p[k] = net[4 * n + k] - o[k], scale = fmaxf(scale, fabsf(p[k]));
+        f[n][0] = dot3f(a, p), f[n][1] = dot3f(b, p), f[n][2] = dot3f(d, p);
+      }
+      /* The first differences along u and v, the second along u, the mixed ones. */
+      double du = 0, dv = 0, duu = 0, duv = 0;
+      for (int r = 0; r < 4; r++)
+        for (int col = 0; col < 4; col++) {
+          double s_u = 0, s_v = 0, s_uu = 0, s_uv = 0;
+          for (int k = 0; k < 3; k++) {
+            if (col < 3) s_u += pow((double)f[4 * r + col + 1][k] - f[4 * r + col][k], 2);
+            if (r < 3) s_v += pow((double)f[4 * (r + 1) + col][k] - f[4 * r + col][k], 2);
+            if (col < 2) s_uu += pow((double)f[4 * r + col + 2][k] - 2.0 * f[4 * r + col + 1][k] + f[4 * r + col][k], 2);
+            if (r < 3 && col < 3)
+              s_uv += pow((double)f[4 * (r + 1) + col + 1][k] - f[4 * (r + 1) + col][k] - f[4 * r + col + 1][k] + f[4 * r + col][k], 2);
+          }
+          du = fmax(du, sqrt(s_u)), dv = fmax(dv, sqrt(s_v)), duu = fmax(duu, sqrt(s_uu)), duv = fmax(duv, sqrt(s_uv));
+        }
+      double turn = 1 + gamma_f(16), e = 12 * gamma_f(4) * scale;
+      bool ok = du <= q->linear.x * turn + e && dv <= q->linear.y * turn + e && duv <= q->linear.z * turn + e &&
+                duu <= q->diag.z * turn + e;
+      failed += !ok;
+      checked++;
+    }
+  }
+  CHECK(checked > 500);
+  CHECK_EQ_INT(failed, 0);
+  release(&c);
+}
+
 /* Every byte the checksum covers matters, and so does every header byte before it. */
 TEST(any_changed_byte_is_refused_without_reseal) {
   prepared_case c;
@@ -298,6 +407,8 @@ int main(int argc, char **argv) {
   RUN(composite_inconsistencies_are_refused);
   RUN(texture_inconsistencies_are_refused);
   RUN(mesh_normals_past_end_are_refused);
+  RUN(patch_bounds_round_trip_and_are_checked);
+  RUN(patch_bounds_hold_in_every_ray_frame);
   RUN(any_changed_byte_is_refused_without_reseal);
   TEST_MAIN_END
 }
