@@ -246,16 +246,41 @@ real cert_triangle_t_error(sheared_triangle st, real t, real det, real e_det, re
 // |dd| |N|, |N| at most N's rounded 1-norm plus its error (cert_facing_error). RC_SIDE_FRONT
 // or RC_SIDE_BACK where F's sign is certain (F = 0 counts as behind, as in the test), else RC_SIDE_UNSURE.
 
-real cert_facing_error(packed_triangle tri, rvec3 d) {
+// N = a x b of the rounded edges, and e_n, how far each component may lie from the exact one.
+rvec3 cert_face_normal(packed_triangle tri, out rvec3 e_n) {
   rvec3 v0 = rvec3(tri.v0);
   rvec3 a = rvec3(tri.v1) - v0;
   rvec3 b = rvec3(tri.v2) - v0;
-  rvec3 n = cross(a, b);
-  rvec3 e_n = gamma_bound(6.0) * rvec3(abs(a.y * b.z) + abs(a.z * b.y), abs(a.z * b.x) + abs(a.x * b.z),
-                                        abs(a.x * b.y) + abs(a.y * b.x));
+  e_n = gamma_bound(6.0) * rvec3(abs(a.y * b.z) + abs(a.z * b.y), abs(a.z * b.x) + abs(a.x * b.z),
+                                 abs(a.x * b.y) + abs(a.y * b.x));
+  return cross(a, b);
+}
+
+real cert_facing_error(packed_triangle tri, rvec3 d) {
+  rvec3 e_n;
+  rvec3 n = cert_face_normal(tri, e_n);
   rvec3 ad = abs(d);
   real n_norm = abs(n.x) + abs(n.y) + abs(n.z) + e_n.x + e_n.y + e_n.z;
   return cert_ed * n_norm + dot(ad, e_n) + gamma_bound(3.0) * dot(ad, abs(n));
+}
+
+// How far a point p lies off the plane of a triangle's vertices (exact, as the reference
+// takes them), from the unit face normal ng surface_at made of them: |ng.(p - v0)| as
+// computed, plus, component by component, that product's rounding and ng's error. ng is
+// N / |N| within gamma(8) of each component (normalize); N = a x b lies within e_n of the
+// exact cross product (cert_facing_error's bound), which turns the plane's normal by at most
+// e_n.|w| / |N| against w and changes its length by rho = |e_n|_1 / |N| at most. Weighted by
+// component, the bound for a floor on an axis plane is the point's own offset from it, not a
+// fraction of its distance from the far vertex (docs/numerics.md §10).
+real cert_triangle_plane_gap(packed_triangle tri, rvec3 ng, rvec3 p) {
+  rvec3 e_n;
+  rvec3 n = cert_face_normal(tri, e_n);
+  precise rvec3 w = p - rvec3(tri.v0);
+  real len = length(n);
+  real rho = (e_n.x + e_n.y + e_n.z) / len;
+  if (!(rho < 0.5)) return real(RC_T_FAR);
+  real gap = abs(dot(ng, w)) + gamma_bound(16.0) * dot(abs(ng), abs(w)) + dot(e_n, abs(w)) / len;
+  return gap * (1.0 + gamma_bound(8.0)) / (1.0 - rho);
 }
 
 uint cert_triangle_side(packed_triangle tri, rvec3 d) {

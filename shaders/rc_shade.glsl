@@ -438,10 +438,12 @@ void cert_reflect(surface sf, rvec3 origin, real ed_in, real across) {
 real cert_mirror_across(hit_record h, surface sf, rvec3 o, rvec3 d, real eo, real ed) {
   bool planar = false;
   rvec3 q = rvec3(0.0);
+  real gap = real(RC_T_FAR);
   if (h.kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = load_triangle(h.index);
     planar = !has_kind(RC_KIND_VERTEX_NORMALS) || tri.normals == RC_NO_NORMALS;
     q = rvec3(tri.v0);
+    gap = cert_triangle_plane_gap(tri, sf.ng, sf.p);
   }
 #if RC_QUADRICS
   if (h.kind == RC_HIT_QUADRIC) {
@@ -454,7 +456,8 @@ real cert_mirror_across(hit_record h, surface sf, rvec3 o, rvec3 d, real eo, rea
   precise rvec3 w = sf.p - o;
   precise rvec3 off_plane = sf.p - q;
   real line = length(cross(w, d)) + gamma_bound(8.0) * length(w);
-  real plane = abs(dot(sf.ng, off_plane)) + gamma_bound(6.0) * (length(sf.p) + length(q));
+  // A triangle's gap bound is the tighter where its normal lies near an axis (a floor).
+  real plane = select_min(abs(dot(sf.ng, off_plane)) + gamma_bound(6.0) * (length(sf.p) + length(q)), gap);
   return eo + h.t * ed + line + 2.0 * plane;
 }
 #endif

@@ -153,17 +153,33 @@ real REF(cert_triangle_t_error)(const ref_sheared *st, real t, real det, real e_
 }
 
 
-real REF(cert_facing_error)(packed_triangle tri, rvec3 d) {
+rvec3 REF(cert_face_normal)(packed_triangle tri, rvec3 *e_n) {
   rvec3 v0 = rvec3_from(tri.v0);
   rvec3 a = RV(sub)(rvec3_from(tri.v1), v0);
   rvec3 b = RV(sub)(rvec3_from(tri.v2), v0);
-  rvec3 n = RV(cross)(a, b);
-  rvec3 e_n = RV(scale)(RV(make)(R_ABS(a.y * b.z) + R_ABS(a.z * b.y), R_ABS(a.z * b.x) + R_ABS(a.x * b.z),
-                                 R_ABS(a.x * b.y) + R_ABS(a.y * b.x)),
-                        REF(gamma_bound)(6));
+  *e_n = RV(scale)(RV(make)(R_ABS(a.y * b.z) + R_ABS(a.z * b.y), R_ABS(a.z * b.x) + R_ABS(a.x * b.z),
+                            R_ABS(a.x * b.y) + R_ABS(a.y * b.x)),
+                   REF(gamma_bound)(6));
+  return RV(cross)(a, b);
+}
+
+real REF(cert_facing_error)(packed_triangle tri, rvec3 d) {
+  rvec3 e_n;
+  rvec3 n = REF(cert_face_normal)(tri, &e_n);
   rvec3 ad = RV(abs)(d);
   real n_norm = R_ABS(n.x) + R_ABS(n.y) + R_ABS(n.z) + e_n.x + e_n.y + e_n.z;
   return (ref_cert_ed) * n_norm + RV(dot)(ad, e_n) + REF(gamma_bound)(3) * RV(dot)(ad, RV(abs)(n));
+}
+
+real REF(cert_triangle_plane_gap)(packed_triangle tri, rvec3 ng, rvec3 p) {
+  rvec3 e_n;
+  rvec3 n = REF(cert_face_normal)(tri, &e_n);
+  rvec3 w = RV(sub)(p, rvec3_from(tri.v0));
+  real len = RV(length)(n);
+  real rho = (e_n.x + e_n.y + e_n.z) / len;
+  if (!(rho < (real)0.5)) return (real)RC_T_FAR;
+  real gap = R_ABS(RV(dot)(ng, w)) + REF(gamma_bound)(16) * RV(dot)(RV(abs)(ng), RV(abs)(w)) + RV(dot)(e_n, RV(abs)(w)) / len;
+  return gap * (1 + REF(gamma_bound)(8)) / (1 - rho);
 }
 
 uint32_t REF(cert_triangle_side)(const ref_scene *sc, packed_triangle tri, rvec3 d) {

@@ -104,7 +104,9 @@ extern _Thread_local uint32_t ref_crossing_blame;
   void ref_cert_sphere_roots_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R scale, R rel); \
   R ref_cert_norm_##S(const packed_transform *m);                                               \
   void ref_cert_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max);            \
+  V ref_cert_face_normal_##S(packed_triangle tri, V *e_n);                                       \
   R ref_cert_facing_error_##S(packed_triangle tri, V d);                                        \
+  R ref_cert_triangle_plane_gap_##S(packed_triangle tri, V ng, V p);                            \
   R ref_cert_edge_error_##S(const ref_sheared_##S *st, const ref_shear_##S *sh, R *dz);          \
   bool ref_cert_edges_apart_##S(const ref_sheared_##S *st, R k);                                 \
   uint32_t ref_cert_triangle_side_##S(const ref_scene *sc, packed_triangle tri, V d);           \

@@ -316,10 +316,12 @@ real REF(cert_mirror_across)(const ref_scene *sc, const ref_hit *h, const ref_su
                              real ed) {
   bool planar = false;
   rvec3 q = RV(make)(0, 0, 0);
+  real gap = (real)RC_T_FAR;
   if (h->kind == RC_HIT_TRIANGLE) {
     packed_triangle tri = sc->triangles[h->index];
     planar = tri.normals == RC_NO_NORMALS;
     q = rvec3_from(tri.v0);
+    gap = REF(cert_triangle_plane_gap)(tri, sf->ng, sf->p);
   }
   if (h->kind == RC_HIT_QUADRIC) {
     const packed_quadric *pq = &sc->quadrics[h->index];
@@ -330,7 +332,7 @@ real REF(cert_mirror_across)(const ref_scene *sc, const ref_hit *h, const ref_su
   rvec3 w = RV(sub)(sf->p, o);
   rvec3 off_plane = RV(sub)(sf->p, q);
   real line = RV(length)(RV(cross)(w, d)) + REF(gamma_bound)(8) * RV(length)(w);
-  real plane = R_ABS(RV(dot)(sf->ng, off_plane)) + REF(gamma_bound)(6) * (RV(length)(sf->p) + RV(length)(q));
+  real plane = rmin(R_ABS(RV(dot)(sf->ng, off_plane)) + REF(gamma_bound)(6) * (RV(length)(sf->p) + RV(length)(q)), gap);
   return eo + h->t * ed + line + 2 * plane;
 }
 
