@@ -12,7 +12,8 @@ static void point(const float *net, int r, int c, double p[3]) {
   for (int k = 0; k < 3; k++) p[k] = f[k];
 }
 
-/* |a - b| (w = 1) or |a - 2 b + c| (w = 2) or |a - b - c + d| (mixed), by coefficients. */
+/* The length of the combination of `count` points with these coefficients: a difference, a
+ * second difference or a mixed one. */
 static double combination(const double (*p)[3], const double *coefficients, int count) {
   double s = 0;
   for (int k = 0; k < 3; k++) {

@@ -328,7 +328,8 @@ TEST(patch_bounds_hold_in_every_ray_frame) {
   for (uint32_t i = 0; i < c.packed.frame.quadric_count; i += 7) {
     const packed_quadric *q = &c.packed.quadrics[i];
     if (!(q->flags & RC_QUADRIC_PATCH)) continue;
-    const float *net = (const float *)&c.packed.texels[4 * (size_t)q->mesh_root];
+    float net[4 * RC_TEXELS_PER_PATCH];
+    memcpy(net, &c.packed.texels[4 * (size_t)q->mesh_root], sizeof net);
     for (int ray = 0; ray < 16; ray++) {
       float d[3] = {unit_random(&state), unit_random(&state), unit_random(&state)};
       float len = sqrtf(dot3f(d, d));
