@@ -58,32 +58,30 @@ bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint bas
   return m == n;
 }
 
-// A mesh operand's crossings (mesh_intervals, whose list it writes at `base`), each end's
-// bound in csg_e. Every BVH node the test skips must be certainly missed by the reference's
-// line (cert_box, in the scene's frame), and every triangle it tests certainly crossed or
-// not (cert_crossing), except near an edge: there the reference may cross the neighbour
-// instead, or at a silhouette cross twice where this precision crosses not at all (or the
-// other way round), but only within the plane's interval, which must then be behind the
-// origin or past the query (cert_maybe): the mesh is closed, so such differences come in
-// pairs and leave the parity, inside or outside, alike at the origin, and what lies past t_max
-// (or past the nearest hit, which cert_maybe keeps) cannot change the first end before it.
-// Two crossings nearer each other than their bounds likewise. False, the test failed, where
-// a triangle is edge-on.
+// A mesh operand's crossings, listed as mesh_intervals lists them (at `base`, the same ends
+// in the same order with the same codes), each end's bound in csg_e, in one walk of its BVH:
+// a second walk after mesh_intervals' cost the composite's certified test a third of its
+// time (docs/performance.md, "One walk of a certified mesh operand"). Every BVH node the test
+// skips must be certainly missed by the reference's line (cert_box, in the scene's frame),
+// and every triangle it tests certainly crossed or not (cert_crossing), except near an edge:
+// there the reference may cross the neighbour instead, or at a silhouette cross twice where
+// this precision crosses not at all (or the other way round), but only within the plane's
+// interval, which must then be behind the origin or past the query (cert_maybe): the mesh is
+// closed, so such differences come in pairs and leave the parity, inside or outside, alike at
+// the origin, and what lies past t_max (or past the nearest hit, which cert_maybe keeps)
+// cannot change the first end before it. Two crossings nearer each other than their bounds
+// likewise. False, the test failed, where a triangle is edge-on, or where mesh_intervals
+// would blame the composite (crossing_blame, which its test sets again).
 bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_max, uint base, out uint n) {
-  n = mesh_intervals(csg, q, o, d, false, base);
-  if (crossing_blame != 0u) {
-    cert_fail();
-    return false;
-  }
+  n = 0u;
   real k = cert_factor();
   ray_shear sh = ray_shear_for(d);
   rvec3 ef = rvec3(cert_eo, cert_eo, cert_eo);
   rvec3 ev = rvec3(cert_ed, cert_ed, cert_ed);
-  if (!budget_take(n)) return false;
-  for (uint i = 0u; i < n; i++) csg_e[base + i] = -1.0;
   uint node = q.mesh_root;
   // A box this ray's line misses but the reference's may meet is walked too, up to its skip
-  // link (miss_end): under it every triangle must be certainly missed.
+  // link (miss_end): under it every triangle must be certainly missed, and mesh_intervals,
+  // which skips it, lists none of them.
   uint miss_end = 0u;
   while (node < q.mesh_end) {
     if (!budget_step()) return false;
@@ -106,8 +104,9 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
     if (!budget_take(count)) return false;
     for (uint j = first; j < first + count; j++) {
       uint tri = load_bvh_prim(j);
-      real t, e;
-      uint crossed = cert_crossing(o, sh, load_triangle(tri), t, e);
+      packed_triangle pt = load_triangle(tri);
+      real tc, e;
+      uint crossed = cert_crossing(o, sh, pt, tc, e);
       if (crossed == 3u) {
         cert_fail();
         return false;
@@ -117,16 +116,37 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
         cert_fail();
         return false;
       }
-      if (crossed == 2u) cert_maybe(t - k * e, t + k * e, t_max, false);
-      if (!budget_take(n)) return false;
-      for (uint i = 0u; i < n; i++) {
-        if ((csg_code_of[base + i] >> RC_CSG_CODE_LEAF_SHIFT) == tri) csg_e[base + i] = e;
+      if (crossed == 2u) cert_maybe(tc - k * e, tc + k * e, t_max, false);
+      // mesh_intervals' entry: its crossing, sorted in as it comes.
+      real t = triangle_crossing(o, sh, pt);
+      if (t >= real(RC_T_FAR)) continue;
+      if (n == q.mesh_crossings) {
+        crossing_blame = 1u + first_csg_object + csg;
+        cert_fail();
+        return false;
       }
+      if (!budget_take(n)) return false;
+      uint i = n;
+      for (; i > 0u && csg_t[base + i - 1u] > t; i--) {
+        csg_t[base + i] = csg_t[base + i - 1u];
+        csg_e[base + i] = csg_e[base + i - 1u];
+        csg_code_of[base + i] = csg_code_of[base + i - 1u];
+      }
+      csg_t[base + i] = t;
+      csg_e[base + i] = e;
+      csg_code_of[base + i] = tri;
+      n++;
     }
     node = b.skip;
   }
+  if ((n & 1u) != 0u) {
+    crossing_blame = 1u + first_csg_object + csg;
+    cert_fail();
+    return false;
+  }
   if (!budget_take(n)) return false;
   for (uint i = 0u; i < n; i++) {
+    csg_code_of[base + i] = csg_code(csg_code_of[base + i], 0u, (i & 1u) != 0u, false) | RC_CSG_CODE_MESH;
     if (!(csg_e[base + i] >= 0.0)) {
       cert_fail();
       return false;

@@ -53,16 +53,12 @@ bool REF(cert_leaf_intervals)(const ref_scene *sc, uint32_t leaf, const packed_q
 
 bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d,
                               real t_max, uint32_t base, uint32_t *n) {
-  *n = REF(mesh_intervals)(sc, csg, q, o, d, false, base);
-  if (ref_crossing_blame != 0) {
-    REF(cert_fail)();
-    return false;
-  }
+  const packed_frame *f = sc->frame;
+  *n = 0;
   real k = REF(cert_factor)(sc);
   ref_shear sh = REF(ray_shear_for)(d);
   rvec3 ef = RV(make)(ref_cert_eo, ref_cert_eo, ref_cert_eo);
   rvec3 ev = RV(make)(ref_cert_ed, ref_cert_ed, ref_cert_ed);
-  for (uint32_t i = 0; i < *n; i++) csg_e[base + i] = -1;
   uint32_t node = q->mesh_root;
   uint32_t miss_end = 0;
   while (node < q->mesh_end) {
@@ -84,8 +80,9 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
     uint32_t count = b->leaf & ((1u << RC_BVH_LEAF_SHIFT) - 1u);
     for (uint32_t j = first; j < first + count; j++) {
       uint32_t tri = sc->bvh_prims[j];
-      real t, e;
-      uint32_t crossed = REF(cert_crossing)(sc, o, &sh, sc->triangles[tri], &t, &e);
+      packed_triangle pt = sc->triangles[tri];
+      real tc, e;
+      uint32_t crossed = REF(cert_crossing)(sc, o, &sh, pt, &tc, &e);
       if (crossed == 3) {
         REF(cert_fail)();
         return false;
@@ -95,14 +92,34 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
         REF(cert_fail)();
         return false;
       }
-      if (crossed == 2) REF(cert_maybe)(sc, t - k * e, t + k * e, t_max, false);
-      for (uint32_t i = 0; i < *n; i++) {
-        if ((csg_code_of[base + i] >> RC_CSG_CODE_LEAF_SHIFT) == tri) csg_e[base + i] = e;
+      if (crossed == 2) REF(cert_maybe)(sc, tc - k * e, tc + k * e, t_max, false);
+      real t = REF(triangle_crossing)(o, &sh, pt);
+      if (t >= (real)RC_T_FAR) continue;
+      if (*n == q->mesh_crossings) {
+        ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+        REF(cert_fail)();
+        return false;
       }
+      uint32_t i = *n;
+      for (; i > 0 && csg_t[base + i - 1] > t; i--) {
+        csg_t[base + i] = csg_t[base + i - 1];
+        csg_e[base + i] = csg_e[base + i - 1];
+        csg_code_of[base + i] = csg_code_of[base + i - 1];
+      }
+      csg_t[base + i] = t;
+      csg_e[base + i] = e;
+      csg_code_of[base + i] = tri;
+      (*n)++;
     }
     node = b->skip;
   }
+  if (*n & 1u) {
+    ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+    REF(cert_fail)();
+    return false;
+  }
   for (uint32_t i = 0; i < *n; i++) {
+    csg_code_of[base + i] = REF(csg_code)(csg_code_of[base + i], 0, (i & 1u) != 0, false) | RC_CSG_CODE_MESH;
     if (!(csg_e[base + i] >= 0)) {
       REF(cert_fail)();
       return false;
