@@ -121,32 +121,24 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
       real t = triangle_crossing(o, sh, pt);
       if (t >= real(RC_T_FAR)) continue;
       if (n == q.mesh_crossings) {
-        crossing_blame = 1u + first_csg_object + csg;
+        blame_mesh(csg);
         cert_fail();
         return false;
       }
       if (!budget_take(n)) return false;
-      uint i = n;
-      for (; i > 0u && csg_t[base + i - 1u] > t; i--) {
-        csg_t[base + i] = csg_t[base + i - 1u];
-        csg_e[base + i] = csg_e[base + i - 1u];
-        csg_code_of[base + i] = csg_code_of[base + i - 1u];
-      }
-      csg_t[base + i] = t;
-      csg_e[base + i] = e;
-      csg_code_of[base + i] = tri;
+      sort_in_crossing(base, n, t, tri, true, e);
       n++;
     }
     node = b.skip;
   }
   if ((n & 1u) != 0u) {
-    crossing_blame = 1u + first_csg_object + csg;
+    blame_mesh(csg);
     cert_fail();
     return false;
   }
   if (!budget_take(n)) return false;
   for (uint i = 0u; i < n; i++) {
-    csg_code_of[base + i] = csg_code(csg_code_of[base + i], 0u, (i & 1u) != 0u, false) | RC_CSG_CODE_MESH;
+    csg_code_of[base + i] = mesh_code(csg_code_of[base + i], i, false);
     if (!(csg_e[base + i] >= 0.0)) {
       cert_fail();
       return false;

@@ -237,6 +237,33 @@ bool line_meets_box(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d) {
   return t_in <= t_out + 2.0 * gamma_bound(3.0) * (abs(t_in) + abs(t_out));
 }
 
+// Fails the composite `csg` loudly: a mesh operand's line crossed it more often than its bound
+// allows, or an odd number of times (mesh_intervals).
+void blame_mesh(uint csg) { crossing_blame = 1u + first_csg_object + csg; }
+
+// Sorts a mesh operand's crossing, t of triangle `tri`, into its list of n ends at `base`, by
+// t as the crossings come; in certified mode (`bounded`, a constant at each call) with its
+// bound e beside it (cert_mesh_intervals). The caller has made room for it.
+void sort_in_crossing(uint base, uint n, real t, uint tri, bool bounded, real e) {
+  uint i = n;
+  for (; i > 0u && csg_t[base + i - 1u] > t; i--) {
+    csg_t[base + i] = csg_t[base + i - 1u];
+    csg_code_of[base + i] = csg_code_of[base + i - 1u];
+#if RC_CERTIFY
+    if (bounded) csg_e[base + i] = csg_e[base + i - 1u];
+#endif
+  }
+  csg_t[base + i] = t;
+  csg_code_of[base + i] = tri;
+#if RC_CERTIFY
+  if (bounded) csg_e[base + i] = e;
+#endif
+}
+
+// The code of end i of a mesh operand's sorted crossings, triangle `tri`: by parity, even
+// ends enter and odd ends leave.
+uint mesh_code(uint tri, uint i, bool flip) { return csg_code(tri, 0u, (i & 1u) != 0u, flip) | RC_CSG_CODE_MESH; }
+
 // A closed mesh operand (RC_QUADRIC_MESH) along the ray: every crossing of the ray's whole
 // line with its triangles (its own BVH, stackless like the object tree), sorted by t as they
 // come; by parity the crossings pair up into [in, out] intervals (Roth 1982 with a mesh for
@@ -265,27 +292,21 @@ uint mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, bool flip, uin
       real t = triangle_crossing(o, sh, load_triangle(tri));
       if (t >= real(RC_T_FAR)) continue;
       if (n == q.mesh_crossings) {
-        crossing_blame = 1u + first_csg_object + csg;
+        blame_mesh(csg);
         return 0u;
       }
       if (!budget_take(n)) return 0u;
-      uint i = n;
-      for (; i > 0u && csg_t[base + i - 1u] > t; i--) {
-        csg_t[base + i] = csg_t[base + i - 1u];
-        csg_code_of[base + i] = csg_code_of[base + i - 1u];
-      }
-      csg_t[base + i] = t;
-      csg_code_of[base + i] = tri;
+      sort_in_crossing(base, n, t, tri, false, 0.0);
       n++;
     }
     node = b.skip;
   }
   if ((n & 1u) != 0u) {
-    crossing_blame = 1u + first_csg_object + csg;
+    blame_mesh(csg);
     return 0u;
   }
   if (!budget_take(n)) return 0u;
-  for (uint i = 0u; i < n; i++) csg_code_of[base + i] = csg_code(csg_code_of[base + i], 0u, (i & 1u) != 0u, flip) | RC_CSG_CODE_MESH;
+  for (uint i = 0u; i < n; i++) csg_code_of[base + i] = mesh_code(csg_code_of[base + i], i, flip);
   return n;
 }
 

@@ -53,7 +53,6 @@ bool REF(cert_leaf_intervals)(const ref_scene *sc, uint32_t leaf, const packed_q
 
 bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d,
                               real t_max, uint32_t base, uint32_t *n) {
-  const packed_frame *f = sc->frame;
   *n = 0;
   real k = REF(cert_factor)(sc);
   ref_shear sh = REF(ray_shear_for)(d);
@@ -96,30 +95,22 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
       real t = REF(triangle_crossing)(o, &sh, pt);
       if (t >= (real)RC_T_FAR) continue;
       if (*n == q->mesh_crossings) {
-        ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+        REF(blame_mesh)(sc, csg);
         REF(cert_fail)();
         return false;
       }
-      uint32_t i = *n;
-      for (; i > 0 && csg_t[base + i - 1] > t; i--) {
-        csg_t[base + i] = csg_t[base + i - 1];
-        csg_e[base + i] = csg_e[base + i - 1];
-        csg_code_of[base + i] = csg_code_of[base + i - 1];
-      }
-      csg_t[base + i] = t;
-      csg_e[base + i] = e;
-      csg_code_of[base + i] = tri;
+      REF(sort_in_crossing)(base, *n, t, tri, true, e);
       (*n)++;
     }
     node = b->skip;
   }
   if (*n & 1u) {
-    ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+    REF(blame_mesh)(sc, csg);
     REF(cert_fail)();
     return false;
   }
   for (uint32_t i = 0; i < *n; i++) {
-    csg_code_of[base + i] = REF(csg_code)(csg_code_of[base + i], 0, (i & 1u) != 0, false) | RC_CSG_CODE_MESH;
+    csg_code_of[base + i] = REF(mesh_code)(csg_code_of[base + i], i, false);
     if (!(csg_e[base + i] >= 0)) {
       REF(cert_fail)();
       return false;

@@ -189,6 +189,9 @@ extern _Thread_local uint32_t ref_crossing_blame;
   bool ref_csg_inside_##S(uint32_t op, bool in_a, bool in_b);                                  \
   uint32_t ref_combine_intervals_##S(uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb); \
   bool ref_line_meets_box_##S(V lo, V hi, V o, V d);                                            \
+  void ref_blame_mesh_##S(const ref_scene *sc, uint32_t csg);                                   \
+  void ref_sort_in_crossing_##S(uint32_t base, uint32_t n, R t, uint32_t tri, bool bounded, R e); \
+  uint32_t ref_mesh_code_##S(uint32_t tri, uint32_t i, bool flip);                             \
   uint32_t ref_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const packed_quadric *q, V o, V d, bool flip, \
                                   uint32_t base);                                               \
   R ref_intersect_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max, uint32_t *code); \

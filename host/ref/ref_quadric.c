@@ -174,9 +174,29 @@ bool REF(line_meets_box)(rvec3 lo, rvec3 hi, rvec3 o, rvec3 d) {
   return t_in <= t_out + 2 * REF(gamma_bound)(3) * (R_ABS(t_in) + R_ABS(t_out));
 }
 
+void REF(blame_mesh)(const ref_scene *sc, uint32_t csg) {
+  const packed_frame *f = sc->frame;
+  ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+}
+
+void REF(sort_in_crossing)(uint32_t base, uint32_t n, real t, uint32_t tri, bool bounded, real e) {
+  uint32_t i = n;
+  for (; i > 0 && csg_t[base + i - 1] > t; i--) {
+    csg_t[base + i] = csg_t[base + i - 1];
+    csg_code_of[base + i] = csg_code_of[base + i - 1];
+    if (bounded) csg_e[base + i] = csg_e[base + i - 1];
+  }
+  csg_t[base + i] = t;
+  csg_code_of[base + i] = tri;
+  if (bounded) csg_e[base + i] = e;
+}
+
+uint32_t REF(mesh_code)(uint32_t tri, uint32_t i, bool flip) {
+  return REF(csg_code)(tri, 0, (i & 1u) != 0, flip) | RC_CSG_CODE_MESH;
+}
+
 uint32_t REF(mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d, bool flip,
                              uint32_t base) {
-  const packed_frame *f = sc->frame;
   ref_shear sh = REF(ray_shear_for)(d);
   uint32_t n = 0;
   uint32_t node = q->mesh_root;
@@ -197,26 +217,19 @@ uint32_t REF(mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qua
       real t = REF(triangle_crossing)(o, &sh, sc->triangles[tri]);
       if (t >= (real)RC_T_FAR) continue;
       if (n == q->mesh_crossings) {
-        ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+        REF(blame_mesh)(sc, csg);
         return 0;
       }
-      uint32_t i = n;
-      for (; i > 0 && csg_t[base + i - 1] > t; i--) {
-        csg_t[base + i] = csg_t[base + i - 1];
-        csg_code_of[base + i] = csg_code_of[base + i - 1];
-      }
-      csg_t[base + i] = t;
-      csg_code_of[base + i] = tri;
+      REF(sort_in_crossing)(base, n, t, tri, false, 0);
       n++;
     }
     node = b->skip;
   }
   if (n & 1u) {
-    ref_crossing_blame = 1 + f->sphere_count + f->triangle_count + f->quadric_count + csg;
+    REF(blame_mesh)(sc, csg);
     return 0;
   }
-  for (uint32_t i = 0; i < n; i++)
-    csg_code_of[base + i] = REF(csg_code)(csg_code_of[base + i], 0, (i & 1u) != 0, flip) | RC_CSG_CODE_MESH;
+  for (uint32_t i = 0; i < n; i++) csg_code_of[base + i] = REF(mesh_code)(csg_code_of[base + i], i, flip);
   return n;
 }
 

@@ -69,7 +69,7 @@ void rc_patch_net_differences(const float *net, float out[5]) {
         best[4] = fmax(best[4], combination(p, second, 3));
       }
     }
-  for (int k = 0; k < 5; k++) out[k] = isfinite(best[k]) ? up(best[k]) : INFINITY;
+  for (int k = 0; k < 5; k++) out[k] = up(best[k]);  /* infinity stays infinity */
 }
 
 /* Piece i's net, from the texel array. */
