@@ -48,7 +48,7 @@ bool test_leaf(uint first, uint count, rvec3 o, rvec3 d, ray_shear sh, bool any,
     real side;
     rvec3 bary;
     uint part;
-    real t = test_object(tree_kinds(), object, o, d, sh, any ? t_max : h.t, side, bary, part);
+    real t = test_object(tree_kinds(), object, o, d, sh, any, any ? t_max : h.t, side, bary, part);
 #if RC_CERTIFY
     if (certify && any && t < real(RC_T_FAR) && !cert_blocker_ends()) continue;
 #endif
@@ -169,7 +169,7 @@ bool test_loose_quadrics(rvec3 o, rvec3 d, bool any, real t_max, inout hit_recor
   for (uint object = first_quadric_object; object < first_quadric_object + frame.quadric_count - frame.plane_count;
        object++) {
 #if RC_CERTIFY
-    if (certify) cert_object(RC_KIND_QUADRICS, object, o, d, any ? t_max : h.t);
+    if (certify) cert_object(RC_KIND_QUADRICS, object, o, d, any, any ? t_max : h.t);
 #endif
     rvec3 bary;
     uint part;

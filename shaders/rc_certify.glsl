@@ -104,6 +104,12 @@ void cert_camera(vec2 raster) {
 // answer where the interval is behind the origin, past a shadow ray's t_max, or past the
 // nearest hit (cert_beyond, which cert_closest checks). Where this precision took the root
 // (`taken`), it can.
+// Whether a shadow ray's answer ignores a root in [lo, hi]: behind the origin or past t_max.
+bool cert_shadow_ignores(real lo, real hi, real t_max) {
+  real k = cert_factor();
+  return hi + k * cert_et < 0.0 || lo - t_max > k * (cert_t_max_err + cert_et);
+}
+
 void cert_maybe(real lo, real hi, real t_max, bool taken) {
   if (taken) {
     cert_fail();
@@ -111,7 +117,7 @@ void cert_maybe(real lo, real hi, real t_max, bool taken) {
   }
   if (hi + cert_factor() * cert_et < 0.0) return;
   if (cert_any) {
-    if (!(lo - t_max > cert_factor() * (cert_t_max_err + cert_et))) cert_fail();
+    if (!cert_shadow_ignores(lo, hi, t_max)) cert_fail();
     return;
   }
   cert_beyond = select_min(cert_beyond, lo);
@@ -327,6 +333,47 @@ bool cert_edges_apart(sheared_triangle st, real k) {
 // side_unsure: a one-sided triangle whose side cert_triangle_side could not certify. Either
 // precision may then test the triangle where the other skips it, and only a certain miss
 // agrees with both.
+// The edge of a triangle the ray passes near, as an RC_CERT_EDGE_SHIFT note's low bits: the one
+// edge function within k (the edge bound) of 0, and the sign of det, which the other two
+// share (they lie beyond k, and two of opposite sign would be a certain miss). RC_CERT_NO_EDGE
+// where no edge or more than one is that near (a vertex).
+uint cert_near_edge(rvec3 e, real sum, real k) {
+  bool nx = abs(e.x) <= k;
+  bool ny = abs(e.y) <= k;
+  bool nz = abs(e.z) <= k;
+  uint edge = nx ? 0u : (ny ? 1u : 2u);
+  uint near = (nx ? 1u : 0u) + (ny ? 1u : 0u) + (nz ? 1u : 0u);
+  return (near == 1u) ? ((edge << 1u) | (sum < 0.0 ? 1u : 0u)) : RC_CERT_NO_EDGE;
+}
+
+// Whether two notes (RC_CERT_EDGE_SHIFT) name one edge of two triangles (the same two vertices,
+// exactly, in either order) that lie on its two sides as the ray sees them. Both precisions
+// compute the edge's function in both triangles from the same two sheared vertices, as
+// exact negatives (reversed) or the same value (one way), and each triangle's other two edge
+// functions certainly have its det's sign. So where the triangles lie apart (det signs equal
+// for a reversed edge, opposite for one way: not a fold, where the ray sees a silhouette)
+// the edge function has the sign that puts the line in one of them, or is 0, which
+// edge_owned gives to exactly one: in each precision triangle_crossing crosses exactly one of
+// the two. Where it crosses then lies in either's t interval; which triangle it is does not.
+// A certain det excludes an edge the ray runs along (its two projected vertices equal: det 0).
+bool cert_edge_pair(uint a, uint b) {
+  uint ta = a >> RC_CERT_EDGE_SHIFT;
+  uint tb = b >> RC_CERT_EDGE_SHIFT;
+  uint ea = (a >> 1u) & 3u;
+  uint eb = (b >> 1u) & 3u;
+  // Edge e runs from vertex (e + 1) mod 3 to (e + 2) mod 3; four fetches, not two triangles'
+  // six, as every shadow ray of a certified pass runs this.
+  vec3 pa = load_triangle_vertex(ta, (ea + 1u) % 3u);
+  vec3 qa = load_triangle_vertex(ta, (ea + 2u) % 3u);
+  vec3 pb = load_triangle_vertex(tb, (eb + 1u) % 3u);
+  vec3 qb = load_triangle_vertex(tb, (eb + 2u) % 3u);
+  bool reversed = all(equal(pa, qb)) && all(equal(qa, pb));
+  bool same = all(equal(pa, pb)) && all(equal(qa, qb));
+  bool neg_a = (a & 1u) != 0u;
+  bool neg_b = (b & 1u) != 0u;
+  return ta != tb && (reversed ? neg_a == neg_b : (same && neg_a != neg_b));
+}
+
 void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool side_unsure) {
   if (triangle_formula != RC_TRIANGLE_WATERTIGHT) {
     cert_fail();
@@ -369,9 +416,10 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool 
 // crossing, if any, then lies in the plane's t +/- e. 3 where the triangle is edge-on (no
 // interval). A spawned ray's crossing that the test pins at 0 (the surface it leaves) keeps
 // that value, its bound grown by the distance it was moved.
-uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out real e) {
+uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out real e, out uint near) {
   t = real(RC_T_FAR);
   e = 0.0;
+  near = RC_CERT_NO_EDGE;
   sheared_triangle st = shear_triangle(o, sh, tri);
   real dz;
   real ee = cert_edge_error(st, sh, dz);
@@ -387,6 +435,7 @@ uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out r
     e += abs(t);
     t = 0.0;
   }
+  near = cert_near_edge(st.e, sum, k);
   return (select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k) ? 1u : 2u;
 }
 

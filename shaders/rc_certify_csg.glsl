@@ -72,13 +72,49 @@ bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint bas
 // cannot change the first end before it. Two crossings nearer each other than their bounds
 // likewise. False, the test failed, where a triangle is edge-on, or where mesh_intervals
 // would blame the composite (crossing_blame, which its test sets again).
-bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_max, uint base, out uint n) {
+// A shadow ray's crossings near an edge (cert_mesh_intervals' notes, t within e): certain where
+// they are two, the two sides of one edge (cert_edge_pair). Each precision then lists exactly
+// one of the two triangles, the reference at a t in either's interval, so the listed end's
+// bound grows to cover the other's interval too (k >= 1 outside the fault modes). Which
+// triangle it is, and so the normal, is uncertain: only a shadow ray, which asks for none,
+// notes crossings. The list holds triangle indices still, not mesh codes.
+bool cert_edge_crossing(uint base, uint n, uint note0, real t0, real e0, uint note1, real t1, real e1, uint notes) {
+  if (notes != 2u || !cert_edge_pair(note0, note1)) return false;
+  uint found = 0u;
+  uint at = 0u;
+  real t_other = 0.0;
+  real e_other = 0.0;
+  for (uint i = 0u; i < n; i++) {  // n <= q.mesh_crossings: no budget needed
+    bool first = csg_code_of[base + i] == (note0 >> RC_CERT_EDGE_SHIFT);
+    bool second = csg_code_of[base + i] == (note1 >> RC_CERT_EDGE_SHIFT);
+    if (first || second) {
+      found++;
+      at = i;
+      t_other = first ? t1 : t0;
+      e_other = first ? e1 : e0;
+    }
+  }
+  if (found != 1u) return false;
+  real e = (abs(csg_t[base + at] - t_other) + e_other) * (1.0 + gamma_bound(3.0));
+  csg_e[base + at] = select_max(csg_e[base + at], e);
+  return true;
+}
+
+bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, bool any, real t_max, uint base, out uint n) {
   n = 0u;
   real k = cert_factor();
   ray_shear sh = ray_shear_for(d);
   rvec3 ef = rvec3(cert_eo, cert_eo, cert_eo);
   rvec3 ev = rvec3(cert_ed, cert_ed, cert_ed);
   uint node = q.mesh_root;
+  // A shadow ray's crossings near one edge, up to two (cert_edge_crossing).
+  uint notes = 0u;
+  uint note0 = 0u;
+  uint note1 = 0u;
+  real t0 = 0.0;
+  real e0 = 0.0;
+  real t1 = 0.0;
+  real e1 = 0.0;
   // A box this ray's line misses but the reference's may meet is walked too, up to its skip
   // link (miss_end): under it every triangle must be certainly missed, and mesh_intervals,
   // which skips it, lists none of them.
@@ -106,7 +142,8 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
       uint tri = load_bvh_prim(j);
       packed_triangle pt = load_triangle(tri);
       real tc, e;
-      uint crossed = cert_crossing(o, sh, pt, tc, e);
+      uint near;
+      uint crossed = cert_crossing(o, sh, pt, tc, e, near);
       if (crossed == 3u) {
         cert_fail();
         return false;
@@ -116,7 +153,20 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
         cert_fail();
         return false;
       }
-      if (crossed == 2u) cert_maybe(tc - k * e, tc + k * e, t_max, false);
+      bool noted = crossed == 2u && any && near != RC_CERT_NO_EDGE && notes < 2u &&
+                   !cert_shadow_ignores(tc - k * e, tc + k * e, t_max);
+      if (noted && notes == 0u) {
+        note0 = (tri << RC_CERT_EDGE_SHIFT) | near;
+        t0 = tc;
+        e0 = e;
+      }
+      if (noted && notes == 1u) {
+        note1 = (tri << RC_CERT_EDGE_SHIFT) | near;
+        t1 = tc;
+        e1 = e;
+      }
+      if (noted) notes++;
+      if (crossed == 2u && !noted) cert_maybe(tc - k * e, tc + k * e, t_max, false);
       // mesh_intervals' entry: its crossing, sorted in as it comes.
       real t = triangle_crossing(o, sh, pt);
       if (t >= real(RC_T_FAR)) continue;
@@ -133,6 +183,10 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, real t_ma
   }
   if ((n & 1u) != 0u) {
     blame_mesh(csg);
+    cert_fail();
+    return false;
+  }
+  if (notes != 0u && !cert_edge_crossing(base, n, note0, t0, e0, note1, t1, e1, notes)) {
     cert_fail();
     return false;
   }
@@ -224,7 +278,7 @@ void cert_first_end(uint n, real t_max) {
 // A composite's decisions (intersect_csg): its program over certified lists, then its first
 // end ahead. The end's code (the leaf, the face, entry or exit, the flip) is then the
 // reference's: every list's shape and every merge's order are.
-void cert_csg(uint index, rvec3 o, rvec3 d, real t_max) {
+void cert_csg(uint index, rvec3 o, rvec3 d, bool any, real t_max) {
   packed_csg c = load_csg(index);
   uint count[RC_CSG_STACK];
   uint sp = 0u;
@@ -236,7 +290,7 @@ void cert_csg(uint index, rvec3 o, rvec3 d, real t_max) {
     if (op == RC_CSG_LEAF) {
       packed_quadric q = load_quadric(operand);
       bool listed = (has_kind(RC_KIND_CSG_MESHES) && (q.flags & RC_QUADRIC_MESH) != 0u)
-                        ? cert_mesh_intervals(index, q, o, d, t_max, sp * RC_CSG_SLOT, count[sp])
+                        ? cert_mesh_intervals(index, q, o, d, any, t_max, sp * RC_CSG_SLOT, count[sp])
                         : cert_leaf_intervals(operand, q, o, d, sp * RC_CSG_SLOT, count[sp]);
       if (!listed) return;
       sp++;

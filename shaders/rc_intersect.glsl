@@ -300,11 +300,11 @@ void cert_triangle_object(packed_triangle tri, rvec3 o, rvec3 d, ray_shear sh, r
 
 // The decisions of intersect_other_object. An object these kinds' certificates do not cover
 // fails, where `kinds` has the other kinds at all.
-void cert_other_object_tests(uint kinds, uint kind, uint index, rvec3 o, rvec3 d, real t_max) {
+void cert_other_object_tests(uint kinds, uint kind, uint index, rvec3 o, rvec3 d, bool any, real t_max) {
   if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0u) {
 #if RC_QUADRICS
     if (has_kind(RC_KIND_CSG) && (kinds & RC_KIND_CSG) != 0u && kind == RC_HIT_CSG) {
-      cert_csg(index, o, d, t_max);
+      cert_csg(index, o, d, any, t_max);
       return;
     }
     if ((kinds & RC_KIND_QUADRICS) != 0u && kind == RC_HIT_QUADRIC) {
@@ -335,14 +335,14 @@ void cert_other_object_tests(uint kinds, uint kind, uint index, rvec3 o, rvec3 d
 // The decisions of testing object `object` of the other kinds (intersect_other_object; the
 // loose quadrics' loop): those of the kinds rc_certify.glsl bounds, none of the others.
 // Spheres and triangles are test_object's, which certifies and tests them from one fetch.
-void cert_object(uint kinds, uint object, rvec3 o, rvec3 d, real t_max) {
+void cert_object(uint kinds, uint object, rvec3 o, rvec3 d, bool any, real t_max) {
   bool ok = cert_test_begin(object);
   // The other kinds' bounds take the origin's move in any direction: along the ray too.
   real eo = cert_eo;
   cert_eo += cert_et;
   uint index;
   uint kind = object_kind(object, index);
-  cert_other_object_tests(kinds, kind, index, o, d, t_max);
+  cert_other_object_tests(kinds, kind, index, o, d, any, t_max);
   cert_eo = eo;
   cert_test_end(ok);
 }
@@ -398,7 +398,7 @@ void cert_blocked(bool blocked, bool ok) {
 // branch, and not behind `if (certify)`: the driver inlines every call before it folds a
 // constant, so each copy cost the pipeline's creation its compile time, and certificates
 // and tests in two chains of branches cost the frame what the shared fetch saved.
-real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t_max, out real side, out rvec3 bary,
+real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, bool any, real t_max, out real side, out rvec3 bary,
                  out uint part) {
 #if RC_CERTIFY
   side = 0.0;
@@ -421,7 +421,7 @@ real test_object(uint kinds, uint object, rvec3 o, rvec3 d, ray_shear sh, real t
     t = intersect_triangle_object(tri, o, d, sh, t_max, bary);
   } else {
     cert_eo += cert_et;
-    cert_other_object_tests(kinds, kind, index, o, d, t_max);
+    cert_other_object_tests(kinds, kind, index, o, d, any, t_max);
     cert_eo = eo;
     t = intersect_other_object(kinds, kind, index, o, d, t_max, bary, part);
   }
@@ -443,7 +443,7 @@ void closest_hit_linear(rvec3 o, rvec3 d, inout hit_record h) {
     real side;
     rvec3 bary;
     uint part;
-    real t = test_object(RC_KIND_ALL, i, o, d, sh, h.t, side, bary, part);
+    real t = test_object(RC_KIND_ALL, i, o, d, sh, false, h.t, side, bary, part);
     consider_hit(i, t, side, bary, part, h);
   }
 }
@@ -463,7 +463,7 @@ bool occluded_linear(rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint part;
-    bool blocks = test_object(RC_KIND_ALL, i, o, d, sh, t_max, side, bary, part) < real(RC_T_FAR);
+    bool blocks = test_object(RC_KIND_ALL, i, o, d, sh, true, t_max, side, bary, part) < real(RC_T_FAR);
 #if RC_CERTIFY
     if (certify && blocks && !cert_blocker_ends()) continue;
 #endif

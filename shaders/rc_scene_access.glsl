@@ -76,6 +76,9 @@ packed_triangle load_triangle(uint i) {
   return t;
 }
 
+// Vertex k of triangle i alone: one texel, where a certificate compares two vertices.
+vec3 load_triangle_vertex(uint i, uint k) { return uintBitsToFloat(texel(scene_triangles, i * RC_TEXELS_PER_TRIANGLE + k).xyz); }
+
 packed_vertex_normals load_vertex_normals(uint i) {
   packed_vertex_normals n;
   n.n0 = uintBitsToFloat(texel(scene_normals, i * RC_TEXELS_PER_VERTEX_NORMALS).xyz);
@@ -214,6 +217,9 @@ layout(std430, binding = RC_BINDING_TEXELS) readonly buffer Texels { uvec4 scene
 
 packed_sphere load_sphere(uint i) { return scene_spheres[i]; }
 packed_triangle load_triangle(uint i) { return scene_triangles[i]; }
+vec3 load_triangle_vertex(uint i, uint k) {
+  return (k == 0u) ? scene_triangles[i].v0 : ((k == 1u) ? scene_triangles[i].v1 : scene_triangles[i].v2);
+}
 packed_material load_material(uint i) { return scene_materials[i]; }
 packed_light load_light(uint i) { return scene_lights[i]; }
 packed_bvh_node load_bvh_node(uint i) { return scene_bvh_nodes[i]; }

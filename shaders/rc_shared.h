@@ -496,6 +496,13 @@ struct packed_status {
 #define RC_UNCERTIFIED_SHADOW 2u
 #define RC_UNCERTIFIED_BOUNCE 3u
 
+/* A triangle that a ray passes near one edge of (rc_certify.glsl, cert_near_edge), noted as
+ * triangle << RC_CERT_EDGE_SHIFT | edge << 1 | (its det < 0): edge 0 runs v1 -> v2, 1 v2 -> v0,
+ * 2 v0 -> v1. RC_CERT_NO_EDGE: near none of them, or near more than one. Triangle indices stay
+ * below 1 << 28 (the BVH's leaves hold them shifted by RC_BVH_LEAF_SHIFT), so a note fits. */
+#define RC_CERT_EDGE_SHIFT 3u
+#define RC_CERT_NO_EDGE 7u
+
 /* How the shader encodes a complete pixel's sum of samples into the output file's 8-bit
  * levels (RC_SPEC_LEVELS, render --gpu-encode; host/image/levels8.h). sum_threshold[k] is
  * the least sum whose level is k or more, and decides the level exactly; the other fields

@@ -33,7 +33,7 @@ bool REF(test_leaf)(const ref_scene *sc, uint32_t first, uint32_t count, rvec3 o
     real side;
     rvec3 bary;
     uint32_t part;
-    real t = REF(test_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any ? t_max : h->t, &side, &bary, &part);
+    real t = REF(test_object)(sc, REF(tree_kinds)(sc), object, o, d, sh, any, any ? t_max : h->t, &side, &bary, &part);
     if (sc->frame->certify && any && t < (real)RC_T_FAR && !REF(cert_blocker_ends)()) continue;
     if (any && t < (real)RC_T_FAR) return true;
     REF(consider_hit)(sc, object, t, side, bary, part, h);
@@ -103,7 +103,7 @@ static uint32_t first_quadric(const ref_scene *sc) { return sc->frame->sphere_co
 bool REF(test_loose_quadrics)(const ref_scene *sc, rvec3 o, rvec3 d, bool any, real t_max, ref_hit *h) {
   for (uint32_t object = first_quadric(sc); object < first_quadric(sc) + sc->frame->quadric_count - sc->frame->plane_count;
        object++) {
-    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_QUADRICS, object, o, d, any ? t_max : h->t);
+    if (sc->frame->certify) REF(cert_object)(sc, RC_KIND_QUADRICS, object, o, d, any, any ? t_max : h->t);
     rvec3 bary;
     uint32_t part;
     real t = REF(intersect_quadric_object)(sc, object - first_quadric(sc), o, d, any ? t_max : h->t, &bary, &part);

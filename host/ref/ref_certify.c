@@ -53,6 +53,11 @@ void REF(cert_camera)(const ref_scene *sc, ref_vec2 raster) {
   }
 }
 
+bool REF(cert_shadow_ignores)(const ref_scene *sc, real lo, real hi, real t_max) {
+  real k = REF(cert_factor)(sc);
+  return hi + k * ref_cert_et < 0 || lo - t_max > k * (ref_cert_t_max_err + ref_cert_et);
+}
+
 void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool taken) {
   if (taken) {
     REF(cert_fail)();
@@ -60,7 +65,7 @@ void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool tak
   }
   if (hi + REF(cert_factor)(sc) * ref_cert_et < 0) return;
   if (ref_cert_any) {
-    if (!(lo - t_max > REF(cert_factor)(sc) * (ref_cert_t_max_err + ref_cert_et))) REF(cert_fail)();
+    if (!REF(cert_shadow_ignores)(sc, lo, hi, t_max)) REF(cert_fail)();
     return;
   }
   ref_cert_beyond = rmin(ref_cert_beyond, lo);
@@ -207,6 +212,34 @@ bool REF(cert_edges_apart)(const ref_sheared *st, real k) {
   return pos && neg;
 }
 
+uint32_t REF(cert_near_edge)(rvec3 e, real sum, real k) {
+  bool nx = R_ABS(e.x) <= k;
+  bool ny = R_ABS(e.y) <= k;
+  bool nz = R_ABS(e.z) <= k;
+  uint32_t edge = nx ? 0 : (ny ? 1 : 2);
+  uint32_t near = (nx ? 1 : 0) + (ny ? 1 : 0) + (nz ? 1 : 0);
+  return (near == 1) ? ((edge << 1) | (sum < 0 ? 1u : 0u)) : RC_CERT_NO_EDGE;
+}
+
+static vec3 REF(load_triangle_vertex)(const ref_scene *sc, uint32_t i, uint32_t k) {
+  return k == 0 ? sc->triangles[i].v0 : (k == 1 ? sc->triangles[i].v1 : sc->triangles[i].v2);
+}
+
+static bool REF(same_point)(vec3 a, vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+bool REF(cert_edge_pair)(const ref_scene *sc, uint32_t a, uint32_t b) {
+  uint32_t ta = a >> RC_CERT_EDGE_SHIFT, tb = b >> RC_CERT_EDGE_SHIFT;
+  uint32_t ea = (a >> 1) & 3u, eb = (b >> 1) & 3u;
+  vec3 pa = REF(load_triangle_vertex)(sc, ta, (ea + 1) % 3);
+  vec3 qa = REF(load_triangle_vertex)(sc, ta, (ea + 2) % 3);
+  vec3 pb = REF(load_triangle_vertex)(sc, tb, (eb + 1) % 3);
+  vec3 qb = REF(load_triangle_vertex)(sc, tb, (eb + 2) % 3);
+  bool reversed = REF(same_point)(pa, qb) && REF(same_point)(qa, pb);
+  bool same = REF(same_point)(pa, pb) && REF(same_point)(qa, qb);
+  bool neg_a = (a & 1u) != 0, neg_b = (b & 1u) != 0;
+  return ta != tb && (reversed ? neg_a == neg_b : (same && neg_a != neg_b));
+}
+
 void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real t_max,
                         bool side_unsure) {
   if (sc->frame->triangle_formula != RC_TRIANGLE_WATERTIGHT) {
@@ -243,9 +276,11 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   REF(cert_maybe)(sc, t - REF(cert_factor)(sc) * e_t, t + REF(cert_factor)(sc) * e_t, t_max, taken);
 }
 
-uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real *t, real *e) {
+uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packed_triangle tri, real *t, real *e,
+                            uint32_t *near) {
   *t = (real)RC_T_FAR;
   *e = 0;
+  *near = RC_CERT_NO_EDGE;
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
   real dz;
   real ee = REF(cert_edge_error)(&st, sh, &dz);
@@ -261,6 +296,7 @@ uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, p
     *e += R_ABS(*t);
     *t = 0;
   }
+  *near = REF(cert_near_edge)(st.e, sum, k);
   return (rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k) ? 1 : 2;
 }
 

@@ -51,7 +51,23 @@ bool REF(cert_leaf_intervals)(const ref_scene *sc, uint32_t leaf, const packed_q
   return m == *n;
 }
 
-bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d,
+bool REF(cert_edge_crossing)(const ref_scene *sc, uint32_t base, uint32_t n, uint32_t note0, real t0, real e0,
+                             uint32_t note1, real t1, real e1, uint32_t notes) {
+  if (notes != 2 || !REF(cert_edge_pair)(sc, note0, note1)) return false;
+  uint32_t found = 0, at = 0;
+  real t_other = 0, e_other = 0;
+  for (uint32_t i = 0; i < n; i++) {
+    bool first = csg_code_of[base + i] == note0 >> RC_CERT_EDGE_SHIFT;
+    bool second = csg_code_of[base + i] == note1 >> RC_CERT_EDGE_SHIFT;
+    if (first || second) found++, at = i, t_other = first ? t1 : t0, e_other = first ? e1 : e0;
+  }
+  if (found != 1) return false;
+  real e = (R_ABS(csg_t[base + at] - t_other) + e_other) * (1 + REF(gamma_bound)(3));
+  csg_e[base + at] = rmax(csg_e[base + at], e);
+  return true;
+}
+
+bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_quadric *q, rvec3 o, rvec3 d, bool any,
                               real t_max, uint32_t base, uint32_t *n) {
   *n = 0;
   real k = REF(cert_factor)(sc);
@@ -59,6 +75,8 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
   rvec3 ef = RV(make)(ref_cert_eo, ref_cert_eo, ref_cert_eo);
   rvec3 ev = RV(make)(ref_cert_ed, ref_cert_ed, ref_cert_ed);
   uint32_t node = q->mesh_root;
+  uint32_t notes = 0, note0 = 0, note1 = 0;
+  real t0 = 0, e0 = 0, t1 = 0, e1 = 0;
   uint32_t miss_end = 0;
   while (node < q->mesh_end) {
     const packed_bvh_node *b = &sc->bvh_nodes[node];
@@ -81,7 +99,8 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
       uint32_t tri = sc->bvh_prims[j];
       packed_triangle pt = sc->triangles[tri];
       real tc, e;
-      uint32_t crossed = REF(cert_crossing)(sc, o, &sh, pt, &tc, &e);
+      uint32_t near;
+      uint32_t crossed = REF(cert_crossing)(sc, o, &sh, pt, &tc, &e, &near);
       if (crossed == 3) {
         REF(cert_fail)();
         return false;
@@ -91,7 +110,12 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
         REF(cert_fail)();
         return false;
       }
-      if (crossed == 2) REF(cert_maybe)(sc, tc - k * e, tc + k * e, t_max, false);
+      bool noted = crossed == 2 && any && near != RC_CERT_NO_EDGE && notes < 2 &&
+                   !REF(cert_shadow_ignores)(sc, tc - k * e, tc + k * e, t_max);
+      if (noted && notes == 0) note0 = tri << RC_CERT_EDGE_SHIFT | near, t0 = tc, e0 = e;
+      if (noted && notes == 1) note1 = tri << RC_CERT_EDGE_SHIFT | near, t1 = tc, e1 = e;
+      if (noted) notes++;
+      if (crossed == 2 && !noted) REF(cert_maybe)(sc, tc - k * e, tc + k * e, t_max, false);
       real t = REF(triangle_crossing)(o, &sh, pt);
       if (t >= (real)RC_T_FAR) continue;
       if (*n == q->mesh_crossings) {
@@ -106,6 +130,10 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
   }
   if (*n & 1u) {
     REF(blame_mesh)(sc, csg);
+    REF(cert_fail)();
+    return false;
+  }
+  if (notes != 0 && !REF(cert_edge_crossing)(sc, base, *n, note0, t0, e0, note1, t1, e1, notes)) {
     REF(cert_fail)();
     return false;
   }
@@ -184,7 +212,7 @@ void REF(cert_first_end)(const ref_scene *sc, uint32_t n, real t_max) {
   }
 }
 
-void REF(cert_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t_max) {
+void REF(cert_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, bool any, real t_max) {
   const packed_csg *c = &sc->csg[index];
   uint32_t count[RC_CSG_STACK];
   uint32_t sp = 0;
@@ -195,7 +223,7 @@ void REF(cert_csg)(const ref_scene *sc, uint32_t index, rvec3 o, rvec3 d, real t
     if (op == RC_CSG_LEAF) {
       const packed_quadric *q = &sc->quadrics[operand];
       bool listed = ((q->flags & RC_QUADRIC_MESH) != 0)
-                        ? REF(cert_mesh_intervals)(sc, index, q, o, d, t_max, sp * RC_CSG_SLOT, &count[sp])
+                        ? REF(cert_mesh_intervals)(sc, index, q, o, d, any, t_max, sp * RC_CSG_SLOT, &count[sp])
                         : REF(cert_leaf_intervals)(sc, operand, q, o, d, sp * RC_CSG_SLOT, &count[sp]);
       if (!listed) return;
       sp++;

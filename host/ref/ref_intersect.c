@@ -233,10 +233,10 @@ void REF(cert_triangle_object)(const ref_scene *sc, packed_triangle tri, rvec3 o
 }
 
 void REF(cert_other_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, rvec3 o, rvec3 d,
-                                  real t_max) {
+                                  bool any, real t_max) {
   if ((kinds & (RC_KIND_QUADRICS | RC_KIND_CSG)) != 0) {
     if ((kinds & RC_KIND_CSG) != 0 && kind == RC_HIT_CSG) {
-      REF(cert_csg)(sc, index, o, d, t_max);
+      REF(cert_csg)(sc, index, o, d, any, t_max);
       return;
     }
     if ((kinds & RC_KIND_QUADRICS) != 0 && kind == RC_HIT_QUADRIC) {
@@ -258,13 +258,13 @@ void REF(cert_other_object_tests)(const ref_scene *sc, uint32_t kinds, uint32_t 
   }
 }
 
-void REF(cert_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, real t_max) {
+void REF(cert_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, bool any, real t_max) {
   bool ok = REF(cert_test_begin)(sc, object);
   real eo = ref_cert_eo;
   ref_cert_eo += ref_cert_et;
   uint32_t index;
   uint32_t kind = REF(object_kind)(sc, object, &index);
-  REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
+  REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, any, t_max);
   ref_cert_eo = eo;
   REF(cert_test_end)(ok);
 }
@@ -299,7 +299,7 @@ void REF(cert_blocked)(bool blocked, bool ok) {
   if (blocked && ref_cert_blocker_certain) ref_cert_ok = ok;
 }
 
-real REF(test_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh,
+real REF(test_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec3 o, rvec3 d, const ref_shear *sh, bool any,
                       real t_max, real *side, rvec3 *bary, uint32_t *part) {
   if (sc->frame->certify) {
     ref_work++;
@@ -323,7 +323,7 @@ real REF(test_object)(const ref_scene *sc, uint32_t kinds, uint32_t object, rvec
       t = REF(intersect_triangle_object)(sc, tri, o, d, sh, t_max, bary);
     } else {
       ref_cert_eo += ref_cert_et;
-      REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, t_max);
+      REF(cert_other_object_tests)(sc, kinds, kind, index, o, d, any, t_max);
       ref_cert_eo = eo;
       t = REF(intersect_other_object)(sc, kinds, kind, index, o, d, t_max, bary, part);
     }
@@ -339,7 +339,7 @@ void REF(closest_hit_linear)(const ref_scene *sc, rvec3 o, rvec3 d, ref_hit *h) 
     real side;
     rvec3 bary;
     uint32_t part;
-    real t = REF(test_object)(sc, RC_KIND_ALL, i, o, d, &sh, h->t, &side, &bary, &part);
+    real t = REF(test_object)(sc, RC_KIND_ALL, i, o, d, &sh, false, h->t, &side, &bary, &part);
     REF(consider_hit)(sc, i, t, side, bary, part, h);
   }
 }
@@ -350,7 +350,7 @@ bool REF(occluded_linear)(const ref_scene *sc, rvec3 o, rvec3 d, real t_max) {
     real side;
     rvec3 bary;
     uint32_t part;
-    bool blocks = REF(test_object)(sc, RC_KIND_ALL, i, o, d, &sh, t_max, &side, &bary, &part) < (real)RC_T_FAR;
+    bool blocks = REF(test_object)(sc, RC_KIND_ALL, i, o, d, &sh, true, t_max, &side, &bary, &part) < (real)RC_T_FAR;
     if (sc->frame->certify && blocks && !REF(cert_blocker_ends)()) continue;
     if (blocks) return true;
   }

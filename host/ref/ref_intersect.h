@@ -64,9 +64,9 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_intersect_other_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, V o, V d, \
                                    R t_max, V *bary, uint32_t *part);                           \
   void ref_cert_other_object_tests_##S(const ref_scene *sc, uint32_t kinds, uint32_t kind, uint32_t index, V o, V d, \
-                                       R t_max);                                                \
+                                       bool any, R t_max);                                                \
   R ref_test_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, const ref_shear_##S *sh, \
-                        R t_max, R *side, V *bary, uint32_t *part);                             \
+                        bool any, R t_max, R *side, V *bary, uint32_t *part);                             \
   void ref_cert_triangle_object_##S(const ref_scene *sc, packed_triangle tri, V o, V d, const ref_shear_##S *sh, \
                                     R t_max);                                                   \
   R ref_intersect_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, const ref_shear_##S *sh, \
@@ -76,7 +76,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   ref_hit_##S ref_no_hit_##S(void);                                                             \
   R ref_cert_limit_##S(const ref_scene *sc, R t, R e);                                          \
   void ref_cert_order_##S(const ref_scene *sc, R t, uint32_t object, const ref_hit_##S *h);       \
-  void ref_cert_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, R t_max); \
+  void ref_cert_object_##S(const ref_scene *sc, uint32_t kinds, uint32_t object, V o, V d, bool any, R t_max); \
   void ref_cert_plane_object_##S(const ref_scene *sc, uint32_t object, const packed_quadric *q, V o, V d, R t_max); \
   void ref_cert_closest_##S(const ref_scene *sc, const ref_hit_##S *h);                           \
   void ref_cert_blocked_##S(bool blocked, bool ok);                                             \
@@ -97,6 +97,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_cert_turn_of_##S(R e, R len);                                                           \
   bool ref_cert_root_within_##S(const ref_scene *sc, R t, R e_down, R e_up, R t_max, bool ahead); \
   bool ref_cert_root_##S(const ref_scene *sc, R t, R e, R t_max, bool ahead);                   \
+  bool ref_cert_shadow_ignores_##S(const ref_scene *sc, R lo, R hi, R t_max);                   \
   void ref_cert_maybe_##S(const ref_scene *sc, R lo, R hi, R t_max, bool taken);                \
   void ref_cert_sphere_grazing_##S(const ref_scene *sc, R disc, R b, R c, R e_disc, R e_b, R e_c, R t_max, R t_near, \
                                    R t_exit, bool roots, R scale, R rel);                       \
@@ -109,19 +110,24 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_cert_triangle_plane_gap_##S(packed_triangle tri, V ng, V p);                            \
   R ref_cert_edge_error_##S(const ref_sheared_##S *st, const ref_shear_##S *sh, R *dz);          \
   bool ref_cert_edges_apart_##S(const ref_sheared_##S *st, R k);                                 \
+  uint32_t ref_cert_near_edge_##S(V e, R sum, R k);                                             \
+  bool ref_cert_edge_pair_##S(const ref_scene *sc, uint32_t a, uint32_t b);                     \
   uint32_t ref_cert_triangle_side_##S(const ref_scene *sc, packed_triangle tri, V d);           \
   void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, \
                              bool side_unsure);                                                  \
-  uint32_t ref_cert_crossing_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R *t, R *e); \
+  uint32_t ref_cert_crossing_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R *t, R *e, \
+                                 uint32_t *near);                                               \
   void ref_cert_plane_##S(const ref_scene *sc, const packed_quadric *q, V o, V d, R t_max);     \
   bool ref_cert_leaf_intervals_##S(const ref_scene *sc, uint32_t leaf, const packed_quadric *q, V o, V d, \
                                    uint32_t base, uint32_t *n);                                  \
-  bool ref_cert_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const packed_quadric *q, V o, V d, R t_max, \
+  bool ref_cert_edge_crossing_##S(const ref_scene *sc, uint32_t base, uint32_t n, uint32_t note0, R t0, R e0, \
+                                  uint32_t note1, R t1, R e1, uint32_t notes);                  \
+  bool ref_cert_mesh_intervals_##S(const ref_scene *sc, uint32_t csg, const packed_quadric *q, V o, V d, bool any, R t_max, \
                                    uint32_t base, uint32_t *n);                                  \
   bool ref_cert_combine_##S(const ref_scene *sc, uint32_t op, uint32_t a, uint32_t na, uint32_t b, uint32_t nb, \
                             uint32_t *n);                                                        \
   void ref_cert_first_end_##S(const ref_scene *sc, uint32_t n, R t_max);                        \
-  void ref_cert_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, R t_max);                 \
+  void ref_cert_csg_##S(const ref_scene *sc, uint32_t index, V o, V d, bool any, R t_max);       \
   V ref_cert_abs_apply_##S(const packed_quadric *q, V v);                                       \
   V ref_cert_local_error_##S(const packed_quadric *q, V mag, R e, R n);                         \
   bool ref_cert_slab_##S(const ref_scene *sc, R lo, R hi, R f, R v, R ef, R ev, R *tn, R *tx, R *e); \
