@@ -298,18 +298,34 @@ uint cert_triangle_side(packed_triangle tri, rvec3 d) {
 // The watertight test's edge functions' bound: a sheared coordinate a.x - s.x a.z moves by
 // |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <= |dd| (1 + |s.x|) / |d.z|, and rounds by
 // gamma(5) of its terms (pbrt's delta_x); an edge function x y' - y x' by the products of
-// those and gamma(2) of its terms. dz: the depths' bound (cert_triangle_t_error).
-real cert_edge_error(sheared_triangle st, ray_shear sh, out real dz) {
+// those and gamma(2) of its terms: for vertices whose sheared |x|, |y| and unscaled depth
+// |a.z| are at most xm, ym and zr.
+real cert_edge_bound(ray_shear sh, real xm, real ym, real zr) {
   real inv = abs(sh.s.z);
   real sx = abs(sh.s.x);
   real sy = abs(sh.s.y);
-  real zr = max3_abs(st.z) / inv;
-  real xm = max3_abs(st.x);
-  real ym = max3_abs(st.y);
   real dx = cert_eo * (1.0 + sx) + cert_ed * (1.0 + sx) * inv * zr + gamma_bound(5.0) * (xm + 2.0 * sx * zr);
   real dy = cert_eo * (1.0 + sy) + cert_ed * (1.0 + sy) * inv * zr + gamma_bound(5.0) * (ym + 2.0 * sy * zr);
-  dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
   return 2.0 * (dx * ym + xm * dy + dx * dy) + gamma_bound(2.0) * 2.0 * xm * ym;
+}
+
+// The bound of all three edge functions, from the three vertices' magnitudes. dz: the
+// depths' bound (cert_triangle_t_error).
+real cert_edge_error(sheared_triangle st, ray_shear sh, out real dz) {
+  real inv = abs(sh.s.z);
+  real zr = max3_abs(st.z) / inv;
+  dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
+  return cert_edge_bound(sh, max3_abs(st.x), max3_abs(st.y), zr);
+}
+
+// The bound of edge `edge`'s function alone (cert_near_edge's numbering: from vertex
+// edge + 1 to edge + 2, mod 3), from its two vertices' magnitudes: the same for the two
+// triangles that share the edge, so that both find it near or neither does (cert_edge_pair).
+real cert_one_edge_error(sheared_triangle st, ray_shear sh, uint edge) {
+  uint i = (edge + 1u) % 3u;
+  uint j = (edge + 2u) % 3u;
+  real zr = select_max(abs(st.z[i]), abs(st.z[j])) / abs(sh.s.z);
+  return cert_edge_bound(sh, select_max(abs(st.x[i]), abs(st.x[j])), select_max(abs(st.y[i]), abs(st.y[j])), zr);
 }
 
 // Whether two edge functions have certainly opposite signs (each beyond k): the line
@@ -436,6 +452,13 @@ uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out r
     t = 0.0;
   }
   near = cert_near_edge(st.e, sum, k);
+  // Near one edge by the triangle's bound: that edge's own bound may decide it.
+  uint edge = near >> 1u;
+  real en = (edge == 0u) ? st.e.x : ((edge == 1u) ? st.e.y : st.e.z);
+  if (near != RC_CERT_NO_EDGE && abs(en) > cert_factor() * cert_one_edge_error(st, sh, edge)) {
+    near = RC_CERT_NO_EDGE;
+    return ((en < 0.0) == (sum < 0.0)) ? 1u : 0u;
+  }
   return (select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k) ? 1u : 2u;
 }
 

@@ -193,17 +193,28 @@ uint32_t REF(cert_triangle_side)(const ref_scene *sc, packed_triangle tri, rvec3
   return (f < 0) ? RC_SIDE_FRONT : RC_SIDE_BACK;
 }
 
-real REF(cert_edge_error)(const ref_sheared *st, const ref_shear *sh, real *dz) {
+real REF(cert_edge_bound)(const ref_shear *sh, real xm, real ym, real zr) {
   real inv = R_ABS(sh->s.z);
   real sx = R_ABS(sh->s.x);
   real sy = R_ABS(sh->s.y);
-  real zr = REF(max3_abs)(st->z) / inv;
-  real xm = REF(max3_abs)(st->x);
-  real ym = REF(max3_abs)(st->y);
   real dx = (ref_cert_eo) * (1 + sx) + (ref_cert_ed) * (1 + sx) * inv * zr + REF(gamma_bound)(5) * (xm + 2 * sx * zr);
   real dy = (ref_cert_eo) * (1 + sy) + (ref_cert_ed) * (1 + sy) * inv * zr + REF(gamma_bound)(5) * (ym + 2 * sy * zr);
-  *dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
   return 2 * (dx * ym + xm * dy + dx * dy) + REF(gamma_bound)(2) * 2 * xm * ym;
+}
+
+real REF(cert_edge_error)(const ref_sheared *st, const ref_shear *sh, real *dz) {
+  real inv = R_ABS(sh->s.z);
+  real zr = REF(max3_abs)(st->z) / inv;
+  *dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
+  return REF(cert_edge_bound)(sh, REF(max3_abs)(st->x), REF(max3_abs)(st->y), zr);
+}
+
+real REF(cert_one_edge_error)(const ref_sheared *st, const ref_shear *sh, uint32_t edge) {
+  uint32_t i = (edge + 1) % 3;
+  uint32_t j = (edge + 2) % 3;
+  real zr = rmax(R_ABS(rv_get(st->z, (int)i)), R_ABS(rv_get(st->z, (int)j))) / R_ABS(sh->s.z);
+  return REF(cert_edge_bound)(sh, rmax(R_ABS(rv_get(st->x, (int)i)), R_ABS(rv_get(st->x, (int)j))),
+                              rmax(R_ABS(rv_get(st->y, (int)i)), R_ABS(rv_get(st->y, (int)j))), zr);
 }
 
 bool REF(cert_edges_apart)(const ref_sheared *st, real k) {
@@ -297,6 +308,12 @@ uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, p
     *t = 0;
   }
   *near = REF(cert_near_edge)(st.e, sum, k);
+  uint32_t edge = *near >> 1;
+  real en = (edge == 0) ? st.e.x : ((edge == 1) ? st.e.y : st.e.z);
+  if (*near != RC_CERT_NO_EDGE && R_ABS(en) > REF(cert_factor)(sc) * REF(cert_one_edge_error)(&st, sh, edge)) {
+    *near = RC_CERT_NO_EDGE;
+    return ((en < 0) == (sum < 0)) ? 1 : 0;
+  }
   return (rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k) ? 1 : 2;
 }
 
