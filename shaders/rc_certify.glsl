@@ -299,50 +299,46 @@ uint cert_triangle_side(packed_triangle tri, rvec3 d) {
 // |do| (1 + |s.x|) and |a.z| ds.x, where ds.x <= |dd| (1 + |s.x|) / |d.z|, and rounds by
 // gamma(5) of its terms (pbrt's delta_x); an edge function x y' - y x' by the products of
 // those and gamma(2) of its terms: for vertices whose sheared |x|, |y| and unscaled depth
-// |a.z| are at most xm, ym and zr.
-real cert_edge_bound(ray_shear sh, real xm, real ym, real zr) {
+// |a.z| are at most xm, ym and zr, componentwise for the three edges.
+rvec3 cert_edge_bounds(ray_shear sh, rvec3 xm, rvec3 ym, rvec3 zr) {
   real inv = abs(sh.s.z);
   real sx = abs(sh.s.x);
   real sy = abs(sh.s.y);
-  real dx = cert_eo * (1.0 + sx) + cert_ed * (1.0 + sx) * inv * zr + gamma_bound(5.0) * (xm + 2.0 * sx * zr);
-  real dy = cert_eo * (1.0 + sy) + cert_ed * (1.0 + sy) * inv * zr + gamma_bound(5.0) * (ym + 2.0 * sy * zr);
+  rvec3 dx = cert_eo * (1.0 + sx) + cert_ed * (1.0 + sx) * inv * zr + gamma_bound(5.0) * (xm + 2.0 * sx * zr);
+  rvec3 dy = cert_eo * (1.0 + sy) + cert_ed * (1.0 + sy) * inv * zr + gamma_bound(5.0) * (ym + 2.0 * sy * zr);
   return 2.0 * (dx * ym + xm * dy + dx * dy) + gamma_bound(2.0) * 2.0 * xm * ym;
 }
 
-// The bound of all three edge functions, from the three vertices' magnitudes. dz: the
-// depths' bound (cert_triangle_t_error).
-real cert_edge_error(sheared_triangle st, ray_shear sh, out real dz) {
+// Each edge function's bound (u: b -> c, v: c -> a, w: a -> b, cert_near_edge's numbering),
+// from the magnitudes of that edge's own two vertices: an edge shared by two triangles gets
+// the same bound in both, so that both find it near the ray or neither does
+// (cert_edge_pair). One bound from all three vertices (before 2026-11-29) was as large as the
+// largest of these. dz: the depths' bound (cert_triangle_t_error), from all three.
+rvec3 cert_edge_errors(sheared_triangle st, ray_shear sh, out real dz) {
   real inv = abs(sh.s.z);
-  real zr = max3_abs(st.z) / inv;
+  rvec3 ax = abs(st.x);
+  rvec3 ay = abs(st.y);
+  rvec3 az = abs(st.z) / inv;
+  real zr = select_max(select_max(az.x, az.y), az.z);
   dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
-  return cert_edge_bound(sh, max3_abs(st.x), max3_abs(st.y), zr);
+  return cert_edge_bounds(sh, max(ax.yzx, ax.zxy), max(ay.yzx, ay.zxy), max(az.yzx, az.zxy));
 }
 
-// The bound of edge `edge`'s function alone (cert_near_edge's numbering: from vertex
-// edge + 1 to edge + 2, mod 3), from its two vertices' magnitudes: the same for the two
-// triangles that share the edge, so that both find it near or neither does (cert_edge_pair).
-real cert_one_edge_error(sheared_triangle st, ray_shear sh, uint edge) {
-  uint i = (edge + 1u) % 3u;
-  uint j = (edge + 2u) % 3u;
-  real zr = select_max(abs(st.z[i]), abs(st.z[j])) / abs(sh.s.z);
-  return cert_edge_bound(sh, select_max(abs(st.x[i]), abs(st.x[j])), select_max(abs(st.y[i]), abs(st.y[j])), zr);
-}
-
-// Whether two edge functions have certainly opposite signs (each beyond k): the line
-// certainly misses the triangle.
-bool cert_edges_apart(sheared_triangle st, real k) {
-  bool pos = st.e.x > k || st.e.y > k || st.e.z > k;
-  bool neg = st.e.x < -k || st.e.y < -k || st.e.z < -k;
+// Whether two edge functions have certainly opposite signs (each beyond its bound k): the
+// line certainly misses the triangle.
+bool cert_edges_apart(sheared_triangle st, rvec3 k) {
+  bool pos = st.e.x > k.x || st.e.y > k.y || st.e.z > k.z;
+  bool neg = st.e.x < -k.x || st.e.y < -k.y || st.e.z < -k.z;
   return pos && neg;
 }
 
 // The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed with
-// cert_edge_error's bound. A miss is certified
+// cert_edge_errors' bounds. A miss is certified
 // by two edge functions of certain opposite signs, a hit by three of certain sign; t's bound
 // is cert_triangle_t_error's. Otherwise the ray passes near an edge, and the reference may
 // take the hit where this precision does not, or not where it does; either's hit is at the
-// plane's t = sum(e z) / sum(e) (det, where the signs agree), whose sum moves by 3 ee and
-// rounds by gamma(2) of its terms, and cert_maybe judges that interval. A spawned ray's root
+// plane's t = sum(e z) / sum(e) (det, where the signs agree), whose sum moves by the three
+// edges' bounds and rounds by gamma(2) of its terms, and cert_maybe judges that interval. A spawned ray's root
 // on the triangle it leaves is dropped by both, as cert_root says. t and its bound are
 // computed once for both cases: llvmpipe runs every branch a SIMD vector's lanes take.
 //
@@ -353,10 +349,10 @@ bool cert_edges_apart(sheared_triangle st, real k) {
 // edge function within k (the edge bound) of 0, and the sign of det, which the other two
 // share (they lie beyond k, and two of opposite sign would be a certain miss). RC_CERT_NO_EDGE
 // where no edge or more than one is that near (a vertex).
-uint cert_near_edge(rvec3 e, real sum, real k) {
-  bool nx = abs(e.x) <= k;
-  bool ny = abs(e.y) <= k;
-  bool nz = abs(e.z) <= k;
+uint cert_near_edge(rvec3 e, real sum, rvec3 k) {
+  bool nx = abs(e.x) <= k.x;
+  bool ny = abs(e.y) <= k.y;
+  bool nz = abs(e.z) <= k.z;
   uint edge = nx ? 0u : (ny ? 1u : 2u);
   uint near = (nx ? 1u : 0u) + (ny ? 1u : 0u) + (nz ? 1u : 0u);
   return (near == 1u) ? ((edge << 1u) | (sum < 0.0 ? 1u : 0u)) : RC_CERT_NO_EDGE;
@@ -397,8 +393,8 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool 
   }
   sheared_triangle st = shear_triangle(o, sh, tri);
   real dz;
-  real ee = cert_edge_error(st, sh, dz);
-  real k = cert_factor() * ee;
+  rvec3 ee = cert_edge_errors(st, sh, dz);
+  rvec3 k = cert_factor() * ee;
   if (cert_edges_apart(st, k)) return;
   if (side_unsure) {
     cert_fail();
@@ -406,16 +402,17 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool 
   }
   real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
   precise real sum = st.e.x + st.e.y + st.e.z;
-  real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
+  real e_sum = ee.x + ee.y + ee.z + gamma_bound(2.0) * se;
   if (!(abs(sum) > cert_factor() * e_sum)) {
     cert_fail();  // the ray runs along the plane, or the triangle is a sliver
     return;
   }
+  real e_max = select_max(select_max(ee.x, ee.y), ee.z);
   real t = triangle_t(st, sum);
-  real e_t = cert_triangle_t_error(st, t, sum, e_sum, ee, dz, se);
+  real e_t = cert_triangle_t_error(st, t, sum, e_sum, e_max, dz, se);
   bool ahead = t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, sum));
-  if (select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k) {
-    cert_bary_err = 4.0 * ee / abs(sum);
+  if (abs(st.e.x) > k.x && abs(st.e.y) > k.y && abs(st.e.z) > k.z) {
+    cert_bary_err = 4.0 * e_max / abs(sum);
     cert_root(t, e_t, t_max, ahead);
     return;
   }
@@ -438,28 +435,21 @@ uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out r
   near = RC_CERT_NO_EDGE;
   sheared_triangle st = shear_triangle(o, sh, tri);
   real dz;
-  real ee = cert_edge_error(st, sh, dz);
-  real k = cert_factor() * ee;
+  rvec3 ee = cert_edge_errors(st, sh, dz);
+  rvec3 k = cert_factor() * ee;
   if (cert_edges_apart(st, k)) return 0u;
   real se = abs(st.e.x) + abs(st.e.y) + abs(st.e.z);
   precise real sum = st.e.x + st.e.y + st.e.z;
-  real e_sum = 3.0 * ee + gamma_bound(2.0) * se;
+  real e_sum = ee.x + ee.y + ee.z + gamma_bound(2.0) * se;
   if (!(abs(sum) > cert_factor() * e_sum)) return 3u;
   t = triangle_t(st, sum);
-  e = cert_triangle_t_error(st, t, sum, e_sum, ee, dz, se);
+  e = cert_triangle_t_error(st, t, sum, e_sum, select_max(select_max(ee.x, ee.y), ee.z), dz, se);
   if (spawned_ray && abs(t) <= triangle_t_error(st, sum)) {
     e += abs(t);
     t = 0.0;
   }
   near = cert_near_edge(st.e, sum, k);
-  // Near one edge by the triangle's bound: that edge's own bound may decide it.
-  uint edge = near >> 1u;
-  real en = (edge == 0u) ? st.e.x : ((edge == 1u) ? st.e.y : st.e.z);
-  if (near != RC_CERT_NO_EDGE && abs(en) > cert_factor() * cert_one_edge_error(st, sh, edge)) {
-    near = RC_CERT_NO_EDGE;
-    return ((en < 0.0) == (sum < 0.0)) ? 1u : 0u;
-  }
-  return (select_min(select_min(abs(st.e.x), abs(st.e.y)), abs(st.e.z)) > k) ? 1u : 2u;
+  return (abs(st.e.x) > k.x && abs(st.e.y) > k.y && abs(st.e.z) > k.z) ? 1u : 2u;
 }
 
 #if RC_QUADRICS

@@ -193,7 +193,7 @@ uint32_t REF(cert_triangle_side)(const ref_scene *sc, packed_triangle tri, rvec3
   return (f < 0) ? RC_SIDE_FRONT : RC_SIDE_BACK;
 }
 
-real REF(cert_edge_bound)(const ref_shear *sh, real xm, real ym, real zr) {
+static real REF(cert_edge_bound)(const ref_shear *sh, real xm, real ym, real zr) {
   real inv = R_ABS(sh->s.z);
   real sx = R_ABS(sh->s.x);
   real sy = R_ABS(sh->s.y);
@@ -202,31 +202,34 @@ real REF(cert_edge_bound)(const ref_shear *sh, real xm, real ym, real zr) {
   return 2 * (dx * ym + xm * dy + dx * dy) + REF(gamma_bound)(2) * 2 * xm * ym;
 }
 
-real REF(cert_edge_error)(const ref_sheared *st, const ref_shear *sh, real *dz) {
+rvec3 REF(cert_edge_bounds)(const ref_shear *sh, rvec3 xm, rvec3 ym, rvec3 zr) {
+  return RV(make)(REF(cert_edge_bound)(sh, xm.x, ym.x, zr.x), REF(cert_edge_bound)(sh, xm.y, ym.y, zr.y),
+                  REF(cert_edge_bound)(sh, xm.z, ym.z, zr.z));
+}
+
+rvec3 REF(cert_edge_errors)(const ref_sheared *st, const ref_shear *sh, real *dz) {
   real inv = R_ABS(sh->s.z);
-  real zr = REF(max3_abs)(st->z) / inv;
+  rvec3 ax = RV(abs)(st->x);
+  rvec3 ay = RV(abs)(st->y);
+  rvec3 az = RV(make)(R_ABS(st->z.x) / inv, R_ABS(st->z.y) / inv, R_ABS(st->z.z) / inv);
+  real zr = rmax(rmax(az.x, az.y), az.z);
   *dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
-  return REF(cert_edge_bound)(sh, REF(max3_abs)(st->x), REF(max3_abs)(st->y), zr);
+  /* Edge u joins vertices 1 and 2, v 2 and 0, w 0 and 1 (GLSL's max(a.yzx, a.zxy)). */
+  return REF(cert_edge_bounds)(sh, RV(make)(rmax(ax.y, ax.z), rmax(ax.z, ax.x), rmax(ax.x, ax.y)),
+                               RV(make)(rmax(ay.y, ay.z), rmax(ay.z, ay.x), rmax(ay.x, ay.y)),
+                               RV(make)(rmax(az.y, az.z), rmax(az.z, az.x), rmax(az.x, az.y)));
 }
 
-real REF(cert_one_edge_error)(const ref_sheared *st, const ref_shear *sh, uint32_t edge) {
-  uint32_t i = (edge + 1) % 3;
-  uint32_t j = (edge + 2) % 3;
-  real zr = rmax(R_ABS(rv_get(st->z, (int)i)), R_ABS(rv_get(st->z, (int)j))) / R_ABS(sh->s.z);
-  return REF(cert_edge_bound)(sh, rmax(R_ABS(rv_get(st->x, (int)i)), R_ABS(rv_get(st->x, (int)j))),
-                              rmax(R_ABS(rv_get(st->y, (int)i)), R_ABS(rv_get(st->y, (int)j))), zr);
-}
-
-bool REF(cert_edges_apart)(const ref_sheared *st, real k) {
-  bool pos = st->e.x > k || st->e.y > k || st->e.z > k;
-  bool neg = st->e.x < -k || st->e.y < -k || st->e.z < -k;
+bool REF(cert_edges_apart)(const ref_sheared *st, rvec3 k) {
+  bool pos = st->e.x > k.x || st->e.y > k.y || st->e.z > k.z;
+  bool neg = st->e.x < -k.x || st->e.y < -k.y || st->e.z < -k.z;
   return pos && neg;
 }
 
-uint32_t REF(cert_near_edge)(rvec3 e, real sum, real k) {
-  bool nx = R_ABS(e.x) <= k;
-  bool ny = R_ABS(e.y) <= k;
-  bool nz = R_ABS(e.z) <= k;
+uint32_t REF(cert_near_edge)(rvec3 e, real sum, rvec3 k) {
+  bool nx = R_ABS(e.x) <= k.x;
+  bool ny = R_ABS(e.y) <= k.y;
+  bool nz = R_ABS(e.z) <= k.z;
   uint32_t edge = nx ? 0 : (ny ? 1 : 2);
   uint32_t near = (nx ? 1 : 0) + (ny ? 1 : 0) + (nz ? 1 : 0);
   return (near == 1) ? ((edge << 1) | (sum < 0 ? 1u : 0u)) : RC_CERT_NO_EDGE;
@@ -259,8 +262,8 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   }
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
   real dz;
-  real ee = REF(cert_edge_error)(&st, sh, &dz);
-  real k = REF(cert_factor)(sc) * ee;
+  rvec3 ee = REF(cert_edge_errors)(&st, sh, &dz);
+  rvec3 k = RV(scale)(ee, REF(cert_factor)(sc));
   if (REF(cert_edges_apart)(&st, k)) return;
   if (side_unsure) {
     REF(cert_fail)();
@@ -268,16 +271,17 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
   }
   real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
   real sum = st.e.x + st.e.y + st.e.z;
-  real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
+  real e_sum = ee.x + ee.y + ee.z + REF(gamma_bound)(2) * se;
   if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) {
     REF(cert_fail)();
     return;
   }
+  real e_max = rmax(rmax(ee.x, ee.y), ee.z);
   real t = REF(triangle_t)(&st, sum);
-  real e_t = REF(cert_triangle_t_error)(&st, t, sum, e_sum, ee, dz, se);
+  real e_t = REF(cert_triangle_t_error)(&st, t, sum, e_sum, e_max, dz, se);
   bool ahead = t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(&st, sum));
-  if (rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k) {
-    ref_cert_bary_err = 4 * ee / R_ABS(sum);
+  if (R_ABS(st.e.x) > k.x && R_ABS(st.e.y) > k.y && R_ABS(st.e.z) > k.z) {
+    ref_cert_bary_err = 4 * e_max / R_ABS(sum);
     REF(cert_root)(sc, t, e_t, t_max, ahead);
     return;
   }
@@ -294,27 +298,21 @@ uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, p
   *near = RC_CERT_NO_EDGE;
   ref_sheared st = REF(shear_triangle)(o, sh, tri);
   real dz;
-  real ee = REF(cert_edge_error)(&st, sh, &dz);
-  real k = REF(cert_factor)(sc) * ee;
+  rvec3 ee = REF(cert_edge_errors)(&st, sh, &dz);
+  rvec3 k = RV(scale)(ee, REF(cert_factor)(sc));
   if (REF(cert_edges_apart)(&st, k)) return 0;
   real se = R_ABS(st.e.x) + R_ABS(st.e.y) + R_ABS(st.e.z);
   real sum = st.e.x + st.e.y + st.e.z;
-  real e_sum = 3 * ee + REF(gamma_bound)(2) * se;
+  real e_sum = ee.x + ee.y + ee.z + REF(gamma_bound)(2) * se;
   if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) return 3;
   *t = REF(triangle_t)(&st, sum);
-  *e = REF(cert_triangle_t_error)(&st, *t, sum, e_sum, ee, dz, se);
+  *e = REF(cert_triangle_t_error)(&st, *t, sum, e_sum, rmax(rmax(ee.x, ee.y), ee.z), dz, se);
   if (ref_spawned_ray && R_ABS(*t) <= REF(triangle_t_error)(&st, sum)) {
     *e += R_ABS(*t);
     *t = 0;
   }
   *near = REF(cert_near_edge)(st.e, sum, k);
-  uint32_t edge = *near >> 1;
-  real en = (edge == 0) ? st.e.x : ((edge == 1) ? st.e.y : st.e.z);
-  if (*near != RC_CERT_NO_EDGE && R_ABS(en) > REF(cert_factor)(sc) * REF(cert_one_edge_error)(&st, sh, edge)) {
-    *near = RC_CERT_NO_EDGE;
-    return ((en < 0) == (sum < 0)) ? 1 : 0;
-  }
-  return (rmin(rmin(R_ABS(st.e.x), R_ABS(st.e.y)), R_ABS(st.e.z)) > k) ? 1 : 2;
+  return (R_ABS(st.e.x) > k.x && R_ABS(st.e.y) > k.y && R_ABS(st.e.z) > k.z) ? 1 : 2;
 }
 
 void REF(cert_plane)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {

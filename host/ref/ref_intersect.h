@@ -108,11 +108,10 @@ extern _Thread_local uint32_t ref_crossing_blame;
   V ref_cert_face_normal_##S(packed_triangle tri, V *e_n);                                       \
   R ref_cert_facing_error_##S(packed_triangle tri, V d);                                        \
   R ref_cert_triangle_plane_gap_##S(packed_triangle tri, V ng, V p);                            \
-  R ref_cert_edge_bound_##S(const ref_shear_##S *sh, R xm, R ym, R zr);                          \
-  R ref_cert_edge_error_##S(const ref_sheared_##S *st, const ref_shear_##S *sh, R *dz);          \
-  R ref_cert_one_edge_error_##S(const ref_sheared_##S *st, const ref_shear_##S *sh, uint32_t edge); \
-  bool ref_cert_edges_apart_##S(const ref_sheared_##S *st, R k);                                 \
-  uint32_t ref_cert_near_edge_##S(V e, R sum, R k);                                             \
+  V ref_cert_edge_bounds_##S(const ref_shear_##S *sh, V xm, V ym, V zr);                        \
+  V ref_cert_edge_errors_##S(const ref_sheared_##S *st, const ref_shear_##S *sh, R *dz);         \
+  bool ref_cert_edges_apart_##S(const ref_sheared_##S *st, V k);                                 \
+  uint32_t ref_cert_near_edge_##S(V e, R sum, V k);                                             \
   bool ref_cert_edge_pair_##S(const ref_scene *sc, uint32_t a, uint32_t b);                     \
   uint32_t ref_cert_triangle_side_##S(const ref_scene *sc, packed_triangle tri, V d);           \
   void ref_cert_triangle_##S(const ref_scene *sc, V o, const ref_shear_##S *sh, packed_triangle tri, R t_max, \

@@ -174,7 +174,7 @@ static int crossed_d(vec3 o, vec3 d, const packed_triangle *t) {
 }
 
 /* Two triangles that share an edge, and rays within f32's bound of it (cert_near_edge,
- * cert_one_edge_error, cert_edge_pair). The edge's own bound is the same in both triangles
+ * cert_edge_errors, cert_edge_pair). The shared edge's bound is the same in both triangles
  * and holds against f64 along the same ray. Where the triangles lie on the edge's two sides
  * as the ray sees them, the pair is certified and each precision crosses exactly one of
  * them (triangle_crossing), though f32 and f64 pick different ones on some rays. Where one
@@ -215,30 +215,33 @@ TEST(edge_pairs_cross_once_and_folds_are_refused) {
     ref_shear_f sh = ref_ray_shear_for_f(df);
     ref_cert_eo_f = ref_cert_ed_f = 0;
     uint32_t note[2];
+    float bound[2];
     bool near = true;
     for (int i = 0; i < 2; i++) {
       ref_sheared_f st = ref_shear_triangle_f(of, &sh, t[i]);
-      float dz, ee = ref_cert_edge_error_f(&st, &sh, &dz), kk = ref_cert_factor_f(&sc) * ee;
+      float dz;
+      vec3 ee = ref_cert_edge_errors_f(&st, &sh, &dz), kk = rcm_scale_f(ee, ref_cert_factor_f(&sc));
       float sum = st.e.x + st.e.y + st.e.z;
       uint32_t n = ref_cert_near_edge_f(st.e, sum, kk);
-      near = near && n != RC_CERT_NO_EDGE && fabsf(sum) > 3 * kk;
+      near = near && n != RC_CERT_NO_EDGE && fabsf(sum) > 3 * rcm_max_abs_comp_f(kk);
       note[i] = (uint32_t)i << RC_CERT_EDGE_SHIFT | n;
+      bound[i] = rv_get_f(ee, (int)((n >> 1) & 3u));
     }
     if (!near) continue;
     near_both++;
-    /* The edge's own bound (cert_one_edge_error): the same in both triangles, and it holds
-     * against the f64 value of the same edge function along the same ray. */
+    /* The shared edge's bound (cert_edge_errors, from its two vertices): the same in both
+     * triangles, and it holds against the f64 value of the same edge function along the
+     * same ray. */
     {
-      ref_sheared_f sa = ref_shear_triangle_f(of, &sh, t[0]), sb = ref_shear_triangle_f(of, &sh, t[1]);
-      uint32_t ea = (note[0] >> 1) & 3u, eb = (note[1] >> 1) & 3u;
-      float ba = ref_cert_one_edge_error_f(&sa, &sh, ea), bb = ref_cert_one_edge_error_f(&sb, &sh, eb);
-      CHECK(ba == bb);
+      CHECK(bound[0] == bound[1]);
+      ref_sheared_f sa = ref_shear_triangle_f(of, &sh, t[0]);
+      uint32_t ea = (note[0] >> 1) & 3u;
       dvec3 od = rcm_to_d(of), dd = rcm_to_d(df);
       ref_shear_d shd = ref_ray_shear_for_d(dd);
       ref_sheared_d sd = ref_shear_triangle_d(od, &shd, t[0]);
       double ef = rv_get_f(sa.e, (int)ea), ed = ea == 0 ? sd.e.x : (ea == 1 ? sd.e.y : sd.e.z);
-      CHECK(fabs((double)ef - ed) <= ba);
-      if (ba > 0 && fabs((double)ef - ed) / ba > worst_edge) worst_edge = fabs((double)ef - ed) / ba;
+      CHECK(fabs((double)ef - ed) <= bound[0]);
+      if (bound[0] > 0 && fabs((double)ef - ed) / bound[0] > worst_edge) worst_edge = fabs((double)ef - ed) / bound[0];
     }
     bool pair = ref_cert_edge_pair_f(&sc, note[0], note[1]);
     int cf = crossed_f(of, df, t), cd = crossed_d(of, df, t);
