@@ -318,7 +318,7 @@ rvec3 cert_edge_errors(sheared_triangle st, ray_shear sh, out real dz) {
   real inv = abs(sh.s.z);
   rvec3 ax = abs(st.x);
   rvec3 ay = abs(st.y);
-  rvec3 az = abs(st.z) / inv;
+  rvec3 az = abs(st.depth);
   real zr = select_max(select_max(az.x, az.y), az.z);
   dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
   return cert_edge_bounds(sh, max(ax.yzx, ax.zxy), max(ay.yzx, ay.zxy), max(az.yzx, az.zxy));

@@ -33,13 +33,15 @@ rvec3 permute(rvec3 a, ivec3 k) { return rvec3(a[k.x], a[k.y], a[k.z]); }
 
 // A triangle in the ray's sheared frame (Woop, Benthin & Wald, "Watertight Ray/Triangle
 // Intersection", JCGT 2(1), 2013): the vertices' x and y after the shear, their depths
-// scaled by s.z, and the edge functions (u, v, w) of edges b->c, c->a, a->b. An edge shared
+// scaled by s.z (and unscaled, for the certificates' bounds: a division saved there), and the
+// edge functions (u, v, w) of edges b->c, c->a, a->b. An edge shared
 // by two triangles is evaluated from the same two projected vertices in both, and
 // a*b - c*d is the exact negative of c*d - a*b, so no ray slips between them.
 struct sheared_triangle {
   rvec3 x;
   rvec3 y;
   rvec3 z;
+  rvec3 depth;
   rvec3 e;
 };
 
@@ -61,6 +63,7 @@ sheared_triangle shear_triangle(rvec3 o, ray_shear sh, packed_triangle tri) {
   st.x = rvec3(ax, bx, cx);
   st.y = rvec3(ay, by, cy);
   st.z = z;
+  st.depth = rvec3(a.z, b.z, c.z);
   st.e = rvec3(u, v, w);
   return st;
 }

@@ -211,7 +211,7 @@ rvec3 REF(cert_edge_errors)(const ref_sheared *st, const ref_shear *sh, real *dz
   real inv = R_ABS(sh->s.z);
   rvec3 ax = RV(abs)(st->x);
   rvec3 ay = RV(abs)(st->y);
-  rvec3 az = RV(make)(R_ABS(st->z.x) / inv, R_ABS(st->z.y) / inv, R_ABS(st->z.z) / inv);
+  rvec3 az = RV(abs)(st->depth);
   real zr = rmax(rmax(az.x, az.y), az.z);
   *dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
   /* Edge u joins vertices 1 and 2, v 2 and 0, w 0 and 1 (GLSL's max(a.yzx, a.zxy)). */

@@ -42,7 +42,7 @@ extern _Thread_local uint32_t ref_crossing_blame;
   R ref_intersect_any_sphere_##S(const ref_scene *sc, V o, V d, packed_sphere s, R t_max, R *side); \
   ref_shear_##S ref_ray_shear_for_##S(V d);                                                     \
   V ref_permute_##S(V a, const int k[3]);                                                       \
-  typedef struct ref_sheared_##S { V x, y, z, e; } ref_sheared_##S;                             \
+  typedef struct ref_sheared_##S { V x, y, z, depth, e; } ref_sheared_##S;                      \
   ref_sheared_##S ref_shear_triangle_##S(V o, const ref_shear_##S *sh, packed_triangle tri);       \
   R ref_max3_abs_##S(V a);                                                                      \
   R ref_triangle_t_error_##S(const ref_sheared_##S *st, R det);                                 \

@@ -40,6 +40,7 @@ ref_sheared REF(shear_triangle)(rvec3 o, const ref_shear *sh, packed_triangle tr
   st.x = RV(make)(ax, bx, cx);
   st.y = RV(make)(ay, by, cy);
   st.z = z;
+  st.depth = RV(make)(a.z, b.z, c.z);
   st.e = RV(make)(u, v, w);
   return st;
 }
