@@ -98,18 +98,18 @@ void cert_camera(vec2 raster) {
   }
 }
 
-// A test whose hit or miss is uncertain, but whose root, if the reference finds one, lies in
-// [lo, hi] (bounds already widened by cert_factor; cert_et more against 0 and t_max, as in
-// cert_root_within): that decision cannot change the query's
-// answer where the interval is behind the origin, past a shadow ray's t_max, or past the
-// nearest hit (cert_beyond, which cert_closest checks). Where this precision took the root
-// (`taken`), it can.
 // Whether a shadow ray's answer ignores a root in [lo, hi]: behind the origin or past t_max.
 bool cert_shadow_ignores(real lo, real hi, real t_max) {
   real k = cert_factor();
   return hi + k * cert_et < 0.0 || lo - t_max > k * (cert_t_max_err + cert_et);
 }
 
+// A test whose hit or miss is uncertain, but whose root, if the reference finds one, lies in
+// [lo, hi] (bounds already widened by cert_factor; cert_et more against 0 and t_max, as in
+// cert_root_within): that decision cannot change the query's
+// answer where the interval is behind the origin, past a shadow ray's t_max, or past the
+// nearest hit (cert_beyond, which cert_closest checks). Where this precision took the root
+// (`taken`), it can.
 void cert_maybe(real lo, real hi, real t_max, bool taken) {
   if (taken) {
     cert_fail();
@@ -332,19 +332,6 @@ bool cert_edges_apart(sheared_triangle st, rvec3 k) {
   return pos && neg;
 }
 
-// The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed with
-// cert_edge_errors' bounds. A miss is certified
-// by two edge functions of certain opposite signs, a hit by three of certain sign; t's bound
-// is cert_triangle_t_error's. Otherwise the ray passes near an edge, and the reference may
-// take the hit where this precision does not, or not where it does; either's hit is at the
-// plane's t = sum(e z) / sum(e) (det, where the signs agree), whose sum moves by the three
-// edges' bounds and rounds by gamma(2) of its terms, and cert_maybe judges that interval. A spawned ray's root
-// on the triangle it leaves is dropped by both, as cert_root says. t and its bound are
-// computed once for both cases: llvmpipe runs every branch a SIMD vector's lanes take.
-//
-// side_unsure: a one-sided triangle whose side cert_triangle_side could not certify. Either
-// precision may then test the triangle where the other skips it, and only a certain miss
-// agrees with both.
 // The edge of a triangle the ray passes near, as an RC_CERT_EDGE_SHIFT note's low bits: the one
 // edge function within k (the edge bound) of 0, and the sign of det, which the other two
 // share (they lie beyond k, and two of opposite sign would be a certain miss). RC_CERT_NO_EDGE
@@ -373,8 +360,8 @@ bool cert_edge_pair(uint a, uint b) {
   uint tb = b >> RC_CERT_EDGE_SHIFT;
   uint ea = (a >> 1u) & 3u;
   uint eb = (b >> 1u) & 3u;
-  // Edge e runs from vertex (e + 1) mod 3 to (e + 2) mod 3; four fetches, not two triangles'
-  // six, as every shadow ray of a certified pass runs this.
+  // Edge e runs from vertex (e + 1) mod 3 to (e + 2) mod 3: four fetches, not two triangles'
+  // six, as llvmpipe runs this for every certified walk of a mesh operand, notes or none.
   vec3 pa = load_triangle_vertex(ta, (ea + 1u) % 3u);
   vec3 qa = load_triangle_vertex(ta, (ea + 2u) % 3u);
   vec3 pb = load_triangle_vertex(tb, (eb + 1u) % 3u);
@@ -386,6 +373,19 @@ bool cert_edge_pair(uint a, uint b) {
   return ta != tb && (reversed ? neg_a == neg_b : (same && neg_a != neg_b));
 }
 
+// The watertight test's decisions (rc_triangle.glsl, intersect_triangle), recomputed with
+// cert_edge_errors' bounds. A miss is certified
+// by two edge functions of certain opposite signs, a hit by three of certain sign; t's bound
+// is cert_triangle_t_error's. Otherwise the ray passes near an edge, and the reference may
+// take the hit where this precision does not, or not where it does; either's hit is at the
+// plane's t = sum(e z) / sum(e) (det, where the signs agree), whose sum moves by the three
+// edges' bounds and rounds by gamma(2) of its terms, and cert_maybe judges that interval. A
+// spawned ray's root on the triangle it leaves is dropped by both, as cert_root says. t and its bound are
+// computed once for both cases: llvmpipe runs every branch a SIMD vector's lanes take.
+//
+// side_unsure: a one-sided triangle whose side cert_triangle_side could not certify. Either
+// precision may then test the triangle where the other skips it, and only a certain miss
+// agrees with both.
 void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool side_unsure) {
   if (triangle_formula != RC_TRIANGLE_WATERTIGHT) {
     cert_fail();

@@ -58,20 +58,6 @@ bool cert_leaf_intervals(uint leaf, packed_quadric q, rvec3 o, rvec3 d, uint bas
   return m == n;
 }
 
-// A mesh operand's crossings, listed as mesh_intervals lists them (at `base`, the same ends
-// in the same order with the same codes), each end's bound in csg_e, in one walk of its BVH:
-// a second walk after mesh_intervals' cost the composite's certified test a third of its
-// time (docs/performance.md, "One walk of a certified mesh operand"). Every BVH node the test
-// skips must be certainly missed by the reference's line (cert_box, in the scene's frame),
-// and every triangle it tests certainly crossed or not (cert_crossing), except near an edge:
-// there the reference may cross the neighbour instead, or at a silhouette cross twice where
-// this precision crosses not at all (or the other way round), but only within the plane's
-// interval, which must then be behind the origin or past the query (cert_maybe): the mesh is
-// closed, so such differences come in pairs and leave the parity, inside or outside, alike at
-// the origin, and what lies past t_max (or past the nearest hit, which cert_maybe keeps)
-// cannot change the first end before it. Two crossings nearer each other than their bounds
-// likewise. False, the test failed, where a triangle is edge-on, or where mesh_intervals
-// would blame the composite (crossing_blame, which its test sets again).
 // A shadow ray's crossings near an edge (cert_mesh_intervals' notes, t within e): certain where
 // they are two, the two sides of one edge (cert_edge_pair). Each precision then lists exactly
 // one of the two triangles, the reference at a t in either's interval, so the listed end's
@@ -100,6 +86,23 @@ bool cert_edge_crossing(uint base, uint n, uint note0, real t0, real e0, uint no
   return true;
 }
 
+// A mesh operand's crossings, listed as mesh_intervals lists them (at `base`, the same ends
+// in the same order with the same codes), each end's bound in csg_e, in one walk of its BVH:
+// a second walk after mesh_intervals' cost the composite's certified test a third of its
+// time (docs/performance.md, "One walk of a certified mesh operand"). Every BVH node the test
+// skips must be certainly missed by the reference's line (cert_box, in the scene's frame),
+// and every triangle it tests certainly crossed or not (cert_crossing), except near an edge:
+// there the reference may cross the neighbour instead, or at a silhouette cross twice where
+// this precision crosses not at all (or the other way round), but only within the plane's
+// interval, which must then be behind the origin or past the query (cert_maybe): the mesh is
+// closed, so such differences come in pairs and leave the parity, inside or outside, alike at
+// the origin, and what lies past t_max (or past the nearest hit, which cert_maybe keeps)
+// cannot change the first end before it. Two crossings nearer each other than their bounds
+// likewise. In a shadow query (`any`, a constant in each inlined copy of the test) a crossing
+// near one edge inside the segment is noted instead, and two notes on the sides of one edge
+// make one certain crossing (cert_edge_crossing). False, the test failed, where a triangle
+// is edge-on, or where mesh_intervals would blame the composite (crossing_blame, which its
+// test sets again).
 bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, bool any, real t_max, uint base, out uint n) {
   n = 0u;
   real k = cert_factor();
