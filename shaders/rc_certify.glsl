@@ -115,11 +115,11 @@ void cert_maybe(real lo, real hi, real t_max, bool taken) {
     cert_fail();
     return;
   }
-  if (hi + cert_factor() * cert_et < 0.0) return;
   if (cert_any) {
     if (!cert_shadow_ignores(lo, hi, t_max)) cert_fail();
     return;
   }
+  if (hi + cert_factor() * cert_et < 0.0) return;
   cert_beyond = select_min(cert_beyond, lo);
 }
 
@@ -319,7 +319,7 @@ rvec3 cert_edge_errors(sheared_triangle st, ray_shear sh, out real dz) {
   rvec3 ax = abs(st.x);
   rvec3 ay = abs(st.y);
   rvec3 az = abs(st.depth);
-  real zr = select_max(select_max(az.x, az.y), az.z);
+  real zr = max3_abs(st.depth);
   dz = inv * (cert_eo + RC_UNIT_ROUNDOFF * zr) + cert_ed * inv * inv * zr;
   return cert_edge_bounds(sh, max(ax.yzx, ax.zxy), max(ay.yzx, ay.zxy), max(az.yzx, az.zxy));
 }
@@ -407,7 +407,7 @@ void cert_triangle(rvec3 o, ray_shear sh, packed_triangle tri, real t_max, bool 
     cert_fail();  // the ray runs along the plane, or the triangle is a sliver
     return;
   }
-  real e_max = select_max(select_max(ee.x, ee.y), ee.z);
+  real e_max = max3_abs(ee);
   real t = triangle_t(st, sum);
   real e_t = cert_triangle_t_error(st, t, sum, e_sum, e_max, dz, se);
   bool ahead = t > 0.0 && !(spawned_ray && t <= triangle_t_error(st, sum));
@@ -443,7 +443,7 @@ uint cert_crossing(rvec3 o, ray_shear sh, packed_triangle tri, out real t, out r
   real e_sum = ee.x + ee.y + ee.z + gamma_bound(2.0) * se;
   if (!(abs(sum) > cert_factor() * e_sum)) return 3u;
   t = triangle_t(st, sum);
-  e = cert_triangle_t_error(st, t, sum, e_sum, select_max(select_max(ee.x, ee.y), ee.z), dz, se);
+  e = cert_triangle_t_error(st, t, sum, e_sum, max3_abs(ee), dz, se);
   if (spawned_ray && abs(t) <= triangle_t_error(st, sum)) {
     e += abs(t);
     t = 0.0;

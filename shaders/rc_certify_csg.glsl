@@ -158,17 +158,15 @@ bool cert_mesh_intervals(uint csg, packed_quadric q, rvec3 o, rvec3 d, bool any,
       }
       bool noted = crossed == 2u && any && near != RC_CERT_NO_EDGE && notes < 2u &&
                    !cert_shadow_ignores(tc - k * e, tc + k * e, t_max);
-      if (noted && notes == 0u) {
+      if (noted) {  // into slot 0, the earlier note (if any) to slot 1: the pair is unordered
+        note1 = note0;
+        t1 = t0;
+        e1 = e0;
         note0 = (tri << RC_CERT_EDGE_SHIFT) | near;
         t0 = tc;
         e0 = e;
+        notes++;
       }
-      if (noted && notes == 1u) {
-        note1 = (tri << RC_CERT_EDGE_SHIFT) | near;
-        t1 = tc;
-        e1 = e;
-      }
-      if (noted) notes++;
       if (crossed == 2u && !noted) cert_maybe(tc - k * e, tc + k * e, t_max, false);
       // mesh_intervals' entry: its crossing, sorted in as it comes.
       real t = triangle_crossing(o, sh, pt);

@@ -63,11 +63,11 @@ void REF(cert_maybe)(const ref_scene *sc, real lo, real hi, real t_max, bool tak
     REF(cert_fail)();
     return;
   }
-  if (hi + REF(cert_factor)(sc) * ref_cert_et < 0) return;
   if (ref_cert_any) {
     if (!REF(cert_shadow_ignores)(sc, lo, hi, t_max)) REF(cert_fail)();
     return;
   }
+  if (hi + REF(cert_factor)(sc) * ref_cert_et < 0) return;
   ref_cert_beyond = rmin(ref_cert_beyond, lo);
 }
 
@@ -212,7 +212,7 @@ rvec3 REF(cert_edge_errors)(const ref_sheared *st, const ref_shear *sh, real *dz
   rvec3 ax = RV(abs)(st->x);
   rvec3 ay = RV(abs)(st->y);
   rvec3 az = RV(abs)(st->depth);
-  real zr = rmax(rmax(az.x, az.y), az.z);
+  real zr = REF(max3_abs)(st->depth);
   *dz = inv * (ref_cert_eo + RC_UNIT_ROUNDOFF * zr) + (ref_cert_ed) * inv * inv * zr;
   /* Edge u joins vertices 1 and 2, v 2 and 0, w 0 and 1 (GLSL's max(a.yzx, a.zxy)). */
   return REF(cert_edge_bounds)(sh, RV(make)(rmax(ax.y, ax.z), rmax(ax.z, ax.x), rmax(ax.x, ax.y)),
@@ -276,7 +276,7 @@ void REF(cert_triangle)(const ref_scene *sc, rvec3 o, const ref_shear *sh, packe
     REF(cert_fail)();
     return;
   }
-  real e_max = rmax(rmax(ee.x, ee.y), ee.z);
+  real e_max = REF(max3_abs)(ee);
   real t = REF(triangle_t)(&st, sum);
   real e_t = REF(cert_triangle_t_error)(&st, t, sum, e_sum, e_max, dz, se);
   bool ahead = t > 0 && !(ref_spawned_ray && t <= REF(triangle_t_error)(&st, sum));
@@ -306,7 +306,7 @@ uint32_t REF(cert_crossing)(const ref_scene *sc, rvec3 o, const ref_shear *sh, p
   real e_sum = ee.x + ee.y + ee.z + REF(gamma_bound)(2) * se;
   if (!(R_ABS(sum) > REF(cert_factor)(sc) * e_sum)) return 3;
   *t = REF(triangle_t)(&st, sum);
-  *e = REF(cert_triangle_t_error)(&st, *t, sum, e_sum, rmax(rmax(ee.x, ee.y), ee.z), dz, se);
+  *e = REF(cert_triangle_t_error)(&st, *t, sum, e_sum, REF(max3_abs)(ee), dz, se);
   if (ref_spawned_ray && R_ABS(*t) <= REF(triangle_t_error)(&st, sum)) {
     *e += R_ABS(*t);
     *t = 0;

@@ -112,9 +112,11 @@ bool REF(cert_mesh_intervals)(const ref_scene *sc, uint32_t csg, const packed_qu
       }
       bool noted = crossed == 2 && any && near != RC_CERT_NO_EDGE && notes < 2 &&
                    !REF(cert_shadow_ignores)(sc, tc - k * e, tc + k * e, t_max);
-      if (noted && notes == 0) note0 = tri << RC_CERT_EDGE_SHIFT | near, t0 = tc, e0 = e;
-      if (noted && notes == 1) note1 = tri << RC_CERT_EDGE_SHIFT | near, t1 = tc, e1 = e;
-      if (noted) notes++;
+      if (noted) { /* into slot 0, the earlier note (if any) to slot 1: the pair is unordered */
+        note1 = note0, t1 = t0, e1 = e0;
+        note0 = tri << RC_CERT_EDGE_SHIFT | near, t0 = tc, e0 = e;
+        notes++;
+      }
       if (crossed == 2 && !noted) REF(cert_maybe)(sc, tc - k * e, tc + k * e, t_max, false);
       real t = REF(triangle_crossing)(o, &sh, pt);
       if (t >= (real)RC_T_FAR) continue;
