@@ -106,39 +106,111 @@ real patch_settles(real e, real beta, real lip, real jx, real e64, real pos64, u
   return (jx + 0.5 * lip * e) * e;
 }
 
+// The second derivatives of the cubic Bernstein weights at t: 6 (B1[i-2] - 2 B1[i-1] + B1[i])
+// with B1 the linear weights s, t.
+rvec4 bernstein_curve(real t) {
+  real s = 1.0 - t;
+  return rvec4(6.0 * s, 6.0 * (t - 2.0 * s), 6.0 * (s - 2.0 * t), 6.0 * t);
+}
+
+// |D2F| at the run's point (patch_evaluate's weights; F_uv is net_eval's mixed slope): for a
+// unit h, D2F[h] is the 2 x 2 matrix of rows (F_uu h_u + F_uv h_v, F_uv h_u + F_vv h_v), one
+// per coordinate, whose norm is at most its Frobenius norm, at most sqrt(F_uu^2 + 2 F_uv^2 +
+// F_vv^2) summed over both (Cauchy-Schwarz).
+real net_curvature(patch_net n, patch_run r, rvec4 fa, rvec4 fb) {
+  rvec4 cu = bernstein_curve(r.u);
+  rvec4 cv = bernstein_curve(r.v);
+  real auu = weigh(r.bv, rvec4(weigh(cu, n.a0), weigh(cu, n.a1), weigh(cu, n.a2), weigh(cu, n.a3)));
+  real avv = weigh(cv, rvec4(weigh(r.bu, n.a0), weigh(r.bu, n.a1), weigh(r.bu, n.a2), weigh(r.bu, n.a3)));
+  real buu = weigh(r.bv, rvec4(weigh(cu, n.b0), weigh(cu, n.b1), weigh(cu, n.b2), weigh(cu, n.b3)));
+  real bvv = weigh(cv, rvec4(weigh(r.bu, n.b0), weigh(r.bu, n.b1), weigh(r.bu, n.b2), weigh(r.bu, n.b3)));
+  return sqrt(auu * auu + avv * avv + buu * buu + bvv * bvv + 2.0 * (fa.w * fa.w + fb.w * fb.w));
+}
+
+// J's Lipschitz constant on a ball of radius rad about the run's point, for the reference's G:
+// |D2F| there as computed (curv), plus its rounding and the turn of the ray's planes (e_curv),
+// plus the third derivatives over the radius (third), and never more than the whole square's
+// (lip). A ray's Newton steps see only the patch near their points, where the second
+// derivatives are often a third of their largest over the square the run may wander in.
+real local_lipschitz(real curv, real e_curv, real third, real rad, real lip) {
+  return select_min(lip, cert_factor() * (curv + e_curv + third * rad) * (1.0 + gamma_bound(8.0)));
+}
+
+// A step where the reference's run may stop first: this run's point there, the reference's
+// distance from it and its residual's bound there, whether it is the last step and how many
+// steps follow.
+struct patch_anchor {
+  bool set; bool last; uint steps;
+  real delta; real g; real u; real v;
+};
+
+// Where the reference's run ends, from an anchor a, where this run converged at (u, v):
+// Kantorovich's theorem about (u, v) (eta = beta |G|, h = beta L eta <= 1/4) puts G's root x*
+// within r0 = 2 eta / (1 + sqrt(1 - 2 h)), where |J(x*)^-1| <= beta* = beta / (1 - beta L r0);
+// the reference's point at the anchor is within rho = delta_a + |x_a - x_f| + r0 of x*, and
+// where beta* L rho <= 1/2 Newton's method converges from there (patch_settles). L is
+// local_lipschitz's on the ball of radius rho + r0 about (u, v), which holds all of it (r0 <=
+// 2 eta where h <= 1/2). True where certain; rad and off as cert_patch_run's.
+bool patch_anchor_end(patch_anchor a, real u, real v, real beta_f, real f, real e_f, real jf, real e_j, real curv,
+                      real e_curv, real third, real lip_all, real r64, real last_ref_low, real tol_ref, real stay,
+                      out real rad, out real off) {
+  real eta_f = beta_f * (f + e_f);
+  real dist = length(rvec2(u - a.u, v - a.v));
+  real lip = local_lipschitz(curv, e_curv, third, a.delta + dist + 4.0 * eta_f, lip_all);
+  real h_f = beta_f * lip * eta_f;
+  real r0_f = 2.0 * eta_f / (1.0 + sqrt(select_max(1.0 - 2.0 * h_f, 0.0)));
+  real beta_s = (beta_f * lip * r0_f < 0.5) ? beta_f / (1.0 - beta_f * lip * r0_f) : 0.0;
+  real rho = a.delta + dist + r0_f;
+  real pos64 = 4.0 * 1.1102230246251565e-16 * (abs(u) + abs(v) + rho);
+  real settled = patch_settles(rho, beta_s, lip, jf + e_j + lip * r0_f, beta_s * r64, pos64, a.steps);
+  // At the last step the reference stops where its residual, |G.x| + |G.y| as computed,
+  // is under its last criterion.
+  bool stops = (a.last ? a.g : settled) * 1.4142135623730951 + r64 < last_ref_low;
+  // The reference's residual where it stops bounds its point's distance from x*: within
+  // 2 beta* of it, beta* <= 2 beta_f.
+  off = select_max(tol_ref, a.last ? 1.4142135623730951 * a.g : settled);
+  rad = r0_f + 4.0 * beta_f * off;
+  return beta_f > 0.0 && h_f <= 0.25 && beta_s > 0.0 && beta_s * lip * rho <= 0.5 && stops &&
+         stay > r0_f + rho + gamma_bound(8.0);
+}
+
 // Where the reference's run ends, against this one's (patch_newton's steps, taken again). G,
 // the reference's F turned into this ray's planes, is within e_f of F and its Jacobian within
 // e_j of J (on a ball of radius delta, within e_j + L delta): the rounding of this run's
 // weighings, where the weights' magnitudes sum to bernstein_mass, and the ray's move, which
 // shifts F by eo + ed |S - o| and turns J's columns by ed (this ray's planes are unit and
 // perpendicular within gamma(10)). The reference's run starts at the same centre and stays
-// within delta_k of this one's point x_k: the Newton map N(x) = x - J^-1 G moves by at most
-// beta L |J^-1 G| times a move of x (its derivative is J^-1 (dJ) J^-1 G), and at x_k differs
-// from this run's computed step by beta (e_f + e_j |step|) plus the step's rounding, so
-// delta_k+1 = beta L beta |G| delta_k + that. Its check that it stays near the piece must go as
-// this one's: both stay, or both leave (both miss). At each step where the reference's
-// residual, at least |F| - e_f - (|J| + e_j) delta - L delta^2 / 2, lies certainly above its
-// criterion, it goes on; at the first where it may not (or where this run converged), the
-// anchor, it is within delta_a of this run's x_a, and from there the certificate waits for
-// this run's end. Where this run converges at x_f, Kantorovich's theorem about x_f (Ortega &
-// Rheinboldt, "Iterative Solution of Nonlinear Equations in Several Variables", 12.6.2:
-// eta = beta |G|, h = beta L eta <= 1/4) puts G's root x* within r0 = 2 eta / (1 + sqrt(1 -
-// 2 h)) of x_f, where |J(x*)^-1| <= beta* = beta / (1 - beta L r0). The reference's point at
-// the anchor is within rho = delta_a + |x_a - x_f| + r0 of x*, and where beta* L rho <= 1/2
-// Newton's method converges from there (patch_settles): each of its later points lies nearer
-// x*, so within rho + r0 of x_f, and it either stops at its criterion or settles under its last
-// one by its last step. Kantorovich's theorem about the reference's own point would ask
-// beta^2 L |G| <= 1/4 there, |G| up to |J| delta_a: the condition number |J| beta times more,
-// which at a silhouette's grazing rays is 10-60. This run must converge in the piece's
-// neighbourhood too: leaving it, or ending unconverged, it fails. Where this run stops
-// unconverged at its last step
-// and the reference's residual is certainly above its last criterion, both miss. Returns 0
-// where the reference's run may end otherwise than this one's, 1 where both certainly miss,
+// within delta_k of this one's point x_k: the Newton map N(y) = y - s(y), s = J^-1 G, has the
+// derivative J^-1 (dJ) s, at most beta L |s(y)| (where |J(y)^-1| <= beta on the ball), and
+// |s(y)| <= |s(x_k)| + delta + |N(y) - N(x_k)| makes it at most beta L (|s(x_k)| + delta) /
+// (1 - beta L delta) (also at most beta L beta |G|); at x_k the map differs from this run's
+// computed step by beta (e_f + e_j |step|) plus the step's rounding. L is local_lipschitz's
+// on that ball. Its check that it stays near the piece must go as this one's: both stay, or
+// both leave (both miss). The reference may stop at a step only where its residual may lie
+// under its criterion: the coarse anchor is the first step where |G| >= |F| - e_f - (|J| +
+// e_j) delta - L delta^2 / 2 does not put it above; the fine anchor the first where
+// |G| >= (|s| - delta) / beta - L delta^2 / 2 (s the exact step of G at x_k: the ball of
+// radius delta about it maps into G + J(ball) + the curvature's, and J^-1 shortens nothing
+// below |.| / beta) does not either, while delta still tracks the reference. The fine anchor is
+// later, where this run is nearer its end, and serves where the tracking holds to it; the
+// coarse one where it does not. Where this run converges at x_f, patch_anchor_end takes the
+// reference from an anchor to its end. This run must converge in the piece's neighbourhood too:
+// leaving it, or ending unconverged, it fails. Where this run stops unconverged at its last
+// step and the reference's residual is certainly above its last criterion, both miss. Returns
+// 0 where the reference's run may end otherwise than this one's, 1 where both certainly miss,
 // 2 where both converged: (u, v) this run's point, rad the distance within which the
-// reference's lies, off the sum of the two points' distances from their rays.
-uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patch_run r, out real rad, out real off) {
+// reference's lies, off the sum of the two points' distances from their rays, and near the
+// direction of F at the run's point nearest the ray (cert_patch's separating line).
+uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out patch_run r, out real rad,
+                    out real off, out rvec2 near) {
   real k = cert_factor();
   real rounding = net_rounding(n, net_lateral(n));
+  real slopes = pb.su + pb.sv;
+  // D2F's bound's rounding and turn, and the third derivatives' bound: each third difference
+  // of the net at most twice its largest second one, so |S_uuu| <= 2 |S_uu|, |S_uuv| <= 6 |S_uu|
+  // and so on over the square, 20 (|S_uu| + |S_vv|) for D3S on unit vectors.
+  real turn = (cert_ed + gamma_bound(10.0)) * (pb.suu + 2.0 * pb.suv + pb.svv);
+  real third = 20.0 * (pb.suu + pb.svv);
   real wu = m.u1 - m.u0;
   real wv = m.v1 - m.v0;
   precise real tol = real(RC_PATCH_TOLERANCE_ULPS) * RC_UNIT_ROUNDOFF * n.scale;
@@ -152,18 +224,15 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
   r = patch_start(m);
   rad = 0.0;
   off = 0.0;
+  near = rvec2(0.0);
+  real nearest = real(RC_T_FAR);
   // 3 while the reference's end is not yet known.
   uint verdict = 3u;
   real delta = k * gamma_bound(2.0) * (abs(r.u) + abs(r.v));
-  // The anchor: this run's point, the reference's distance from it, its steps left and its
-  // residual's bound there.
-  bool anchored = false;
-  bool anchor_last = false;
-  uint anchor_steps = 0u;
-  real anchor_delta = 0.0;
-  real anchor_g = 0.0;
-  real anchor_u = r.u;
-  real anchor_v = r.v;
+  patch_anchor coarse = patch_anchor(false, false, 0u, 0.0, 0.0, r.u, r.v);
+  patch_anchor fine = coarse;
+  // Whether delta still bounds the reference's distance from this run's point.
+  bool tracking = true;
   for (uint i = 0u; i < RC_PATCH_NEWTON_STEPS; i++) {
     if (!budget_step()) break;
     rvec4 fa, fb;
@@ -171,51 +240,58 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
     bool converged = r.residual <= tol || (last && r.residual <= last_tol);
     real f = length(rvec2(fa.x, fb.x));
+    if (f < nearest) {
+      nearest = f;
+      near = rvec2(fa.x, fb.x);
+    }
     real jf = length(rvec4(fa.y, fa.z, fb.y, fb.z));
     real mass = bernstein_mass(r.u, delta) * bernstein_mass(r.v, delta);
     real e_f = k * (rounding * mass + cert_eo + (cert_ed + gamma_bound(10.0)) * 1.7320508075688772 * mass * n.scale);
     real e_j = k * (12.0 * rounding * mass + (cert_ed + gamma_bound(10.0)) * slopes);
-    real spread = e_f + (jf + e_j) * delta + 0.5 * lip * delta * delta;
+    // D2F's rounding: the weights' magnitudes sum to at most 36 of a value's (F_uv's, 6 x 6).
+    real e_curv = 4.0 * 36.0 * rounding * mass + turn;
+    real curv = net_curvature(n, r, fa, fb);
+    real lip_k = local_lipschitz(curv, e_curv, third, delta, lip);
+    real spread = e_f + (jf + e_j) * delta + 0.5 * lip_k * delta * delta;
     // Through an error E, |(J + E)^-1| <= beta / (1 - beta |E|).
-    real b_c = inverse_norm(jf, fa.y * fb.z - fa.z * fb.y);
-    real e_k = e_j + lip * delta;
+    real det = fa.y * fb.z - fa.z * fb.y;
+    real b_c = inverse_norm(jf, det);
+    real e_k = e_j + lip_k * delta;
     real beta = (b_c * e_k < 0.5) ? b_c / (1.0 - b_c * e_k) : 0.0;
-    if (verdict == 3u && !anchored && (converged || !(f - spread > (last ? last_ref : tol_ref)))) {
-      anchored = true;
-      anchor_last = last;
-      anchor_steps = RC_PATCH_NEWTON_STEPS - 1u - i;
-      anchor_delta = delta;
-      anchor_g = f + spread;
-      anchor_u = r.u;
-      anchor_v = r.v;
-    } else if (verdict == 3u && !anchored && !(b_c > 0.0 && b_c * e_k < 0.5)) {
-      verdict = 0u;
+    real beta_f = (b_c * e_j < 0.5) ? b_c / (1.0 - b_c * e_j) : 0.0;
+    // The Newton step's length as newton_step computes it, and its rounding (Cramer's rule:
+    // gamma(2) of each product's magnitudes, |det| >= jf / (sqrt(2) beta)).
+    real sl = (beta_f > 0.0) ? length(rvec2(fa.x * fb.z - fa.z * fb.x, fa.y * fb.x - fa.x * fb.y)) / abs(det) : 0.0;
+    real e_s = gamma_bound(8.0) * b_c * (2.0 * f + 2.0 * jf * sl) + gamma_bound(2.0) * sl;
+    real r64 = 2.0 * rounding * mass * (1.1102230246251565e-16 / RC_UNIT_ROUNDOFF);
+    real crit = last ? last_ref : tol_ref;
+    patch_anchor here = patch_anchor(true, last, RC_PATCH_NEWTON_STEPS - 1u - i, delta, f + spread, r.u, r.v);
+    if (verdict == 3u && !coarse.set && (converged || !(f - spread > crit))) coarse = here;
+    if (verdict == 3u && tracking && !fine.set) {
+      real low = f - spread;
+      if (beta_f > 0.0) {
+        real s_low = sl - e_s - beta_f * (e_f + e_j * (sl + e_s));
+        low = select_max(low, (s_low - delta) / beta_f - 0.5 * lip_k * delta * delta - r64);
+      }
+      if (converged || !(low > crit)) {
+        fine = here;
+      } else if (!(b_c > 0.0 && b_c * e_k < 0.5)) {
+        tracking = false;
+        if (!coarse.set) verdict = 0u;
+      }
     }
     if (verdict == 3u && converged) {
-      real beta_f = (b_c * e_j < 0.5) ? b_c / (1.0 - b_c * e_j) : 0.0;
-      real eta_f = beta_f * (f + e_f);
-      real h_f = beta_f * lip * eta_f;
-      real r0_f = 2.0 * eta_f / (1.0 + sqrt(select_max(1.0 - 2.0 * h_f, 0.0)));
-      real beta_s = (beta_f * lip * r0_f < 0.5) ? beta_f / (1.0 - beta_f * lip * r0_f) : 0.0;
-      real rho = anchor_delta + length(rvec2(r.u - anchor_u, r.v - anchor_v)) + r0_f;
-      // The reference's rounding of G: this precision's, scaled to f64's unit roundoff.
-      real r64 = 2.0 * rounding * mass * (1.1102230246251565e-16 / RC_UNIT_ROUNDOFF);
-      real pos64 = 4.0 * 1.1102230246251565e-16 * (abs(r.u) + abs(r.v) + rho);
-      real settled = patch_settles(rho, beta_s, lip, jf + e_j + lip * r0_f, beta_s * r64, pos64, anchor_steps);
-      // At the last step the reference stops where its residual, |G.x| + |G.y| as computed,
-      // is under its last criterion.
-      bool stops = (anchor_last ? anchor_g : settled) * 1.4142135623730951 + r64 < last_ref_low;
       real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
-      bool sure = beta_f > 0.0 && h_f <= 0.25 && beta_s > 0.0 && beta_s * lip * rho <= 0.5 && stops &&
-                  stay > r0_f + rho + e_dom;
-      // The reference's residual where it stops bounds its point's distance from x*: within
-      // 2 beta* of it, beta* <= 2 beta_f.
-      off = select_max(tol_ref, anchor_last ? 1.4142135623730951 * anchor_g : settled);
-      rad = r0_f + 4.0 * beta_f * off;
+      bool sure = fine.set && patch_anchor_end(fine, r.u, r.v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64,
+                                               last_ref_low, tol_ref, stay, rad, off);
+      if (!sure) {
+        sure = patch_anchor_end(coarse, r.u, r.v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64, last_ref_low,
+                                tol_ref, stay, rad, off);
+      }
       off += r.residual;
       verdict = sure ? 2u : 0u;
     }
-    if (verdict == 3u && last) verdict = anchored ? 0u : 1u;
+    if (verdict == 3u && last) verdict = coarse.set ? 0u : 1u;
     if (converged) {
       r.converged = true;
       break;
@@ -228,16 +304,25 @@ uint cert_patch_run(patch_domain m, patch_net n, real slopes, real lip, out patc
       break;
     }
     r.nearby = r.u >= m.u0 - wu && r.u <= m.u1 + wu && r.v >= m.v0 - wv && r.v <= m.v1 + wv;
-    // Anchored, this run must converge as the reference's does: leaving, it would miss.
-    if (verdict == 3u && anchored && !r.nearby) verdict = 0u;
-    if (verdict == 3u && !anchored) {
+    if (verdict == 3u && tracking && !fine.set) {
       real step = length(rvec2(r.u - u_was, r.v - v_was));
-      real lam = beta * lip * beta * (f + spread);
+      real s_high = sl + e_s + beta * (e_f + e_j * (sl + e_s));
+      real bld = beta * lip_k * delta;
+      real lam = beta * lip_k * beta * (f + spread);
+      if (bld < 0.5) lam = select_min(lam, beta * lip_k * (s_high + delta) / (1.0 - bld));
       delta = k * (lam * delta + beta * (e_f + e_j * step) + gamma_bound(16.0) * step +
                    gamma_bound(2.0) * (abs(r.u) + abs(r.v) + step));
       real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
-      if (!(stay > delta + e_dom)) verdict = (-stay > delta + e_dom) ? 1u : 0u;
+      // Past the coarse anchor the reference may have stopped: an uncertain leave ends only
+      // the tracking then, and the coarse anchor's certificate stays.
+      if (!(stay > delta + e_dom)) {
+        if (-stay > delta + e_dom) verdict = 1u;
+        else if (!coarse.set) verdict = 0u;
+        else tracking = false;
+      }
     }
+    // Anchored, this run must converge as the reference's does: leaving, it would miss.
+    if (verdict == 3u && coarse.set && !r.nearby) verdict = 0u;
     if (!r.nearby) break;
   }
   return (verdict == 3u) ? 0u : verdict;
@@ -295,7 +380,8 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real lip = k * (pb.suu + 2.0 * pb.suv + pb.svv) * (1.0 + cert_ed + gamma_bound(10.0));
   patch_run r;
   real rad, off;
-  uint run = cert_patch_run(m, n, pb.su + pb.sv, lip, r, rad, off);
+  rvec2 near;
+  uint run = cert_patch_run(m, n, pb, lip, r, rad, off, near);
   // The test that follows (intersect_patch, the same ray) takes this run.
   cert_patch_r = r;
   cert_patch_t = patch_depth(r, n);
@@ -352,6 +438,8 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   if (f0 * (1.0 - gamma_bound(8.0)) - along * (1.0 + gamma_bound(8.0)) > slack) return;
   // Else the same line against the hull of the piece's own Bezier net (hull_low), where the
   // second-order term above takes the whole patch's second differences at their largest.
+  // Where the line along F at the centre fails, the line along F at the run's point nearest the
+  // ray is tried: at a silhouette F there points across the piece's outline.
   // w.F's coefficients, at most 1.5 lateral, round within gamma(2) of that; each step
   // x + s (y - x) of the subdivision within 5 u of the largest value (|s| <= 1 + 2 e_dom),
   // six levels, where the weights' magnitudes sum to mass_hull: gamma(40) of it in all. So
@@ -369,7 +457,9 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real e_hull = gamma_bound(40.0) * mass_hull * 1.5 * lateral * (1.0 + gamma_bound(2.0));
   real slack_hull = k * (e_f + 2.0 * rounding * mass_hull + real(RC_PATCH_LAST_TOLERANCE) * (n.scale + cert_eo) *
                          (1.0 + gamma_bound(2.0))) * (1.0 + gamma_bound(8.0));
-  if (!(low - e_hull > slack_hull)) cert_fail();
+  if (low - e_hull > slack_hull) return;
+  real f_near = length(near);
+  if (!(f_near > 0.0) || !(hull_low(n, near / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull)) cert_fail();
 }
 
 // A patch hit's point and normal (cert_surface). Each precision's point is a surface point

@@ -60,10 +60,58 @@ real REF(patch_settles)(real e, real beta, real lip, real jx, real e64, real pos
   return (jx + (real)0.5 * lip * e) * e;
 }
 
-uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, real slopes, real lip, patch_run *r,
-                             real *rad, real *off) {
+rvec4 REF(bernstein_curve)(real t) {
+  real s = 1 - t;
+  return (rvec4){6 * s, 6 * (t - 2 * s), 6 * (s - 2 * t), 6 * t};
+}
+
+real REF(net_curvature)(patch_net n, const patch_run *r, rvec4 fa, rvec4 fb) {
+  rvec4 cu = REF(bernstein_curve)(r->u);
+  rvec4 cv = REF(bernstein_curve)(r->v);
+  real auu = REF(weigh)(r->bv, (rvec4){REF(weigh)(cu, n.a0), REF(weigh)(cu, n.a1), REF(weigh)(cu, n.a2), REF(weigh)(cu, n.a3)});
+  real avv = REF(weigh)(cv, (rvec4){REF(weigh)(r->bu, n.a0), REF(weigh)(r->bu, n.a1), REF(weigh)(r->bu, n.a2), REF(weigh)(r->bu, n.a3)});
+  real buu = REF(weigh)(r->bv, (rvec4){REF(weigh)(cu, n.b0), REF(weigh)(cu, n.b1), REF(weigh)(cu, n.b2), REF(weigh)(cu, n.b3)});
+  real bvv = REF(weigh)(cv, (rvec4){REF(weigh)(r->bu, n.b0), REF(weigh)(r->bu, n.b1), REF(weigh)(r->bu, n.b2), REF(weigh)(r->bu, n.b3)});
+  return R_SQRT(auu * auu + avv * avv + buu * buu + bvv * bvv + 2 * (fa.w * fa.w + fb.w * fb.w));
+}
+
+real REF(local_lipschitz)(const ref_scene *sc, real curv, real e_curv, real third, real rad, real lip) {
+  return rmin(lip, REF(cert_factor)(sc) * (curv + e_curv + third * rad) * (1 + REF(gamma_bound)(8)));
+}
+
+/* rc_certify_patch.glsl's struct patch_anchor. */
+typedef struct {
+  bool set, last;
+  uint32_t steps;
+  real delta, g, u, v;
+} patch_anchor;
+
+bool REF(patch_anchor_end)(const ref_scene *sc, patch_anchor a, real u, real v, real beta_f, real f, real e_f, real jf,
+                           real e_j, real curv, real e_curv, real third, real lip_all, real r64, real last_ref_low,
+                           real tol_ref, real stay, real *rad, real *off) {
+  real eta_f = beta_f * (f + e_f);
+  real dist = R_SQRT((u - a.u) * (u - a.u) + (v - a.v) * (v - a.v));
+  real lip = REF(local_lipschitz)(sc, curv, e_curv, third, a.delta + dist + 4 * eta_f, lip_all);
+  real h_f = beta_f * lip * eta_f;
+  real r0_f = 2 * eta_f / (1 + R_SQRT(rmax(1 - 2 * h_f, 0)));
+  real beta_s = (beta_f * lip * r0_f < (real)0.5) ? beta_f / (1 - beta_f * lip * r0_f) : 0;
+  real rho = a.delta + dist + r0_f;
+  real pos64 = 4 * (real)1.1102230246251565e-16 * (R_ABS(u) + R_ABS(v) + rho);
+  real settled = REF(patch_settles)(rho, beta_s, lip, jf + e_j + lip * r0_f, beta_s * r64, pos64, a.steps);
+  bool stops = (a.last ? a.g : settled) * (real)1.4142135623730951 + r64 < last_ref_low;
+  *off = rmax(tol_ref, a.last ? (real)1.4142135623730951 * a.g : settled);
+  *rad = r0_f + 4 * beta_f * *off;
+  return beta_f > 0 && h_f <= (real)0.25 && beta_s > 0 && beta_s * lip * rho <= (real)0.5 && stops &&
+         stay > r0_f + rho + REF(gamma_bound)(8);
+}
+
+uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, patch_bounds pb, real lip, patch_run *r,
+                             real *rad, real *off, real *near_x, real *near_y) {
   real k = REF(cert_factor)(sc);
   real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
+  real slopes = pb.su + pb.sv;
+  real turn = (ref_cert_ed + REF(gamma_bound)(10)) * (pb.suu + 2 * pb.suv + pb.svv);
+  real third = 20 * (pb.suu + pb.svv);
   real wu = m.u1 - m.u0;
   real wv = m.v1 - m.v0;
   real tol = (real)RC_PATCH_TOLERANCE_ULPS * RC_UNIT_ROUNDOFF * n.scale;
@@ -75,15 +123,14 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
   *r = REF(patch_start)(m);
   *rad = 0;
   *off = 0;
+  *near_x = 0;
+  *near_y = 0;
+  real nearest = (real)RC_T_FAR;
   uint32_t verdict = 3;
   real delta = k * REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v));
-  bool anchored = false;
-  bool anchor_last = false;
-  uint32_t anchor_steps = 0;
-  real anchor_delta = 0;
-  real anchor_g = 0;
-  real anchor_u = r->u;
-  real anchor_v = r->v;
+  patch_anchor coarse = {false, false, 0, 0, 0, r->u, r->v};
+  patch_anchor fine = coarse;
+  bool tracking = true;
   for (uint32_t i = 0; i < RC_PATCH_NEWTON_STEPS; i++) {
     ref_work++;
     rvec4 fa, fb;
@@ -91,45 +138,60 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
     bool last = i + 1u == RC_PATCH_NEWTON_STEPS;
     bool converged = r->residual <= tol || (last && r->residual <= last_tol);
     real f = R_SQRT(fa.x * fa.x + fb.x * fb.x);
+    if (f < nearest) {
+      nearest = f;
+      *near_x = fa.x;
+      *near_y = fb.x;
+    }
     real jf = R_SQRT(fa.y * fa.y + fa.z * fa.z + fb.y * fb.y + fb.z * fb.z);
     real mass = REF(bernstein_mass)(r->u, delta) * REF(bernstein_mass)(r->v, delta);
     real e_f = k * (rounding * mass + ref_cert_eo + (ref_cert_ed + REF(gamma_bound)(10)) * (real)1.7320508075688772 * mass * n.scale);
     real e_j = k * (12 * rounding * mass + (ref_cert_ed + REF(gamma_bound)(10)) * slopes);
-    real spread = e_f + (jf + e_j) * delta + (real)0.5 * lip * delta * delta;
-    real b_c = REF(inverse_norm)(jf, fa.y * fb.z - fa.z * fb.y);
-    real e_k = e_j + lip * delta;
+    real e_curv = 4 * 36 * rounding * mass + turn;
+    real curv = REF(net_curvature)(n, r, fa, fb);
+    real lip_k = REF(local_lipschitz)(sc, curv, e_curv, third, delta, lip);
+    real spread = e_f + (jf + e_j) * delta + (real)0.5 * lip_k * delta * delta;
+    real det = fa.y * fb.z - fa.z * fb.y;
+    real b_c = REF(inverse_norm)(jf, det);
+    real e_k = e_j + lip_k * delta;
     real beta = (b_c * e_k < (real)0.5) ? b_c / (1 - b_c * e_k) : 0;
-    if (verdict == 3 && !anchored && (converged || !(f - spread > (last ? last_ref : tol_ref)))) {
-      anchored = true;
-      anchor_last = last;
-      anchor_steps = RC_PATCH_NEWTON_STEPS - 1u - i;
-      anchor_delta = delta;
-      anchor_g = f + spread;
-      anchor_u = r->u;
-      anchor_v = r->v;
-    } else if (verdict == 3 && !anchored && !(b_c > 0 && b_c * e_k < (real)0.5)) {
-      verdict = 0;
+    real beta_f = (b_c * e_j < (real)0.5) ? b_c / (1 - b_c * e_j) : 0;
+    real sl = 0;
+    if (beta_f > 0) {
+      real nu = fa.x * fb.z - fa.z * fb.x;
+      real nv = fa.y * fb.x - fa.x * fb.y;
+      sl = R_SQRT(nu * nu + nv * nv) / R_ABS(det);
+    }
+    real e_s = REF(gamma_bound)(8) * b_c * (2 * f + 2 * jf * sl) + REF(gamma_bound)(2) * sl;
+    real r64 = 2 * rounding * mass * (real)(1.1102230246251565e-16 / RC_UNIT_ROUNDOFF);
+    real crit = last ? last_ref : tol_ref;
+    patch_anchor here = {true, last, RC_PATCH_NEWTON_STEPS - 1u - i, delta, f + spread, r->u, r->v};
+    if (verdict == 3 && !coarse.set && (converged || !(f - spread > crit))) coarse = here;
+    if (verdict == 3 && tracking && !fine.set) {
+      real low = f - spread;
+      if (beta_f > 0) {
+        real s_low = sl - e_s - beta_f * (e_f + e_j * (sl + e_s));
+        low = rmax(low, (s_low - delta) / beta_f - (real)0.5 * lip_k * delta * delta - r64);
+      }
+      if (converged || !(low > crit)) {
+        fine = here;
+      } else if (!(b_c > 0 && b_c * e_k < (real)0.5)) {
+        tracking = false;
+        if (!coarse.set) verdict = 0;
+      }
     }
     if (verdict == 3 && converged) {
-      real beta_f = (b_c * e_j < (real)0.5) ? b_c / (1 - b_c * e_j) : 0;
-      real eta_f = beta_f * (f + e_f);
-      real h_f = beta_f * lip * eta_f;
-      real r0_f = 2 * eta_f / (1 + R_SQRT(rmax(1 - 2 * h_f, 0)));
-      real beta_s = (beta_f * lip * r0_f < (real)0.5) ? beta_f / (1 - beta_f * lip * r0_f) : 0;
-      real rho = anchor_delta + R_SQRT((r->u - anchor_u) * (r->u - anchor_u) + (r->v - anchor_v) * (r->v - anchor_v)) + r0_f;
-      real r64 = 2 * rounding * mass * (real)(1.1102230246251565e-16 / RC_UNIT_ROUNDOFF);
-      real pos64 = 4 * (real)1.1102230246251565e-16 * (R_ABS(r->u) + R_ABS(r->v) + rho);
-      real settled = REF(patch_settles)(rho, beta_s, lip, jf + e_j + lip * r0_f, beta_s * r64, pos64, anchor_steps);
-      bool stops = (anchor_last ? anchor_g : settled) * (real)1.4142135623730951 + r64 < last_ref_low;
       real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
-      bool sure = beta_f > 0 && h_f <= (real)0.25 && beta_s > 0 && beta_s * lip * rho <= (real)0.5 && stops &&
-                  stay > r0_f + rho + e_dom;
-      *off = rmax(tol_ref, anchor_last ? (real)1.4142135623730951 * anchor_g : settled);
-      *rad = r0_f + 4 * beta_f * *off;
+      bool sure = fine.set && REF(patch_anchor_end)(sc, fine, r->u, r->v, beta_f, f, e_f, jf, e_j, curv, e_curv, third,
+                                                    lip, r64, last_ref_low, tol_ref, stay, rad, off);
+      if (!sure) {
+        sure = REF(patch_anchor_end)(sc, coarse, r->u, r->v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64,
+                                     last_ref_low, tol_ref, stay, rad, off);
+      }
       *off += r->residual;
       verdict = sure ? 2 : 0;
     }
-    if (verdict == 3 && last) verdict = anchored ? 0 : 1;
+    if (verdict == 3 && last) verdict = coarse.set ? 0 : 1;
     if (converged) {
       r->converged = true;
       break;
@@ -142,15 +204,22 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, r
       break;
     }
     r->nearby = r->u >= m.u0 - wu && r->u <= m.u1 + wu && r->v >= m.v0 - wv && r->v <= m.v1 + wv;
-    if (verdict == 3 && anchored && !r->nearby) verdict = 0;
-    if (verdict == 3 && !anchored) {
+    if (verdict == 3 && tracking && !fine.set) {
       real step = R_SQRT((r->u - u_was) * (r->u - u_was) + (r->v - v_was) * (r->v - v_was));
-      real lam = beta * lip * beta * (f + spread);
+      real s_high = sl + e_s + beta * (e_f + e_j * (sl + e_s));
+      real bld = beta * lip_k * delta;
+      real lam = beta * lip_k * beta * (f + spread);
+      if (bld < (real)0.5) lam = rmin(lam, beta * lip_k * (s_high + delta) / (1 - bld));
       delta = k * (lam * delta + beta * (e_f + e_j * step) + REF(gamma_bound)(16) * step +
                    REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v) + step));
       real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
-      if (!(stay > delta + e_dom)) verdict = (-stay > delta + e_dom) ? 1 : 0;
+      if (!(stay > delta + e_dom)) {
+        if (-stay > delta + e_dom) verdict = 1;
+        else if (!coarse.set) verdict = 0;
+        else tracking = false;
+      }
     }
+    if (verdict == 3 && coarse.set && !r->nearby) verdict = 0;
     if (!r->nearby) break;
   }
   return (verdict == 3) ? 0 : verdict;
@@ -200,8 +269,8 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   real reach = (real)1.7320508075688772 * pb.weight * n.scale;
   real lip = k * (pb.suu + 2 * pb.suv + pb.svv) * (1 + ref_cert_ed + REF(gamma_bound)(10));
   patch_run r;
-  real rad, off;
-  uint32_t run = REF(cert_patch_run)(sc, m, n, pb.su + pb.sv, lip, &r, &rad, &off);
+  real rad, off, near_x, near_y;
+  uint32_t run = REF(cert_patch_run)(sc, m, n, pb, lip, &r, &rad, &off, &near_x, &near_y);
   ref_cert_patch_r = r;
   ref_cert_patch_t = REF(patch_depth)(r, n);
   real u = r.u;
@@ -261,7 +330,11 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   real e_hull = REF(gamma_bound)(40) * mass_hull * (real)1.5 * lateral * (1 + REF(gamma_bound)(2));
   real slack_hull = k * (e_f + 2 * rounding * mass_hull + (real)RC_PATCH_LAST_TOLERANCE * (n.scale + ref_cert_eo) *
                          (1 + REF(gamma_bound)(2))) * (1 + REF(gamma_bound)(8));
-  if (!(low - e_hull > slack_hull)) REF(cert_fail)();
+  if (low - e_hull > slack_hull) return;
+  real f_near = R_SQRT(near_x * near_x + near_y * near_y);
+  if (!(f_near > 0) ||
+      !(REF(hull_low)(n, near_x / f_near, near_y / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull))
+    REF(cert_fail)();
 }
 
 void REF(cert_patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 d, rvec3 uv, real bary_err,
