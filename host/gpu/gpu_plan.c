@@ -20,8 +20,10 @@ static uint64_t object_steps(const packed_frame *f) {
   if (f->certify != RC_CERTIFY_OFF) csg *= 2;
   uint64_t quadric = f->quadric_count ? 1 + 2 + 4 : 1;
   /* Certified, a piece's certificate runs its Newton steps and the test takes that run
-   * (rc_certify_patch.glsl): once either way. */
-  if (f->patch_count && quadric < 1 + RC_PATCH_NEWTON_STEPS) quadric = 1 + RC_PATCH_NEWTON_STEPS;
+   * (rc_certify_patch.glsl): once either way; a certain miss may then try the square's
+   * quarters (hull_quarters), a step each. */
+  uint64_t patch = 1 + RC_PATCH_NEWTON_STEPS + (f->certify != RC_CERTIFY_OFF ? RC_PATCH_HULL_QUARTERS : 0);
+  if (f->patch_count && quadric < patch) quadric = patch;
   return csg > quadric ? csg : quadric;
 }
 

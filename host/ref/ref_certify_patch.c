@@ -53,10 +53,18 @@ real REF(inverse_norm)(real jf, real det) {
   return R_SQRT((f2 + root) / (2 * det * det)) * (1 + REF(gamma_bound)(16));
 }
 
+real REF(settle_once)(real e, real beta, real lip, real jx, real e64, real pos64) {
+  return beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 * (1 + 16 * e) + pos64 +
+         64 * (real)1.1102230246251565e-16 * beta * jx * e;
+}
+
 real REF(patch_settles)(real e, real beta, real lip, real jx, real e64, real pos64, uint32_t m) {
-  for (uint32_t j = 0; j < m && j < 6u; j++)
-    e = beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 * (1 + 16 * e) + pos64 +
-        64 * (real)1.1102230246251565e-16 * beta * jx * e;
+  if (m > 0u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
+  if (m > 1u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
+  if (m > 2u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
+  if (m > 3u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
+  if (m > 4u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
+  if (m > 5u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
   return (jx + (real)0.5 * lip * e) * e;
 }
 
@@ -252,6 +260,62 @@ real REF(hull_low)(patch_net n, real wx, real wy, real lo_u, real hi_u, real lo_
   return rmin(rmin(c0, c1), rmin(c2, c3));
 }
 
+/* hull_quarters writes out the code's bits and the climb for four levels. */
+_Static_assert(RC_PATCH_HULL_LEVELS <= 4u, "hull_quarters is written out for at most four levels");
+
+void REF(quarter_span)(uint32_t index, uint32_t cells, real lo, real hi, real *a, real *b) {
+  *a = lo + (hi - lo) * ((real)index / (real)cells);
+  *b = (index + 1u == cells) ? hi : lo + (hi - lo) * ((real)(index + 1u) / (real)cells);
+}
+
+bool REF(hull_quarters)(patch_net n, real near_x, real near_y, real lo_u, real hi_u, real lo_v, real hi_v, real need) {
+  real f_near = R_SQRT(near_x * near_x + near_y * near_y);
+  uint32_t level = 1;
+  uint32_t code = 0;
+  for (uint32_t tried = 0; tried < RC_PATCH_HULL_QUARTERS; tried++) {
+    ref_work++;
+    uint32_t iu = (code & 1u) | ((code >> 1u) & 2u) | ((code >> 2u) & 4u) | ((code >> 3u) & 8u);
+    uint32_t iv = ((code >> 1u) & 1u) | ((code >> 2u) & 2u) | ((code >> 3u) & 4u) | ((code >> 4u) & 8u);
+    real a0, a1, b0, b1;
+    REF(quarter_span)(iu, 1u << level, lo_u, hi_u, &a0, &a1);
+    REF(quarter_span)(iv, 1u << level, lo_v, hi_v, &b0, &b1);
+    patch_run c;
+    c.u = (real)0.5 * (a0 + a1);
+    c.v = (real)0.5 * (b0 + b1);
+    rvec4 fa, fb;
+    REF(patch_evaluate)(n, &c, &fa, &fb);
+    real f = R_SQRT(fa.x * fa.x + fb.x * fb.x);
+    if (!(f > need)) return false;
+    bool apart = REF(hull_low)(n, fa.x / f, fb.x / f, a0, a1, b0, b1) > need ||
+                 (f_near > 0 && REF(hull_low)(n, near_x / f_near, near_y / f_near, a0, a1, b0, b1) > need);
+    if (!apart) {
+      if (level == RC_PATCH_HULL_LEVELS) return false;
+      level++;
+      code = code << 2u;
+      continue;
+    }
+    if ((code & 3u) == 3u) {
+      code = code >> 2u;
+      level--;
+      if (level > 0u && (code & 3u) == 3u) {
+        code = code >> 2u;
+        level--;
+        if (level > 0u && (code & 3u) == 3u) {
+          code = code >> 2u;
+          level--;
+          if (level > 0u && (code & 3u) == 3u) {
+            code = code >> 2u;
+            level--;
+          }
+        }
+      }
+    }
+    if (level == 0u) return true;
+    code++;
+  }
+  return false;
+}
+
 void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   real b_in, b_out;
   uint32_t a_in, a_out;
@@ -332,9 +396,8 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
                          (1 + REF(gamma_bound)(2))) * (1 + REF(gamma_bound)(8));
   if (low - e_hull > slack_hull) return;
   real f_near = R_SQRT(near_x * near_x + near_y * near_y);
-  if (!(f_near > 0) ||
-      !(REF(hull_low)(n, near_x / f_near, near_y / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull))
-    REF(cert_fail)();
+  if (f_near > 0 && REF(hull_low)(n, near_x / f_near, near_y / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull) return;
+  if (!REF(hull_quarters)(n, near_x, near_y, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull)) REF(cert_fail)();
 }
 
 void REF(cert_patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 d, rvec3 uv, real bary_err,
