@@ -211,7 +211,7 @@ bool patch_anchor_end(patch_anchor a, real u, real v, real beta_f, real f, real 
 // reference's lies, off the sum of the two points' distances from their rays, and near the
 // direction of F at the run's point nearest the ray (cert_patch's separating line).
 uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out patch_run r, out real rad,
-                    out real off, out rvec2 near) {
+                    out real off, out rvec2 near, out rvec2 near_at) {
   real k = cert_factor();
   real rounding = net_rounding(n, net_lateral(n));
   real slopes = pb.su + pb.sv;
@@ -234,6 +234,7 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
   rad = 0.0;
   off = 0.0;
   near = rvec2(0.0);
+  near_at = rvec2(r.u, r.v);
   real nearest = real(RC_T_FAR);
   // 3 while the reference's end is not yet known.
   uint verdict = 3u;
@@ -252,6 +253,7 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
     if (f < nearest) {
       nearest = f;
       near = rvec2(fa.x, fb.x);
+      near_at = rvec2(r.u, r.v);
     }
     real jf = length(rvec4(fa.y, fa.z, fb.y, fb.z));
     real mass = bernstein_mass(r.u, delta) * bernstein_mass(r.v, delta);
@@ -387,15 +389,27 @@ void quarter_span(uint index, uint cells, real lo, real hi, out real a, out real
 // as do RC_PATCH_HULL_QUARTERS quarters tried, each a step of the lane's budget (the planner
 // counts them: host/gpu/gpu_plan.c). RC_PATCH_HULL_LEVELS is at most 4: the code's bits and
 // the climb below are written out for four levels.
-bool hull_quarters(patch_net n, rvec2 near, real lo_u, real hi_u, real lo_v, real hi_v, real need) {
+bool hull_quarters(patch_net n, rvec2 near, rvec2 near_at, real lo_u, real hi_u, real lo_v, real hi_v, real need) {
   real f_near = length(near);
+  // The quarter that holds the nearest point goes first at every level, where a ray that
+  // meets the piece ends the walk soonest: that quarter's code at the finest level, its
+  // prefix XORed into each code walked (which maps each quarter's children onto themselves,
+  // so every quarter is still walked once).
+  uint cells = 1u << RC_PATCH_HULL_LEVELS;
+  real x = (near_at.x - lo_u) / (hi_u - lo_u) * real(cells);
+  real y = (near_at.y - lo_v) / (hi_v - lo_v) * real(cells);
+  uint nu = (x >= 1.0) ? uint(select_min(x, real(cells - 1u))) : 0u;
+  uint nv = (y >= 1.0) ? uint(select_min(y, real(cells - 1u))) : 0u;
+  uint first = (nu & 1u) | ((nv & 1u) << 1u) | ((nu & 2u) << 1u) | ((nv & 2u) << 2u) | ((nu & 4u) << 2u) |
+               ((nv & 4u) << 3u) | ((nu & 8u) << 3u) | ((nv & 8u) << 4u);
   uint level = 1u;
   uint code = 0u;
   for (uint tried = 0u; tried < RC_PATCH_HULL_QUARTERS; tried++) {
     if (!budget_step()) return false;
     // Column and row: the code's even and odd bits (four levels at most), without a loop.
-    uint iu = (code & 1u) | ((code >> 1u) & 2u) | ((code >> 2u) & 4u) | ((code >> 3u) & 8u);
-    uint iv = ((code >> 1u) & 1u) | ((code >> 2u) & 2u) | ((code >> 3u) & 4u) | ((code >> 4u) & 8u);
+    uint at = code ^ (first >> (2u * (RC_PATCH_HULL_LEVELS - level)));
+    uint iu = (at & 1u) | ((at >> 1u) & 2u) | ((at >> 2u) & 4u) | ((at >> 3u) & 8u);
+    uint iv = ((at >> 1u) & 1u) | ((at >> 2u) & 2u) | ((at >> 3u) & 4u) | ((at >> 4u) & 8u);
     real a0, a1, b0, b1;
     quarter_span(iu, 1u << level, lo_u, hi_u, a0, a1);
     quarter_span(iv, 1u << level, lo_v, hi_v, b0, b1);
@@ -459,8 +473,8 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real lip = k * (pb.suu + 2.0 * pb.suv + pb.svv) * (1.0 + cert_ed + gamma_bound(10.0));
   patch_run r;
   real rad, off;
-  rvec2 near;
-  uint run = cert_patch_run(m, n, pb, lip, r, rad, off, near);
+  rvec2 near, near_at;
+  uint run = cert_patch_run(m, n, pb, lip, r, rad, off, near, near_at);
   // The test that follows (intersect_patch, the same ray) takes this run.
   cert_patch_r = r;
   cert_patch_t = patch_depth(r, n);
@@ -540,7 +554,7 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real f_near = length(near);
   if (f_near > 0.0 && hull_low(n, near / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull) return;
   // Else the square's quarters (the rounding's bound, over the same square, holds on each).
-  if (!hull_quarters(n, near, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull)) cert_fail();
+  if (!hull_quarters(n, near, near_at, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull)) cert_fail();
 }
 
 // A patch hit's point and normal (cert_surface). Each precision's point is a surface point

@@ -114,7 +114,7 @@ bool REF(patch_anchor_end)(const ref_scene *sc, patch_anchor a, real u, real v, 
 }
 
 uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, patch_bounds pb, real lip, patch_run *r,
-                             real *rad, real *off, real *near_x, real *near_y) {
+                             real *rad, real *off, real *near_x, real *near_y, real *near_u, real *near_v) {
   real k = REF(cert_factor)(sc);
   real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
   real slopes = pb.su + pb.sv;
@@ -133,6 +133,8 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
   *off = 0;
   *near_x = 0;
   *near_y = 0;
+  *near_u = r->u;
+  *near_v = r->v;
   real nearest = (real)RC_T_FAR;
   uint32_t verdict = 3;
   real delta = k * REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v));
@@ -150,6 +152,8 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
       nearest = f;
       *near_x = fa.x;
       *near_y = fb.x;
+      *near_u = r->u;
+      *near_v = r->v;
     }
     real jf = R_SQRT(fa.y * fa.y + fa.z * fa.z + fb.y * fb.y + fb.z * fb.z);
     real mass = REF(bernstein_mass)(r->u, delta) * REF(bernstein_mass)(r->v, delta);
@@ -268,14 +272,23 @@ void REF(quarter_span)(uint32_t index, uint32_t cells, real lo, real hi, real *a
   *b = (index + 1u == cells) ? hi : lo + (hi - lo) * ((real)(index + 1u) / (real)cells);
 }
 
-bool REF(hull_quarters)(patch_net n, real near_x, real near_y, real lo_u, real hi_u, real lo_v, real hi_v, real need) {
+bool REF(hull_quarters)(patch_net n, real near_x, real near_y, real near_u, real near_v, real lo_u, real hi_u,
+                        real lo_v, real hi_v, real need) {
   real f_near = R_SQRT(near_x * near_x + near_y * near_y);
+  uint32_t cells = 1u << RC_PATCH_HULL_LEVELS;
+  real x = (near_u - lo_u) / (hi_u - lo_u) * (real)cells;
+  real y = (near_v - lo_v) / (hi_v - lo_v) * (real)cells;
+  uint32_t nu = (x >= 1) ? (uint32_t)rmin(x, (real)(cells - 1u)) : 0u;
+  uint32_t nv = (y >= 1) ? (uint32_t)rmin(y, (real)(cells - 1u)) : 0u;
+  uint32_t first = (nu & 1u) | ((nv & 1u) << 1u) | ((nu & 2u) << 1u) | ((nv & 2u) << 2u) | ((nu & 4u) << 2u) |
+                   ((nv & 4u) << 3u) | ((nu & 8u) << 3u) | ((nv & 8u) << 4u);
   uint32_t level = 1;
   uint32_t code = 0;
   for (uint32_t tried = 0; tried < RC_PATCH_HULL_QUARTERS; tried++) {
     ref_work++;
-    uint32_t iu = (code & 1u) | ((code >> 1u) & 2u) | ((code >> 2u) & 4u) | ((code >> 3u) & 8u);
-    uint32_t iv = ((code >> 1u) & 1u) | ((code >> 2u) & 2u) | ((code >> 3u) & 4u) | ((code >> 4u) & 8u);
+    uint32_t at = code ^ (first >> (2u * (RC_PATCH_HULL_LEVELS - level)));
+    uint32_t iu = (at & 1u) | ((at >> 1u) & 2u) | ((at >> 2u) & 4u) | ((at >> 3u) & 8u);
+    uint32_t iv = ((at >> 1u) & 1u) | ((at >> 2u) & 2u) | ((at >> 3u) & 4u) | ((at >> 4u) & 8u);
     real a0, a1, b0, b1;
     REF(quarter_span)(iu, 1u << level, lo_u, hi_u, &a0, &a1);
     REF(quarter_span)(iv, 1u << level, lo_v, hi_v, &b0, &b1);
@@ -333,8 +346,8 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   real reach = (real)1.7320508075688772 * pb.weight * n.scale;
   real lip = k * (pb.suu + 2 * pb.suv + pb.svv) * (1 + ref_cert_ed + REF(gamma_bound)(10));
   patch_run r;
-  real rad, off, near_x, near_y;
-  uint32_t run = REF(cert_patch_run)(sc, m, n, pb, lip, &r, &rad, &off, &near_x, &near_y);
+  real rad, off, near_x, near_y, near_u, near_v;
+  uint32_t run = REF(cert_patch_run)(sc, m, n, pb, lip, &r, &rad, &off, &near_x, &near_y, &near_u, &near_v);
   ref_cert_patch_r = r;
   ref_cert_patch_t = REF(patch_depth)(r, n);
   real u = r.u;
@@ -397,7 +410,8 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   if (low - e_hull > slack_hull) return;
   real f_near = R_SQRT(near_x * near_x + near_y * near_y);
   if (f_near > 0 && REF(hull_low)(n, near_x / f_near, near_y / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull) return;
-  if (!REF(hull_quarters)(n, near_x, near_y, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull)) REF(cert_fail)();
+  if (!REF(hull_quarters)(n, near_x, near_y, near_u, near_v, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull))
+    REF(cert_fail)();
 }
 
 void REF(cert_patch_surface)(const ref_scene *sc, const packed_quadric *q, rvec3 d, rvec3 uv, real bary_err,
