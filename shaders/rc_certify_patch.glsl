@@ -98,20 +98,13 @@ real inverse_norm(real jf, real det) {
 // J's, 12 times that, over a step of at most 2 e), the solve's (10 u64 of the step times
 // |J(x*)| beta, counted as 64) and the point's (pos64). After m steps (six counted at most:
 // more only shrink it), |G| <= (|J(x*)| + L e / 2) e.
-real settle_once(real e, real beta, real lip, real jx, real e64, real pos64) {
-  return beta * lip * e * e / (2.0 * (1.0 - beta * lip * e)) + e64 * (1.0 + 16.0 * e) + pos64 +
-         64.0 * 1.1102230246251565e-16 * beta * jx * e;
-}
-
-// The six steps are written out: every loop steps the lane's budget (rc_budget.glsl), and
-// six guarded steps cost less than a loop that does.
+// Each step is a step of the lane's budget (rc_budget.glsl; the planner counts six).
 real patch_settles(real e, real beta, real lip, real jx, real e64, real pos64, uint m) {
-  if (m > 0u) e = settle_once(e, beta, lip, jx, e64, pos64);
-  if (m > 1u) e = settle_once(e, beta, lip, jx, e64, pos64);
-  if (m > 2u) e = settle_once(e, beta, lip, jx, e64, pos64);
-  if (m > 3u) e = settle_once(e, beta, lip, jx, e64, pos64);
-  if (m > 4u) e = settle_once(e, beta, lip, jx, e64, pos64);
-  if (m > 5u) e = settle_once(e, beta, lip, jx, e64, pos64);
+  for (uint j = 0u; j < m && j < 6u; j++) {
+    if (!budget_step()) break;
+    e = beta * lip * e * e / (2.0 * (1.0 - beta * lip * e)) + e64 * (1.0 + 16.0 * e) + pos64 +
+        64.0 * 1.1102230246251565e-16 * beta * jx * e;
+  }
   return (jx + 0.5 * lip * e) * e;
 }
 
@@ -211,7 +204,7 @@ bool patch_anchor_end(patch_anchor a, real u, real v, real beta_f, real f, real 
 // reference's lies, off the sum of the two points' distances from their rays, and near the
 // direction of F at the run's point nearest the ray (cert_patch's separating line).
 uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out patch_run r, out real rad,
-                    out real off, out rvec2 near, out rvec2 near_at) {
+                    out real off, out rvec2 near) {
   real k = cert_factor();
   real rounding = net_rounding(n, net_lateral(n));
   real slopes = pb.su + pb.sv;
@@ -234,7 +227,6 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
   rad = 0.0;
   off = 0.0;
   near = rvec2(0.0);
-  near_at = rvec2(r.u, r.v);
   real nearest = real(RC_T_FAR);
   // 3 while the reference's end is not yet known.
   uint verdict = 3u;
@@ -253,7 +245,6 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
     if (f < nearest) {
       nearest = f;
       near = rvec2(fa.x, fb.x);
-      near_at = rvec2(r.u, r.v);
     }
     real jf = length(rvec4(fa.y, fa.z, fb.y, fb.z));
     real mass = bernstein_mass(r.u, delta) * bernstein_mass(r.v, delta);
@@ -293,12 +284,13 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
     }
     if (verdict == 3u && converged) {
       real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
-      bool sure = fine.set && patch_anchor_end(fine, r.u, r.v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64,
-                                               last_ref_low, tol_ref, stay, rad, off);
-      if (!sure) {
-        sure = patch_anchor_end(coarse, r.u, r.v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64, last_ref_low,
-                                tol_ref, stay, rad, off);
-      }
+      // From the anchor whose point the reference is nearer x_f from: one end taken, since
+      // llvmpipe would run a second one's code for every lane (docs/performance.md).
+      real from_fine = fine.delta + length(rvec2(r.u - fine.u, r.v - fine.v));
+      real from_coarse = coarse.delta + length(rvec2(r.u - coarse.u, r.v - coarse.v));
+      patch_anchor a = (fine.set && from_fine <= from_coarse) ? fine : coarse;
+      bool sure = patch_anchor_end(a, r.u, r.v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64, last_ref_low,
+                                   tol_ref, stay, rad, off);
       off += r.residual;
       verdict = sure ? 2u : 0u;
     }
@@ -369,88 +361,6 @@ real hull_low(patch_net n, rvec2 w, real lo_u, real hi_u, real lo_v, real hi_v) 
   return select_min(select_min(c0, c1), select_min(c2, c3));
 }
 
-// A quarter of a square at a level of a quadtree, from its Morton code (the bits of its column
-// and row interleaved, the coarsest level's highest): its column's or row's lo and hi. A
-// quarter's edge is computed from the same index over the same power of two at every level
-// (k / 2^l is exact), so neighbours share it to the bit and the quarters cover the square.
-void quarter_span(uint index, uint cells, real lo, real hi, out real a, out real b) {
-  a = lo + (hi - lo) * (real(index) / real(cells));
-  b = (index + 1u == cells) ? hi : lo + (hi - lo) * (real(index + 1u) / real(cells));
-}
-
-// Whether every quarter of the square lies beyond a separating line (hull_low above need),
-// along F at the quarter's centre or along near: the square cut in four, and each quarter that
-// no line separates cut in four again, down to RC_PATCH_HULL_LEVELS levels. A quarter's own
-// net lies nearer its surface than the whole square's (de Casteljau's nets converge to the
-// surface quadratically), so at a silhouette, where the piece's hull reaches across the ray,
-// its quarters' hulls need not. The quadtree is walked in Morton order without a stack: after
-// a quarter that is done comes its next sibling, or after a last child its parent's next. A
-// quarter whose centre lies within need of the ray ends the walk (the ray may meet it there),
-// as do RC_PATCH_HULL_QUARTERS quarters tried, each a step of the lane's budget (the planner
-// counts them: host/gpu/gpu_plan.c). RC_PATCH_HULL_LEVELS is at most 4: the code's bits and
-// the climb below are written out for four levels.
-bool hull_quarters(patch_net n, rvec2 near, rvec2 near_at, real lo_u, real hi_u, real lo_v, real hi_v, real need) {
-  real f_near = length(near);
-  // The quarter that holds the nearest point goes first at every level, where a ray that
-  // meets the piece ends the walk soonest: that quarter's code at the finest level, its
-  // prefix XORed into each code walked (which maps each quarter's children onto themselves,
-  // so every quarter is still walked once).
-  uint cells = 1u << RC_PATCH_HULL_LEVELS;
-  real x = (near_at.x - lo_u) / (hi_u - lo_u) * real(cells);
-  real y = (near_at.y - lo_v) / (hi_v - lo_v) * real(cells);
-  uint nu = (x >= 1.0) ? uint(select_min(x, real(cells - 1u))) : 0u;
-  uint nv = (y >= 1.0) ? uint(select_min(y, real(cells - 1u))) : 0u;
-  uint first = (nu & 1u) | ((nv & 1u) << 1u) | ((nu & 2u) << 1u) | ((nv & 2u) << 2u) | ((nu & 4u) << 2u) |
-               ((nv & 4u) << 3u) | ((nu & 8u) << 3u) | ((nv & 8u) << 4u);
-  uint level = 1u;
-  uint code = 0u;
-  for (uint tried = 0u; tried < RC_PATCH_HULL_QUARTERS; tried++) {
-    if (!budget_step()) return false;
-    // Column and row: the code's even and odd bits (four levels at most), without a loop.
-    uint at = code ^ (first >> (2u * (RC_PATCH_HULL_LEVELS - level)));
-    uint iu = (at & 1u) | ((at >> 1u) & 2u) | ((at >> 2u) & 4u) | ((at >> 3u) & 8u);
-    uint iv = ((at >> 1u) & 1u) | ((at >> 2u) & 2u) | ((at >> 3u) & 4u) | ((at >> 4u) & 8u);
-    real a0, a1, b0, b1;
-    quarter_span(iu, 1u << level, lo_u, hi_u, a0, a1);
-    quarter_span(iv, 1u << level, lo_v, hi_v, b0, b1);
-    patch_run c;
-    c.u = 0.5 * (a0 + a1);
-    c.v = 0.5 * (b0 + b1);
-    rvec4 fa, fb;
-    patch_evaluate(n, c, fa, fb);
-    real f = length(rvec2(fa.x, fb.x));
-    if (!(f > need)) return false;
-    bool apart = hull_low(n, rvec2(fa.x, fb.x) / f, a0, a1, b0, b1) > need ||
-                 (f_near > 0.0 && hull_low(n, near / f_near, a0, a1, b0, b1) > need);
-    if (!apart) {
-      if (level == RC_PATCH_HULL_LEVELS) return false;
-      level++;
-      code = code << 2u;
-      continue;
-    }
-    // Up past last children, at most RC_PATCH_HULL_LEVELS of them, written out.
-    if ((code & 3u) == 3u) {
-      code = code >> 2u;
-      level--;
-      if (level > 0u && (code & 3u) == 3u) {
-        code = code >> 2u;
-        level--;
-        if (level > 0u && (code & 3u) == 3u) {
-          code = code >> 2u;
-          level--;
-          if (level > 0u && (code & 3u) == 3u) {
-            code = code >> 2u;
-            level--;
-          }
-        }
-      }
-    }
-    if (level == 0u) return true;
-    code++;
-  }
-  return false;
-}
-
 // The decisions of intersect_patch: a hit or a miss, and the hit's t against 0 and t_max.
 void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real b_in, b_out;
@@ -473,8 +383,8 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
   real lip = k * (pb.suu + 2.0 * pb.suv + pb.svv) * (1.0 + cert_ed + gamma_bound(10.0));
   patch_run r;
   real rad, off;
-  rvec2 near, near_at;
-  uint run = cert_patch_run(m, n, pb, lip, r, rad, off, near, near_at);
+  rvec2 near;
+  uint run = cert_patch_run(m, n, pb, lip, r, rad, off, near);
   // The test that follows (intersect_patch, the same ray) takes this run.
   cert_patch_r = r;
   cert_patch_t = patch_depth(r, n);
@@ -552,9 +462,7 @@ void cert_patch(packed_quadric q, rvec3 o, rvec3 d, real t_max) {
                          (1.0 + gamma_bound(2.0))) * (1.0 + gamma_bound(8.0));
   if (low - e_hull > slack_hull) return;
   real f_near = length(near);
-  if (f_near > 0.0 && hull_low(n, near / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull) return;
-  // Else the square's quarters (the rounding's bound, over the same square, holds on each).
-  if (!hull_quarters(n, near, near_at, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull)) cert_fail();
+  if (!(f_near > 0.0) || !(hull_low(n, near / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull)) cert_fail();
 }
 
 // A patch hit's point and normal (cert_surface). Each precision's point is a surface point

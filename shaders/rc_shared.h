@@ -358,11 +358,6 @@ struct packed_vertex_uvs {
  * criterion asks for more than 6 steps give a grazing ray, and that ray's hit is no less a
  * hit than f32's. */
 #define RC_PATCH_LAST_TOLERANCE 1.9073486328125e-06
-/* A certain miss of a patch piece (rc_certify_patch.glsl, hull_quarters): the piece's square
- * is cut into quarters down to this many levels (a 16th of its width), and at most this many
- * quarters are tried, so that a ray that does meet the piece gives up soon. */
-#define RC_PATCH_HULL_LEVELS 4u
-#define RC_PATCH_HULL_QUARTERS 16u
 /* A converged (u, v) still counts for the piece within this fraction of its width beyond
  * its edges, so that rounding never drops a hit on an edge two pieces share. */
 #define RC_PATCH_DOMAIN_MARGIN 0.0009765625

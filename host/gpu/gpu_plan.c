@@ -20,9 +20,9 @@ static uint64_t object_steps(const packed_frame *f) {
   if (f->certify != RC_CERTIFY_OFF) csg *= 2;
   uint64_t quadric = f->quadric_count ? 1 + 2 + 4 : 1;
   /* Certified, a piece's certificate runs its Newton steps and the test takes that run
-   * (rc_certify_patch.glsl): once either way; a certain miss may then try the square's
-   * quarters (hull_quarters), a step each. */
-  uint64_t patch = 1 + RC_PATCH_NEWTON_STEPS + (f->certify != RC_CERTIFY_OFF ? RC_PATCH_HULL_QUARTERS : 0);
+   * (rc_certify_patch.glsl): once either way; the certificate then follows the reference's
+   * last steps, six at most (patch_settles), a step each. */
+  uint64_t patch = 1 + RC_PATCH_NEWTON_STEPS + (f->certify != RC_CERTIFY_OFF ? 6 : 0);
   if (f->patch_count && quadric < patch) quadric = patch;
   return csg > quadric ? csg : quadric;
 }

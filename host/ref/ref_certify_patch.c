@@ -53,18 +53,12 @@ real REF(inverse_norm)(real jf, real det) {
   return R_SQRT((f2 + root) / (2 * det * det)) * (1 + REF(gamma_bound)(16));
 }
 
-real REF(settle_once)(real e, real beta, real lip, real jx, real e64, real pos64) {
-  return beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 * (1 + 16 * e) + pos64 +
-         64 * (real)1.1102230246251565e-16 * beta * jx * e;
-}
-
 real REF(patch_settles)(real e, real beta, real lip, real jx, real e64, real pos64, uint32_t m) {
-  if (m > 0u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
-  if (m > 1u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
-  if (m > 2u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
-  if (m > 3u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
-  if (m > 4u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
-  if (m > 5u) e = REF(settle_once)(e, beta, lip, jx, e64, pos64);
+  for (uint32_t j = 0; j < m && j < 6u; j++) {
+    ref_work++;
+    e = beta * lip * e * e / (2 * (1 - beta * lip * e)) + e64 * (1 + 16 * e) + pos64 +
+        64 * (real)1.1102230246251565e-16 * beta * jx * e;
+  }
   return (jx + (real)0.5 * lip * e) * e;
 }
 
@@ -114,7 +108,7 @@ bool REF(patch_anchor_end)(const ref_scene *sc, patch_anchor a, real u, real v, 
 }
 
 uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, patch_bounds pb, real lip, patch_run *r,
-                             real *rad, real *off, real *near_x, real *near_y, real *near_u, real *near_v) {
+                             real *rad, real *off, real *near_x, real *near_y) {
   real k = REF(cert_factor)(sc);
   real rounding = REF(net_rounding)(n, REF(net_lateral)(n));
   real slopes = pb.su + pb.sv;
@@ -133,8 +127,6 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
   *off = 0;
   *near_x = 0;
   *near_y = 0;
-  *near_u = r->u;
-  *near_v = r->v;
   real nearest = (real)RC_T_FAR;
   uint32_t verdict = 3;
   real delta = k * REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v));
@@ -152,8 +144,6 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
       nearest = f;
       *near_x = fa.x;
       *near_y = fb.x;
-      *near_u = r->u;
-      *near_v = r->v;
     }
     real jf = R_SQRT(fa.y * fa.y + fa.z * fa.z + fb.y * fb.y + fb.z * fb.z);
     real mass = REF(bernstein_mass)(r->u, delta) * REF(bernstein_mass)(r->v, delta);
@@ -194,12 +184,12 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
     }
     if (verdict == 3 && converged) {
       real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
-      bool sure = fine.set && REF(patch_anchor_end)(sc, fine, r->u, r->v, beta_f, f, e_f, jf, e_j, curv, e_curv, third,
-                                                    lip, r64, last_ref_low, tol_ref, stay, rad, off);
-      if (!sure) {
-        sure = REF(patch_anchor_end)(sc, coarse, r->u, r->v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64,
-                                     last_ref_low, tol_ref, stay, rad, off);
-      }
+      real from_fine = fine.delta + R_SQRT((r->u - fine.u) * (r->u - fine.u) + (r->v - fine.v) * (r->v - fine.v));
+      real from_coarse =
+          coarse.delta + R_SQRT((r->u - coarse.u) * (r->u - coarse.u) + (r->v - coarse.v) * (r->v - coarse.v));
+      patch_anchor a = (fine.set && from_fine <= from_coarse) ? fine : coarse;
+      bool sure = REF(patch_anchor_end)(sc, a, r->u, r->v, beta_f, f, e_f, jf, e_j, curv, e_curv, third, lip, r64,
+                                        last_ref_low, tol_ref, stay, rad, off);
       *off += r->residual;
       verdict = sure ? 2 : 0;
     }
@@ -264,71 +254,6 @@ real REF(hull_low)(patch_net n, real wx, real wy, real lo_u, real hi_u, real lo_
   return rmin(rmin(c0, c1), rmin(c2, c3));
 }
 
-/* hull_quarters writes out the code's bits and the climb for four levels. */
-_Static_assert(RC_PATCH_HULL_LEVELS <= 4u, "hull_quarters is written out for at most four levels");
-
-void REF(quarter_span)(uint32_t index, uint32_t cells, real lo, real hi, real *a, real *b) {
-  *a = lo + (hi - lo) * ((real)index / (real)cells);
-  *b = (index + 1u == cells) ? hi : lo + (hi - lo) * ((real)(index + 1u) / (real)cells);
-}
-
-bool REF(hull_quarters)(patch_net n, real near_x, real near_y, real near_u, real near_v, real lo_u, real hi_u,
-                        real lo_v, real hi_v, real need) {
-  real f_near = R_SQRT(near_x * near_x + near_y * near_y);
-  uint32_t cells = 1u << RC_PATCH_HULL_LEVELS;
-  real x = (near_u - lo_u) / (hi_u - lo_u) * (real)cells;
-  real y = (near_v - lo_v) / (hi_v - lo_v) * (real)cells;
-  uint32_t nu = (x >= 1) ? (uint32_t)rmin(x, (real)(cells - 1u)) : 0u;
-  uint32_t nv = (y >= 1) ? (uint32_t)rmin(y, (real)(cells - 1u)) : 0u;
-  uint32_t first = (nu & 1u) | ((nv & 1u) << 1u) | ((nu & 2u) << 1u) | ((nv & 2u) << 2u) | ((nu & 4u) << 2u) |
-                   ((nv & 4u) << 3u) | ((nu & 8u) << 3u) | ((nv & 8u) << 4u);
-  uint32_t level = 1;
-  uint32_t code = 0;
-  for (uint32_t tried = 0; tried < RC_PATCH_HULL_QUARTERS; tried++) {
-    ref_work++;
-    uint32_t at = code ^ (first >> (2u * (RC_PATCH_HULL_LEVELS - level)));
-    uint32_t iu = (at & 1u) | ((at >> 1u) & 2u) | ((at >> 2u) & 4u) | ((at >> 3u) & 8u);
-    uint32_t iv = ((at >> 1u) & 1u) | ((at >> 2u) & 2u) | ((at >> 3u) & 4u) | ((at >> 4u) & 8u);
-    real a0, a1, b0, b1;
-    REF(quarter_span)(iu, 1u << level, lo_u, hi_u, &a0, &a1);
-    REF(quarter_span)(iv, 1u << level, lo_v, hi_v, &b0, &b1);
-    patch_run c;
-    c.u = (real)0.5 * (a0 + a1);
-    c.v = (real)0.5 * (b0 + b1);
-    rvec4 fa, fb;
-    REF(patch_evaluate)(n, &c, &fa, &fb);
-    real f = R_SQRT(fa.x * fa.x + fb.x * fb.x);
-    if (!(f > need)) return false;
-    bool apart = REF(hull_low)(n, fa.x / f, fb.x / f, a0, a1, b0, b1) > need ||
-                 (f_near > 0 && REF(hull_low)(n, near_x / f_near, near_y / f_near, a0, a1, b0, b1) > need);
-    if (!apart) {
-      if (level == RC_PATCH_HULL_LEVELS) return false;
-      level++;
-      code = code << 2u;
-      continue;
-    }
-    if ((code & 3u) == 3u) {
-      code = code >> 2u;
-      level--;
-      if (level > 0u && (code & 3u) == 3u) {
-        code = code >> 2u;
-        level--;
-        if (level > 0u && (code & 3u) == 3u) {
-          code = code >> 2u;
-          level--;
-          if (level > 0u && (code & 3u) == 3u) {
-            code = code >> 2u;
-            level--;
-          }
-        }
-      }
-    }
-    if (level == 0u) return true;
-    code++;
-  }
-  return false;
-}
-
 void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec3 d, real t_max) {
   real b_in, b_out;
   uint32_t a_in, a_out;
@@ -346,8 +271,8 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
   real reach = (real)1.7320508075688772 * pb.weight * n.scale;
   real lip = k * (pb.suu + 2 * pb.suv + pb.svv) * (1 + ref_cert_ed + REF(gamma_bound)(10));
   patch_run r;
-  real rad, off, near_x, near_y, near_u, near_v;
-  uint32_t run = REF(cert_patch_run)(sc, m, n, pb, lip, &r, &rad, &off, &near_x, &near_y, &near_u, &near_v);
+  real rad, off, near_x, near_y;
+  uint32_t run = REF(cert_patch_run)(sc, m, n, pb, lip, &r, &rad, &off, &near_x, &near_y);
   ref_cert_patch_r = r;
   ref_cert_patch_t = REF(patch_depth)(r, n);
   real u = r.u;
@@ -409,8 +334,8 @@ void REF(cert_patch)(const ref_scene *sc, const packed_quadric *q, rvec3 o, rvec
                          (1 + REF(gamma_bound)(2))) * (1 + REF(gamma_bound)(8));
   if (low - e_hull > slack_hull) return;
   real f_near = R_SQRT(near_x * near_x + near_y * near_y);
-  if (f_near > 0 && REF(hull_low)(n, near_x / f_near, near_y / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull) return;
-  if (!REF(hull_quarters)(n, near_x, near_y, near_u, near_v, lo_u, hi_u, lo_v, hi_v, e_hull + slack_hull))
+  if (!(f_near > 0) ||
+      !(REF(hull_low)(n, near_x / f_near, near_y / f_near, lo_u, hi_u, lo_v, hi_v) - e_hull > slack_hull))
     REF(cert_fail)();
 }
 
