@@ -138,6 +138,14 @@ real local_lipschitz(real curv, real e_curv, real third, real rad, real lip) {
   return select_min(lip, cert_factor() * (curv + e_curv + third * rad) * (1.0 + gamma_bound(8.0)));
 }
 
+// How far the run's point lies inside the square it may wander in (the piece grown by its
+// width on every side; patch_newton's nearby): negative outside.
+real grown_room(patch_domain m, patch_run r) {
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  return select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
+}
+
 // A step where the reference's run may stop first: this run's point there, the reference's
 // distance from it and its residual's bound there, whether it is the last step and how many
 // steps follow.
@@ -194,9 +202,9 @@ bool patch_anchor_end(patch_anchor a, real u, real v, real beta_f, real f, real 
 // |G| >= (|s| - delta) / beta - L delta^2 / 2 (s the exact step of G at x_k: the ball of
 // radius delta about it maps into G + J(ball) + the curvature's, and J^-1 shortens nothing
 // below |.| / beta) does not either, while delta still tracks the reference. The fine anchor is
-// later, where this run is nearer its end, and serves where the tracking holds to it; the
-// coarse one where it does not. Where this run converges at x_f, patch_anchor_end takes the
-// reference from an anchor to its end. This run must converge in the piece's neighbourhood too:
+// later, where this run is nearer its end, but is set only while the tracking holds. Where
+// this run converges at x_f, patch_anchor_end takes the reference to its end from the anchor
+// whose delta and distance from x_f are the smaller (the coarse one where there is no fine). This run must converge in the piece's neighbourhood too:
 // leaving it, or ending unconverged, it fails. Where this run stops unconverged at its last
 // step and the reference's residual is certainly above its last criterion, both miss. Returns
 // 0 where the reference's run may end otherwise than this one's, 1 where both certainly miss,
@@ -283,7 +291,7 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
       }
     }
     if (verdict == 3u && converged) {
-      real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
+      real stay = grown_room(m, r);
       // From the anchor whose point the reference is nearer x_f from: one end taken, since
       // llvmpipe would run a second one's code for every lane (docs/performance.md).
       real from_fine = fine.delta + length(rvec2(r.u - fine.u, r.v - fine.v));
@@ -315,7 +323,7 @@ uint cert_patch_run(patch_domain m, patch_net n, patch_bounds pb, real lip, out 
       if (bld < 0.5) lam = select_min(lam, beta * lip_k * (s_high + delta) / (1.0 - bld));
       delta = k * (lam * delta + beta * (e_f + e_j * step) + gamma_bound(16.0) * step +
                    gamma_bound(2.0) * (abs(r.u) + abs(r.v) + step));
-      real stay = select_min(select_min(r.u - (m.u0 - wu), m.u1 + wu - r.u), select_min(r.v - (m.v0 - wv), m.v1 + wv - r.v));
+      real stay = grown_room(m, r);
       // Past the coarse anchor the reference may have stopped: an uncertain leave ends only
       // the tracking then, and the coarse anchor's certificate stays.
       if (!(stay > delta + e_dom)) {

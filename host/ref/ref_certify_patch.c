@@ -81,6 +81,12 @@ real REF(local_lipschitz)(const ref_scene *sc, real curv, real e_curv, real thir
   return rmin(lip, REF(cert_factor)(sc) * (curv + e_curv + third * rad) * (1 + REF(gamma_bound)(8)));
 }
 
+real REF(grown_room)(patch_domain m, const patch_run *r) {
+  real wu = m.u1 - m.u0;
+  real wv = m.v1 - m.v0;
+  return rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
+}
+
 /* rc_certify_patch.glsl's struct patch_anchor. */
 typedef struct {
   bool set, last;
@@ -183,7 +189,7 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
       }
     }
     if (verdict == 3 && converged) {
-      real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
+      real stay = REF(grown_room)(m, r);
       real from_fine = fine.delta + R_SQRT((r->u - fine.u) * (r->u - fine.u) + (r->v - fine.v) * (r->v - fine.v));
       real from_coarse =
           coarse.delta + R_SQRT((r->u - coarse.u) * (r->u - coarse.u) + (r->v - coarse.v) * (r->v - coarse.v));
@@ -214,7 +220,7 @@ uint32_t REF(cert_patch_run)(const ref_scene *sc, patch_domain m, patch_net n, p
       if (bld < (real)0.5) lam = rmin(lam, beta * lip_k * (s_high + delta) / (1 - bld));
       delta = k * (lam * delta + beta * (e_f + e_j * step) + REF(gamma_bound)(16) * step +
                    REF(gamma_bound)(2) * (R_ABS(r->u) + R_ABS(r->v) + step));
-      real stay = rmin(rmin(r->u - (m.u0 - wu), m.u1 + wu - r->u), rmin(r->v - (m.v0 - wv), m.v1 + wv - r->v));
+      real stay = REF(grown_room)(m, r);
       if (!(stay > delta + e_dom)) {
         if (-stay > delta + e_dom) verdict = 1;
         else if (!coarse.set) verdict = 0;
